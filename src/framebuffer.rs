@@ -1,0 +1,143 @@
+//! The pixel grid every renderer writes and every output reads: W × 2H for a W × H-cell view.
+
+use crate::color::Rgb;
+
+/// Row-major RGB pixels; two pixel rows make one terminal cell row.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Framebuffer {
+    width: usize,
+    height: usize,
+    pixels: Vec<Rgb>,
+}
+
+impl Framebuffer {
+    /// A black framebuffer of `width` × `height` pixels.
+    #[must_use]
+    pub fn new(width: usize, height: usize) -> Self {
+        Self {
+            width,
+            height,
+            pixels: vec![Rgb::default(); width * height],
+        }
+    }
+
+    /// The framebuffer for a terminal area of `cols` × `rows` cells (two pixel rows per cell).
+    #[must_use]
+    pub fn for_cells(cols: u16, rows: u16) -> Self {
+        Self::new(usize::from(cols), usize::from(rows) * 2)
+    }
+
+    /// Width in pixels (= terminal columns).
+    #[must_use]
+    pub fn width(&self) -> usize {
+        self.width
+    }
+
+    /// Height in pixels (= 2 × terminal rows).
+    #[must_use]
+    pub fn height(&self) -> usize {
+        self.height
+    }
+
+    /// Resizes (contents become black) only when the size changed, so per-frame reuse is free.
+    pub fn resize(&mut self, width: usize, height: usize) {
+        if (width, height) != (self.width, self.height) {
+            *self = Self::new(width, height);
+        }
+    }
+
+    /// The pixel at (x, y).
+    #[must_use]
+    #[inline]
+    pub fn get(&self, x: usize, y: usize) -> Rgb {
+        self.pixels[y * self.width + x]
+    }
+
+    /// Sets the pixel at (x, y).
+    #[inline]
+    pub fn set(&mut self, x: usize, y: usize, c: Rgb) {
+        self.pixels[y * self.width + x] = c;
+    }
+
+    /// One pixel row, left to right.
+    #[must_use]
+    pub fn row(&self, y: usize) -> &[Rgb] {
+        &self.pixels[y * self.width..(y + 1) * self.width]
+    }
+
+    /// One pixel row, writable (the floor caster fills rows).
+    pub fn row_mut(&mut self, y: usize) -> &mut [Rgb] {
+        &mut self.pixels[y * self.width..(y + 1) * self.width]
+    }
+
+    /// All pixels, row-major.
+    #[must_use]
+    pub fn pixels(&self) -> &[Rgb] {
+        &self.pixels
+    }
+
+    /// The two pixels a terminal cell (cx, cy) shows: (upper, lower).
+    #[must_use]
+    #[inline]
+    pub fn cell(&self, cx: usize, cy: usize) -> (Rgb, Rgb) {
+        (self.get(cx, 2 * cy), self.get(cx, 2 * cy + 1))
+    }
+
+    /// Number of whole terminal rows this framebuffer covers.
+    #[must_use]
+    pub fn cell_rows(&self) -> usize {
+        self.height / 2
+    }
+
+    /// Encodes as an RGB PNG of exactly width × height pixels.
+    ///
+    /// # Errors
+    /// The encoder's message if `image` fails.
+    pub fn to_png(&self) -> Result<Vec<u8>, String> {
+        let raw: Vec<u8> = self.pixels.iter().flat_map(|p| [p.r, p.g, p.b]).collect();
+        let img = image::RgbImage::from_raw(self.width as u32, self.height as u32, raw)
+            .ok_or("size mismatch")?;
+        let mut out = std::io::Cursor::new(Vec::new());
+        img.write_to(&mut out, image::ImageFormat::Png)
+            .map_err(|e| e.to_string())?;
+        Ok(out.into_inner())
+    }
+
+    /// Decodes a PNG (or other readable image) into a framebuffer, for diffs and `bench --frames`.
+    ///
+    /// # Errors
+    /// The decoder's message when the bytes are not an image.
+    pub fn from_image_bytes(bytes: &[u8]) -> Result<Self, String> {
+        let img = image::load_from_memory(bytes)
+            .map_err(|e| e.to_string())?
+            .to_rgb8();
+        let pixels = img.pixels().map(|p| Rgb::new(p[0], p[1], p[2])).collect();
+        Ok(Self {
+            width: img.width() as usize,
+            height: img.height() as usize,
+            pixels,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cell_reads_upper_and_lower_pixel() {
+        let mut fb = Framebuffer::for_cells(3, 2);
+        fb.set(1, 2, Rgb::new(1, 2, 3));
+        fb.set(1, 3, Rgb::new(4, 5, 6));
+        assert_eq!(fb.cell(1, 1), (Rgb::new(1, 2, 3), Rgb::new(4, 5, 6)));
+        assert_eq!((fb.width(), fb.height(), fb.cell_rows()), (3, 4, 2));
+    }
+
+    #[test]
+    fn png_round_trip() {
+        let mut fb = Framebuffer::new(4, 6);
+        fb.set(3, 5, Rgb::new(9, 8, 7));
+        let back = Framebuffer::from_image_bytes(&fb.to_png().unwrap()).unwrap();
+        assert_eq!(back, fb);
+    }
+}

@@ -1,0 +1,125 @@
+//! The world's grid and header, as parsed from a `.cub` file (no textures loaded yet).
+
+mod error;
+mod parse;
+
+pub use error::{MapError, MapErrorKind};
+pub use parse::parse_map;
+
+use crate::color::Rgb;
+use crate::vec2::Vec2;
+
+/// What one grid cell holds; walls carry their digit (1–9), floors their zone (0 = default).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Cell {
+    /// Outside the map (a space in the file, or beyond a short row).
+    Void,
+    /// Walkable; `zone` 0 is the default floor, 1–26 the zone letters `a`–`z`.
+    Floor { zone: u8 },
+    /// Solid wall of type 1–9 (each type has its own texture).
+    Wall(u8),
+}
+
+impl Cell {
+    /// Whether a ray stops here: walls, and void (never reached from inside a closed map).
+    #[must_use]
+    #[inline]
+    pub fn blocks_ray(self) -> bool {
+        !matches!(self, Cell::Floor { .. })
+    }
+}
+
+/// A texture path as written in the map, with where it was written (for warnings).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct TextureRef {
+    pub path: String,
+    pub line: usize,
+    pub col: usize,
+}
+
+/// How a floor or ceiling is painted: a flat colour or a texture.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Surface {
+    Colour(Rgb),
+    Texture(TextureRef),
+}
+
+/// Floor and ceiling overrides for cells marked with one zone letter.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct Zone {
+    pub floor: Option<Surface>,
+    pub ceiling: Option<Surface>,
+}
+
+/// The player's start: a cell centre and a facing, from the N/S/E/W letter.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Start {
+    pub cell: (usize, usize),
+    pub facing: char,
+}
+
+impl Start {
+    /// The cell centre, where the player stands at start.
+    #[must_use]
+    pub fn pos(&self) -> Vec2 {
+        Vec2::new(self.cell.0 as f64 + 0.5, self.cell.1 as f64 + 0.5)
+    }
+
+    /// The facing in CLI degrees: E = 0, N = 90, W = 180, S = 270.
+    #[must_use]
+    pub fn angle_deg(&self) -> f64 {
+        match self.facing {
+            'N' => 90.0,
+            'W' => 180.0,
+            'S' => 270.0,
+            _ => 0.0,
+        }
+    }
+}
+
+/// A parsed map: grid, start, colours and the texture paths it names.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Map {
+    /// The file name it came from (for messages and the status line).
+    pub name: String,
+    pub width: usize,
+    pub height: usize,
+    cells: Vec<Cell>,
+    pub start: Start,
+    /// Wall textures for type-1 walls, by the face the ray sees: NO, SO, WE, EA.
+    pub faces: [TextureRef; 4],
+    /// Textures for wall types 2–9 given by `T2`…`T9` (index = digit).
+    pub wall_types: [Option<TextureRef>; 10],
+    pub floor: Surface,
+    pub ceiling: Surface,
+    /// Zone letters `a`–`z` (index 0 = `a`).
+    pub zones: Vec<Zone>,
+    /// The legacy `S` sprite texture.
+    pub sprite_texture: Option<TextureRef>,
+    /// Legacy `2` cells: sprite positions (cell centres), kept for the sprite renderer.
+    pub sprites: Vec<Vec2>,
+    /// The legacy `R w h` line, accepted and otherwise ignored.
+    pub resolution: Option<(u32, u32)>,
+}
+
+impl Map {
+    /// The cell at column `i`, row `j`; anything outside the grid is void.
+    #[must_use]
+    #[inline]
+    pub fn cell(&self, i: i64, j: i64) -> Cell {
+        if i < 0 || j < 0 || i as usize >= self.width || j as usize >= self.height {
+            Cell::Void
+        } else {
+            self.cells[j as usize * self.width + i as usize]
+        }
+    }
+
+    /// Whether a point stands in a walkable cell (used by collision and pose checks).
+    #[must_use]
+    pub fn is_walkable(&self, p: Vec2) -> bool {
+        matches!(
+            self.cell(p.x.floor() as i64, p.y.floor() as i64),
+            Cell::Floor { .. }
+        )
+    }
+}

@@ -1,0 +1,433 @@
+//! The `.cub` reader: header identifiers, then a closed grid with one player.
+
+use std::collections::HashMap;
+
+use super::{Cell, Map, MapError, MapErrorKind, Start, Surface, TextureRef, Zone};
+use crate::color::Rgb;
+use crate::vec2::Vec2;
+
+/// More cells than this is refused instead of allocating without bound.
+pub const MAX_CELLS: usize = 1 << 24;
+
+/// Header keys that must appear, in the order a missing one is reported.
+const REQUIRED: [(&str, &str); 6] = [
+    ("NO", "north wall texture"),
+    ("SO", "south wall texture"),
+    ("WE", "west wall texture"),
+    ("EA", "east wall texture"),
+    ("F", "floor colour"),
+    ("C", "ceiling colour"),
+];
+
+fn is_blank_char(c: char) -> bool {
+    c == ' ' || c == '\t'
+}
+
+/// Characters that mark a line as the grid's first even when it does not start with a digit
+/// (zone letters are left out: "WE west" is a header line).
+fn is_grid_char(c: char) -> bool {
+    c == ' ' || c.is_ascii_digit() || matches!(c, 'N' | 'S' | 'E' | 'W')
+}
+
+/// Whether a header-section line is the first line of the grid.
+fn starts_grid(line: &str) -> bool {
+    match line.chars().find(|&c| !is_blank_char(c)) {
+        Some(c) if c.is_ascii_digit() => true,
+        Some(_) => line.chars().all(is_grid_char),
+        None => false,
+    }
+}
+
+/// Parses `bytes` read from `file` (the name used in messages) into a [`Map`].
+///
+/// # Errors
+/// Any broken rule, as a [`MapError`] naming the file and, where there is one, line:col.
+pub fn parse_map(file: &str, bytes: &[u8]) -> Result<Map, MapError> {
+    let err = |at: Option<(usize, usize)>, kind| MapError {
+        file: file.to_owned(),
+        at,
+        kind,
+    };
+    let text = match std::str::from_utf8(bytes) {
+        Ok(t) => t,
+        Err(e) => {
+            let before = &bytes[..e.valid_up_to()];
+            let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
+            let line_start = before
+                .iter()
+                .rposition(|&b| b == b'\n')
+                .map_or(0, |p| p + 1);
+            let col = String::from_utf8_lossy(&before[line_start..])
+                .chars()
+                .count()
+                + 1;
+            return Err(err(Some((line, col)), MapErrorKind::NotUtf8));
+        }
+    };
+    let mut header = Header::default();
+    let mut grid: Vec<(usize, &str)> = Vec::new();
+    let mut grid_ended = false;
+    for (idx, raw) in text.split('\n').enumerate() {
+        let line_no = idx + 1;
+        let line = raw.strip_suffix('\r').unwrap_or(raw);
+        let blank = line.chars().all(is_blank_char);
+        if grid.is_empty() {
+            if blank {
+                continue;
+            }
+            if starts_grid(line) {
+                header.check_complete().map_err(|k| err(None, k))?;
+                grid.push((line_no, line));
+            } else {
+                header
+                    .line(line_no, line)
+                    .map_err(|(at, k)| err(Some(at), k))?;
+            }
+        } else if blank {
+            grid_ended = true;
+        } else if grid_ended {
+            let col = line.chars().take_while(|&c| is_blank_char(c)).count() + 1;
+            return Err(err(Some((line_no, col)), MapErrorKind::AfterMap));
+        } else {
+            grid.push((line_no, line));
+        }
+    }
+    if grid.is_empty() {
+        header.check_complete().map_err(|k| err(None, k))?;
+        return Err(err(None, MapErrorKind::NoMap));
+    }
+    build(file, header, &grid)
+}
+
+/// The header identifiers seen so far, each with the line that gave it.
+#[derive(Default)]
+struct Header {
+    seen: HashMap<String, usize>,
+    faces: [Option<TextureRef>; 4],
+    wall_types: [Option<TextureRef>; 10],
+    floor: Option<Surface>,
+    ceiling: Option<Surface>,
+    floor_texture: Option<TextureRef>,
+    ceiling_texture: Option<TextureRef>,
+    zones: Vec<Zone>,
+    sprite_texture: Option<TextureRef>,
+    resolution: Option<(u32, u32)>,
+}
+
+type LineError = ((usize, usize), MapErrorKind);
+
+impl Header {
+    fn has(&self, id: &str) -> bool {
+        self.seen.contains_key(id)
+    }
+
+    fn check_complete(&self) -> Result<(), MapErrorKind> {
+        for (id, what) in REQUIRED {
+            let satisfied =
+                self.has(id) || (id == "F" && self.has("FT")) || (id == "C" && self.has("CT"));
+            if !satisfied {
+                return Err(MapErrorKind::Missing(id, what));
+            }
+        }
+        Ok(())
+    }
+
+    fn line(&mut self, line_no: usize, line: &str) -> Result<(), LineError> {
+        let start = line.find(|c: char| !is_blank_char(c)).unwrap_or(0);
+        let word_col = line[..start].chars().count() + 1;
+        let rest_at = line[start..]
+            .find(is_blank_char)
+            .map_or(line.len(), |p| start + p);
+        let word = &line[start..rest_at];
+        let rest = &line[rest_at..];
+        let rest_col = line[..rest_at].chars().count() + 1;
+        let at = (line_no, word_col);
+        let kind = classify(word).ok_or_else(|| {
+            let mut chars = word.chars();
+            match (chars.next(), chars.next()) {
+                (Some(c @ ('F' | 'C')), Some(d)) if d.is_ascii_digit() || d == ',' => {
+                    (at, MapErrorKind::NoSpaceAfter(c.to_string()))
+                }
+                _ => (at, MapErrorKind::UnknownIdentifier(word.to_owned())),
+            }
+        })?;
+        if let Some(&first_line) = self.seen.get(word) {
+            return Err((
+                at,
+                MapErrorKind::Duplicate {
+                    id: word.to_owned(),
+                    first_line,
+                },
+            ));
+        }
+        self.seen.insert(word.to_owned(), line_no);
+        match kind {
+            Ident::Face(i) => self.faces[i] = Some(one_path(word, rest, line_no, rest_col, at)?),
+            Ident::WallType(d) => {
+                self.wall_types[d] = Some(one_path(word, rest, line_no, rest_col, at)?)
+            }
+            Ident::Sprite => {
+                self.sprite_texture = Some(one_path(word, rest, line_no, rest_col, at)?)
+            }
+            Ident::FloorTexture => {
+                self.floor_texture = Some(one_path(word, rest, line_no, rest_col, at)?)
+            }
+            Ident::CeilingTexture => {
+                self.ceiling_texture = Some(one_path(word, rest, line_no, rest_col, at)?);
+            }
+            Ident::Floor | Ident::Ceiling => {
+                if rest.trim_matches(is_blank_char).is_empty() {
+                    return Err((at, MapErrorKind::NoSpaceAfter(word.to_owned())));
+                }
+                let c = Surface::Colour(colour(word, rest).map_err(|k| (at, k))?);
+                if matches!(kind, Ident::Floor) {
+                    self.floor = Some(c);
+                } else {
+                    self.ceiling = Some(c);
+                }
+            }
+            Ident::Zone { ceiling, zone } => {
+                let value = rest.trim_matches(is_blank_char);
+                let surface = if value.contains(',') {
+                    Surface::Colour(colour(word, rest).map_err(|k| (at, k))?)
+                } else {
+                    Surface::Texture(one_path(word, rest, line_no, rest_col, at)?)
+                };
+                if self.zones.len() <= zone {
+                    self.zones.resize(zone + 1, Zone::default());
+                }
+                let z = &mut self.zones[zone];
+                if ceiling {
+                    z.ceiling = Some(surface);
+                } else {
+                    z.floor = Some(surface);
+                }
+            }
+            Ident::Resolution => {
+                let nums: Vec<u32> = rest
+                    .split_whitespace()
+                    .filter_map(|w| w.parse().ok())
+                    .collect();
+                if let [w, h] = nums[..] {
+                    self.resolution = Some((w, h));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// What a header identifier sets.
+#[derive(Clone, Copy)]
+enum Ident {
+    Face(usize),
+    WallType(usize),
+    Sprite,
+    Floor,
+    Ceiling,
+    FloorTexture,
+    CeilingTexture,
+    Zone { ceiling: bool, zone: usize },
+    Resolution,
+}
+
+fn classify(word: &str) -> Option<Ident> {
+    Some(match word {
+        "NO" => Ident::Face(0),
+        "SO" => Ident::Face(1),
+        "WE" => Ident::Face(2),
+        "EA" => Ident::Face(3),
+        "S" => Ident::Sprite,
+        "F" => Ident::Floor,
+        "C" => Ident::Ceiling,
+        "FT" => Ident::FloorTexture,
+        "CT" => Ident::CeilingTexture,
+        "R" => Ident::Resolution,
+        _ => {
+            let b = word.as_bytes();
+            match b {
+                [b'T', d @ b'1'..=b'9'] => Ident::WallType(usize::from(d - b'0')),
+                [fc @ (b'F' | b'C'), z @ b'a'..=b'z'] => Ident::Zone {
+                    ceiling: *fc == b'C',
+                    zone: usize::from(z - b'a'),
+                },
+                _ => return None,
+            }
+        }
+    })
+}
+
+fn one_path(
+    id: &str,
+    rest: &str,
+    line: usize,
+    rest_col: usize,
+    at: (usize, usize),
+) -> Result<TextureRef, LineError> {
+    let mut words = rest.split(is_blank_char).filter(|w| !w.is_empty());
+    match (words.next(), words.next()) {
+        (Some(path), None) => {
+            let lead = rest.chars().take_while(|&c| is_blank_char(c)).count();
+            Ok(TextureRef {
+                path: path.to_owned(),
+                line,
+                col: rest_col + lead,
+            })
+        }
+        _ => Err((at, MapErrorKind::NeedsOnePath(id.to_owned()))),
+    }
+}
+
+/// Parses `r,g,b` (integers 0–255; blanks around numbers tolerated).
+fn colour(id: &str, rest: &str) -> Result<Rgb, MapErrorKind> {
+    let bad = || MapErrorKind::BadColour {
+        id: id.to_owned(),
+        got: rest.trim_matches(is_blank_char).to_owned(),
+    };
+    let parts: Vec<&str> = rest
+        .split(',')
+        .map(|p| p.trim_matches(is_blank_char))
+        .collect();
+    let [r, g, b] = parts[..] else {
+        return Err(bad());
+    };
+    let channel = |s: &str| -> Option<u8> {
+        if s.is_empty() || s.len() > 3 || !s.bytes().all(|c| c.is_ascii_digit()) {
+            return None;
+        }
+        s.parse::<u16>().ok().and_then(|v| u8::try_from(v).ok())
+    };
+    match (channel(r), channel(g), channel(b)) {
+        (Some(r), Some(g), Some(b)) => Ok(Rgb::new(r, g, b)),
+        _ => Err(bad()),
+    }
+}
+
+/// Turns the grid lines into cells, then checks players and closure.
+fn build(file: &str, h: Header, grid: &[(usize, &str)]) -> Result<Map, MapError> {
+    let err = |at: Option<(usize, usize)>, kind| MapError {
+        file: file.to_owned(),
+        at,
+        kind,
+    };
+    let width = grid
+        .iter()
+        .map(|(_, l)| l.chars().count())
+        .max()
+        .unwrap_or(0);
+    let height = grid.len();
+    if width.saturating_mul(height) > MAX_CELLS {
+        return Err(err(
+            Some((grid[0].0, 1)),
+            MapErrorKind::TooLarge(width * height, MAX_CELLS),
+        ));
+    }
+    let sprite_is_wall = h.wall_types[2].is_some();
+    let mut cells = vec![Cell::Void; width * height];
+    let mut start: Option<(Start, usize, usize)> = None;
+    let mut sprites = Vec::new();
+    for (j, &(line_no, line)) in grid.iter().enumerate() {
+        for (i, ch) in line.chars().enumerate() {
+            let at = Some((line_no, i + 1));
+            cells[j * width + i] = match ch {
+                ' ' => Cell::Void,
+                '0' => Cell::Floor { zone: 0 },
+                '2' if !sprite_is_wall => {
+                    sprites.push(Vec2::new(i as f64 + 0.5, j as f64 + 0.5));
+                    Cell::Floor { zone: 0 }
+                }
+                '1'..='9' => Cell::Wall(ch as u8 - b'0'),
+                'N' | 'S' | 'E' | 'W' => {
+                    if let Some((_, l, c)) = start {
+                        return Err(err(
+                            at,
+                            MapErrorKind::SecondPlayer {
+                                first_line: l,
+                                first_col: c,
+                            },
+                        ));
+                    }
+                    start = Some((
+                        Start {
+                            cell: (i, j),
+                            facing: ch,
+                        },
+                        line_no,
+                        i + 1,
+                    ));
+                    Cell::Floor { zone: 0 }
+                }
+                'a'..='z' => {
+                    let z = usize::from(ch as u8 - b'a');
+                    if h.zones
+                        .get(z)
+                        .is_none_or(|zone| zone.floor.is_none() && zone.ceiling.is_none())
+                    {
+                        return Err(err(at, MapErrorKind::UndefinedZone(ch)));
+                    }
+                    Cell::Floor { zone: z as u8 + 1 }
+                }
+                _ => return Err(err(at, MapErrorKind::BadMapChar(ch))),
+            };
+        }
+    }
+    let Some((start, _, _)) = start else {
+        return Err(err(None, MapErrorKind::NoPlayer));
+    };
+    let at = |i: i64, j: i64| -> Cell {
+        if i < 0 || j < 0 || i as usize >= width || j as usize >= height {
+            Cell::Void
+        } else {
+            cells[j as usize * width + i as usize]
+        }
+    };
+    for (j, &(line_no, line)) in grid.iter().enumerate() {
+        for (i, ch) in line.chars().enumerate() {
+            if !matches!(cells[j * width + i], Cell::Floor { .. }) {
+                continue;
+            }
+            let (x, y) = (i as i64, j as i64);
+            let open = [(x - 1, y), (x + 1, y), (x, y - 1), (x, y + 1)]
+                .iter()
+                .any(|&(a, b)| at(a, b) == Cell::Void);
+            if open {
+                let what = match ch {
+                    'N' | 'S' | 'E' | 'W' => "player",
+                    '2' => "sprite",
+                    'a'..='z' => "zone floor",
+                    _ => "floor",
+                };
+                let kind = MapErrorKind::NotClosed {
+                    what,
+                    line: line_no,
+                    col: i + 1,
+                };
+                return Err(err(Some((line_no, i + 1)), kind));
+            }
+        }
+    }
+    let surface = |tex: Option<TextureRef>, colour: Option<Surface>| {
+        tex.map(Surface::Texture)
+            .or(colour)
+            .unwrap_or(Surface::Colour(Rgb::default()))
+    };
+    let [no, so, we, ea] = h.faces;
+    let name = std::path::Path::new(file)
+        .file_name()
+        .map_or_else(|| file.to_owned(), |n| n.to_string_lossy().into_owned());
+    Ok(Map {
+        name,
+        width,
+        height,
+        cells,
+        start,
+        faces: [no, so, we, ea].map(|f| f.expect("checked by check_complete")),
+        wall_types: h.wall_types,
+        floor: surface(h.floor_texture, h.floor),
+        ceiling: surface(h.ceiling_texture, h.ceiling),
+        zones: h.zones,
+        sprite_texture: h.sprite_texture,
+        sprites,
+        resolution: h.resolution,
+    })
+}

@@ -1,0 +1,5 @@
+//! Headless writers: a rendered frame as PNG, ANSI, plain text or ray JSON.
+
+pub mod ansi;
+pub mod json;
+pub mod text;

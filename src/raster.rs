@@ -1,0 +1,212 @@
+//! Turns the cast rays into pixels: textured floor and ceiling rows, then wall stripes.
+
+use crate::cast::{ColumnHit, Side};
+use crate::color::Rgb;
+use crate::framebuffer::Framebuffer;
+use crate::map::Cell;
+use crate::scene::Scene;
+use crate::world::{Paint, World};
+
+/// Brightness (of 256) of faces hit on a y side, so corners read as corners.
+const Y_SIDE_SHADE: u16 = 184;
+
+/// The eye's height above the floor, in wall heights (walls span 0..1).
+const EYE_HEIGHT: f64 = 0.5;
+
+/// Which compass direction a ray travels when it hits (index into a wall's face textures).
+#[must_use]
+pub fn heading(hit: &ColumnHit) -> usize {
+    match hit.side {
+        Side::Y if hit.ray_dir.y < 0.0 => 0,
+        Side::Y => 1,
+        Side::X if hit.ray_dir.x < 0.0 => 2,
+        Side::X => 3,
+    }
+}
+
+/// Texture column for a hit, mirrored where needed so every face reads left-to-right.
+#[must_use]
+pub fn texture_x(hit: &ColumnHit, tex_width: usize) -> usize {
+    let x = ((hit.wall_x * tex_width as f64) as usize).min(tex_width - 1);
+    let mirrored = match hit.side {
+        Side::X => hit.ray_dir.x < 0.0,
+        Side::Y => hit.ray_dir.y > 0.0,
+    };
+    if mirrored {
+        tex_width - 1 - x
+    } else {
+        x
+    }
+}
+
+/// Vertical extent of one column's wall on screen, in pixel rows.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WallSpan {
+    /// Top edge (may be above the screen), in pixels.
+    pub top: f64,
+    /// Projected height in pixels: focal length / perpendicular distance.
+    pub height: f64,
+    /// First and one-past-last pixel rows drawn.
+    pub rows: (usize, usize),
+}
+
+/// Projects a hit: one focal length for both axes, so a 1×1 wall face is square on screen.
+#[must_use]
+pub fn wall_span(perp_dist: f64, focal: f64, screen_h: usize) -> WallSpan {
+    let height = focal / perp_dist.max(1e-9);
+    let horizon = screen_h as f64 / 2.0;
+    let top = horizon - height * (1.0 - EYE_HEIGHT);
+    let bottom = horizon + height * EYE_HEIGHT;
+    let row = |edge: f64| (edge - 0.5).ceil().clamp(0.0, screen_h as f64) as usize;
+    WallSpan {
+        top,
+        height,
+        rows: (row(top), row(bottom)),
+    }
+}
+
+/// Paints the frame: floor and ceiling where no wall covers, then the walls.
+pub fn rasterize(scene: &Scene, hits: &[ColumnHit], fb: &mut Framebuffer) {
+    let (w, h) = (fb.width(), fb.height());
+    if w == 0 || h == 0 {
+        return;
+    }
+    let focal = scene.camera.focal_length(w);
+    let spans: Vec<WallSpan> = hits
+        .iter()
+        .map(|hit| wall_span(hit.perp_dist, focal, h))
+        .collect();
+    floor_and_ceiling(scene, &spans, fb, focal);
+    for (x, (hit, span)) in hits.iter().zip(&spans).enumerate() {
+        wall_stripe(scene.world, hit, span, x, fb);
+    }
+}
+
+/// Draws one wall column from its texture column, top to bottom.
+fn wall_stripe(world: &World, hit: &ColumnHit, span: &WallSpan, x: usize, fb: &mut Framebuffer) {
+    let tex = world.wall_texture(hit.what, heading(hit));
+    let column = tex.column(texture_x(hit, tex.width()));
+    let th = tex.height();
+    let scale = th as f64 / span.height;
+    let shade = if hit.side == Side::Y {
+        Y_SIDE_SHADE
+    } else {
+        256
+    };
+    for y in span.rows.0..span.rows.1 {
+        let v = ((y as f64 + 0.5 - span.top) * scale) as usize;
+        let c = column[v.min(th - 1)];
+        fb.set(x, y, if shade == 256 { c } else { c.scaled(shade) });
+    }
+}
+
+/// Horizontal scanline floor/ceiling casting (Lode's method with the shared focal length).
+fn floor_and_ceiling(scene: &Scene, spans: &[WallSpan], fb: &mut Framebuffer, focal: f64) {
+    let (w, h) = (fb.width(), fb.height());
+    let cam = &scene.camera;
+    let world = scene.world;
+    let horizon = h as f64 / 2.0;
+    let left = cam.dir - cam.plane;
+    let across = cam.plane * (2.0 / w as f64);
+    for y in 0..h {
+        let p = y as f64 + 0.5 - horizon;
+        let is_floor = p > 0.0;
+        let height = if is_floor {
+            EYE_HEIGHT
+        } else {
+            1.0 - EYE_HEIGHT
+        };
+        let dist = height * focal / p.abs();
+        let start = cam.pos + left * dist;
+        let step = across * dist;
+        let row = fb.row_mut(y);
+        for (x, px) in row.iter_mut().enumerate() {
+            let span = &spans[x].rows;
+            if y >= span.0 && y < span.1 {
+                continue;
+            }
+            let fx = start.x + step.x * x as f64;
+            let fy = start.y + step.y * x as f64;
+            let zone = match world.map.cell(fx.floor() as i64, fy.floor() as i64) {
+                Cell::Floor { zone } => zone,
+                _ => 0,
+            };
+            let paint = if is_floor {
+                world.floor_paint(zone)
+            } else {
+                world.ceiling_paint(zone)
+            };
+            *px = match paint {
+                Paint::Colour(c) => c,
+                Paint::Texture(i) => world.textures[i].sample_wrapped(fx, fy),
+            };
+        }
+    }
+}
+
+/// The colour a column's wall shows at its centre row, for tests and the minimap.
+#[must_use]
+pub fn wall_colour_at(world: &World, hit: &ColumnHit, v: f64) -> Rgb {
+    let tex = world.wall_texture(hit.what, heading(hit));
+    let y = ((v * tex.height() as f64) as usize).min(tex.height() - 1);
+    tex.column(texture_x(hit, tex.width()))[y]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::vec2::Vec2;
+
+    fn hit(side: Side, ray: Vec2, wall_x: f64) -> ColumnHit {
+        ColumnHit {
+            cell: (0, 0),
+            what: Cell::Wall(1),
+            side,
+            perp_dist: 1.0,
+            wall_x,
+            ray_dir: ray,
+        }
+    }
+
+    #[test]
+    fn face_headings_follow_the_ray() {
+        assert_eq!(heading(&hit(Side::Y, Vec2::new(0.1, -1.0), 0.0)), 0);
+        assert_eq!(heading(&hit(Side::Y, Vec2::new(0.1, 1.0), 0.0)), 1);
+        assert_eq!(heading(&hit(Side::X, Vec2::new(-1.0, 0.1), 0.0)), 2);
+        assert_eq!(heading(&hit(Side::X, Vec2::new(1.0, 0.1), 0.0)), 3);
+    }
+
+    #[test]
+    fn texture_left_edge_is_on_the_viewers_left_on_every_face() {
+        // The viewer's left at a face is where wall_x → the texture's u = 0 must appear.
+        // Looking east the left is north (small y); looking west it is south (large y);
+        // looking north it is west (small x); looking south it is east (large x).
+        let cases = [
+            (Side::X, Vec2::new(1.0, 0.0), 0.01),
+            (Side::X, Vec2::new(-1.0, 0.0), 0.99),
+            (Side::Y, Vec2::new(0.0, -1.0), 0.01),
+            (Side::Y, Vec2::new(0.0, 1.0), 0.99),
+        ];
+        for (side, ray, wall_x) in cases {
+            assert_eq!(
+                texture_x(&hit(side, ray, wall_x), 64),
+                0,
+                "{side:?} {ray:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_wall_one_unit_away_is_as_tall_as_the_focal_length() {
+        let s = wall_span(1.0, 40.0, 60);
+        assert_eq!(s.height, 40.0);
+        assert_eq!(s.top, 10.0);
+        assert_eq!(s.rows, (10, 50));
+    }
+
+    #[test]
+    fn spans_clamp_to_the_screen_when_very_close() {
+        let s = wall_span(0.0, 40.0, 60);
+        assert_eq!(s.rows, (0, 60));
+    }
+}

@@ -1,0 +1,47 @@
+//! The textures compiled into the binary, so it runs with no files beside it.
+
+use super::Texture;
+
+/// The generated PNGs from `textures/`, by file stem.
+pub const EMBEDDED: [(&str, &[u8]); 7] = [
+    ("bricks", include_bytes!("../../textures/bricks.png")),
+    ("stone", include_bytes!("../../textures/stone.png")),
+    ("wood", include_bytes!("../../textures/wood.png")),
+    ("metal", include_bytes!("../../textures/metal.png")),
+    ("mossy", include_bytes!("../../textures/mossy.png")),
+    ("floor", include_bytes!("../../textures/floor.png")),
+    ("ceiling", include_bytes!("../../textures/ceiling.png")),
+];
+
+/// Decodes the embedded texture named `stem` (e.g. "bricks"), if there is one.
+#[must_use]
+pub fn by_name(stem: &str) -> Option<Texture> {
+    EMBEDDED
+        .iter()
+        .find(|(name, _)| *name == stem)
+        .map(|(_, bytes)| Texture::decode(bytes).expect("embedded textures are valid PNGs"))
+}
+
+/// The stand-in used for a wall whose texture is missing, chosen so faces stay distinct.
+#[must_use]
+pub fn fallback_stem(slot: usize) -> &'static str {
+    const ORDER: [&str; 5] = ["bricks", "stone", "wood", "metal", "mossy"];
+    ORDER[slot % ORDER.len()]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::texture::generate;
+
+    #[test]
+    fn embedded_pngs_match_the_generator() {
+        for (name, f) in generate::ALL {
+            assert_eq!(
+                by_name(name).as_ref(),
+                Some(&f()),
+                "textures/{name}.png is stale: run `cargo run --example gen-textures`"
+            );
+        }
+    }
+}

@@ -1,0 +1,129 @@
+//! Textures: column-major RGB texels, so a wall stripe reads memory in order.
+
+pub mod builtin;
+pub mod generate;
+
+use crate::color::Rgb;
+
+/// A decoded image stored column by column (x-major), the order wall stripes read it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Texture {
+    width: usize,
+    height: usize,
+    texels: Vec<Rgb>,
+}
+
+impl Texture {
+    /// Builds a texture from a function of (x, y); generators and tests use it.
+    #[must_use]
+    pub fn from_fn(width: usize, height: usize, mut f: impl FnMut(usize, usize) -> Rgb) -> Self {
+        let mut texels = Vec::with_capacity(width * height);
+        for x in 0..width {
+            for y in 0..height {
+                texels.push(f(x, y));
+            }
+        }
+        Self {
+            width,
+            height,
+            texels,
+        }
+    }
+
+    /// Decodes any image format the `image` crate was built with (PNG here).
+    ///
+    /// # Errors
+    /// The decoder's message when the bytes are not a readable image, or the image is empty.
+    pub fn decode(bytes: &[u8]) -> Result<Self, String> {
+        let img = image::load_from_memory(bytes)
+            .map_err(|e| e.to_string())?
+            .to_rgb8();
+        let (w, h) = (img.width() as usize, img.height() as usize);
+        if w == 0 || h == 0 {
+            return Err("image has no pixels".into());
+        }
+        Ok(Self::from_fn(w, h, |x, y| {
+            let p = img.get_pixel(x as u32, y as u32);
+            Rgb::new(p[0], p[1], p[2])
+        }))
+    }
+
+    /// Encodes as PNG (what the generator writes into `textures/`).
+    ///
+    /// # Errors
+    /// The encoder's message (only on I/O-like failures inside `image`).
+    pub fn to_png(&self) -> Result<Vec<u8>, String> {
+        let mut img = image::RgbImage::new(self.width as u32, self.height as u32);
+        for (x, y, p) in img.enumerate_pixels_mut() {
+            let c = self.texel(x as usize, y as usize);
+            *p = image::Rgb([c.r, c.g, c.b]);
+        }
+        let mut out = std::io::Cursor::new(Vec::new());
+        img.write_to(&mut out, image::ImageFormat::Png)
+            .map_err(|e| e.to_string())?;
+        Ok(out.into_inner())
+    }
+
+    /// Width in texels.
+    #[must_use]
+    pub fn width(&self) -> usize {
+        self.width
+    }
+
+    /// Height in texels.
+    #[must_use]
+    pub fn height(&self) -> usize {
+        self.height
+    }
+
+    /// The texel at (x, y); callers keep coordinates in range.
+    #[must_use]
+    #[inline]
+    pub fn texel(&self, x: usize, y: usize) -> Rgb {
+        self.texels[x * self.height + y]
+    }
+
+    /// One whole column, top to bottom: the slice a wall stripe samples.
+    #[must_use]
+    #[inline]
+    pub fn column(&self, x: usize) -> &[Rgb] {
+        &self.texels[x * self.height..(x + 1) * self.height]
+    }
+
+    /// Samples at texture coordinates (u, v) that wrap (floors repeat per cell).
+    #[must_use]
+    #[inline]
+    pub fn sample_wrapped(&self, u: f64, v: f64) -> Rgb {
+        let x = ((u - u.floor()) * self.width as f64) as usize;
+        let y = ((v - v.floor()) * self.height as f64) as usize;
+        self.texel(x.min(self.width - 1), y.min(self.height - 1))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn columns_are_contiguous_top_to_bottom() {
+        let t = Texture::from_fn(3, 4, |x, y| Rgb::new(x as u8, y as u8, 0));
+        assert_eq!(t.column(2), &[0, 1, 2, 3].map(|y| Rgb::new(2, y, 0)));
+    }
+
+    #[test]
+    fn png_round_trip_keeps_every_texel() {
+        let t = Texture::from_fn(5, 7, |x, y| Rgb::new((x * 40) as u8, (y * 30) as u8, 9));
+        assert_eq!(Texture::decode(&t.to_png().unwrap()).unwrap(), t);
+    }
+
+    #[test]
+    fn wrapped_sampling_repeats() {
+        let t = Texture::from_fn(4, 4, |x, y| Rgb::new(x as u8, y as u8, 0));
+        assert_eq!(t.sample_wrapped(1.26, -0.74), Rgb::new(1, 1, 0));
+    }
+
+    #[test]
+    fn garbage_bytes_are_an_error_not_a_panic() {
+        assert!(Texture::decode(b"not an image").is_err());
+    }
+}
