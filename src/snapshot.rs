@@ -1,0 +1,115 @@
+//! Pinning frames in tests: compare a framebuffer with a golden PNG, within a tolerance.
+
+use std::path::Path;
+
+use crate::framebuffer::Framebuffer;
+
+/// Set this environment variable (to anything) to rewrite golden files instead of comparing.
+pub const UPDATE_ENV: &str = "HALFCAST_UPDATE_GOLDEN";
+
+/// How different two frames may be and still count as equal (rounding, not regressions).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tolerance {
+    /// A pixel differs when any channel differs by more than this.
+    pub max_channel_delta: u8,
+    /// The share of pixels (0..=1) allowed to differ.
+    pub max_differing_fraction: f64,
+}
+
+impl Default for Tolerance {
+    /// Two channel steps per pixel, and half a percent of pixels.
+    fn default() -> Self {
+        Self {
+            max_channel_delta: 2,
+            max_differing_fraction: 0.005,
+        }
+    }
+}
+
+/// What differs between two frames of the same size.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FrameDiff {
+    pub differing_pixels: usize,
+    pub total_pixels: usize,
+    pub max_channel_delta: u8,
+}
+
+/// Compares two frames pixel by pixel; `None` when their sizes differ.
+#[must_use]
+pub fn diff_frames(a: &Framebuffer, b: &Framebuffer, threshold: u8) -> Option<FrameDiff> {
+    if (a.width(), a.height()) != (b.width(), b.height()) {
+        return None;
+    }
+    let mut d = FrameDiff {
+        differing_pixels: 0,
+        total_pixels: a.pixels().len(),
+        max_channel_delta: 0,
+    };
+    for (p, q) in a.pixels().iter().zip(b.pixels()) {
+        let delta =
+            p.r.abs_diff(q.r)
+                .max(p.g.abs_diff(q.g))
+                .max(p.b.abs_diff(q.b));
+        d.max_channel_delta = d.max_channel_delta.max(delta);
+        if delta > threshold {
+            d.differing_pixels += 1;
+        }
+    }
+    Some(d)
+}
+
+/// Asserts `fb` matches the PNG at `path` within `tol`; with [`UPDATE_ENV`] set, writes it instead.
+///
+/// # Panics
+/// When the golden file is missing or unreadable, the sizes differ, or too many pixels differ
+/// (the actual frame is then saved beside the golden as `<name>.actual.png`).
+pub fn assert_png_golden(fb: &Framebuffer, path: impl AsRef<Path>, tol: Tolerance) {
+    let path = path.as_ref();
+    if std::env::var_os(UPDATE_ENV).is_some() {
+        if let Some(dir) = path.parent() {
+            std::fs::create_dir_all(dir).expect("create golden folder");
+        }
+        std::fs::write(path, fb.to_png().expect("encode PNG")).expect("write golden PNG");
+        return;
+    }
+    let bytes = std::fs::read(path).unwrap_or_else(|e| {
+        panic!(
+            "golden {} unreadable ({e}); run with {UPDATE_ENV}=1 to create it",
+            path.display()
+        )
+    });
+    let golden = Framebuffer::from_image_bytes(&bytes).expect("golden is a PNG");
+    let verdict = diff_frames(fb, &golden, tol.max_channel_delta);
+    let ok = verdict.is_some_and(|d| {
+        d.differing_pixels as f64 <= tol.max_differing_fraction * d.total_pixels as f64
+    });
+    if !ok {
+        let actual = path.with_extension("actual.png");
+        let _ = std::fs::write(&actual, fb.to_png().expect("encode PNG"));
+        panic!(
+            "frame differs from {} ({verdict:?}); actual saved as {}; if the change is intended run with {UPDATE_ENV}=1",
+            path.display(),
+            actual.display()
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::color::Rgb;
+
+    #[test]
+    fn diff_counts_pixels_over_the_threshold() {
+        let a = Framebuffer::new(2, 2);
+        let mut b = a.clone();
+        b.set(0, 0, Rgb::new(3, 0, 0));
+        b.set(1, 1, Rgb::new(0, 1, 0));
+        let d = diff_frames(&a, &b, 2).unwrap();
+        assert_eq!(
+            (d.differing_pixels, d.total_pixels, d.max_channel_delta),
+            (1, 4, 3)
+        );
+        assert!(diff_frames(&a, &Framebuffer::new(3, 2), 0).is_none());
+    }
+}
