@@ -79,7 +79,7 @@ impl World {
         strict: bool,
     ) -> Result<(Self, Warnings), TextureError> {
         let mut loader = Loader {
-            map_file: &map.name,
+            map_file: &map.file,
             source,
             strict,
             textures: Vec::new(),

@@ -44,8 +44,8 @@ pub enum MapErrorKind {
     BadMapChar(char),
     #[error("zone letter '{0}' is used in the map but has no F{0} or C{0} line")]
     UndefinedZone(char),
-    #[error("content after the map (the grid must be contiguous and come last)")]
-    AfterMap,
+    #[error("content after the blank line at {blank_line} that ended the map (the grid must be contiguous and come last)")]
+    AfterMap { blank_line: usize },
     #[error("map is not closed: {what} cell at {line}:{col} touches void")]
     NotClosed {
         what: &'static str,

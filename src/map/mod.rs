@@ -80,7 +80,9 @@ impl Start {
 /// A parsed map: grid, start, colours and the texture paths it names.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Map {
-    /// The file name it came from (for messages and the status line).
+    /// The path it was read from, as given (for messages).
+    pub file: String,
+    /// Its file name alone (for the status line).
     pub name: String,
     pub width: usize,
     pub height: usize,

@@ -23,19 +23,10 @@ fn is_blank_char(c: char) -> bool {
     c == ' ' || c == '\t'
 }
 
-/// Characters that mark a line as the grid's first even when it does not start with a digit
-/// (zone letters are left out: "WE west" is a header line).
-fn is_grid_char(c: char) -> bool {
-    c == ' ' || c.is_ascii_digit() || matches!(c, 'N' | 'S' | 'E' | 'W')
-}
-
-/// Whether a header-section line is the first line of the grid.
+/// Whether a header-section line is the first line of the grid: it starts with a digit after
+/// any blanks (a closed map's first row holds only walls and void, so "WE" or "N" never is).
 fn starts_grid(line: &str) -> bool {
-    match line.chars().find(|&c| !is_blank_char(c)) {
-        Some(c) if c.is_ascii_digit() => true,
-        Some(_) => line.chars().all(is_grid_char),
-        None => false,
-    }
+    line.chars().find(|&c| !is_blank_char(c)).is_some_and(|c| c.is_ascii_digit())
 }
 
 /// Parses `bytes` read from `file` (the name used in messages) into a [`Map`].
@@ -66,7 +57,7 @@ pub fn parse_map(file: &str, bytes: &[u8]) -> Result<Map, MapError> {
     };
     let mut header = Header::default();
     let mut grid: Vec<(usize, &str)> = Vec::new();
-    let mut grid_ended = false;
+    let mut blank_after_grid = None;
     for (idx, raw) in text.split('\n').enumerate() {
         let line_no = idx + 1;
         let line = raw.strip_suffix('\r').unwrap_or(raw);
@@ -84,10 +75,10 @@ pub fn parse_map(file: &str, bytes: &[u8]) -> Result<Map, MapError> {
                     .map_err(|(at, k)| err(Some(at), k))?;
             }
         } else if blank {
-            grid_ended = true;
-        } else if grid_ended {
+            blank_after_grid = blank_after_grid.or(Some(line_no));
+        } else if let Some(blank_line) = blank_after_grid {
             let col = line.chars().take_while(|&c| is_blank_char(c)).count() + 1;
-            return Err(err(Some((line_no, col)), MapErrorKind::AfterMap));
+            return Err(err(Some((line_no, col)), MapErrorKind::AfterMap { blank_line }));
         } else {
             grid.push((line_no, line));
         }
@@ -416,6 +407,7 @@ fn build(file: &str, h: Header, grid: &[(usize, &str)]) -> Result<Map, MapError>
         .file_name()
         .map_or_else(|| file.to_owned(), |n| n.to_string_lossy().into_owned());
     Ok(Map {
+        file: file.to_owned(),
         name,
         width,
         height,
@@ -430,4 +422,133 @@ fn build(file: &str, h: Header, grid: &[(usize, &str)]) -> Result<Map, MapError>
         sprites,
         resolution: h.resolution,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const HEADER: &str = "NO ./n.png\nSO ./s.png\nWE ./w.png\nEA ./e.png\nF 220,100,0\nC 225,30,0\n";
+    const GRID: &str = "111111\n100001\n10N001\n111111\n";
+
+    fn parse(text: &str) -> Result<Map, MapError> {
+        parse_map("m.cub", text.as_bytes())
+    }
+
+    fn kind(text: &str) -> MapErrorKind {
+        parse(text).unwrap_err().kind
+    }
+
+    #[test]
+    fn minimal_map_loads_with_start_and_colours() {
+        let m = parse(&format!("{HEADER}\n{GRID}")).unwrap();
+        assert_eq!((m.width, m.height), (6, 4));
+        assert_eq!(m.start, Start { cell: (2, 2), facing: 'N' });
+        assert_eq!(m.floor, Surface::Colour(Rgb::new(220, 100, 0)));
+        assert_eq!(m.faces[3].path, "./e.png");
+        assert_eq!((m.faces[3].line, m.faces[3].col), (4, 4));
+        assert_eq!(m.cell(0, 0), Cell::Wall(1));
+        assert_eq!(m.cell(2, 2), Cell::Floor { zone: 0 });
+        assert_eq!(m.cell(-1, 0), Cell::Void);
+    }
+
+    #[test]
+    fn header_in_any_order_with_blank_lines_and_crlf() {
+        let text = "\r\nC 225,30,0\r\n\r\nEA ./e.png\r\nF 220,100,0\r\nWE ./w.png\r\n\r\nSO ./s.png\r\nNO ./n.png\r\n\r\n111111\r\n100001\r\n10N001\r\n111111\r\n\r\n";
+        assert_eq!(parse(text).unwrap().width, 6);
+    }
+
+    #[test]
+    fn blanks_around_colour_numbers_and_tabs_after_identifiers_are_tolerated() {
+        let m = parse(&format!("NO\t./n.png\nSO ./s.png\nWE ./w.png\nEA ./e.png\nF   254, 100 ,    5\nC 225,30     ,0\n{GRID}")).unwrap();
+        assert_eq!(m.floor, Surface::Colour(Rgb::new(254, 100, 5)));
+        assert_eq!(m.ceiling, Surface::Colour(Rgb::new(225, 30, 0)));
+    }
+
+    #[test]
+    fn bad_colours_are_refused() {
+        for c in ["220,100", "220,100,0,0", "-1,0,0", "256,0,0", "220+,100,0", "a,b,c", "220,,0", "1,2,3 4"] {
+            let k = kind(&format!("NO n\nSO s\nWE w\nEA e\nF {c}\nC 1,2,3\n{GRID}"));
+            assert!(matches!(k, MapErrorKind::BadColour { .. }), "{c}: {k:?}");
+        }
+    }
+
+    #[test]
+    fn legacy_resolution_sprite_texture_and_sprite_cells() {
+        let m = parse(&format!("R 1920 1080\nS ./sprite.xpm\n{HEADER}111111\n102001\n10N021\n111111\n")).unwrap();
+        assert_eq!(m.resolution, Some((1920, 1080)));
+        assert_eq!(m.sprite_texture.as_ref().unwrap().path, "./sprite.xpm");
+        assert_eq!(m.sprites, vec![Vec2::new(2.5, 1.5), Vec2::new(4.5, 2.5)]);
+        assert_eq!(m.cell(2, 1), Cell::Floor { zone: 0 });
+    }
+
+    #[test]
+    fn wall_type_textures_and_t2_turns_2_into_a_wall() {
+        let m = parse(&format!("T3 ./wood.png\nT2 ./two.png\n{HEADER}111111\n102301\n10N001\n111111\n")).unwrap();
+        assert_eq!(m.cell(2, 1), Cell::Wall(2));
+        assert_eq!(m.cell(3, 1), Cell::Wall(3));
+        assert!(m.sprites.is_empty());
+        assert_eq!(m.wall_types[3].as_ref().unwrap().path, "./wood.png");
+    }
+
+    #[test]
+    fn floor_and_ceiling_textures_and_zones() {
+        let text = format!("{HEADER}FT ./floor.png\nCa 10,20,30\nFb ./grass.png\n111111\n1ab001\n10N001\n111111\n");
+        let m = parse(&text).unwrap();
+        assert!(matches!(m.floor, Surface::Texture(ref t) if t.path == "./floor.png"));
+        assert_eq!(m.cell(1, 1), Cell::Floor { zone: 1 });
+        assert_eq!(m.zones[0].ceiling, Some(Surface::Colour(Rgb::new(10, 20, 30))));
+        assert!(matches!(m.zones[1].floor, Some(Surface::Texture(_))));
+    }
+
+    #[test]
+    fn floor_texture_alone_satisfies_f() {
+        let text = "NO n\nSO s\nWE w\nEA e\nFT f.png\nCT c.png\n111\n1N1\n111\n";
+        assert!(parse(text).is_ok());
+    }
+
+    #[test]
+    fn diagonal_only_openings_are_closed_enough() {
+        // The 0 at (1,1) touches void only diagonally.
+        let m = parse(&format!("{HEADER} 1111\n1001\n1N11\n111\n"));
+        assert!(m.is_ok(), "{m:?}");
+    }
+
+    #[test]
+    fn player_on_the_grid_edge_is_not_closed() {
+        let e = parse(&format!("{HEADER}1111\nN001\n1111\n")).unwrap_err();
+        assert_eq!(e.kind, MapErrorKind::NotClosed { what: "player", line: 8, col: 1 });
+        assert_eq!(e.to_string(), "m.cub:8:1: map is not closed: player cell at 8:1 touches void");
+    }
+
+    #[test]
+    fn short_rows_are_padded_with_void() {
+        let e = parse(&format!("{HEADER}11111\n1N001\n100\n11111\n")).unwrap_err();
+        assert!(matches!(e.kind, MapErrorKind::NotClosed { line: 8, col: 4, .. }), "{e}");
+    }
+
+    #[test]
+    fn missing_identifiers_are_reported_in_order() {
+        assert_eq!(kind(GRID), MapErrorKind::Missing("NO", "north wall texture"));
+        assert_eq!(kind(""), MapErrorKind::Missing("NO", "north wall texture"));
+        assert_eq!(kind(&format!("NO n\nSO s\nEA e\nC 1,1,1\n{GRID}")), MapErrorKind::Missing("WE", "west wall texture"));
+    }
+
+    #[test]
+    fn glued_texture_path_is_an_unknown_identifier() {
+        assert_eq!(kind("NO./n.png\n"), MapErrorKind::UnknownIdentifier("NO./n.png".into()));
+    }
+
+    #[test]
+    fn identifier_without_value_is_refused() {
+        assert_eq!(kind("WE\n"), MapErrorKind::NeedsOnePath("WE".into()));
+        assert_eq!(kind("F\n"), MapErrorKind::NoSpaceAfter("F".into()));
+    }
+
+    #[test]
+    fn huge_maps_are_refused_before_allocating() {
+        let wide = "1".repeat(5000);
+        let text = format!("{HEADER}{}", format!("{wide}\n").repeat(3400));
+        assert!(matches!(kind(&text), MapErrorKind::TooLarge(..)));
+    }
 }

@@ -1,0 +1,32 @@
+//! Helpers shared by the integration tests: running the binary and finding ../shared.
+
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// The project root (where Cargo.toml is), so fixture paths in messages are stable.
+pub fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Runs the halfcast binary with `args` from the project root, no stdin.
+pub fn halfcast(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_halfcast"))
+        .args(args)
+        .current_dir(root())
+        .stdin(std::process::Stdio::null())
+        .output()
+        .expect("run halfcast")
+}
+
+/// `../shared` beside the project, or `None` after printing a skip notice.
+pub fn shared_dir(what: &str) -> Option<PathBuf> {
+    let dir = root().join("../shared");
+    if dir.is_dir() {
+        Some(dir)
+    } else {
+        println!("SKIPPED {what}: ../shared is not beside the project");
+        None
+    }
+}
