@@ -23,7 +23,11 @@ fn entries(corpus: &Path) -> Vec<Entry> {
         .skip(1)
         .filter_map(|l| {
             let cols: Vec<&str> = l.split('\t').collect();
-            (cols.len() >= 6).then(|| Entry { file: cols[0].into(), category: cols[4].into(), reason: cols[5].into() })
+            (cols.len() >= 6).then(|| Entry {
+                file: cols[0].into(),
+                category: cols[4].into(),
+                reason: cols[5].into(),
+            })
         })
         .collect()
 }
@@ -52,7 +56,10 @@ fn expected_fragment(reason: &str) -> Option<String> {
         let (line, col) = rest.split_once(" col ").expect("line N col M");
         format!("map is not closed: floor cell at {line}:{col} touches void")
     } else if reason.ends_with("needs one path") {
-        format!("{} needs exactly one texture path", reason.split(' ').next().unwrap())
+        format!(
+            "{} needs exactly one texture path",
+            reason.split(' ').next().unwrap()
+        )
     } else if reason.starts_with("blank line inside or after the map") {
         "content after the blank line at".to_owned()
     } else if reason == "no map" {
@@ -73,7 +80,9 @@ fn expected_fragment(reason: &str) -> Option<String> {
 
 #[test]
 fn corpus_maps_follow_halfcasts_rules() {
-    let Some(shared) = shared_dir("corpus test") else { return };
+    let Some(shared) = shared_dir("corpus test") else {
+        return;
+    };
     let corpus = shared.join("corpus/cub3d");
     let all = entries(&corpus);
     assert!(all.len() > 50, "SOURCES.tsv looks truncated");
@@ -83,8 +92,8 @@ fn corpus_maps_follow_halfcasts_rules() {
         let path_str = path.to_str().unwrap();
         match expected_fragment(&e.reason) {
             None => {
-                let (world, _warnings) =
-                    World::from_file(&path, false).unwrap_or_else(|err| panic!("{} should load: {err}", e.file));
+                let (world, _warnings) = World::from_file(&path, false)
+                    .unwrap_or_else(|err| panic!("{} should load: {err}", e.file));
                 let start = world.map.start;
                 let cam = Camera::from_angle(start.pos(), start.angle_deg(), 66.0);
                 let fb = Scene::new(&world, cam).render(32, 10);
@@ -94,9 +103,22 @@ fn corpus_maps_follow_halfcasts_rules() {
             Some(fragment) => {
                 let out = halfcast(&["render", path_str, "--format", "txt"]);
                 let stderr = String::from_utf8_lossy(&out.stderr);
-                assert_eq!(out.status.code(), Some(2), "{} should be refused: {stderr}", e.file);
-                assert!(stderr.starts_with(&format!("error: {path_str}")), "{}: {stderr}", e.file);
-                assert!(stderr.contains(&fragment), "{}: expected '{fragment}' in {stderr}", e.file);
+                assert_eq!(
+                    out.status.code(),
+                    Some(2),
+                    "{} should be refused: {stderr}",
+                    e.file
+                );
+                assert!(
+                    stderr.starts_with(&format!("error: {path_str}")),
+                    "{}: {stderr}",
+                    e.file
+                );
+                assert!(
+                    stderr.contains(&fragment),
+                    "{}: expected '{fragment}' in {stderr}",
+                    e.file
+                );
                 refused += 1;
             }
         }

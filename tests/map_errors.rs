@@ -61,7 +61,14 @@ fn every_invalid_fixture_is_listed() {
 
 #[test]
 fn missing_textures_warn_once_each_and_still_render() {
-    let out = halfcast(&["render", "tests/fixtures/valid_missing_textures.cub", "--format", "txt", "--size", "20x5"]);
+    let out = halfcast(&[
+        "render",
+        "tests/fixtures/valid_missing_textures.cub",
+        "--format",
+        "txt",
+        "--size",
+        "20x5",
+    ]);
     assert_eq!(out.status.code(), Some(0));
     let stderr = String::from_utf8_lossy(&out.stderr);
     let lines: Vec<&str> = stderr.lines().collect();
@@ -75,7 +82,13 @@ fn missing_textures_warn_once_each_and_still_render() {
 
 #[test]
 fn strict_makes_a_missing_texture_an_error() {
-    let out = halfcast(&["render", "tests/fixtures/valid_missing_textures.cub", "--strict", "--format", "txt"]);
+    let out = halfcast(&[
+        "render",
+        "tests/fixtures/valid_missing_textures.cub",
+        "--strict",
+        "--format",
+        "txt",
+    ]);
     assert_eq!(out.status.code(), Some(2));
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(
@@ -89,12 +102,21 @@ fn a_missing_map_file_is_a_clear_error() {
     let out = halfcast(&["render", "tests/fixtures/no_such_map.cub"]);
     assert_eq!(out.status.code(), Some(2));
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stderr.starts_with("error: tests/fixtures/no_such_map.cub: cannot read the file: "), "{stderr}");
+    assert!(
+        stderr.starts_with("error: tests/fixtures/no_such_map.cub: cannot read the file: "),
+        "{stderr}"
+    );
 }
 
 #[test]
 fn absurd_sizes_and_fovs_are_refused() {
-    for args in [["--size", "0x10"], ["--size", "5000x10"], ["--size", "axb"], ["--fov", "180"], ["--fov", "-5"]] {
+    for args in [
+        ["--size", "0x10"],
+        ["--size", "5000x10"],
+        ["--size", "axb"],
+        ["--fov", "180"],
+        ["--fov", "-5"],
+    ] {
         let out = halfcast(&["render", args[0], args[1], "--format", "txt"]);
         assert_eq!(out.status.code(), Some(2), "{args:?}");
         assert!(!out.stderr.is_empty());

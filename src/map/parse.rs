@@ -26,7 +26,9 @@ fn is_blank_char(c: char) -> bool {
 /// Whether a header-section line is the first line of the grid: it starts with a digit after
 /// any blanks (a closed map's first row holds only walls and void, so "WE" or "N" never is).
 fn starts_grid(line: &str) -> bool {
-    line.chars().find(|&c| !is_blank_char(c)).is_some_and(|c| c.is_ascii_digit())
+    line.chars()
+        .find(|&c| !is_blank_char(c))
+        .is_some_and(|c| c.is_ascii_digit())
 }
 
 /// Parses `bytes` read from `file` (the name used in messages) into a [`Map`].
@@ -78,7 +80,10 @@ pub fn parse_map(file: &str, bytes: &[u8]) -> Result<Map, MapError> {
             blank_after_grid = blank_after_grid.or(Some(line_no));
         } else if let Some(blank_line) = blank_after_grid {
             let col = line.chars().take_while(|&c| is_blank_char(c)).count() + 1;
-            return Err(err(Some((line_no, col)), MapErrorKind::AfterMap { blank_line }));
+            return Err(err(
+                Some((line_no, col)),
+                MapErrorKind::AfterMap { blank_line },
+            ));
         } else {
             grid.push((line_no, line));
         }
@@ -428,7 +433,8 @@ fn build(file: &str, h: Header, grid: &[(usize, &str)]) -> Result<Map, MapError>
 mod tests {
     use super::*;
 
-    const HEADER: &str = "NO ./n.png\nSO ./s.png\nWE ./w.png\nEA ./e.png\nF 220,100,0\nC 225,30,0\n";
+    const HEADER: &str =
+        "NO ./n.png\nSO ./s.png\nWE ./w.png\nEA ./e.png\nF 220,100,0\nC 225,30,0\n";
     const GRID: &str = "111111\n100001\n10N001\n111111\n";
 
     fn parse(text: &str) -> Result<Map, MapError> {
@@ -443,7 +449,13 @@ mod tests {
     fn minimal_map_loads_with_start_and_colours() {
         let m = parse(&format!("{HEADER}\n{GRID}")).unwrap();
         assert_eq!((m.width, m.height), (6, 4));
-        assert_eq!(m.start, Start { cell: (2, 2), facing: 'N' });
+        assert_eq!(
+            m.start,
+            Start {
+                cell: (2, 2),
+                facing: 'N'
+            }
+        );
         assert_eq!(m.floor, Surface::Colour(Rgb::new(220, 100, 0)));
         assert_eq!(m.faces[3].path, "./e.png");
         assert_eq!((m.faces[3].line, m.faces[3].col), (4, 4));
@@ -467,7 +479,16 @@ mod tests {
 
     #[test]
     fn bad_colours_are_refused() {
-        for c in ["220,100", "220,100,0,0", "-1,0,0", "256,0,0", "220+,100,0", "a,b,c", "220,,0", "1,2,3 4"] {
+        for c in [
+            "220,100",
+            "220,100,0,0",
+            "-1,0,0",
+            "256,0,0",
+            "220+,100,0",
+            "a,b,c",
+            "220,,0",
+            "1,2,3 4",
+        ] {
             let k = kind(&format!("NO n\nSO s\nWE w\nEA e\nF {c}\nC 1,2,3\n{GRID}"));
             assert!(matches!(k, MapErrorKind::BadColour { .. }), "{c}: {k:?}");
         }
@@ -475,7 +496,10 @@ mod tests {
 
     #[test]
     fn legacy_resolution_sprite_texture_and_sprite_cells() {
-        let m = parse(&format!("R 1920 1080\nS ./sprite.xpm\n{HEADER}111111\n102001\n10N021\n111111\n")).unwrap();
+        let m = parse(&format!(
+            "R 1920 1080\nS ./sprite.xpm\n{HEADER}111111\n102001\n10N021\n111111\n"
+        ))
+        .unwrap();
         assert_eq!(m.resolution, Some((1920, 1080)));
         assert_eq!(m.sprite_texture.as_ref().unwrap().path, "./sprite.xpm");
         assert_eq!(m.sprites, vec![Vec2::new(2.5, 1.5), Vec2::new(4.5, 2.5)]);
@@ -484,7 +508,10 @@ mod tests {
 
     #[test]
     fn wall_type_textures_and_t2_turns_2_into_a_wall() {
-        let m = parse(&format!("T3 ./wood.png\nT2 ./two.png\n{HEADER}111111\n102301\n10N001\n111111\n")).unwrap();
+        let m = parse(&format!(
+            "T3 ./wood.png\nT2 ./two.png\n{HEADER}111111\n102301\n10N001\n111111\n"
+        ))
+        .unwrap();
         assert_eq!(m.cell(2, 1), Cell::Wall(2));
         assert_eq!(m.cell(3, 1), Cell::Wall(3));
         assert!(m.sprites.is_empty());
@@ -493,11 +520,16 @@ mod tests {
 
     #[test]
     fn floor_and_ceiling_textures_and_zones() {
-        let text = format!("{HEADER}FT ./floor.png\nCa 10,20,30\nFb ./grass.png\n111111\n1ab001\n10N001\n111111\n");
+        let text = format!(
+            "{HEADER}FT ./floor.png\nCa 10,20,30\nFb ./grass.png\n111111\n1ab001\n10N001\n111111\n"
+        );
         let m = parse(&text).unwrap();
         assert!(matches!(m.floor, Surface::Texture(ref t) if t.path == "./floor.png"));
         assert_eq!(m.cell(1, 1), Cell::Floor { zone: 1 });
-        assert_eq!(m.zones[0].ceiling, Some(Surface::Colour(Rgb::new(10, 20, 30))));
+        assert_eq!(
+            m.zones[0].ceiling,
+            Some(Surface::Colour(Rgb::new(10, 20, 30)))
+        );
         assert!(matches!(m.zones[1].floor, Some(Surface::Texture(_))));
     }
 
@@ -517,26 +549,55 @@ mod tests {
     #[test]
     fn player_on_the_grid_edge_is_not_closed() {
         let e = parse(&format!("{HEADER}1111\nN001\n1111\n")).unwrap_err();
-        assert_eq!(e.kind, MapErrorKind::NotClosed { what: "player", line: 8, col: 1 });
-        assert_eq!(e.to_string(), "m.cub:8:1: map is not closed: player cell at 8:1 touches void");
+        assert_eq!(
+            e.kind,
+            MapErrorKind::NotClosed {
+                what: "player",
+                line: 8,
+                col: 1
+            }
+        );
+        assert_eq!(
+            e.to_string(),
+            "m.cub:8:1: map is not closed: player cell at 8:1 touches void"
+        );
     }
 
     #[test]
     fn short_rows_are_padded_with_void() {
         let e = parse(&format!("{HEADER}11111\n1N001\n100\n11111\n")).unwrap_err();
-        assert!(matches!(e.kind, MapErrorKind::NotClosed { line: 8, col: 4, .. }), "{e}");
+        assert!(
+            matches!(
+                e.kind,
+                MapErrorKind::NotClosed {
+                    line: 8,
+                    col: 4,
+                    ..
+                }
+            ),
+            "{e}"
+        );
     }
 
     #[test]
     fn missing_identifiers_are_reported_in_order() {
-        assert_eq!(kind(GRID), MapErrorKind::Missing("NO", "north wall texture"));
+        assert_eq!(
+            kind(GRID),
+            MapErrorKind::Missing("NO", "north wall texture")
+        );
         assert_eq!(kind(""), MapErrorKind::Missing("NO", "north wall texture"));
-        assert_eq!(kind(&format!("NO n\nSO s\nEA e\nC 1,1,1\n{GRID}")), MapErrorKind::Missing("WE", "west wall texture"));
+        assert_eq!(
+            kind(&format!("NO n\nSO s\nEA e\nC 1,1,1\n{GRID}")),
+            MapErrorKind::Missing("WE", "west wall texture")
+        );
     }
 
     #[test]
     fn glued_texture_path_is_an_unknown_identifier() {
-        assert_eq!(kind("NO./n.png\n"), MapErrorKind::UnknownIdentifier("NO./n.png".into()));
+        assert_eq!(
+            kind("NO./n.png\n"),
+            MapErrorKind::UnknownIdentifier("NO./n.png".into())
+        );
     }
 
     #[test]

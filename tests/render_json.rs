@@ -1,0 +1,152 @@
+//! `halfcast render --format json` agrees with an independent DDA on random closed maps and poses.
+
+mod common;
+
+use common::halfcast;
+use proptest::prelude::*;
+use serde_json::Value;
+
+/// A closed random map as text, and a pose strictly inside the player's cell.
+fn arb_case() -> impl Strategy<Value = (Vec<Vec<u8>>, (f64, f64))> {
+    (4usize..16, 4usize..16).prop_flat_map(|(w, h)| {
+        (
+            prop::collection::vec(prop::bool::weighted(0.25), w * h),
+            (1..w - 1, 1..h - 1),
+            (0.01f64..0.99, 0.01f64..0.99),
+        )
+            .prop_map(move |(walls, (pi, pj), (fx, fy))| {
+                let grid = (0..h)
+                    .map(|j| {
+                        (0..w)
+                            .map(|i| {
+                                let border = i == 0 || j == 0 || i == w - 1 || j == h - 1;
+                                if (i, j) == (pi, pj) {
+                                    b'S'
+                                } else if border || walls[j * w + i] {
+                                    b'1'
+                                } else {
+                                    b'0'
+                                }
+                            })
+                            .collect()
+                    })
+                    .collect();
+                (grid, (pi as f64 + fx, pj as f64 + fy))
+            })
+    })
+}
+
+/// Crossing-time traversal written independently of the library: (cell, axis, t_x, t_y) per step.
+fn walk(
+    grid: &[Vec<u8>],
+    pos: (f64, f64),
+    ray: (f64, f64),
+) -> Vec<((i64, i64), &'static str, f64, f64)> {
+    let mut cell = (pos.0.floor() as i64, pos.1.floor() as i64);
+    let axis = |p: f64, d: f64, c: i64| {
+        if d > 0.0 {
+            ((c as f64 + 1.0 - p) / d, 1.0 / d, 1)
+        } else {
+            ((p - c as f64) / -d, -1.0 / d, -1)
+        }
+    };
+    let (mut tx, dx, sx) = axis(pos.0, ray.0, cell.0);
+    let (mut ty, dy, sy) = axis(pos.1, ray.1, cell.1);
+    let mut out = Vec::new();
+    loop {
+        let side = if tx < ty {
+            tx += dx;
+            cell.0 += sx;
+            "x"
+        } else {
+            ty += dy;
+            cell.1 += sy;
+            "y"
+        };
+        out.push((cell, side, tx, ty));
+        if grid[cell.1 as usize][cell.0 as usize] == b'1' {
+            return out;
+        }
+    }
+}
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-9 * (1.0 + a.abs().max(b.abs()))
+}
+
+fn f(v: &Value) -> f64 {
+    v.as_f64().expect("number")
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(40))]
+
+    #[test]
+    fn json_matches_independent_dda((grid, pos) in arb_case(), angle in -180.0f64..180.0, fov in 30.0f64..120.0, cols in 8usize..240, rows in 1usize..60) {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("m.cub");
+        let body: Vec<String> = grid.iter().map(|r| String::from_utf8(r.clone()).unwrap()).collect();
+        std::fs::write(&path, format!("NO n\nSO s\nWE w\nEA e\nF 1,2,3\nC 4,5,6\n\n{}\n", body.join("\n"))).unwrap();
+        let out = halfcast(&[
+            "render", path.to_str().unwrap(), "--pos", &format!("{},{}", pos.0, pos.1), "--angle", &angle.to_string(),
+            "--fov", &fov.to_string(), "--size", &format!("{cols}x{rows}"), "--format", "json",
+        ]);
+        prop_assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+        let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+
+        let a = angle.to_radians();
+        let d = (a.cos(), -a.sin());
+        let half = (fov.to_radians() / 2.0).tan();
+        let plane = (-d.1 * half, d.0 * half);
+        prop_assert!(close(f(&v["pos"][0]), pos.0) && close(f(&v["pos"][1]), pos.1));
+        prop_assert!(close(f(&v["dir"][0]), d.0) && close(f(&v["dir"][1]), d.1));
+        prop_assert!(close(f(&v["plane"][0]), plane.0) && close(f(&v["plane"][1]), plane.1));
+        let columns = v["columns"].as_array().unwrap();
+        prop_assert_eq!(columns.len(), cols);
+        let ray = |x: usize| {
+            let cx = 2.0 * x as f64 / cols as f64 - 1.0;
+            (d.0 + plane.0 * cx, d.1 + plane.1 * cx)
+        };
+        for (x, col) in columns.iter().enumerate() {
+            let r = ray(x);
+            let steps = walk(&grid, pos, r);
+            let &(cell, side, tx, ty) = steps.last().unwrap();
+            let perp = if side == "x" { tx - 1.0 / r.0.abs() } else { ty - 1.0 / r.1.abs() };
+            let along = if side == "x" { pos.1 + perp * r.1 } else { pos.0 + perp * r.0 };
+            prop_assert_eq!(col["cell"][0].as_i64(), Some(cell.0));
+            prop_assert_eq!(col["cell"][1].as_i64(), Some(cell.1));
+            prop_assert_eq!(col["side"].as_str(), Some(side));
+            prop_assert!(close(f(&col["perp_dist"]), perp), "column {}", x);
+            // wall_x is a fraction: compare on the circle so 0.9999999999 and 0.0 count as equal.
+            let gap = (f(&col["wall_x"]) - (along - along.floor())).abs();
+            prop_assert!(gap.min(1.0 - gap) < 1e-9, "column {} wall_x", x);
+        }
+        let trace = v["centre_trace"].as_array().unwrap();
+        let expect = walk(&grid, pos, ray(cols / 2));
+        prop_assert_eq!(trace.len(), expect.len());
+        for (s, (cell, side, tx, ty)) in trace.iter().zip(expect) {
+            prop_assert_eq!(s["cell"][0].as_i64(), Some(cell.0));
+            prop_assert_eq!(s["cell"][1].as_i64(), Some(cell.1));
+            prop_assert_eq!(s["side"].as_str(), Some(side));
+            prop_assert!(close(f(&s["side_dist"][0]), tx) && close(f(&s["side_dist"][1]), ty));
+        }
+    }
+}
+
+#[test]
+fn negative_angles_work_with_and_without_equals() {
+    let a = halfcast(&[
+        "render", "--angle", "-45", "--format", "json", "--size", "8x4",
+    ]);
+    let b = halfcast(&["render", "--angle=-45", "--format", "json", "--size", "8x4"]);
+    assert_eq!(
+        a.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&a.stderr)
+    );
+    assert_eq!(a.stdout, b.stdout);
+    let v: Value = serde_json::from_slice(&a.stdout).unwrap();
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    assert!(close(f(&v["dir"][0]), h) && close(f(&v["dir"][1]), h));
+}
