@@ -94,13 +94,12 @@ impl World {
             .collect::<Result<_, _>>()?;
         let mut wall_tex = [[0; 4]; 10];
         wall_tex[0] = [faces[0], faces[1], faces[2], faces[3]];
-        wall_tex[1] = wall_tex[0];
-        for (d, (slot, given)) in wall_tex.iter_mut().zip(&map.wall_types).enumerate().skip(2) {
-            let idx = match given {
-                Some(r) => loader.load(r, builtin::fallback_stem(d))?,
-                None => loader.builtin(builtin::fallback_stem(d)),
+        for (d, (slot, given)) in wall_tex.iter_mut().zip(&map.wall_types).enumerate().skip(1) {
+            *slot = match given {
+                Some(r) => [loader.load(r, builtin::fallback_stem(d))?; 4],
+                None if d == 1 => [faces[0], faces[1], faces[2], faces[3]],
+                None => [loader.builtin(builtin::fallback_stem(d)); 4],
             };
-            *slot = [idx; 4];
         }
         let floor_default = loader.surface(&map.floor, "floor")?;
         let ceiling_default = loader.surface(&map.ceiling, "ceiling")?;
@@ -264,5 +263,50 @@ impl World {
             .parent()
             .map_or_else(|| PathBuf::from("."), Path::to_path_buf);
         Ok(Self::load(map, &TextureSource::Dir(dir), strict)?)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::map::parse_map;
+
+    fn world(extra: &str) -> World {
+        let text = format!("{extra}NO a/bricks.png\nSO a/stone.png\nWE a/wood.png\nEA a/metal.png\nF 1,2,3\nC 4,5,6\n111\n1N1\n131\n111\n");
+        World::load(
+            parse_map("w.cub", text.as_bytes()).unwrap(),
+            &TextureSource::Embedded,
+            true,
+        )
+        .unwrap()
+        .0
+    }
+
+    #[test]
+    fn type_1_walls_use_the_four_faces_and_t1_overrides_them() {
+        let w = world("");
+        let bricks = builtin::by_name("bricks").unwrap();
+        let stone = builtin::by_name("stone").unwrap();
+        assert_eq!(w.wall_texture(Cell::Wall(1), 0), &bricks);
+        assert_eq!(w.wall_texture(Cell::Wall(1), 1), &stone);
+        let w = world("T1 x/mossy.png\n");
+        let mossy = builtin::by_name("mossy").unwrap();
+        assert!((0..4).all(|h| w.wall_texture(Cell::Wall(1), h) == &mossy));
+    }
+
+    #[test]
+    fn wall_types_without_a_texture_line_get_a_builtin() {
+        let w = world("");
+        assert_eq!(
+            w.wall_texture(Cell::Wall(3), 2),
+            &builtin::by_name(builtin::fallback_stem(3)).unwrap()
+        );
+    }
+
+    #[test]
+    fn the_default_world_loads_without_warnings() {
+        let map = parse_map(DEFAULT_MAP_NAME, DEFAULT_MAP.as_bytes()).unwrap();
+        let (_, warnings) = World::load(map, &TextureSource::Embedded, true).unwrap();
+        assert!(warnings.is_empty());
     }
 }

@@ -61,3 +61,18 @@ fn walls_are_square_at_any_terminal_size() {
         }
     }
 }
+
+/// `maps/default.cub` read from disk (textures relative to it) looks exactly like the embedded copy.
+#[test]
+fn the_default_map_file_on_disk_matches_the_embedded_one() {
+    let (disk, warnings) =
+        World::from_file(&common::root().join("maps/default.cub"), true).unwrap();
+    assert!(warnings.is_empty());
+    let embedded = World::default_world();
+    let start = embedded.map.start;
+    let cam = Camera::from_angle(start.pos(), start.angle_deg() + 40.0, 70.0);
+    assert_eq!(
+        Scene::new(&disk, cam).render(64, 20),
+        Scene::new(&embedded, cam).render(64, 20)
+    );
+}
