@@ -7,6 +7,7 @@ use std::process::ExitCode;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use halfcast::camera::{Camera, DEFAULT_FOV_DEG};
 use halfcast::output::{ansi, json::RayReport, text};
+use halfcast::termframe;
 use halfcast::world::World;
 use halfcast::{Framebuffer, Scene, Vec2};
 
@@ -28,6 +29,19 @@ struct Cli {
 enum Command {
     /// Render one frame headlessly (PNG, ANSI, text or ray JSON).
     Render(RenderArgs),
+    /// Compare two frames (PNG, ANSI, cells text or plain text): exit 0 equal, 1 different, 2 error.
+    Diff(DiffArgs),
+}
+
+#[derive(Args, Debug)]
+struct DiffArgs {
+    /// The expected frame.
+    a: PathBuf,
+    /// The actual frame.
+    b: PathBuf,
+    /// Write a highlighted picture of the differences (PNG if the name ends in .png, else ANSI).
+    #[arg(short, long)]
+    out: Option<PathBuf>,
 }
 
 #[derive(Args, Debug)]
@@ -71,9 +85,15 @@ struct RenderArgs {
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 enum Format {
+    /// The framebuffer, COLS × 2·ROWS pixels.
     Png,
+    /// The half-block frame as the terminal receives it (full redraw).
     Ansi,
+    /// Plain ASCII shade ramp, one character per cell.
     Txt,
+    /// Colour-aware text for code review: every cell's glyph, fg and bg, one line per row.
+    Cells,
+    /// The ray data: camera, per-column hits, the centre ray's DDA trace.
     Json,
 }
 
@@ -153,6 +173,7 @@ pub fn run() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Some(Command::Render(args)) => render(&args),
+        Some(Command::Diff(args)) => diff(&args),
         None => Err(Failure::input(
             "the interactive view is not built yet; try `halfcast render`",
         )),
@@ -160,7 +181,9 @@ pub fn run() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(f) => {
-            eprintln!("error: {}", f.message);
+            if !f.message.is_empty() {
+                eprintln!("error: {}", f.message);
+            }
             ExitCode::from(f.code)
         }
     }
@@ -196,6 +219,9 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
         Format::Png => fb.to_png().map_err(Failure::io)?,
         Format::Ansi => ansi::to_ansi_truecolor(&fb).into_bytes(),
         Format::Txt => text::to_text(&fb).into_bytes(),
+        Format::Cells => {
+            termframe::to_cells_text(&termframe::TermFrame::from_framebuffer(&fb)).into_bytes()
+        }
         Format::Json => {
             let mut s = RayReport::new(&camera, &cast, usize::from(rows)).to_json();
             s.push('\n');
@@ -203,6 +229,33 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
         }
     };
     write_output(args.output.as_ref(), &bytes)
+}
+
+fn diff(args: &DiffArgs) -> Result<(), Failure> {
+    let (a, _) = termframe::load(&args.a).map_err(Failure::input)?;
+    let (b, _) = termframe::load(&args.b).map_err(Failure::input)?;
+    let report = termframe::diff(&a, &b);
+    print!("{}", report.summary());
+    if let Some(out) = &args.out {
+        let picture = report.highlight(&a, &b);
+        let bytes = if out
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("png"))
+        {
+            picture.to_png().map_err(Failure::io)?
+        } else {
+            ansi::to_ansi_truecolor(&picture).into_bytes()
+        };
+        write_output(Some(out), &bytes)?;
+    }
+    if report.is_equal() {
+        Ok(())
+    } else {
+        Err(Failure {
+            code: 1,
+            message: String::new(),
+        })
+    }
 }
 
 fn write_output(path: Option<&PathBuf>, bytes: &[u8]) -> Result<(), Failure> {

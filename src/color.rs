@@ -48,3 +48,55 @@ mod tests {
         assert_eq!(Rgb::new(0, 0, 0).luma(), 0);
     }
 }
+
+/// The RGB an xterm shows for a 256-colour index (16 system colours, 6×6×6 cube, 24 greys).
+#[must_use]
+pub fn xterm_rgb(n: u8) -> Rgb {
+    const SYSTEM: [(u8, u8, u8); 16] = [
+        (0, 0, 0),
+        (205, 0, 0),
+        (0, 205, 0),
+        (205, 205, 0),
+        (0, 0, 238),
+        (205, 0, 205),
+        (0, 205, 205),
+        (229, 229, 229),
+        (127, 127, 127),
+        (255, 0, 0),
+        (0, 255, 0),
+        (255, 255, 0),
+        (92, 92, 255),
+        (255, 0, 255),
+        (0, 255, 255),
+        (255, 255, 255),
+    ];
+    match n {
+        0..=15 => {
+            let (r, g, b) = SYSTEM[usize::from(n)];
+            Rgb::new(r, g, b)
+        }
+        16..=231 => {
+            let i = n - 16;
+            let level = |v: u8| if v == 0 { 0 } else { 55 + 40 * v };
+            Rgb::new(level(i / 36), level(i / 6 % 6), level(i % 6))
+        }
+        _ => {
+            let v = 8 + 10 * (n - 232);
+            Rgb::new(v, v, v)
+        }
+    }
+}
+
+#[cfg(test)]
+mod xterm_tests {
+    use super::*;
+
+    #[test]
+    fn xterm_palette_corners() {
+        assert_eq!(xterm_rgb(16), Rgb::new(0, 0, 0));
+        assert_eq!(xterm_rgb(231), Rgb::new(255, 255, 255));
+        assert_eq!(xterm_rgb(196), Rgb::new(255, 0, 0));
+        assert_eq!(xterm_rgb(232), Rgb::new(8, 8, 8));
+        assert_eq!(xterm_rgb(255), Rgb::new(238, 238, 238));
+    }
+}

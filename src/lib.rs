@@ -12,6 +12,7 @@ pub mod output;
 pub mod raster;
 pub mod scene;
 pub mod snapshot;
+pub mod termframe;
 pub mod texture;
 pub mod vec2;
 pub mod world;

@@ -1,0 +1,187 @@
+//! Comparing two terminal frames cell by cell, for `halfcast diff` and snapshot tests.
+
+use std::fmt::Write;
+
+use super::text::cell_code;
+use super::{TermCell, TermFrame};
+use crate::color::Rgb;
+use crate::framebuffer::Framebuffer;
+
+/// One cell that looks different in the two frames.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CellDiff {
+    pub x: usize,
+    pub y: usize,
+    pub a: TermCell,
+    pub b: TermCell,
+    /// Largest channel difference of the upper/lower colours (255 when only one has a colour).
+    pub colour_delta: u8,
+}
+
+/// The outcome of a comparison: equal, different sizes, or the differing cells.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct DiffReport {
+    pub size_a: (usize, usize),
+    pub size_b: (usize, usize),
+    pub differing: Vec<CellDiff>,
+    pub max_colour_delta: u8,
+}
+
+fn channel_delta(a: Option<Rgb>, b: Option<Rgb>) -> u8 {
+    match (a, b) {
+        (Some(p), Some(q)) => {
+            p.r.abs_diff(q.r)
+                .max(p.g.abs_diff(q.g))
+                .max(p.b.abs_diff(q.b))
+        }
+        (None, None) => 0,
+        _ => 255,
+    }
+}
+
+/// Compares by appearance (so `▀` a/b equals `▄` b/a); frames of different sizes differ entirely.
+#[must_use]
+pub fn diff(a: &TermFrame, b: &TermFrame) -> DiffReport {
+    let mut report = DiffReport {
+        size_a: (a.cols, a.rows),
+        size_b: (b.cols, b.rows),
+        differing: Vec::new(),
+        max_colour_delta: 0,
+    };
+    if report.size_a != report.size_b {
+        return report;
+    }
+    for y in 0..a.rows {
+        for x in 0..a.cols {
+            let (ca, cb) = (*a.cell(x, y), *b.cell(x, y));
+            let (ga, ua, la) = ca.appearance();
+            let (gb, ub, lb) = cb.appearance();
+            if (ga, ua, la) != (gb, ub, lb) {
+                let colour_delta = channel_delta(ua, ub).max(channel_delta(la, lb));
+                report.max_colour_delta = report.max_colour_delta.max(colour_delta);
+                report.differing.push(CellDiff {
+                    x,
+                    y,
+                    a: ca,
+                    b: cb,
+                    colour_delta,
+                });
+            }
+        }
+    }
+    report
+}
+
+impl DiffReport {
+    /// Whether the frames look identical.
+    #[must_use]
+    pub fn is_equal(&self) -> bool {
+        self.size_a == self.size_b && self.differing.is_empty()
+    }
+
+    /// A few lines for a person or a CI log: counts, the largest colour change, the first cells.
+    #[must_use]
+    pub fn summary(&self) -> String {
+        if self.size_a != self.size_b {
+            return format!(
+                "sizes differ: {}x{} vs {}x{} cells\n",
+                self.size_a.0, self.size_a.1, self.size_b.0, self.size_b.1
+            );
+        }
+        let total = self.size_a.0 * self.size_a.1;
+        let n = self.differing.len();
+        let pct = if total == 0 {
+            0.0
+        } else {
+            100.0 * n as f64 / total as f64
+        };
+        let mut s = format!(
+            "{}x{} cells, {n} differ ({pct:.2}%), max colour delta {}\n",
+            self.size_a.0, self.size_a.1, self.max_colour_delta
+        );
+        for d in self.differing.iter().take(10) {
+            let _ = writeln!(
+                s,
+                "  cell ({},{}): {} -> {}",
+                d.x,
+                d.y,
+                cell_code(&d.a),
+                cell_code(&d.b)
+            );
+        }
+        if n > 10 {
+            let _ = writeln!(s, "  … and {} more", n - 10);
+        }
+        s
+    }
+
+    /// A picture of the change: B's pixels where cells differ (tinted magenta), A dimmed to grey elsewhere.
+    #[must_use]
+    pub fn highlight(&self, a: &TermFrame, b: &TermFrame) -> Framebuffer {
+        let base = if self.size_a == self.size_b { b } else { a };
+        let mut fb = base.to_framebuffer();
+        let mut changed = vec![false; base.cols * base.rows];
+        for d in &self.differing {
+            changed[d.y * base.cols + d.x] = true;
+        }
+        for y in 0..fb.height() {
+            for x in 0..fb.width() {
+                let p = fb.get(x, y);
+                let mark = changed[(y / 2) * base.cols + x];
+                fb.set(
+                    x,
+                    y,
+                    if mark {
+                        Rgb::new(p.r / 2 + 127, p.g / 3, p.b / 2 + 127)
+                    } else {
+                        let l = p.luma() / 3;
+                        Rgb::new(l, l, l)
+                    },
+                );
+            }
+        }
+        fb
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn frame(colours: &[(u8, u8)]) -> TermFrame {
+        TermFrame {
+            cols: colours.len(),
+            rows: 1,
+            cells: colours
+                .iter()
+                .map(|&(u, l)| TermCell {
+                    glyph: '▀',
+                    fg: Some(Rgb::new(u, u, u)),
+                    bg: Some(Rgb::new(l, l, l)),
+                })
+                .collect(),
+        }
+    }
+
+    #[test]
+    fn counts_differing_cells_and_the_largest_delta() {
+        let r = diff(
+            &frame(&[(0, 0), (10, 10), (5, 5)]),
+            &frame(&[(0, 0), (10, 40), (6, 5)]),
+        );
+        assert_eq!(r.differing.len(), 2);
+        assert_eq!(r.max_colour_delta, 30);
+        assert!(!r.is_equal());
+        assert!(r
+            .summary()
+            .starts_with("3x1 cells, 2 differ (66.67%), max colour delta 30\n"));
+    }
+
+    #[test]
+    fn equal_frames_and_size_mismatch() {
+        assert!(diff(&frame(&[(1, 2)]), &frame(&[(1, 2)])).is_equal());
+        let r = diff(&frame(&[(1, 2)]), &frame(&[(1, 2), (3, 4)]));
+        assert!(!r.is_equal());
+        assert_eq!(r.summary(), "sizes differ: 1x1 vs 2x1 cells\n");
+    }
+}

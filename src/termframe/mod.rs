@@ -1,0 +1,124 @@
+//! A terminal frame as cells (glyph + colours): the common ground for comparing PNG, ANSI and
+//! text frames, and the colour-aware text form that snapshots pin.
+
+mod diff;
+mod parse;
+mod text;
+
+pub use diff::{diff, CellDiff, DiffReport};
+pub use parse::{from_ansi, load, FrameFormat};
+pub use text::{cell_code, from_cells_text, to_cells_text, CELLS_HEADER};
+
+use crate::color::Rgb;
+use crate::framebuffer::Framebuffer;
+
+/// One terminal cell as a person sees it: a glyph with a foreground and a background colour
+/// (`None` = the terminal's default colour).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct TermCell {
+    pub glyph: char,
+    pub fg: Option<Rgb>,
+    pub bg: Option<Rgb>,
+}
+
+impl TermCell {
+    /// The visible content in a canonical form, so `▀` fg=a bg=b equals `▄` fg=b bg=a and
+    /// a space equals `█` with swapped roles: (glyph class, upper colour, lower colour).
+    #[must_use]
+    pub fn appearance(&self) -> (char, Option<Rgb>, Option<Rgb>) {
+        match self.glyph {
+            '▀' => ('▀', self.fg, self.bg),
+            '▄' => ('▀', self.bg, self.fg),
+            ' ' => ('▀', self.bg, self.bg),
+            '█' => ('▀', self.fg, self.fg),
+            g => (g, self.fg, self.bg),
+        }
+    }
+}
+
+/// A grid of terminal cells, row-major.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct TermFrame {
+    pub cols: usize,
+    pub rows: usize,
+    pub cells: Vec<TermCell>,
+}
+
+impl TermFrame {
+    /// The half-block view of a framebuffer: `▀` with fg = upper pixel, bg = lower pixel.
+    #[must_use]
+    pub fn from_framebuffer(fb: &Framebuffer) -> Self {
+        let (cols, rows) = (fb.width(), fb.cell_rows());
+        let mut cells = Vec::with_capacity(cols * rows);
+        for cy in 0..rows {
+            for cx in 0..cols {
+                let (up, low) = fb.cell(cx, cy);
+                cells.push(TermCell {
+                    glyph: '▀',
+                    fg: Some(up),
+                    bg: Some(low),
+                });
+            }
+        }
+        Self { cols, rows, cells }
+    }
+
+    /// The cell at column `x`, row `y`.
+    #[must_use]
+    pub fn cell(&self, x: usize, y: usize) -> &TermCell {
+        &self.cells[y * self.cols + x]
+    }
+
+    /// Back to pixels: upper and lower colour of each cell (default colours become black).
+    #[must_use]
+    pub fn to_framebuffer(&self) -> Framebuffer {
+        let mut fb = Framebuffer::new(self.cols, self.rows * 2);
+        for y in 0..self.rows {
+            for x in 0..self.cols {
+                let (_, up, low) = self.cell(x, y).appearance();
+                fb.set(x, 2 * y, up.unwrap_or_default());
+                fb.set(x, 2 * y + 1, low.unwrap_or_default());
+            }
+        }
+        fb
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn equivalent_glyphs_look_the_same() {
+        let (a, b) = (Some(Rgb::new(1, 2, 3)), Some(Rgb::new(4, 5, 6)));
+        let up = TermCell {
+            glyph: '▀',
+            fg: a,
+            bg: b,
+        };
+        let low = TermCell {
+            glyph: '▄',
+            fg: b,
+            bg: a,
+        };
+        assert_eq!(up.appearance(), low.appearance());
+        let space = TermCell {
+            glyph: ' ',
+            fg: None,
+            bg: a,
+        };
+        let full = TermCell {
+            glyph: '█',
+            fg: a,
+            bg: b,
+        };
+        assert_eq!(space.appearance(), full.appearance());
+    }
+
+    #[test]
+    fn framebuffer_round_trip() {
+        let mut fb = Framebuffer::for_cells(3, 2);
+        fb.set(2, 3, Rgb::new(9, 9, 9));
+        assert_eq!(TermFrame::from_framebuffer(&fb).to_framebuffer(), fb);
+    }
+}
