@@ -28,6 +28,7 @@ struct Cli {
 #[derive(Subcommand, Debug)]
 enum Command {
     /// Render one frame headlessly (PNG, ANSI, text or ray JSON).
+    #[command(args_override_self = true)]
     Render(RenderArgs),
     /// Compare two frames (PNG, ANSI, cells text or plain text): exit 0 equal, 1 different, 2 error.
     Diff(DiffArgs),
