@@ -7,6 +7,7 @@ pub mod camera;
 pub mod cast;
 pub mod color;
 pub mod framebuffer;
+pub mod game;
 pub mod map;
 pub mod output;
 pub mod raster;
