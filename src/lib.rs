@@ -15,6 +15,7 @@ pub mod scene;
 pub mod snapshot;
 pub mod texture;
 pub mod vec2;
+pub mod widget;
 pub mod world;
 
 pub use camera::Camera;
