@@ -14,6 +14,7 @@ pub mod raster;
 pub mod scene;
 pub mod snapshot;
 pub mod texture;
+pub mod tui;
 pub mod vec2;
 pub mod widget;
 pub mod world;

@@ -81,7 +81,11 @@ pub fn step(state: &mut GameState, input: &Input, dt: f64) {
         match command {
             Command::TogglePause => d.toggle_pause(),
             Command::MoveColumn(by) if d.paused => d.move_column(by, state.view_width),
-            Command::StepDda if d.paused => {
+            Command::StepDda => {
+                // Stepping is a breakpoint: it pauses the world if it is running.
+                if !d.paused {
+                    d.toggle_pause();
+                }
                 let total = state.debug_trace().map_or(0, |t| t.steps.len());
                 state.debugger.step(total);
             }
@@ -194,14 +198,21 @@ mod tests {
     }
 
     #[test]
-    fn column_commands_do_nothing_while_playing() {
+    fn column_commands_wait_for_a_pause_but_stepping_pauses() {
         let mut s = state();
         let input = Input {
             held: Held::default(),
-            commands: vec![Command::MoveColumn(5), Command::StepDda],
+            commands: vec![Command::MoveColumn(5), Command::RunToHit],
         };
         step(&mut s, &input, 0.016);
         assert_eq!(s.debugger, Debugger::default());
+        let input = Input {
+            held: Held::default(),
+            commands: vec![Command::StepDda],
+        };
+        step(&mut s, &input, 0.016);
+        assert!(s.debugger.paused);
+        assert_eq!(s.debugger.cursor, Cursor::Steps(0));
     }
 
     #[test]
