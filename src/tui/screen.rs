@@ -4,7 +4,7 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, BorderType, Paragraph, Widget, Wrap};
+use ratatui::widgets::{Block, BorderType, Clear, Paragraph, Widget, Wrap};
 
 use super::help::HelpOverlay;
 use super::keys::InputMode;
@@ -43,6 +43,7 @@ pub fn draw_view(fb: &Framebuffer, area: Rect, buf: &mut Buffer) {
 /// Draws a whole frame into `buf` within `area`, per `panes` (from [`Panes::compute`]).
 pub fn draw(screen: &Screen, panes: &Panes, area: Rect, buf: &mut Buffer) {
     let area = area.intersection(buf.area);
+    Clear.render(area, buf);
     match *panes {
         Panes::TooSmall(r) => too_small(r.intersection(area), buf),
         Panes::Game {

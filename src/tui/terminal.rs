@@ -10,8 +10,8 @@ use crossterm::event::{
     KeyboardEnhancementFlags, PopKeyboardEnhancementFlags, PushKeyboardEnhancementFlags,
 };
 use crossterm::terminal::{
-    disable_raw_mode, enable_raw_mode, BeginSynchronizedUpdate, EndSynchronizedUpdate,
-    EnterAlternateScreen, LeaveAlternateScreen,
+    disable_raw_mode, enable_raw_mode, BeginSynchronizedUpdate, Clear, ClearType,
+    EndSynchronizedUpdate, EnterAlternateScreen, LeaveAlternateScreen,
 };
 use crossterm::{cursor, execute, queue, style};
 use ratatui::backend::CrosstermBackend;
@@ -106,7 +106,13 @@ impl Session {
             Ok(true)
         );
         let mut out = io::stdout();
-        execute!(out, EnterAlternateScreen, cursor::Hide, EnableFocusChange)?;
+        execute!(
+            out,
+            EnterAlternateScreen,
+            Clear(ClearType::All),
+            cursor::Hide,
+            EnableFocusChange
+        )?;
         if mouse {
             MOUSE.store(true, Ordering::SeqCst);
             execute!(out, EnableMouseCapture)?;
@@ -124,8 +130,8 @@ impl Session {
             )?;
         }
         let writer = BufWriter::with_capacity(1 << 18, GatedStdout(io::stdout()));
-        let mut terminal = Terminal::new(CrosstermBackend::new(writer))?;
-        terminal.clear()?;
+        // (Not `Terminal::clear`: it asks for the cursor position, which needs an answer.)
+        let terminal = Terminal::new(CrosstermBackend::new(writer))?;
         Ok(Self {
             terminal,
             mode: if kitty {
@@ -185,8 +191,8 @@ pub fn restore() {
         EndSynchronizedUpdate,
         DisableFocusChange,
         style::ResetColor,
-        cursor::Show,
-        LeaveAlternateScreen
+        LeaveAlternateScreen,
+        cursor::Show
     );
     let _ = out.flush();
     let _ = disable_raw_mode();
