@@ -93,8 +93,8 @@ fn under_tmux_the_first_screen_walks_and_quits_cleanly() {
     ]);
     assert!(started.status.success(), "{started:?}");
 
-    let first = tmux.wait_for("the first frame", |s| {
-        s.contains("sideDistX") && s.contains("(15,4)")
+    let first = tmux.wait_for("the first whole frame", |s| {
+        s.contains("sideDistX") && s.contains("(15,4)") && status(s).contains("q quit")
     });
     assert!(first.contains("╭ map"), "{first}");
     assert!(status(&first).contains("pos 15.50,5.50"), "{first}");
