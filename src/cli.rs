@@ -3,11 +3,13 @@
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::Arc;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use halfcast::camera::{Camera, DEFAULT_FOV_DEG};
 use halfcast::output::{ansi, json::RayReport, text};
 use halfcast::termframe;
+use halfcast::tui::{self, Ending, PlayOptions, TerminalError};
 use halfcast::world::World;
 use halfcast::{Framebuffer, Scene, Vec2};
 
@@ -30,6 +32,8 @@ enum Command {
     /// Render one frame headlessly (PNG, ANSI, text or ray JSON).
     #[command(args_override_self = true)]
     Render(RenderArgs),
+    /// Play in this terminal (the default when no command is given).
+    Play(PlayArgs),
     /// Compare two frames (PNG, ANSI, cells text or plain text): exit 0 equal, 1 different, 2 error.
     Diff(DiffArgs),
 }
@@ -82,6 +86,43 @@ struct RenderArgs {
     /// Write here instead of standard output.
     #[arg(short, long)]
     output: Option<PathBuf>,
+}
+
+#[derive(Args, Debug)]
+struct PlayArgs {
+    #[command(flatten)]
+    map: MapArgs,
+    #[command(flatten)]
+    pose: PoseArgs,
+    /// Target frames per second (1 to 1000).
+    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(1..=1000))]
+    fps: u32,
+    /// Do not capture the mouse (keeps the terminal's own text selection working).
+    #[arg(long)]
+    no_mouse: bool,
+    /// Print frame-time statistics (fps, render and draw ms) to stderr on exit.
+    #[arg(long)]
+    frame_stats: bool,
+}
+
+impl PlayArgs {
+    /// `halfcast` with no command: the embedded map, default pose and pacing.
+    fn defaults() -> Self {
+        Self {
+            map: MapArgs {
+                map: None,
+                strict: false,
+            },
+            pose: PoseArgs {
+                pos: None,
+                angle: None,
+                fov: DEFAULT_FOV_DEG,
+            },
+            fps: 60,
+            no_mouse: false,
+            frame_stats: false,
+        }
+    }
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -175,9 +216,8 @@ pub fn run() -> ExitCode {
     let result = match cli.command {
         Some(Command::Render(args)) => render(&args),
         Some(Command::Diff(args)) => diff(&args),
-        None => Err(Failure::input(
-            "the interactive view is not built yet; try `halfcast render`",
-        )),
+        Some(Command::Play(args)) => play(&args),
+        None => play(&PlayArgs::defaults()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -208,6 +248,35 @@ fn camera_for(world: &World, pose: &PoseArgs) -> Camera {
     let pos = pose.pos.unwrap_or_else(|| start.pos());
     let angle = pose.angle.unwrap_or_else(|| start.angle_deg());
     Camera::from_angle(pos, angle, pose.fov)
+}
+
+fn play(args: &PlayArgs) -> Result<(), Failure> {
+    let world = load_world(&args.map)?;
+    let camera = camera_for(&world, &args.pose);
+    if !world.map.is_walkable(camera.pos) {
+        return Err(Failure::input(format!(
+            "--pos {},{} is not on a floor cell of {}",
+            camera.pos.x, camera.pos.y, world.map.name
+        )));
+    }
+    let options = PlayOptions {
+        fps: args.fps,
+        mouse: !args.no_mouse,
+    };
+    let (ending, stats) = tui::play(Arc::new(world), camera, options).map_err(|e| match e {
+        TerminalError::NotATerminal(_) => Failure::input(e),
+        TerminalError::Io(_) => Failure::io(e),
+    })?;
+    if args.frame_stats {
+        eprintln!("halfcast: {}", stats.summary());
+    }
+    match ending {
+        Ending::Quit => Ok(()),
+        Ending::Signal(sig) => Err(Failure {
+            code: 128u8.saturating_add(u8::try_from(sig).unwrap_or(0)),
+            message: format!("stopped by signal {sig}"),
+        }),
+    }
 }
 
 fn render(args: &RenderArgs) -> Result<(), Failure> {

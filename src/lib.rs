@@ -7,6 +7,7 @@ pub mod camera;
 pub mod cast;
 pub mod color;
 pub mod framebuffer;
+pub mod game;
 pub mod map;
 pub mod output;
 pub mod raster;
@@ -14,7 +15,9 @@ pub mod scene;
 pub mod snapshot;
 pub mod termframe;
 pub mod texture;
+pub mod tui;
 pub mod vec2;
+pub mod widget;
 pub mod world;
 
 pub use camera::Camera;

@@ -1,0 +1,212 @@
+//! Moving a round-ish player (an axis-aligned square of half-size `radius`) through the grid.
+//!
+//! Each axis moves on its own, so pushing diagonally into a wall slides along it; a blocked
+//! axis stops exactly `radius` short of the wall, so the eye never enters a wall and the
+//! view never reaches past a corner.
+
+use crate::map::{Cell, Map};
+use crate::vec2::Vec2;
+
+/// Player half-size in cells; small enough to pass a one-cell corridor comfortably.
+pub const PLAYER_RADIUS: f64 = 0.2;
+
+/// Longest move tried at once, so a long frame cannot tunnel through a thin wall.
+const MAX_SUBSTEP: f64 = 0.1;
+
+/// Slack so a player resting exactly against a wall does not count as overlapping it.
+const EPS: f64 = 1e-9;
+
+fn blocks(map: &Map, i: i64, j: i64) -> bool {
+    !matches!(map.cell(i, j), Cell::Floor { .. })
+}
+
+/// The cells (inclusive ranges) a square of half-size `r` at `p` overlaps.
+fn covered(p: Vec2, r: f64) -> ((i64, i64), (i64, i64)) {
+    let lo = |c: f64| (c - r + EPS).floor() as i64;
+    let hi = |c: f64| (c + r - EPS).ceil() as i64 - 1;
+    ((lo(p.x), hi(p.x)), (lo(p.y), hi(p.y)))
+}
+
+/// Whether a player of half-size `r` standing at `p` overlaps anything solid (walls or void).
+#[must_use]
+pub fn overlaps_wall(map: &Map, p: Vec2, r: f64) -> bool {
+    let ((i0, i1), (j0, j1)) = covered(p, r);
+    (j0..=j1).any(|j| (i0..=i1).any(|i| blocks(map, i, j)))
+}
+
+/// Moves `from` by `delta`, x then y in short sub-steps, stopping each axis at the walls.
+#[must_use]
+pub fn slide(map: &Map, from: Vec2, delta: Vec2, r: f64) -> Vec2 {
+    let len = delta.length();
+    if len == 0.0 || !len.is_finite() {
+        return from;
+    }
+    let n = (len / MAX_SUBSTEP).ceil().max(1.0);
+    let part = delta * (1.0 / n);
+    let mut p = from;
+    for _ in 0..n as usize {
+        p.x = move_axis(map, p, part.x, r, true);
+        p.y = move_axis(map, p, part.y, r, false);
+    }
+    p
+}
+
+/// The new coordinate on one axis: `p + d` if free, else flush against the wall it met.
+fn move_axis(map: &Map, p: Vec2, d: f64, r: f64, along_x: bool) -> f64 {
+    if d == 0.0 {
+        return if along_x { p.x } else { p.y };
+    }
+    let moved = if along_x {
+        Vec2::new(p.x + d, p.y)
+    } else {
+        Vec2::new(p.x, p.y + d)
+    };
+    if !overlaps_wall(map, moved, r) {
+        return if along_x { moved.x } else { moved.y };
+    }
+    let c = if along_x { p.x } else { p.y };
+    // The sub-step is shorter than a cell, so the only new line of cells is the leading one:
+    // rest against its near edge (or stay put if that is behind us, e.g. starting overlapped).
+    let flush = if d > 0.0 {
+        (c + d + r - EPS).floor() - r
+    } else {
+        (c + d - r + EPS).floor() + 1.0 + r
+    };
+    if (d > 0.0 && flush >= c) || (d < 0.0 && flush <= c) {
+        flush
+    } else {
+        c
+    }
+}
+
+/// Nudges a spawn point that overlaps a wall back inside its own cell (the cell is floor).
+#[must_use]
+pub fn settle(map: &Map, p: Vec2, r: f64) -> Vec2 {
+    if !overlaps_wall(map, p, r) {
+        return p;
+    }
+    let clamp = |c: f64| {
+        let base = c.floor();
+        c.clamp(base + r, base + 1.0 - r)
+    };
+    Vec2::new(clamp(p.x), clamp(p.y))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::map::parse_map;
+
+    const HEADER: &str = "NO n\nSO s\nWE w\nEA e\nF 1,2,3\nC 4,5,6\n";
+
+    fn map(grid: &str) -> Map {
+        parse_map("t.cub", format!("{HEADER}{grid}").as_bytes()).unwrap()
+    }
+
+    /// A 4×4 room (cells 1..=4) with a pillar at (3,2).
+    fn room() -> Map {
+        map("111111\n1N0001\n100101\n100001\n100001\n111111\n")
+    }
+
+    const R: f64 = PLAYER_RADIUS;
+
+    fn close(a: f64, b: f64) -> bool {
+        (a - b).abs() < 1e-6
+    }
+
+    #[test]
+    fn walking_into_a_wall_stops_at_the_radius() {
+        let m = room();
+        let p = slide(&m, Vec2::new(1.5, 4.5), Vec2::new(10.0, 0.0), R);
+        assert!(close(p.x, 5.0 - R) && close(p.y, 4.5), "{p:?}");
+        let p = slide(&m, Vec2::new(1.5, 4.5), Vec2::new(-3.0, 0.0), R);
+        assert!(close(p.x, 1.0 + R), "{p:?}");
+        let p = slide(&m, Vec2::new(1.5, 4.5), Vec2::new(0.0, 3.0), R);
+        assert!(close(p.y, 5.0 - R), "{p:?}");
+        let p = slide(&m, Vec2::new(1.5, 4.5), Vec2::new(0.0, -9.0), R);
+        assert!(close(p.y, 1.0 + R), "{p:?}");
+    }
+
+    #[test]
+    fn resting_against_a_wall_is_not_overlapping_and_can_leave() {
+        let m = room();
+        let p = slide(&m, Vec2::new(1.5, 4.5), Vec2::new(10.0, 0.0), R);
+        assert!(!overlaps_wall(&m, p, R));
+        // Pushing on into the wall again changes nothing; backing off works.
+        assert_eq!(slide(&m, p, Vec2::new(0.5, 0.0), R), p);
+        let back = slide(&m, p, Vec2::new(-0.5, 0.0), R);
+        assert!(close(back.x, p.x - 0.5));
+    }
+
+    #[test]
+    fn pushing_diagonally_into_a_wall_slides_along_it() {
+        let m = room();
+        // Against the east wall, moving north-east: x is stuck, y keeps going.
+        let start = Vec2::new(5.0 - R, 4.5);
+        let p = slide(&m, start, Vec2::new(0.3, -0.6), R);
+        assert!(close(p.x, 5.0 - R), "{p:?}");
+        assert!(close(p.y, 3.9), "{p:?}");
+        // The slide continues past the pillar's row since the pillar is not in the way.
+        let p = slide(&m, start, Vec2::new(0.3, -2.0), R);
+        assert!(close(p.x, 5.0 - R) && close(p.y, 2.5), "{p:?}");
+    }
+
+    #[test]
+    fn a_pillar_corner_stops_the_player_at_the_radius_on_both_axes() {
+        let m = room();
+        // Pillar (3,2) spans [3,4)×[2,3). Approach its north-west corner diagonally.
+        let p = slide(&m, Vec2::new(2.5, 1.5), Vec2::new(1.0, 1.0), R);
+        assert!(!overlaps_wall(&m, p, R), "{p:?}");
+        // One axis got blocked at the radius, the other slid past the corner's reach.
+        let x_blocked = close(p.x, 3.0 - R);
+        let y_blocked = close(p.y, 2.0 - R);
+        assert!(x_blocked || y_blocked, "{p:?}");
+    }
+
+    #[test]
+    fn cannot_squeeze_through_a_diagonal_gap_between_two_walls() {
+        // Walls at (2,1) and (1,2) touch only at the corner (2,2).
+        let m = map("11111\n1N101\n11001\n10001\n11111\n");
+        let mut p = Vec2::new(1.5, 1.5);
+        for _ in 0..100 {
+            p = slide(&m, p, Vec2::new(0.05, 0.05), R);
+        }
+        assert!(p.x < 2.0 - R + 1e-6 && p.y < 2.0 - R + 1e-6, "{p:?}");
+    }
+
+    #[test]
+    fn a_huge_frame_step_does_not_tunnel() {
+        let m = room();
+        let p = slide(&m, Vec2::new(1.5, 1.5), Vec2::new(1000.0, 0.0), R);
+        assert!(close(p.x, 3.0 - R) || close(p.x, 5.0 - R), "{p:?}");
+        assert!(!overlaps_wall(&m, p, R));
+        // A non-finite step is ignored.
+        assert_eq!(
+            slide(&m, Vec2::new(1.5, 1.5), Vec2::new(f64::NAN, 0.0), R),
+            Vec2::new(1.5, 1.5)
+        );
+    }
+
+    #[test]
+    fn settle_pulls_a_spawn_off_the_walls() {
+        let m = room();
+        let p = settle(&m, Vec2::new(1.05, 1.02), R);
+        assert!(close(p.x, 1.0 + R) && close(p.y, 1.0 + R), "{p:?}");
+        assert!(!overlaps_wall(&m, p, R));
+        let free = Vec2::new(2.5, 2.5);
+        assert_eq!(settle(&m, free, R), free);
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn random_walks_never_enter_a_wall(moves in proptest::collection::vec((-1.5f64..1.5, -1.5f64..1.5), 1..60)) {
+            let world = crate::world::World::default_world();
+            let m = &world.map;
+            let mut p = m.start.pos();
+            for (dx, dy) in moves {
+                p = slide(m, p, Vec2::new(dx, dy), R);
+                proptest::prop_assert!(!overlaps_wall(m, p, R), "{:?}", p);
+            }
+        }
+    }
+}

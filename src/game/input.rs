@@ -1,0 +1,131 @@
+//! What the player asks for in one step: actions held down plus one-shot commands.
+//!
+//! Built by the edge (keyboard, replay file, SSH session) and read by [`super::step`];
+//! it knows nothing about keys or terminals.
+
+/// A continuous action: applies for as long as it is held, scaled by the frame time.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Action {
+    Forward,
+    Back,
+    TurnLeft,
+    TurnRight,
+    StrafeLeft,
+    StrafeRight,
+}
+
+impl Action {
+    /// Every action, for iteration (bit order of [`Held`]).
+    pub const ALL: [Action; 6] = [
+        Action::Forward,
+        Action::Back,
+        Action::TurnLeft,
+        Action::TurnRight,
+        Action::StrafeLeft,
+        Action::StrafeRight,
+    ];
+
+    fn bit(self) -> u8 {
+        1 << (self as u8)
+    }
+}
+
+/// The set of actions held during a step (a bitset: cheap to copy into replays).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
+pub struct Held(u8);
+
+impl Held {
+    /// Whether `a` is held.
+    #[must_use]
+    pub fn contains(self, a: Action) -> bool {
+        self.0 & a.bit() != 0
+    }
+
+    /// Marks `a` held.
+    pub fn insert(&mut self, a: Action) {
+        self.0 |= a.bit();
+    }
+
+    /// Marks `a` released.
+    pub fn remove(&mut self, a: Action) {
+        self.0 &= !a.bit();
+    }
+
+    /// Whether nothing is held.
+    #[must_use]
+    pub fn is_empty(self) -> bool {
+        self.0 == 0
+    }
+
+    /// +1, 0 or −1 from a pair of opposing actions.
+    #[must_use]
+    pub fn axis(self, plus: Action, minus: Action) -> f64 {
+        f64::from(u8::from(self.contains(plus))) - f64::from(u8::from(self.contains(minus)))
+    }
+}
+
+impl FromIterator<Action> for Held {
+    fn from_iter<I: IntoIterator<Item = Action>>(iter: I) -> Self {
+        let mut h = Held::default();
+        for a in iter {
+            h.insert(a);
+        }
+        h
+    }
+}
+
+/// A one-shot request, applied once at the start of the step it arrives in.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Command {
+    /// Freeze or unfreeze the world for the ray debugger.
+    TogglePause,
+    /// Move the debugged column by this many columns (only while paused).
+    MoveColumn(i32),
+    /// Advance the debugged ray's DDA by one step (only while paused).
+    StepDda,
+    /// Show the debugged ray's whole traversal up to its hit (only while paused).
+    RunToHit,
+    /// Turn by this many radians at once, positive to the left (mouse drag; ignored while paused).
+    Turn(f64),
+}
+
+/// Everything one step reads from the outside world.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Input {
+    pub held: Held,
+    pub commands: Vec<Command>,
+}
+
+impl Input {
+    /// Input with only `held` actions and no commands (tests, replays).
+    #[must_use]
+    pub fn holding(actions: &[Action]) -> Self {
+        Self {
+            held: actions.iter().copied().collect(),
+            commands: Vec::new(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn held_set_inserts_removes_and_gives_axes() {
+        let mut h = Held::default();
+        assert!(h.is_empty());
+        h.insert(Action::Forward);
+        h.insert(Action::TurnRight);
+        assert!(h.contains(Action::Forward) && !h.contains(Action::Back));
+        assert_eq!(h.axis(Action::Forward, Action::Back), 1.0);
+        assert_eq!(h.axis(Action::TurnLeft, Action::TurnRight), -1.0);
+        h.insert(Action::Back);
+        assert_eq!(h.axis(Action::Forward, Action::Back), 0.0);
+        h.remove(Action::Forward);
+        h.remove(Action::Back);
+        h.remove(Action::TurnRight);
+        assert!(h.is_empty());
+        assert_eq!(Action::ALL.len(), 6);
+    }
+}

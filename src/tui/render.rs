@@ -1,0 +1,50 @@
+//! The render stage of a frame: game state → 3D view pixels (no terminal involved).
+
+use crate::cast::Cast;
+use crate::color::Rgb;
+use crate::framebuffer::Framebuffer;
+use crate::game::GameState;
+use crate::scene::Scene;
+use crate::widget::plot::mix;
+
+/// Tint of the debugged column in the 3D view while the debugger is paused.
+const MARK: Rgb = Rgb::new(255, 230, 60);
+
+/// Renders the view into `fb` (sized by the caller to the view pane) and returns the rays,
+/// with the debugged column traced; while paused that column is tinted so it can be found.
+pub fn render_view(state: &GameState, fb: &mut Framebuffer) -> Cast {
+    let column = state.debug_column();
+    let cast = Scene::new(&state.world, state.camera).render_into(fb, Some(column));
+    if state.debugger.paused && column < fb.width() {
+        for y in 0..fb.height() {
+            let c = fb.get(column, y);
+            fb.set(column, y, mix(c, MARK, 120));
+        }
+    }
+    cast
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::camera::Camera;
+    use crate::world::World;
+    use std::sync::Arc;
+
+    #[test]
+    fn the_debugged_column_is_marked_only_while_paused() {
+        let world = Arc::new(World::default_world());
+        let cam = Camera::from_angle(world.map.start.pos(), 90.0, 66.0);
+        let mut state = GameState::new(world, cam, 40);
+        let mut plain = Framebuffer::for_cells(40, 10);
+        let cast = render_view(&state, &mut plain);
+        assert_eq!(cast.trace.as_ref().map(|t| t.column), Some(20));
+        state.debugger.toggle_pause();
+        let mut marked = Framebuffer::for_cells(40, 10);
+        render_view(&state, &mut marked);
+        for y in 0..20 {
+            assert_eq!(plain.get(19, y), marked.get(19, y));
+            assert_ne!(plain.get(20, y), marked.get(20, y));
+        }
+    }
+}

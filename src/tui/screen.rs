@@ -1,0 +1,151 @@
+//! The draw stage of a frame: lays the panes out in a terminal buffer. Reads state only.
+
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, BorderType, Clear, Paragraph, Widget, Wrap};
+
+use super::help::HelpOverlay;
+use super::keys::InputMode;
+use super::layout::{Panes, Toggles, MIN_SIZE};
+use super::stats::FrameStats;
+use super::status::{status_line, BAR};
+use crate::cast::Cast;
+use crate::framebuffer::Framebuffer;
+use crate::game::{Cursor, GameState};
+use crate::widget::{DebugPane, HalfBlockView, Minimap, RevealedTrace};
+
+const BORDER: Style = Style::new().fg(Color::Rgb(66, 70, 88));
+const TITLE: Style = Style::new()
+    .fg(Color::Rgb(110, 200, 230))
+    .add_modifier(Modifier::BOLD);
+
+/// Everything one frame shows, borrowed from the loop.
+#[derive(Debug, Clone, Copy)]
+pub struct Screen<'a> {
+    pub state: &'a GameState,
+    /// The 3D view, already rendered at the view pane's size.
+    pub view: &'a Framebuffer,
+    /// This frame's rays, with the debugged column's trace.
+    pub cast: &'a Cast,
+    pub stats: &'a FrameStats,
+    pub toggles: Toggles,
+    pub input_mode: InputMode,
+}
+
+/// Draws the 3D view pane. The one place the view reaches the terminal buffer, so a byte-lean
+/// encoder can replace it (write the region itself, mark these cells as skipped for ratatui).
+pub fn draw_view(fb: &Framebuffer, area: Rect, buf: &mut Buffer) {
+    HalfBlockView::new(fb).render(area, buf);
+}
+
+/// Draws a whole frame into `buf` within `area`, per `panes` (from [`Panes::compute`]).
+pub fn draw(screen: &Screen, panes: &Panes, area: Rect, buf: &mut Buffer) {
+    let area = area.intersection(buf.area);
+    Clear.render(area, buf);
+    match *panes {
+        Panes::TooSmall(r) => too_small(r.intersection(area), buf),
+        Panes::Game {
+            view,
+            minimap,
+            debug,
+            status,
+        } => {
+            draw_view(screen.view, view.intersection(area), buf);
+            let revealed = screen
+                .cast
+                .trace
+                .as_ref()
+                .map(|t| match screen.state.debugger.cursor {
+                    Cursor::AtHit => RevealedTrace::full(t),
+                    Cursor::Steps(n) => RevealedTrace::partial(t, n),
+                });
+            if let Some(r) = minimap {
+                draw_minimap(screen, revealed, r.intersection(area), buf);
+            }
+            if let Some(r) = debug {
+                draw_debug(
+                    screen,
+                    revealed,
+                    (view.width, view.height),
+                    r.intersection(area),
+                    buf,
+                );
+            }
+            let steps = screen.cast.trace.as_ref().map(|t| t.steps.len());
+            let line = status_line(screen.state, screen.stats, screen.input_mode, steps);
+            let status = status.intersection(area);
+            buf.set_style(status, BAR);
+            Paragraph::new(line).render(status, buf);
+            if screen.toggles.help {
+                HelpOverlay {
+                    mode: screen.input_mode,
+                }
+                .render(area, buf);
+            }
+        }
+    }
+}
+
+fn pane(title: Line<'static>) -> Block<'static> {
+    Block::bordered()
+        .border_type(BorderType::Rounded)
+        .border_style(BORDER)
+        .title(title)
+}
+
+fn draw_minimap(screen: &Screen, revealed: Option<RevealedTrace>, r: Rect, buf: &mut Buffer) {
+    let block = pane(Line::from(Span::styled(" map ", TITLE)));
+    let inner = block.inner(r);
+    block.render(r, buf);
+    let s = screen.state;
+    let mut map = Minimap::new(&s.world, &s.camera, &screen.cast.columns);
+    if let Some(t) = revealed {
+        map = map.debug_ray(t);
+    }
+    map.render(inner, buf);
+}
+
+fn draw_debug(
+    screen: &Screen,
+    revealed: Option<RevealedTrace>,
+    view_cells: (u16, u16),
+    r: Rect,
+    buf: &mut Buffer,
+) {
+    let s = screen.state;
+    let mut title = vec![Span::styled(" ray ", TITLE)];
+    if let Some(t) = &revealed {
+        title.push(Span::styled(
+            format!("· column {} ", t.trace.column),
+            BORDER,
+        ));
+    }
+    if s.debugger.paused {
+        title.push(Span::styled(
+            "· paused ",
+            Style::new().fg(Color::Rgb(255, 214, 64)),
+        ));
+    }
+    let block = pane(Line::from(title));
+    let inner = block.inner(r);
+    block.render(r, buf);
+    if let Some(t) = revealed {
+        let cells = (usize::from(view_cells.0), usize::from(view_cells.1));
+        DebugPane::new(t, &s.world, &s.camera, cells).render(inner, buf);
+    }
+}
+
+fn too_small(r: Rect, buf: &mut Buffer) {
+    let text = format!(
+        "terminal too small: {}×{} (need {}×{})",
+        r.width, r.height, MIN_SIZE.0, MIN_SIZE.1
+    );
+    let y = r.y + r.height.saturating_sub(2) / 2;
+    let msg = Rect::new(r.x, y, r.width, r.height.min(r.bottom() - y));
+    Paragraph::new(text)
+        .wrap(Wrap { trim: true })
+        .centered()
+        .render(msg, buf);
+}

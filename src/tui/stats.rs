@@ -1,0 +1,109 @@
+//! Frame timing: the live figures in the status line and an optional summary at exit.
+
+use std::time::{Duration, Instant};
+
+/// How often the fps figure is recomputed.
+const FPS_WINDOW: Duration = Duration::from_millis(500);
+
+/// Most samples kept for the exit summary (about 4.6 hours at 60 fps).
+const MAX_SAMPLES: usize = 1 << 20;
+
+/// Running frame statistics; the clock is passed in.
+#[derive(Debug, Clone, Default)]
+pub struct FrameStats {
+    /// Frames per second over the last window.
+    pub fps: f64,
+    /// Smoothed time to cast and rasterize the 3D view, in ms.
+    pub render_ms: f64,
+    /// Smoothed time to build, diff and write the terminal frame, in ms.
+    pub draw_ms: f64,
+    window_start: Option<Instant>,
+    window_frames: u32,
+    first: Option<Instant>,
+    last: Option<Instant>,
+    samples: Vec<(f32, f32)>,
+}
+
+impl FrameStats {
+    /// Records one finished frame.
+    pub fn record(&mut self, now: Instant, render: Duration, draw: Duration) {
+        let (r, d) = (render.as_secs_f64() * 1e3, draw.as_secs_f64() * 1e3);
+        let smooth = |old: f64, new: f64| {
+            if old == 0.0 {
+                new
+            } else {
+                old * 0.9 + new * 0.1
+            }
+        };
+        self.render_ms = smooth(self.render_ms, r);
+        self.draw_ms = smooth(self.draw_ms, d);
+        let start = *self.window_start.get_or_insert(now);
+        self.window_frames += 1;
+        let elapsed = now.duration_since(start);
+        if elapsed >= FPS_WINDOW {
+            self.fps = f64::from(self.window_frames) / elapsed.as_secs_f64();
+            self.window_start = Some(now);
+            self.window_frames = 0;
+        }
+        self.first.get_or_insert(now);
+        self.last = Some(now);
+        if self.samples.len() < MAX_SAMPLES {
+            self.samples.push((r as f32, d as f32));
+        }
+    }
+
+    /// A one-line summary: frames, mean fps, render and draw ms (mean, p50, p95, max).
+    #[must_use]
+    pub fn summary(&self) -> String {
+        let n = self.samples.len();
+        let secs = match (self.first, self.last) {
+            (Some(a), Some(b)) => b.duration_since(a).as_secs_f64(),
+            _ => 0.0,
+        };
+        let fps = if secs > 0.0 {
+            (n.saturating_sub(1)) as f64 / secs
+        } else {
+            0.0
+        };
+        let describe = |pick: fn(&(f32, f32)) -> f32| {
+            let mut v: Vec<f32> = self.samples.iter().map(pick).collect();
+            v.sort_by(f32::total_cmp);
+            if v.is_empty() {
+                return "n/a".to_owned();
+            }
+            let at = |q: f64| v[((v.len() - 1) as f64 * q).round() as usize];
+            let mean = v.iter().map(|&x| f64::from(x)).sum::<f64>() / v.len() as f64;
+            format!(
+                "mean {mean:.2} p50 {:.2} p95 {:.2} max {:.2}",
+                at(0.5),
+                at(0.95),
+                at(1.0)
+            )
+        };
+        format!(
+            "{n} frames in {secs:.1} s ({fps:.1} fps); render ms: {}; draw ms: {}",
+            describe(|s| s.0),
+            describe(|s| s.1)
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fps_is_counted_over_a_window_and_times_are_smoothed() {
+        let t0 = Instant::now();
+        let mut s = FrameStats::default();
+        for i in 0..=60 {
+            let now = t0 + Duration::from_micros(i * 16_667);
+            s.record(now, Duration::from_millis(2), Duration::from_millis(4));
+        }
+        assert!((s.fps - 60.0).abs() < 1.0, "{}", s.fps);
+        assert!((s.render_ms - 2.0).abs() < 1e-9 && (s.draw_ms - 4.0).abs() < 1e-9);
+        let line = s.summary();
+        assert!(line.starts_with("61 frames in 1.0 s (60.0 fps)"), "{line}");
+        assert!(line.contains("render ms: mean 2.00 p50 2.00"), "{line}");
+    }
+}

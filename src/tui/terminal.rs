@@ -1,0 +1,211 @@
+//! The terminal session: raw mode, alternate screen, hidden cursor, kitty keys, mouse — and
+//! putting all of it back on every way out (normal return, error, panic, signal).
+
+use std::io::{self, BufWriter, IsTerminal, Stdout, Write};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Once;
+
+use crossterm::event::{
+    DisableFocusChange, DisableMouseCapture, EnableFocusChange, EnableMouseCapture,
+    KeyboardEnhancementFlags, PopKeyboardEnhancementFlags, PushKeyboardEnhancementFlags,
+};
+use crossterm::terminal::{
+    disable_raw_mode, enable_raw_mode, BeginSynchronizedUpdate, Clear, ClearType,
+    EndSynchronizedUpdate, EnterAlternateScreen, LeaveAlternateScreen,
+};
+use crossterm::{cursor, execute, queue, style};
+use ratatui::backend::CrosstermBackend;
+use ratatui::{Frame, Terminal};
+
+use super::keys::InputMode;
+
+/// Whether the terminal is currently in game mode (and frames may be written).
+static ACTIVE: AtomicBool = AtomicBool::new(false);
+static KITTY: AtomicBool = AtomicBool::new(false);
+static MOUSE: AtomicBool = AtomicBool::new(false);
+
+/// Why the game cannot use this terminal.
+#[derive(Debug, thiserror::Error)]
+pub enum TerminalError {
+    #[error("{0} is not a terminal; `halfcast play` needs an interactive terminal (try `halfcast render` for headless output)")]
+    NotATerminal(&'static str),
+    #[error("terminal: {0}")]
+    Io(#[from] io::Error),
+}
+
+/// Checks that stdin and stdout are a TTY before touching terminal modes.
+///
+/// # Errors
+/// [`TerminalError::NotATerminal`] naming the stream that is not.
+pub fn require_tty() -> Result<(), TerminalError> {
+    if !io::stdin().is_terminal() {
+        return Err(TerminalError::NotATerminal("standard input"));
+    }
+    if !io::stdout().is_terminal() {
+        return Err(TerminalError::NotATerminal("standard output"));
+    }
+    Ok(())
+}
+
+/// Stdout that drops writes once the session is restored, so a frame still buffered when a
+/// panic unwinds is not spilled onto the user's shell.
+#[derive(Debug)]
+pub struct GatedStdout(Stdout);
+
+impl Write for GatedStdout {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        if ACTIVE.load(Ordering::SeqCst) {
+            self.0.write(buf)
+        } else {
+            Ok(buf.len())
+        }
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        if ACTIVE.load(Ordering::SeqCst) {
+            self.0.flush()
+        } else {
+            Ok(())
+        }
+    }
+}
+
+/// The ratatui terminal the game draws on (one buffered write per frame).
+pub type GameTerminal = Terminal<CrosstermBackend<BufWriter<GatedStdout>>>;
+
+/// An active game-mode terminal; dropping it restores the user's terminal.
+pub struct Session {
+    terminal: GameTerminal,
+    mode: InputMode,
+}
+
+impl Session {
+    /// Enters game mode: raw, probe kitty keys (before any frame), alternate screen, no cursor.
+    ///
+    /// # Errors
+    /// Any I/O error setting the modes (the terminal is restored before returning it).
+    pub fn start(mouse: bool) -> Result<Self, TerminalError> {
+        install_panic_hook();
+        enable_raw_mode()?;
+        ACTIVE.store(true, Ordering::SeqCst);
+        match Self::enter(mouse) {
+            Ok(s) => Ok(s),
+            Err(e) => {
+                restore();
+                Err(e.into())
+            }
+        }
+    }
+
+    fn enter(mouse: bool) -> io::Result<Self> {
+        // The probe may wait up to 2 s on a terminal that never answers; it runs once, before
+        // the alternate screen and outside any synchronized update (some terminals ignore
+        // queries inside one).
+        let kitty = matches!(
+            crossterm::terminal::supports_keyboard_enhancement(),
+            Ok(true)
+        );
+        let mut out = io::stdout();
+        execute!(
+            out,
+            EnterAlternateScreen,
+            Clear(ClearType::All),
+            cursor::Hide,
+            EnableFocusChange
+        )?;
+        if mouse {
+            MOUSE.store(true, Ordering::SeqCst);
+            execute!(out, EnableMouseCapture)?;
+        }
+        if kitty {
+            KITTY.store(true, Ordering::SeqCst);
+            execute!(
+                out,
+                PushKeyboardEnhancementFlags(
+                    KeyboardEnhancementFlags::DISAMBIGUATE_ESCAPE_CODES
+                        | KeyboardEnhancementFlags::REPORT_EVENT_TYPES
+                        | KeyboardEnhancementFlags::REPORT_ALL_KEYS_AS_ESCAPE_CODES
+                        | KeyboardEnhancementFlags::REPORT_ALTERNATE_KEYS
+                )
+            )?;
+        }
+        let writer = BufWriter::with_capacity(1 << 18, GatedStdout(io::stdout()));
+        // (Not `Terminal::clear`: it asks for the cursor position, which needs an answer.)
+        let terminal = Terminal::new(CrosstermBackend::new(writer))?;
+        Ok(Self {
+            terminal,
+            mode: if kitty {
+                InputMode::Kitty
+            } else {
+                InputMode::Emulated
+            },
+        })
+    }
+
+    /// How keys will arrive (decided by the start-up probe).
+    #[must_use]
+    pub fn input_mode(&self) -> InputMode {
+        self.mode
+    }
+
+    /// The terminal size now, in cells.
+    ///
+    /// # Errors
+    /// The size query's I/O error.
+    pub fn size(&self) -> io::Result<ratatui::layout::Size> {
+        self.terminal.size()
+    }
+
+    /// Draws one frame inside a synchronized update (no tearing on terminals that support it).
+    ///
+    /// # Errors
+    /// Writing to the terminal failed (e.g. it went away).
+    pub fn draw(&mut self, f: impl FnOnce(&mut Frame)) -> io::Result<()> {
+        queue!(self.terminal.backend_mut(), BeginSynchronizedUpdate)?;
+        self.terminal.draw(f)?;
+        execute!(self.terminal.backend_mut(), EndSynchronizedUpdate)?;
+        Ok(())
+    }
+}
+
+impl Drop for Session {
+    fn drop(&mut self) {
+        restore();
+    }
+}
+
+/// Puts the terminal back (keys, mouse, cursor, main screen, cooked mode); safe to call twice.
+pub fn restore() {
+    if !ACTIVE.swap(false, Ordering::SeqCst) {
+        return;
+    }
+    let mut out = io::stdout();
+    if KITTY.swap(false, Ordering::SeqCst) {
+        let _ = queue!(out, PopKeyboardEnhancementFlags);
+    }
+    if MOUSE.swap(false, Ordering::SeqCst) {
+        let _ = queue!(out, DisableMouseCapture);
+    }
+    let _ = queue!(
+        out,
+        EndSynchronizedUpdate,
+        DisableFocusChange,
+        style::ResetColor,
+        LeaveAlternateScreen,
+        cursor::Show
+    );
+    let _ = out.flush();
+    let _ = disable_raw_mode();
+}
+
+/// Restores the terminal before the default panic message, so the message is readable.
+fn install_panic_hook() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            restore();
+            previous(info);
+        }));
+    });
+}

@@ -1,0 +1,145 @@
+//! Shows a [`Framebuffer`] in a terminal buffer: one `▀` cell per two stacked pixels.
+
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::style::Color;
+use ratatui::widgets::Widget;
+
+use crate::color::Rgb;
+use crate::framebuffer::Framebuffer;
+
+/// The upper-half block: its foreground paints the upper pixel, its background the lower.
+pub const UPPER_HALF: &str = "▀";
+
+/// The terminal colour of a pixel (24-bit).
+#[must_use]
+#[inline]
+pub fn to_color(c: Rgb) -> Color {
+    Color::Rgb(c.r, c.g, c.b)
+}
+
+/// A ratatui widget drawing a framebuffer at one terminal cell per 1 × 2 pixels, 24-bit colour.
+///
+/// Cell (cx, cy) of the area shows pixel (cx, 2·cy) as the `▀` foreground and (cx, 2·cy + 1)
+/// as the background. Nothing is scaled: render the framebuffer at the area's size
+/// ([`Framebuffer::for_cells`]`(area.width, area.height)`); any part of the area the
+/// framebuffer does not cover is left untouched, and nothing outside the area (or the
+/// buffer) is ever written.
+///
+/// ```
+/// use halfcast::widget::HalfBlockView;
+/// use halfcast::{Framebuffer, Rgb};
+/// use ratatui::{buffer::Buffer, layout::Rect, style::Color, widgets::Widget};
+///
+/// let area = Rect::new(0, 0, 4, 2);
+/// let mut fb = Framebuffer::for_cells(area.width, area.height);
+/// fb.set(0, 0, Rgb::new(255, 0, 0)); // upper pixel of cell (0, 0)
+/// fb.set(0, 1, Rgb::new(0, 0, 255)); // lower pixel of cell (0, 0)
+///
+/// let mut buf = Buffer::empty(area);
+/// HalfBlockView::new(&fb).render(area, &mut buf);
+/// assert_eq!(buf[(0, 0)].symbol(), "▀");
+/// assert_eq!(buf[(0, 0)].fg, Color::Rgb(255, 0, 0));
+/// assert_eq!(buf[(0, 0)].bg, Color::Rgb(0, 0, 255));
+/// ```
+#[derive(Debug, Clone, Copy)]
+pub struct HalfBlockView<'a> {
+    fb: &'a Framebuffer,
+}
+
+impl<'a> HalfBlockView<'a> {
+    /// Wraps a framebuffer for drawing.
+    #[must_use]
+    pub fn new(fb: &'a Framebuffer) -> Self {
+        Self { fb }
+    }
+}
+
+impl Widget for HalfBlockView<'_> {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        (&self).render(area, buf);
+    }
+}
+
+impl Widget for &HalfBlockView<'_> {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        let area = area.intersection(buf.area);
+        let cols = usize::from(area.width).min(self.fb.width());
+        let rows = usize::from(area.height).min(self.fb.cell_rows());
+        for cy in 0..rows {
+            let upper = self.fb.row(2 * cy);
+            let lower = self.fb.row(2 * cy + 1);
+            let y = area.y + cy as u16;
+            for cx in 0..cols {
+                let cell = &mut buf[(area.x + cx as u16, y)];
+                cell.set_symbol(UPPER_HALF)
+                    .set_fg(to_color(upper[cx]))
+                    .set_bg(to_color(lower[cx]));
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pattern(cols: u16, rows: u16) -> Framebuffer {
+        let mut fb = Framebuffer::for_cells(cols, rows);
+        for y in 0..fb.height() {
+            for x in 0..fb.width() {
+                fb.set(x, y, Rgb::new((x * 7) as u8, (y * 13) as u8, (x ^ y) as u8));
+            }
+        }
+        fb
+    }
+
+    #[test]
+    fn reading_the_buffer_back_gives_exactly_the_pixels() {
+        let fb = pattern(23, 9);
+        let area = Rect::new(5, 3, 23, 9);
+        let mut buf = Buffer::empty(Rect::new(0, 0, 40, 20));
+        HalfBlockView::new(&fb).render(area, &mut buf);
+        let mut back = Framebuffer::for_cells(23, 9);
+        for cy in 0..9u16 {
+            for cx in 0..23u16 {
+                let cell = &buf[(area.x + cx, area.y + cy)];
+                assert_eq!(cell.symbol(), UPPER_HALF);
+                let px = |c: Color| match c {
+                    Color::Rgb(r, g, b) => Rgb::new(r, g, b),
+                    other => panic!("not 24-bit: {other:?}"),
+                };
+                back.set(cx.into(), 2 * usize::from(cy), px(cell.fg));
+                back.set(cx.into(), 2 * usize::from(cy) + 1, px(cell.bg));
+            }
+        }
+        assert_eq!(back, fb);
+    }
+
+    #[test]
+    fn nothing_outside_the_area_or_buffer_is_touched() {
+        let fb = pattern(50, 30);
+        let whole = Rect::new(0, 0, 20, 10);
+        let mut buf = Buffer::empty(whole);
+        let area = Rect::new(4, 2, 30, 30);
+        HalfBlockView::new(&fb).render(area, &mut buf);
+        for y in 0..10 {
+            for x in 0..20 {
+                let inside = x >= 4 && y >= 2;
+                assert_eq!(buf[(x, y)].symbol() == UPPER_HALF, inside, "({x},{y})");
+            }
+        }
+    }
+
+    #[test]
+    fn a_smaller_framebuffer_leaves_the_rest_of_the_area_alone() {
+        let fb = pattern(3, 1);
+        let area = Rect::new(0, 0, 6, 3);
+        let mut buf = Buffer::empty(area);
+        HalfBlockView::new(&fb).render(area, &mut buf);
+        assert_eq!(buf[(2, 0)].symbol(), UPPER_HALF);
+        assert_eq!(buf[(3, 0)].symbol(), " ");
+        assert_eq!(buf[(0, 1)].symbol(), " ");
+        HalfBlockView::new(&Framebuffer::new(0, 0)).render(area, &mut buf);
+    }
+}

@@ -1,0 +1,16 @@
+//! ratatui widgets for showing the engine: the 3D view, the minimap and the DDA debug pane.
+//!
+//! Each widget only reads its inputs and draws into the area it is given; they hold no state
+//! and know nothing of the terminal, so any ratatui app (or a test buffer) can use them.
+
+pub mod colour_text;
+pub mod debug_pane;
+pub mod half_block;
+pub mod minimap;
+pub mod plot;
+pub mod revealed;
+
+pub use debug_pane::DebugPane;
+pub use half_block::HalfBlockView;
+pub use minimap::Minimap;
+pub use revealed::RevealedTrace;

@@ -1,0 +1,82 @@
+//! Tiny drawing primitives on a [`Framebuffer`] used as a canvas (the minimap's pixels).
+
+use crate::color::Rgb;
+use crate::framebuffer::Framebuffer;
+
+/// Mixes `over` onto `under` with opacity `alpha` in 0..=256.
+#[must_use]
+pub fn mix(under: Rgb, over: Rgb, alpha: u16) -> Rgb {
+    let a = u32::from(alpha.min(256));
+    let m = |u: u8, o: u8| ((u32::from(u) * (256 - a) + u32::from(o) * a) >> 8) as u8;
+    Rgb::new(m(under.r, over.r), m(under.g, over.g), m(under.b, over.b))
+}
+
+/// Blends one pixel, silently ignoring points off the canvas.
+pub fn blend(fb: &mut Framebuffer, x: i64, y: i64, c: Rgb, alpha: u16) {
+    if x < 0 || y < 0 || x as usize >= fb.width() || y as usize >= fb.height() {
+        return;
+    }
+    let (x, y) = (x as usize, y as usize);
+    let under = fb.get(x, y);
+    fb.set(x, y, mix(under, c, alpha));
+}
+
+/// A one-pixel line between two points in pixel coordinates (each pixel blended once).
+pub fn line(fb: &mut Framebuffer, from: (f64, f64), to: (f64, f64), c: Rgb, alpha: u16) {
+    let (dx, dy) = (to.0 - from.0, to.1 - from.1);
+    let n = dx.abs().max(dy.abs()).ceil();
+    if !n.is_finite() || n > 1e5 {
+        return;
+    }
+    let n = n.max(1.0) as usize;
+    let mut last = None;
+    for i in 0..=n {
+        let t = i as f64 / n as f64;
+        let p = (
+            (from.0 + dx * t).floor() as i64,
+            (from.1 + dy * t).floor() as i64,
+        );
+        if last != Some(p) {
+            blend(fb, p.0, p.1, c, alpha);
+            last = Some(p);
+        }
+    }
+}
+
+/// A filled square of side `size` centred on a point, for the player marker.
+pub fn dot(fb: &mut Framebuffer, at: (f64, f64), size: usize, c: Rgb) {
+    let half = size as f64 / 2.0;
+    let x0 = (at.0 - half).round() as i64;
+    let y0 = (at.1 - half).round() as i64;
+    for y in y0..y0 + size as i64 {
+        for x in x0..x0 + size as i64 {
+            blend(fb, x, y, c, 256);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mixing_ends_are_the_inputs() {
+        let (a, b) = (Rgb::new(0, 100, 200), Rgb::new(255, 0, 50));
+        assert_eq!(mix(a, b, 0), a);
+        assert_eq!(mix(a, b, 256), b);
+    }
+
+    #[test]
+    fn lines_stay_on_the_canvas_and_hit_both_ends() {
+        let mut fb = Framebuffer::new(5, 5);
+        let white = Rgb::new(255, 255, 255);
+        line(&mut fb, (0.5, 0.5), (4.5, 4.5), white, 256);
+        assert_eq!(fb.get(0, 0), white);
+        assert_eq!(fb.get(4, 4), white);
+        assert_eq!(fb.get(4, 0), Rgb::default());
+        line(&mut fb, (-50.0, 2.5), (50.0, 2.5), white, 256);
+        line(&mut fb, (0.0, 0.0), (f64::INFINITY, 1.0), white, 256);
+        dot(&mut fb, (0.0, 0.0), 3, white);
+        assert!(fb.row(2).iter().all(|&p| p == white));
+    }
+}

@@ -1,0 +1,137 @@
+//! End-to-end under tmux (the "must show" scenario): 160×48, first screen, walk, quit.
+//! Skipped with a notice when tmux is not installed.
+
+use std::process::{Command, Output};
+use std::thread;
+use std::time::{Duration, Instant};
+
+/// A hang guard only (the test never asserts on speed).
+const PATIENCE: Duration = Duration::from_secs(60);
+
+struct Tmux {
+    socket: String,
+}
+
+impl Tmux {
+    fn run(&self, args: &[&str]) -> Output {
+        Command::new("tmux")
+            .args(["-L", &self.socket, "-f", "/dev/null"])
+            .args(args)
+            .env_remove("TMUX")
+            .output()
+            .expect("run tmux")
+    }
+
+    fn text(&self, args: &[&str]) -> String {
+        String::from_utf8_lossy(&self.run(args).stdout).into_owned()
+    }
+
+    fn capture(&self, colours: bool) -> String {
+        if colours {
+            self.text(&["capture-pane", "-t", "t", "-p", "-e"])
+        } else {
+            self.text(&["capture-pane", "-t", "t", "-p"])
+        }
+    }
+
+    fn wait_for(&self, what: &str, ok: impl Fn(&str) -> bool) -> String {
+        let start = Instant::now();
+        loop {
+            let screen = self.capture(false);
+            if ok(&screen) {
+                return screen;
+            }
+            assert!(
+                start.elapsed() < PATIENCE,
+                "gave up waiting for {what}:\n{screen}"
+            );
+            thread::sleep(Duration::from_millis(50));
+        }
+    }
+}
+
+impl Drop for Tmux {
+    fn drop(&mut self) {
+        let _ = self.run(&["kill-server"]);
+    }
+}
+
+fn status(screen: &str) -> String {
+    screen
+        .lines()
+        .rev()
+        .find(|l| !l.trim().is_empty())
+        .unwrap_or_default()
+        .to_owned()
+}
+
+#[test]
+fn under_tmux_the_first_screen_walks_and_quits_cleanly() {
+    if Command::new("tmux").arg("-V").output().is_err() {
+        eprintln!("skipping: tmux is not installed");
+        return;
+    }
+    let tmux = Tmux {
+        socket: format!("halfcast-test-{}", std::process::id()),
+    };
+    let bin = env!("CARGO_BIN_EXE_halfcast");
+    // After the game, the shell reports its exit code and the terminal modes, then waits.
+    let script = r#""$0"; echo "EXIT=$?"; stty -a; exec sleep 600"#;
+    let started = tmux.run(&[
+        "new-session",
+        "-d",
+        "-s",
+        "t",
+        "-x",
+        "160",
+        "-y",
+        "48",
+        "sh",
+        "-c",
+        script,
+        bin,
+    ]);
+    assert!(started.status.success(), "{started:?}");
+
+    let first = tmux.wait_for("the first whole frame", |s| {
+        s.contains("sideDistX") && s.contains("(15,4)") && status(s).contains("q quit")
+    });
+    assert!(first.contains("╭ map"), "{first}");
+    assert!(status(&first).contains("pos 15.50,5.50"), "{first}");
+    let coloured = tmux.capture(true);
+    assert!(coloured.contains("▀"));
+    assert!(
+        coloured.contains("\x1b[38;2;"),
+        "no 24-bit foreground colours"
+    );
+    assert!(coloured.contains("48;2;"), "no 24-bit background colours");
+
+    for _ in 0..5 {
+        tmux.run(&["send-keys", "-t", "t", "w"]);
+        thread::sleep(Duration::from_millis(80));
+    }
+    tmux.wait_for("the player to move", |s| {
+        let st = status(s);
+        st.contains("pos ") && !st.contains("pos 15.50,5.50")
+    });
+
+    tmux.run(&["send-keys", "-t", "t", "q"]);
+    let after = tmux.wait_for("the game to exit and stty to report", |s| {
+        s.contains("EXIT=") && s.contains("icanon") && s.contains("isig") && s.contains("echo")
+    });
+    assert!(after.contains("EXIT=0"), "{after}");
+    // Cooked mode again: canonical input and echo are back on.
+    let modes: Vec<&str> = after.split_whitespace().collect();
+    for flag in ["icanon", "echo", "isig"] {
+        assert!(modes.contains(&flag), "{flag} is off:\n{after}");
+    }
+    // Back on the main screen with a visible cursor.
+    let state = tmux.text(&[
+        "display-message",
+        "-p",
+        "-t",
+        "t",
+        "#{alternate_on} #{cursor_flag}",
+    ]);
+    assert_eq!(state.trim(), "0 1");
+}
