@@ -11,6 +11,7 @@ pub mod game;
 pub mod map;
 pub mod output;
 pub mod raster;
+pub mod replay;
 pub mod scene;
 pub mod snapshot;
 pub mod termframe;
