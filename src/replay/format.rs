@@ -96,7 +96,10 @@ const UI: [(UiCommand, &str); 5] = [
 ];
 
 fn action_name(a: Action) -> &'static str {
-    ACTIONS.iter().find(|(x, _)| *x == a).map_or("?", |(_, n)| n)
+    ACTIONS
+        .iter()
+        .find(|(x, _)| *x == a)
+        .map_or("?", |(_, n)| n)
 }
 
 fn ui_name(u: UiCommand) -> &'static str {
@@ -104,7 +107,11 @@ fn ui_name(u: UiCommand) -> &'static str {
 }
 
 fn held_names(h: Held) -> Vec<&'static str> {
-    Action::ALL.iter().filter(|&&a| h.contains(a)).map(|&a| action_name(a)).collect()
+    Action::ALL
+        .iter()
+        .filter(|&&a| h.contains(a))
+        .map(|&a| action_name(a))
+        .collect()
 }
 
 fn command_json(frame: usize, c: &Command) -> Value {
@@ -157,10 +164,21 @@ impl Replay {
     /// # Errors
     /// Not JSON lines, a newer version, unknown names, frames out of order or past the end.
     pub fn parse(file: &str, text: &str) -> Result<Self, ReplayError> {
-        let err = |line: usize, message: String| ReplayError { file: file.to_owned(), line, message };
-        let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l)).filter(|(_, l)| !l.trim().is_empty());
-        let (n, first) = lines.next().ok_or_else(|| err(1, "empty file: not a halfcast replay".into()))?;
-        let head: Value = serde_json::from_str(first).map_err(|e| err(n, format!("not a halfcast replay header: {e}")))?;
+        let err = |line: usize, message: String| ReplayError {
+            file: file.to_owned(),
+            line,
+            message,
+        };
+        let mut lines = text
+            .lines()
+            .enumerate()
+            .map(|(i, l)| (i + 1, l))
+            .filter(|(_, l)| !l.trim().is_empty());
+        let (n, first) = lines
+            .next()
+            .ok_or_else(|| err(1, "empty file: not a halfcast replay".into()))?;
+        let head: Value = serde_json::from_str(first)
+            .map_err(|e| err(n, format!("not a halfcast replay header: {e}")))?;
         let header = parse_header(&head).map_err(|m| err(n, m))?;
         let mut frames: Vec<FrameInput> = Vec::new();
         let mut held = Held::default();
@@ -169,61 +187,117 @@ impl Replay {
             if end.is_some() {
                 return Err(err(n, "content after the end line".into()));
             }
-            let v: Value = serde_json::from_str(line).map_err(|e| err(n, format!("not JSON: {e}")))?;
+            let v: Value =
+                serde_json::from_str(line).map_err(|e| err(n, format!("not JSON: {e}")))?;
             if let Some(e) = v.get("end") {
-                let e = e.as_u64().and_then(|e| usize::try_from(e).ok()).ok_or_else(|| err(n, "end must be a frame count".into()))?;
+                let e = e
+                    .as_u64()
+                    .and_then(|e| usize::try_from(e).ok())
+                    .ok_or_else(|| err(n, "end must be a frame count".into()))?;
                 if e > MAX_FRAMES || e < frames.len() {
-                    return Err(err(n, format!("end {e} is before the last event or over {MAX_FRAMES} frames")));
+                    return Err(err(
+                        n,
+                        format!("end {e} is before the last event or over {MAX_FRAMES} frames"),
+                    ));
                 }
                 while frames.len() < e {
-                    frames.push(FrameInput { input: Input { held, commands: Vec::new() }, ..FrameInput::default() });
+                    frames.push(FrameInput {
+                        input: Input {
+                            held,
+                            commands: Vec::new(),
+                        },
+                        ..FrameInput::default()
+                    });
                 }
                 end = Some(e);
                 continue;
             }
-            let frame = v.get("frame").and_then(Value::as_u64).and_then(|f| usize::try_from(f).ok()).ok_or_else(|| err(n, "event without a frame number".into()))?;
+            let frame = v
+                .get("frame")
+                .and_then(Value::as_u64)
+                .and_then(|f| usize::try_from(f).ok())
+                .ok_or_else(|| err(n, "event without a frame number".into()))?;
             if frame >= MAX_FRAMES || frame + 1 < frames.len() {
-                return Err(err(n, format!("frame {frame} is out of order or over {MAX_FRAMES}")));
+                return Err(err(
+                    n,
+                    format!("frame {frame} is out of order or over {MAX_FRAMES}"),
+                ));
             }
             while frames.len() <= frame {
-                frames.push(FrameInput { input: Input { held, commands: Vec::new() }, ..FrameInput::default() });
+                frames.push(FrameInput {
+                    input: Input {
+                        held,
+                        commands: Vec::new(),
+                    },
+                    ..FrameInput::default()
+                });
             }
             let slot = frames.last_mut().expect("pushed above");
             parse_event(&v, &mut held, slot).map_err(|m| err(n, m))?;
         }
         if end.is_none() {
-            return Err(err(text.lines().count().max(1), "missing the final {\"end\":N} line (truncated file?)".into()));
+            return Err(err(
+                text.lines().count().max(1),
+                "missing the final {\"end\":N} line (truncated file?)".into(),
+            ));
         }
         Ok(Self { header, frames })
     }
 }
 
 fn parse_header(v: &Value) -> Result<Header, String> {
-    let version = v.get("halfcast_replay").and_then(Value::as_u64).ok_or("not a halfcast replay (no \"halfcast_replay\" version)")?;
+    let version = v
+        .get("halfcast_replay")
+        .and_then(Value::as_u64)
+        .ok_or("not a halfcast replay (no \"halfcast_replay\" version)")?;
     if version > VERSION {
         return Err(format!("replay version {version} is newer than this halfcast reads (version {VERSION}); upgrade halfcast"));
     }
     if version == 0 {
         return Err("replay version 0 does not exist".into());
     }
-    let num = |v: Option<&Value>, what: &str| v.and_then(Value::as_f64).filter(|x| x.is_finite()).ok_or(format!("header: {what} must be a number"));
+    let num = |v: Option<&Value>, what: &str| {
+        v.and_then(Value::as_f64)
+            .filter(|x| x.is_finite())
+            .ok_or(format!("header: {what} must be a number"))
+    };
     let map = match v.get("map") {
         None | Some(Value::Null) => MapSource::Embedded,
         Some(Value::String(s)) => MapSource::File(s.clone()),
         _ => return Err("header: map must be null or a path".into()),
     };
     let start = v.get("start").ok_or("header: missing start")?;
-    let pos = start.get("pos").and_then(Value::as_array).filter(|a| a.len() == 2).ok_or("header: start.pos must be [x,y]")?;
-    let size = v.get("size").and_then(Value::as_array).filter(|a| a.len() == 2).ok_or("header: size must be [cols,rows]")?;
-    let dim = |x: &Value| x.as_u64().and_then(|d| u16::try_from(d).ok()).filter(|&d| d > 0 && d <= 2000).ok_or("header: size must be 1..=2000");
-    let fps = v.get("fps").and_then(Value::as_u64).filter(|&f| (1..=1000).contains(&f)).ok_or("header: fps must be 1..=1000")?;
+    let pos = start
+        .get("pos")
+        .and_then(Value::as_array)
+        .filter(|a| a.len() == 2)
+        .ok_or("header: start.pos must be [x,y]")?;
+    let size = v
+        .get("size")
+        .and_then(Value::as_array)
+        .filter(|a| a.len() == 2)
+        .ok_or("header: size must be [cols,rows]")?;
+    let dim = |x: &Value| {
+        x.as_u64()
+            .and_then(|d| u16::try_from(d).ok())
+            .filter(|&d| d > 0 && d <= 2000)
+            .ok_or("header: size must be 1..=2000")
+    };
+    let fps = v
+        .get("fps")
+        .and_then(Value::as_u64)
+        .filter(|&f| (1..=1000).contains(&f))
+        .ok_or("header: fps must be 1..=1000")?;
     let fov = num(start.get("fov"), "start.fov")?;
     if !(fov > 0.0 && fov < 180.0) {
         return Err("header: start.fov must be between 0 and 180".into());
     }
     Ok(Header {
         map,
-        pos: Vec2::new(num(pos.first(), "start.pos")?, num(pos.get(1), "start.pos")?),
+        pos: Vec2::new(
+            num(pos.first(), "start.pos")?,
+            num(pos.get(1), "start.pos")?,
+        ),
         angle_deg: num(start.get("angle"), "start.angle")?,
         fov_deg: fov,
         size: (dim(&size[0])?, dim(&size[1])?),
@@ -234,7 +308,9 @@ fn parse_header(v: &Value) -> Result<Header, String> {
 
 fn parse_event(v: &Value, held: &mut Held, slot: &mut FrameInput) -> Result<(), String> {
     if let Some(list) = v.get("held") {
-        let list = list.as_array().ok_or("held must be a list of action names")?;
+        let list = list
+            .as_array()
+            .ok_or("held must be a list of action names")?;
         let mut h = Held::default();
         for a in list {
             let name = a.as_str().unwrap_or_default();
@@ -250,19 +326,38 @@ fn parse_event(v: &Value, held: &mut Held, slot: &mut FrameInput) -> Result<(), 
             "step_dda" => Command::StepDda,
             "run_to_hit" => Command::RunToHit,
             "move_column" => Command::MoveColumn(
-                v.get("by").and_then(Value::as_i64).and_then(|b| i32::try_from(b).ok()).ok_or("move_column needs an integer \"by\"")?,
+                v.get("by")
+                    .and_then(Value::as_i64)
+                    .and_then(|b| i32::try_from(b).ok())
+                    .ok_or("move_column needs an integer \"by\"")?,
             ),
-            "turn" => Command::Turn(v.get("radians").and_then(Value::as_f64).filter(|r| r.is_finite()).ok_or("turn needs a number \"radians\"")?),
+            "turn" => Command::Turn(
+                v.get("radians")
+                    .and_then(Value::as_f64)
+                    .filter(|r| r.is_finite())
+                    .ok_or("turn needs a number \"radians\"")?,
+            ),
             _ => return Err(format!("unknown command '{c}'")),
         };
         slot.input.commands.push(command);
     } else if let Some(u) = v.get("ui") {
         let name = u.as_str().unwrap_or_default();
-        let (ui, _) = UI.iter().find(|(_, n)| *n == name).ok_or_else(|| format!("unknown ui command '{u}'"))?;
+        let (ui, _) = UI
+            .iter()
+            .find(|(_, n)| *n == name)
+            .ok_or_else(|| format!("unknown ui command '{u}'"))?;
         slot.ui.push(*ui);
     } else if let Some(s) = v.get("size") {
-        let s = s.as_array().filter(|a| a.len() == 2).ok_or("size must be [cols,rows]")?;
-        let dim = |x: &Value| x.as_u64().and_then(|d| u16::try_from(d).ok()).filter(|&d| d > 0 && d <= 2000).ok_or("size must be 1..=2000");
+        let s = s
+            .as_array()
+            .filter(|a| a.len() == 2)
+            .ok_or("size must be [cols,rows]")?;
+        let dim = |x: &Value| {
+            x.as_u64()
+                .and_then(|d| u16::try_from(d).ok())
+                .filter(|&d| d > 0 && d <= 2000)
+                .ok_or("size must be 1..=2000")
+        };
         slot.resize = Some((dim(&s[0])?, dim(&s[1])?));
     } else {
         return Err("event has none of held, command, ui, size".into());
@@ -275,7 +370,15 @@ mod tests {
     use super::*;
 
     fn sample() -> Replay {
-        let header = Header { map: MapSource::Embedded, pos: Vec2::new(15.5, 5.5), angle_deg: 90.0, fov_deg: 66.0, size: (80, 24), fps: 30, seed: 0 };
+        let header = Header {
+            map: MapSource::Embedded,
+            pos: Vec2::new(15.5, 5.5),
+            angle_deg: 90.0,
+            fov_deg: 66.0,
+            size: (80, 24),
+            fps: 30,
+            seed: 0,
+        };
         let mut frames = vec![FrameInput::default(); 6];
         frames[1].input.held = [Action::Forward].into_iter().collect();
         frames[2].input.held = frames[1].input.held;
@@ -290,7 +393,10 @@ mod tests {
     fn writes_and_reads_back_the_same_replay() {
         let r = sample();
         let text = r.to_jsonl();
-        assert!(text.starts_with("{\"halfcast_replay\":1,\"map\":null,\"start\":{\"pos\":[15.5,5.5],"), "{text}");
+        assert!(
+            text.starts_with("{\"halfcast_replay\":1,\"map\":null,\"start\":{\"pos\":[15.5,5.5],"),
+            "{text}"
+        );
         assert_eq!(Replay::parse("r.hcr", &text).unwrap(), r);
         assert!(text.ends_with("{\"end\":6}\n"));
     }
@@ -301,10 +407,25 @@ mod tests {
         assert_eq!(e.to_string(), "r.hcr:1: replay version 2 is newer than this halfcast reads (version 1); upgrade halfcast");
         let text = sample().to_jsonl().replace("\"forward\"", "\"jump\"");
         let e = Replay::parse("r.hcr", &text).unwrap_err();
-        assert!(e.to_string().starts_with("r.hcr:2: unknown action '\"jump\"'"), "{e}");
-        let truncated: String = sample().to_jsonl().lines().take(3).map(|l| format!("{l}\n")).collect();
-        assert!(Replay::parse("r.hcr", &truncated).unwrap_err().message.contains("missing the final"));
-        assert!(Replay::parse("r.hcr", "garbage").unwrap_err().message.starts_with("not a halfcast replay header"));
+        assert!(
+            e.to_string()
+                .starts_with("r.hcr:2: unknown action '\"jump\"'"),
+            "{e}"
+        );
+        let truncated: String = sample()
+            .to_jsonl()
+            .lines()
+            .take(3)
+            .map(|l| format!("{l}\n"))
+            .collect();
+        assert!(Replay::parse("r.hcr", &truncated)
+            .unwrap_err()
+            .message
+            .contains("missing the final"));
+        assert!(Replay::parse("r.hcr", "garbage")
+            .unwrap_err()
+            .message
+            .starts_with("not a halfcast replay header"));
         assert!(Replay::parse("r.hcr", "").is_err());
     }
 
@@ -312,7 +433,11 @@ mod tests {
     fn held_actions_persist_until_changed() {
         let text = "{\"halfcast_replay\":1,\"map\":null,\"start\":{\"pos\":[1.5,1.5],\"angle\":0,\"fov\":66},\"size\":[80,24],\"fps\":10}\n{\"frame\":2,\"held\":[\"forward\"]}\n{\"frame\":5,\"held\":[]}\n{\"end\":7}\n";
         let r = Replay::parse("r.hcr", text).unwrap();
-        let held: Vec<bool> = r.frames.iter().map(|f| f.input.held.contains(Action::Forward)).collect();
+        let held: Vec<bool> = r
+            .frames
+            .iter()
+            .map(|f| f.input.held.contains(Action::Forward))
+            .collect();
         assert_eq!(held, [false, false, true, true, true, false, false]);
     }
 }

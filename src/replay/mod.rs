@@ -1,5 +1,6 @@
 //! Deterministic recordings: the `.hcr` file format and the fixed-timestep player.
 
 pub mod format;
+pub mod player;
 
 pub use format::{FrameInput, Header, MapSource, Replay, ReplayError};

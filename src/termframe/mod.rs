@@ -63,6 +63,23 @@ impl TermFrame {
         Self { cols, rows, cells }
     }
 
+    /// A ratatui buffer as drawn (the whole TUI screen: panes, text, the view's half-blocks).
+    #[must_use]
+    pub fn from_buffer(buf: &ratatui::buffer::Buffer) -> Self {
+        let area = buf.area;
+        let (cols, rows) = (usize::from(area.width), usize::from(area.height));
+        let cells = buf
+            .content()
+            .iter()
+            .map(|c| TermCell {
+                glyph: c.symbol().chars().next().unwrap_or(' '),
+                fg: ratatui_rgb(c.fg),
+                bg: ratatui_rgb(c.bg),
+            })
+            .collect();
+        Self { cols, rows, cells }
+    }
+
     /// The cell at column `x`, row `y`.
     #[must_use]
     pub fn cell(&self, x: usize, y: usize) -> &TermCell {
@@ -82,6 +99,34 @@ impl TermFrame {
         }
         fb
     }
+}
+
+/// The RGB a ratatui colour shows as (`None` = the terminal's default).
+#[must_use]
+pub fn ratatui_rgb(c: ratatui::style::Color) -> Option<Rgb> {
+    use ratatui::style::Color as C;
+    let idx = match c {
+        C::Reset => return None,
+        C::Rgb(r, g, b) => return Some(Rgb::new(r, g, b)),
+        C::Indexed(i) => i,
+        C::Black => 0,
+        C::Red => 1,
+        C::Green => 2,
+        C::Yellow => 3,
+        C::Blue => 4,
+        C::Magenta => 5,
+        C::Cyan => 6,
+        C::Gray => 7,
+        C::DarkGray => 8,
+        C::LightRed => 9,
+        C::LightGreen => 10,
+        C::LightYellow => 11,
+        C::LightBlue => 12,
+        C::LightMagenta => 13,
+        C::LightCyan => 14,
+        C::White => 15,
+    };
+    Some(crate::color::xterm_rgb(idx))
 }
 
 #[cfg(test)]

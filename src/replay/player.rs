@@ -1,0 +1,128 @@
+//! Plays a [`Replay`] headlessly at a fixed timestep: the same file gives the same frames.
+
+use std::sync::Arc;
+
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+
+use super::format::{FrameInput, Header, Replay};
+use crate::camera::Camera;
+use crate::cast::Cast;
+use crate::framebuffer::Framebuffer;
+use crate::game::{step, GameState};
+use crate::tui::keys::{InputMode, UiCommand};
+use crate::tui::layout::{Panes, Toggles};
+use crate::tui::render::render_view;
+use crate::tui::screen::{draw, Screen};
+use crate::tui::stats::FrameStats;
+use crate::world::World;
+
+/// One replayed frame: the whole screen as cells, the 3D view's pixels and its rays.
+#[derive(Debug, Clone)]
+pub struct Frame {
+    pub index: usize,
+    pub screen: Buffer,
+    pub view: Framebuffer,
+    pub cast: Cast,
+}
+
+/// The replay's game and screen state, advanced one frame at a time.
+#[derive(Debug)]
+pub struct Player {
+    state: GameState,
+    toggles: Toggles,
+    size: (u16, u16),
+    dt: f64,
+    stats: FrameStats,
+    next: usize,
+    view: Framebuffer,
+}
+
+impl Player {
+    /// Starts a replay in `world` (the caller resolved the header's map).
+    #[must_use]
+    pub fn new(world: Arc<World>, header: &Header) -> Self {
+        let camera = Camera::from_angle(header.pos, header.angle_deg, header.fov_deg);
+        let mut stats = FrameStats::default();
+        stats.fps = f64::from(header.fps);
+        Self {
+            state: GameState::new(world, camera, 0),
+            toggles: Toggles::default(),
+            size: header.size,
+            dt: 1.0 / f64::from(header.fps),
+            stats,
+            next: 0,
+            view: Framebuffer::new(0, 0),
+        }
+    }
+
+    /// The game state after the frames played so far.
+    #[must_use]
+    pub fn state(&self) -> &GameState {
+        &self.state
+    }
+
+    /// The terminal size in cells the next frame is drawn at.
+    #[must_use]
+    pub fn size(&self) -> (u16, u16) {
+        self.size
+    }
+
+    /// Applies one frame's input (UI toggles, resize, then one step of 1/fps s) and draws it,
+    /// as the live loop does; `None` when the input asks to quit.
+    pub fn play(&mut self, input: &FrameInput) -> Option<Frame> {
+        if let Some(size) = input.resize {
+            self.size = size;
+        }
+        for &u in &input.ui {
+            match u {
+                UiCommand::Quit => return None,
+                UiCommand::Back if self.toggles.help => self.toggles.help = false,
+                UiCommand::Back => return None,
+                UiCommand::ToggleMinimap => self.toggles.minimap = !self.toggles.minimap,
+                UiCommand::ToggleDebug => self.toggles.debug = !self.toggles.debug,
+                UiCommand::ToggleHelp => self.toggles.help = !self.toggles.help,
+            }
+        }
+        let area = Rect::new(0, 0, self.size.0, self.size.1);
+        let panes = Panes::compute(area, self.toggles);
+        let view = match panes {
+            Panes::Game { view, .. } => view,
+            Panes::TooSmall(_) => Rect::default(),
+        };
+        self.state.view_width = usize::from(view.width);
+        step(&mut self.state, &input.input, self.dt);
+        self.view
+            .resize(usize::from(view.width), usize::from(view.height) * 2);
+        let cast = render_view(&self.state, &mut self.view);
+        let mut screen = Buffer::empty(area);
+        let s = Screen {
+            state: &self.state,
+            view: &self.view,
+            cast: &cast,
+            stats: &self.stats,
+            toggles: self.toggles,
+            input_mode: InputMode::Emulated,
+        };
+        draw(&s, &panes, area, &mut screen);
+        let frame = Frame {
+            index: self.next,
+            screen,
+            view: self.view.clone(),
+            cast,
+        };
+        self.next += 1;
+        Some(frame)
+    }
+}
+
+/// Plays a whole replay, handing each frame to `each` (stops early on a quit).
+pub fn play_all(world: Arc<World>, replay: &Replay, mut each: impl FnMut(&Frame)) {
+    let mut player = Player::new(world, &replay.header);
+    for input in &replay.frames {
+        match player.play(input) {
+            Some(frame) => each(&frame),
+            None => break,
+        }
+    }
+}
