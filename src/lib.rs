@@ -6,6 +6,7 @@
 pub mod camera;
 pub mod cast;
 pub mod color;
+pub mod encode;
 pub mod framebuffer;
 pub mod map;
 pub mod output;
