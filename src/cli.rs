@@ -6,7 +6,8 @@ use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use halfcast::camera::{Camera, DEFAULT_FOV_DEG};
-use halfcast::output::{ansi, json::RayReport, text};
+use halfcast::encode::{full_frame, ColorLevel, EncodeOptions};
+use halfcast::output::{json::RayReport, text};
 use halfcast::world::World;
 use halfcast::{Framebuffer, Scene, Vec2};
 
@@ -28,6 +29,50 @@ struct Cli {
 enum Command {
     /// Render one frame headlessly (PNG, ANSI, text or ray JSON).
     Render(RenderArgs),
+    /// Measure the terminal encoder: bytes per frame and encode time vs stock ratatui.
+    Bench(BenchArgs),
+}
+
+#[derive(Args, Debug)]
+struct BenchArgs {
+    /// Print one JSON object instead of a table.
+    #[arg(long)]
+    json: bool,
+    /// Encode this directory of PNG frames (sorted by name; each W×2H px = W×H cells) instead.
+    #[arg(long, value_name = "DIR")]
+    frames: Option<PathBuf>,
+    /// Write each encoded frame as OUT/frame-NNN.ansi (with --frames).
+    #[arg(long, value_name = "OUT", requires = "frames")]
+    dump: Option<PathBuf>,
+    /// Colour level (default: all four; with --frames: truecolor).
+    #[arg(long, value_parser = parse_level)]
+    colors: Option<ColorLevel>,
+    /// Frames per replayed path after the first one.
+    #[arg(long, default_value_t = 100, value_parser = clap::value_parser!(u16).range(1..=5000))]
+    frame_count: u16,
+    /// Ordered dithering at 256 and 16 colours.
+    #[arg(long)]
+    dither: bool,
+    /// Lossy: don't resend cells whose colours moved less than N (0–255).
+    #[arg(long, value_name = "N")]
+    delta: Option<u8>,
+    /// Row-planner beam width (1 = greedy), for comparing planner settings.
+    #[arg(long, hide = true)]
+    beam: Option<usize>,
+}
+
+fn parse_level(s: &str) -> Result<ColorLevel, String> {
+    s.parse()
+}
+
+/// The colour level the environment asks for (`COLORTERM`, `TERM`, `NO_COLOR`).
+fn detect_level() -> ColorLevel {
+    let var = |k: &str| std::env::var(k).ok();
+    ColorLevel::detect(
+        var("COLORTERM").as_deref(),
+        var("TERM").as_deref(),
+        var("NO_COLOR").as_deref(),
+    )
 }
 
 #[derive(Args, Debug)]
@@ -67,6 +112,12 @@ struct RenderArgs {
     /// Write here instead of standard output.
     #[arg(short, long)]
     output: Option<PathBuf>,
+    /// Colour level for `--format ansi` (default: detected from COLORTERM, TERM, NO_COLOR).
+    #[arg(long, value_parser = parse_level)]
+    colors: Option<ColorLevel>,
+    /// Ordered dithering at 256 and 16 colours (`--format ansi`).
+    #[arg(long)]
+    dither: bool,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -153,6 +204,7 @@ pub fn run() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Some(Command::Render(args)) => render(&args),
+        Some(Command::Bench(args)) => bench(&args),
         None => Err(Failure::input(
             "the interactive view is not built yet; try `halfcast render`",
         )),
@@ -194,7 +246,11 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
     let cast = Scene::new(&world, camera).render_into(&mut fb, Some(usize::from(cols) / 2));
     let bytes = match args.format {
         Format::Png => fb.to_png().map_err(Failure::io)?,
-        Format::Ansi => ansi::to_ansi_truecolor(&fb).into_bytes(),
+        Format::Ansi => {
+            let mut opts = EncodeOptions::new(args.colors.unwrap_or_else(detect_level));
+            opts.dither = args.dither;
+            full_frame(&fb, &opts)
+        }
         Format::Txt => text::to_text(&fb).into_bytes(),
         Format::Json => {
             let mut s = RayReport::new(&camera, &cast, usize::from(rows)).to_json();
@@ -222,4 +278,36 @@ fn write_output(path: Option<&PathBuf>, bytes: &[u8]) -> Result<(), Failure> {
                 })
         }
     }
+}
+
+fn bench(args: &BenchArgs) -> Result<(), Failure> {
+    use crate::bench_cli::{run_default, run_frames, table, BenchPlan};
+    let plan = BenchPlan {
+        frames: usize::from(args.frame_count),
+        levels: args.colors.into_iter().collect(),
+        dither: args.dither,
+        delta: args.delta,
+        beam: args.beam,
+    };
+    let report = match &args.frames {
+        Some(dir) => run_frames(
+            dir,
+            args.colors.unwrap_or(ColorLevel::TrueColor),
+            &plan,
+            args.dump.as_deref(),
+        ),
+        None => run_default(&plan),
+    }
+    .map_err(|e| Failure {
+        code: e.code,
+        message: e.message,
+    })?;
+    let text = if args.json {
+        let mut s = serde_json::to_string(&report).map_err(Failure::io)?;
+        s.push('\n');
+        s
+    } else {
+        table(&report)
+    };
+    write_output(None, text.as_bytes())
 }

@@ -112,15 +112,22 @@ fn default_map_turn_and_walk_round_trips_at_every_level() {
 }
 
 #[test]
-fn dithered_and_greedy_variants_round_trip() {
+fn dithered_and_other_beam_widths_round_trip() {
     let frames = default_map_frames(40, 12, 16);
     for level in [ColorLevel::Ansi256, ColorLevel::Ansi16] {
         let mut opts = EncodeOptions::new(level);
         opts.dither = true;
         replay(&frames, opts, (0, 0), (40, 12));
     }
-    let mut opts = EncodeOptions::default();
-    opts.beam = 1;
+    let opts = EncodeOptions {
+        beam: 4,
+        ..EncodeOptions::default()
+    };
+    replay(&frames, opts, (1, 1), (50, 14));
+    let opts = EncodeOptions {
+        beam: 1,
+        ..EncodeOptions::default()
+    };
     replay(&frames, opts, (1, 1), (50, 14));
 }
 
@@ -139,8 +146,10 @@ fn invalidate_redraws_over_a_cleared_screen() {
 #[test]
 fn delta_skips_small_changes_but_the_screen_stays_within_the_threshold() {
     let frames = default_map_frames(40, 12, 12);
-    let mut opts = EncodeOptions::default();
-    opts.delta = Some(12);
+    let opts = EncodeOptions {
+        delta: Some(12),
+        ..EncodeOptions::default()
+    };
     let mut enc = Encoder::new(opts);
     let mut exact = Encoder::new(EncodeOptions::default());
     let mut parser = vt100::Parser::new(12, 40, 0);

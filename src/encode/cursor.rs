@@ -29,7 +29,9 @@ enum Move {
     },
 }
 
-fn forward_cost(n: u16) -> u32 {
+/// Bytes of `ESC[nC` (nothing for n = 0).
+#[inline]
+pub(crate) fn forward_cost(n: u16) -> u32 {
     match n {
         0 => 0,
         1 => 3,
@@ -68,9 +70,12 @@ fn cost_of(m: Move) -> u32 {
 /// The cheapest move from `from` to (col, row).
 fn best(from: Cursor, col: u16, row: u16) -> Move {
     let mut best = Move::Position { col, row };
+    let mut best_cost = cost_of(best);
     let mut consider = |m: Move| {
-        if cost_of(m) < cost_of(best) {
+        let c = cost_of(m);
+        if c < best_cost {
             best = m;
+            best_cost = c;
         }
     };
     if let Cursor::At { col: c0, row: r0 } = from {
@@ -99,7 +104,15 @@ pub(crate) fn move_cost(from: Cursor, col: u16, row: u16) -> u32 {
 }
 
 /// Writes the cheapest move from `from` to (col, row).
+#[inline]
 pub(crate) fn write_move(out: &mut Vec<u8>, from: Cursor, col: u16, row: u16) {
+    if from == (Cursor::At { col, row }) {
+        return;
+    }
+    write_move_slow(out, from, col, row);
+}
+
+fn write_move_slow(out: &mut Vec<u8>, from: Cursor, col: u16, row: u16) {
     let forward = |out: &mut Vec<u8>, n: u16| match n {
         0 => {}
         1 => out.extend_from_slice(b"\x1b[C"),

@@ -3,7 +3,7 @@
 use super::cursor::{write_move, Cursor};
 use super::level::ColorLevel;
 use super::palette::{distance, Code, Palette, DEFAULT, UNKNOWN};
-use super::plan::{Choice, RowPlanner, RowStart, BEAM};
+use super::plan::{Choice, RowPlanner, RowStart, DEFAULT_BEAM};
 use super::quantize::quantize;
 use super::sgr;
 use crate::framebuffer::Framebuffer;
@@ -36,7 +36,7 @@ impl EncodeOptions {
             dither: false,
             delta: None,
             sync: true,
-            beam: BEAM,
+            beam: DEFAULT_BEAM,
         }
     }
 }

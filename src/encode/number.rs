@@ -15,10 +15,20 @@ pub(crate) fn digits(n: u32) -> u32 {
 /// Appends `n` in decimal without allocating.
 #[inline]
 pub(crate) fn push_num(out: &mut Vec<u8>, n: u32) {
-    if n >= 10 {
+    if n < 10 {
+        out.push(b'0' + n as u8);
+    } else if n < 100 {
+        out.extend_from_slice(&[b'0' + (n / 10) as u8, b'0' + (n % 10) as u8]);
+    } else if n < 1000 {
+        out.extend_from_slice(&[
+            b'0' + (n / 100) as u8,
+            b'0' + (n / 10 % 10) as u8,
+            b'0' + (n % 10) as u8,
+        ]);
+    } else {
         push_num(out, n / 10);
+        out.push(b'0' + (n % 10) as u8);
     }
-    out.push(b'0' + (n % 10) as u8);
 }
 
 #[cfg(test)]

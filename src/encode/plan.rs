@@ -5,7 +5,7 @@
 //! `▄` (swapped), or — when both halves match — a space (bg only) or `█` (fg only); a cell the terminal
 //! already shows may be skipped, paying a cursor move before the next drawn cell.
 
-use super::cursor::{move_cost, Cursor};
+use super::cursor::{forward_cost, move_cost, Cursor};
 use super::level::ColorLevel;
 use super::palette::Code;
 use super::sgr;
@@ -13,8 +13,14 @@ use super::sgr;
 /// States kept per cell: 1 is greedy; 4 finds nearly all the savings at a modest cost.
 pub(crate) const BEAM: usize = 4;
 
+/// The beam the encoder uses unless told otherwise (2 keeps nearly all the savings of 4 at half the work).
+pub(crate) const DEFAULT_BEAM: usize = 2;
+
 /// A cursor column meaning "not on this row yet" (the first draw pays the move from elsewhere).
 const NOWHERE: u16 = u16::MAX;
+
+/// How a lagging cursor ranks in the beam: less than a real move (3 bytes), so trailing skips survive.
+const LAG_PENALTY: u32 = 1;
 
 /// How one cell is sent.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -123,7 +129,7 @@ impl RowPlanner {
         self.counts.resize(w + 1, 0);
         self.counts[0] = 1;
         let entry = |x: usize| move_cost(start.cursor, start.origin_col + x as u16, start.row);
-        let mut cand = [blank; 3 * BEAM];
+        let level = start.level;
         for x in 0..w {
             let cell = cells[x];
             let uniform = cell[0] == cell[1];
@@ -132,9 +138,21 @@ impl RowPlanner {
             } else {
                 [Choice::Upper, Choice::Lower]
             };
-            let mut n = 0;
+            // Parameter bytes of this cell's colours as fg and as bg, computed once per cell.
+            let fg_len = [
+                sgr::param_len(level, cell[0], false),
+                sgr::param_len(level, cell[1], false),
+            ];
+            let bg_len = [
+                sgr::param_len(level, cell[0], true),
+                sgr::param_len(level, cell[1], true),
+            ];
+            let len_of =
+                |code: Code, lens: &[u32; 2]| if code == cell[0] { lens[0] } else { lens[1] };
             let base = x * BEAM;
+            let out = (x + 1) * BEAM;
             let next_entry = if skippable[x] { entry(x + 1) } else { 0 };
+            let mut kept = 0usize;
             for i in 0..usize::from(self.counts[x]) {
                 let p = self.nodes[base + i];
                 let mv = if p.cursor == x as u16 {
@@ -142,22 +160,29 @@ impl RowPlanner {
                 } else if p.cursor == NOWHERE {
                     entry(x)
                 } else {
-                    move_cost(
-                        Cursor::At {
-                            col: start.origin_col + p.cursor,
-                            row: start.row,
-                        },
-                        start.origin_col + x as u16,
-                        start.row,
-                    )
+                    // Same row, moving right: `ESC[nC` (the emitted move is never longer).
+                    forward_cost(x as u16 - p.cursor)
                 };
-                for choice in options {
+                // A choice that needs no colour change dominates (switching later costs about
+                // the same as switching now), which keeps the beam small and the loop fast.
+                let mut drawn = [(Choice::Skip, 0u32, 0u32, 0u32); 2];
+                for (slot, choice) in drawn.iter_mut().zip(options) {
                     let (fg, bg) = choice.colours(cell, (p.fg, p.bg));
-                    let cost = p.cost
-                        + mv
-                        + sgr::cost(start.level, (p.fg, p.bg), (fg, bg))
-                        + choice.glyph().len() as u32;
-                    cand[n] = Node {
+                    let colour = match (fg != p.fg, bg != p.bg) {
+                        (false, false) => 0,
+                        (true, false) => 3 + len_of(fg, &fg_len),
+                        (false, true) => 3 + len_of(bg, &bg_len),
+                        (true, true) => 4 + len_of(fg, &fg_len) + len_of(bg, &bg_len),
+                    };
+                    *slot = (choice, fg, bg, colour);
+                }
+                let free = drawn.iter().position(|d| d.3 == 0);
+                for (k, &(choice, fg, bg, colour)) in drawn.iter().enumerate() {
+                    if free.is_some_and(|f| f != k) {
+                        continue;
+                    }
+                    let cost = p.cost + mv + colour + choice.glyph().len() as u32;
+                    let node = Node {
                         fg,
                         bg,
                         cursor: x as u16 + 1,
@@ -166,33 +191,21 @@ impl RowPlanner {
                         prev: i as u8,
                         choice,
                     };
-                    n += 1;
+                    kept = keep(&mut self.nodes[out..out + beam], kept, node);
                 }
                 if skippable[x] {
-                    let pending = if p.cursor == NOWHERE { next_entry } else { 3 };
-                    cand[n] = Node {
+                    let pending = if p.cursor == NOWHERE {
+                        next_entry
+                    } else {
+                        LAG_PENALTY
+                    };
+                    let node = Node {
                         key: p.cost + pending,
                         prev: i as u8,
                         choice: Choice::Skip,
                         ..p
                     };
-                    n += 1;
-                }
-            }
-            // Keep the best `beam` distinct states (colours, and whether the cursor is in place).
-            let out = (x + 1) * BEAM;
-            let mut kept = 0usize;
-            cand[..n].sort_unstable_by_key(|c| c.key);
-            for c in &cand[..n] {
-                if kept == beam {
-                    break;
-                }
-                let dup = self.nodes[out..out + kept]
-                    .iter()
-                    .any(|k| k.fg == c.fg && k.bg == c.bg && k.cursor == c.cursor);
-                if !dup {
-                    self.nodes[out + kept] = *c;
-                    kept += 1;
+                    kept = keep(&mut self.nodes[out..out + beam], kept, node);
                 }
             }
             self.counts[x + 1] = kept as u8;
@@ -213,6 +226,27 @@ impl RowPlanner {
         }
         &self.choices
     }
+}
+
+/// Inserts `node` into the sorted best-`kept` list `top` (capacity `top.len()`), replacing a node with
+/// the same state if `node` is better; returns the new length.
+#[inline]
+fn keep(top: &mut [Node], kept: usize, node: Node) -> usize {
+    let same = |a: &Node| a.fg == node.fg && a.bg == node.bg && a.cursor == node.cursor;
+    let mut at = match top[..kept].iter().position(same) {
+        Some(j) if top[j].key <= node.key => return kept,
+        Some(j) => j,
+        None if kept < top.len() => kept,
+        None if node.key < top[kept - 1].key => kept - 1,
+        None => return kept,
+    };
+    let len = if at == kept { kept + 1 } else { kept };
+    top[at] = node;
+    while at > 0 && top[at - 1].key > top[at].key {
+        top.swap(at - 1, at);
+        at -= 1;
+    }
+    len
 }
 
 #[cfg(test)]
