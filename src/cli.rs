@@ -7,6 +7,7 @@ use std::sync::Arc;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use halfcast::camera::{Camera, DEFAULT_FOV_DEG};
+use halfcast::encode::{full_frame, ColorLevel, EncodeOptions};
 use halfcast::output::{ansi, json::RayReport, text};
 use halfcast::termframe;
 use halfcast::tui::{self, Ending, PlayOptions, TerminalError};
@@ -34,6 +35,8 @@ enum Command {
     Render(RenderArgs),
     /// Play in this terminal (the default when no command is given).
     Play(PlayArgs),
+    /// Measure the terminal encoder: bytes per frame and encode time vs stock ratatui.
+    Bench(BenchArgs),
     /// Compare two frames (PNG, ANSI, cells text or plain text): exit 0 equal, 1 different, 2 error.
     Diff(DiffArgs),
 }
@@ -47,6 +50,48 @@ struct DiffArgs {
     /// Write a highlighted picture of the differences (PNG if the name ends in .png, else ANSI).
     #[arg(short, long)]
     out: Option<PathBuf>,
+}
+
+#[derive(Args, Debug)]
+struct BenchArgs {
+    /// Print one JSON object instead of a table.
+    #[arg(long)]
+    json: bool,
+    /// Encode this directory of PNG frames (sorted by name; each W×2H px = W×H cells) instead.
+    #[arg(long, value_name = "DIR")]
+    frames: Option<PathBuf>,
+    /// Write each encoded frame as OUT/frame-NNN.ansi (with --frames).
+    #[arg(long, value_name = "OUT", requires = "frames")]
+    dump: Option<PathBuf>,
+    /// Colour level (default: all four; with --frames: truecolor).
+    #[arg(long, value_parser = parse_level)]
+    colors: Option<ColorLevel>,
+    /// Frames per replayed path after the first one.
+    #[arg(long, default_value_t = 100, value_parser = clap::value_parser!(u16).range(1..=5000))]
+    frame_count: u16,
+    /// Ordered dithering at 256 and 16 colours.
+    #[arg(long)]
+    dither: bool,
+    /// Lossy: don't resend cells whose colours moved less than N (0–255).
+    #[arg(long, value_name = "N")]
+    delta: Option<u8>,
+    /// Row-planner beam width (1 = greedy), for comparing planner settings.
+    #[arg(long, hide = true)]
+    beam: Option<usize>,
+}
+
+fn parse_level(s: &str) -> Result<ColorLevel, String> {
+    s.parse()
+}
+
+/// The colour level the environment asks for (`COLORTERM`, `TERM`, `NO_COLOR`).
+fn detect_level() -> ColorLevel {
+    let var = |k: &str| std::env::var(k).ok();
+    ColorLevel::detect(
+        var("COLORTERM").as_deref(),
+        var("TERM").as_deref(),
+        var("NO_COLOR").as_deref(),
+    )
 }
 
 #[derive(Args, Debug)]
@@ -86,6 +131,12 @@ struct RenderArgs {
     /// Write here instead of standard output.
     #[arg(short, long)]
     output: Option<PathBuf>,
+    /// Colour level for `--format ansi` (default: detected from COLORTERM, TERM, NO_COLOR).
+    #[arg(long, value_parser = parse_level)]
+    colors: Option<ColorLevel>,
+    /// Ordered dithering at 256 and 16 colours (`--format ansi`).
+    #[arg(long)]
+    dither: bool,
 }
 
 #[derive(Args, Debug)]
@@ -217,6 +268,7 @@ pub fn run() -> ExitCode {
         Some(Command::Render(args)) => render(&args),
         Some(Command::Diff(args)) => diff(&args),
         Some(Command::Play(args)) => play(&args),
+        Some(Command::Bench(args)) => bench(&args),
         None => play(&PlayArgs::defaults()),
     };
     match result {
@@ -287,7 +339,11 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
     let cast = Scene::new(&world, camera).render_into(&mut fb, Some(usize::from(cols) / 2));
     let bytes = match args.format {
         Format::Png => fb.to_png().map_err(Failure::io)?,
-        Format::Ansi => ansi::to_ansi_truecolor(&fb).into_bytes(),
+        Format::Ansi => {
+            let mut opts = EncodeOptions::new(args.colors.unwrap_or_else(detect_level));
+            opts.dither = args.dither;
+            full_frame(&fb, &opts)
+        }
         Format::Txt => text::to_text(&fb).into_bytes(),
         Format::Cells => {
             termframe::to_cells_text(&termframe::TermFrame::from_framebuffer(&fb)).into_bytes()
@@ -345,4 +401,36 @@ fn write_output(path: Option<&PathBuf>, bytes: &[u8]) -> Result<(), Failure> {
                 })
         }
     }
+}
+
+fn bench(args: &BenchArgs) -> Result<(), Failure> {
+    use crate::bench_cli::{run_default, run_frames, table, BenchPlan};
+    let plan = BenchPlan {
+        frames: usize::from(args.frame_count),
+        levels: args.colors.into_iter().collect(),
+        dither: args.dither,
+        delta: args.delta,
+        beam: args.beam,
+    };
+    let report = match &args.frames {
+        Some(dir) => run_frames(
+            dir,
+            args.colors.unwrap_or(ColorLevel::TrueColor),
+            &plan,
+            args.dump.as_deref(),
+        ),
+        None => run_default(&plan),
+    }
+    .map_err(|e| Failure {
+        code: e.code,
+        message: e.message,
+    })?;
+    let text = if args.json {
+        let mut s = serde_json::to_string(&report).map_err(Failure::io)?;
+        s.push('\n');
+        s
+    } else {
+        table(&report)
+    };
+    write_output(None, text.as_bytes())
 }

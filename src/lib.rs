@@ -3,9 +3,11 @@
 //! The pipeline, one module per stage: [`map`] → [`camera`] → [`cast`] (pure DDA) →
 //! [`raster`] into a [`framebuffer::Framebuffer`] → [`output`] writers (PNG, ANSI, text, JSON).
 
+pub mod bench;
 pub mod camera;
 pub mod cast;
 pub mod color;
+pub mod encode;
 pub mod framebuffer;
 pub mod game;
 pub mod map;

@@ -1,27 +1,14 @@
 //! The half-block frame as a truecolor terminal would receive it in one full redraw.
+//!
+//! Kept for callers of the first API; the bytes now come from the encoder's planner
+//! ([`crate::encode::full_frame`]), which also serves the other colour levels.
 
-use std::fmt::Write;
-
+use crate::encode::{full_frame, EncodeOptions};
 use crate::framebuffer::Framebuffer;
 
-/// Each cell as `▀` with fg = upper pixel and bg = lower pixel; colours sent only when they change.
+/// Each cell as a half block with exact 24-bit colours, rows ending in a reset and a newline.
 #[must_use]
 pub fn to_ansi_truecolor(fb: &Framebuffer) -> String {
-    let mut out = String::new();
-    for cy in 0..fb.cell_rows() {
-        let mut last = None;
-        for cx in 0..fb.width() {
-            let (up, low) = fb.cell(cx, cy);
-            if last.map(|(u, _)| u) != Some(up) {
-                let _ = write!(out, "\x1b[38;2;{};{};{}m", up.r, up.g, up.b);
-            }
-            if last.map(|(_, l)| l) != Some(low) {
-                let _ = write!(out, "\x1b[48;2;{};{};{}m", low.r, low.g, low.b);
-            }
-            last = Some((up, low));
-            out.push('▀');
-        }
-        out.push_str("\x1b[0m\n");
-    }
-    out
+    String::from_utf8(full_frame(fb, &EncodeOptions::default()))
+        .expect("the encoder writes ASCII escapes and half-block glyphs only")
 }

@@ -1,0 +1,12 @@
+//! The pieces of `halfcast bench` that need no clock: camera paths, the stock-ratatui byte
+//! reference, the zlib meter and the report's JSON shape (the timing loop lives in the binary).
+
+pub mod path;
+pub mod reference;
+pub mod report;
+pub mod zlib;
+
+pub use path::{camera_path, BenchScene};
+pub use reference::RatatuiReference;
+pub use report::{HalfcastFigures, RatatuiFigures, Report, Run};
+pub use zlib::ZlibMeter;

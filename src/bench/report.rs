@@ -1,0 +1,46 @@
+//! The JSON `halfcast bench --json` prints (shape fixed by issue 5; extra keys allowed).
+
+use serde::Serialize;
+
+/// The whole report: one run per scene × size × colour level.
+#[derive(Debug, Serialize, Default)]
+pub struct Report {
+    pub runs: Vec<Run>,
+}
+
+/// One replayed sequence.
+#[derive(Debug, Serialize)]
+pub struct Run {
+    pub scene: String,
+    pub cols: u16,
+    pub rows: u16,
+    pub colors: String,
+    pub frames: usize,
+    pub halfcast: HalfcastFigures,
+    pub ratatui: RatatuiFigures,
+    /// halfcast diff-frame bytes / stock ratatui truecolor diff-frame bytes on the same frames.
+    pub ratio_vs_ratatui_truecolor: f64,
+}
+
+/// halfcast's encoder on the sequence.
+#[derive(Debug, Serialize)]
+pub struct HalfcastFigures {
+    /// Mean bytes of the frames after the first.
+    pub bytes_per_frame: f64,
+    pub first_frame_bytes: usize,
+    /// Mean bytes per frame (after the first) through one zlib stream with a sync flush per frame.
+    pub zlib_bytes_per_frame: f64,
+    /// Mean time to encode a frame after the first, in milliseconds (fastest of a few repeats).
+    pub encode_ms: f64,
+    /// Mean time to render a frame (cast + rasterize), in milliseconds.
+    pub render_ms: f64,
+}
+
+/// Stock ratatui + crossterm drawing the same cells at the same colour level.
+#[derive(Debug, Serialize)]
+pub struct RatatuiFigures {
+    pub bytes_per_frame: f64,
+    pub first_frame_bytes: usize,
+    /// Mean time of `Terminal::draw` after the first frame, in milliseconds.
+    pub draw_ms: f64,
+}

@@ -1,0 +1,391 @@
+//! `halfcast bench`: replays camera paths (or a directory of PNG frames) through the encoder and
+//! stock ratatui, timing and counting bytes. The clock lives here, at the binary's edge.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use halfcast::bench::{
+    camera_path, BenchScene, HalfcastFigures, RatatuiFigures, RatatuiReference, Report, Run,
+    ZlibMeter,
+};
+use halfcast::encode::{ColorLevel, EncodeOptions, Encoder};
+use halfcast::world::World;
+use halfcast::{Framebuffer, Scene};
+
+/// How often each sequence is re-encoded for timing (the minimum per frame is kept).
+const TIMING_REPEATS: usize = 3;
+
+/// View sizes the default bench replays, in cells.
+pub const SIZES: [(u16, u16); 2] = [(240, 68), (160, 48)];
+
+/// A bench failure: exit code and message.
+#[derive(Debug)]
+pub struct BenchError {
+    pub code: u8,
+    pub message: String,
+}
+
+fn input(message: String) -> BenchError {
+    BenchError { code: 2, message }
+}
+
+/// What to run.
+#[derive(Debug, Clone)]
+pub struct BenchPlan {
+    /// Frames per run after the first (full) frame.
+    pub frames: usize,
+    /// Colour levels (all when empty).
+    pub levels: Vec<ColorLevel>,
+    pub dither: bool,
+    pub delta: Option<u8>,
+    /// Row-planner beam width (None = the encoder's default).
+    pub beam: Option<usize>,
+}
+
+impl BenchPlan {
+    fn options(&self, level: ColorLevel) -> EncodeOptions {
+        let mut o = EncodeOptions::new(level);
+        o.dither = self.dither;
+        o.delta = self.delta;
+        if let Some(b) = self.beam {
+            o.beam = b;
+        }
+        o
+    }
+
+    fn levels(&self) -> Vec<ColorLevel> {
+        if self.levels.is_empty() {
+            ColorLevel::ALL.to_vec()
+        } else {
+            self.levels.clone()
+        }
+    }
+}
+
+fn ms(t: Instant) -> f64 {
+    t.elapsed().as_secs_f64() * 1000.0
+}
+
+fn mean(v: &[usize]) -> f64 {
+    if v.is_empty() {
+        0.0
+    } else {
+        v.iter().sum::<usize>() as f64 / v.len() as f64
+    }
+}
+
+/// Encodes `frames` at one level; `dump` receives each frame's bytes.
+fn measure(
+    name: &str,
+    frames: &[Framebuffer],
+    opts: EncodeOptions,
+    render_ms: f64,
+    truecolor_ratatui: f64,
+    mut dump: impl FnMut(usize, &[u8]) -> Result<(), BenchError>,
+) -> Result<Run, BenchError> {
+    let (cols, rows) = (frames[0].width() as u16, frames[0].cell_rows() as u16);
+    let mut enc = Encoder::new(opts);
+    let mut zlib = ZlibMeter::new();
+    let mut reference = RatatuiReference::new(cols, rows, opts.level);
+    let (mut bytes, mut zbytes, mut rbytes) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut first, mut rfirst) = (0, 0);
+    let (mut enc_ms, mut draw_ms) = (0.0, 0.0);
+    for (i, fb) in frames.iter().enumerate() {
+        let t = Instant::now();
+        let out = enc.encode(fb, 0, 0);
+        let dt = ms(t);
+        let z = zlib.frame(out);
+        dump(i, out)?;
+        let n = out.len();
+        let t = Instant::now();
+        let r = reference.draw(fb).len();
+        let rt = ms(t);
+        if i == 0 {
+            first = n;
+            rfirst = r;
+        } else {
+            bytes.push(n);
+            zbytes.push(z);
+            rbytes.push(r);
+            enc_ms += dt;
+            draw_ms += rt;
+        }
+    }
+    // The machine may be shared: re-time the encoder and keep each frame's fastest run.
+    let mut best: Vec<f64> = vec![f64::MAX; frames.len()];
+    for _ in 0..TIMING_REPEATS {
+        let mut enc = Encoder::new(opts);
+        for (i, fb) in frames.iter().enumerate() {
+            let t = Instant::now();
+            let n = enc.encode(fb, 0, 0).len();
+            best[i] = best[i].min(ms(t));
+            std::hint::black_box(n);
+        }
+    }
+    enc_ms = enc_ms.min(best.iter().skip(1).sum());
+    let diff_frames = frames.len().saturating_sub(1).max(1) as f64;
+    let bytes_per_frame = mean(&bytes);
+    let ratatui_bpf = mean(&rbytes);
+    let baseline = if opts.level == ColorLevel::TrueColor || truecolor_ratatui <= 0.0 {
+        ratatui_bpf
+    } else {
+        truecolor_ratatui
+    };
+    Ok(Run {
+        scene: name.to_string(),
+        cols,
+        rows,
+        colors: opts.level.name().to_string(),
+        frames: frames.len(),
+        halfcast: HalfcastFigures {
+            bytes_per_frame,
+            first_frame_bytes: first,
+            zlib_bytes_per_frame: mean(&zbytes),
+            encode_ms: enc_ms / diff_frames,
+            render_ms,
+        },
+        ratatui: RatatuiFigures {
+            bytes_per_frame: ratatui_bpf,
+            first_frame_bytes: rfirst,
+            draw_ms: draw_ms / diff_frames,
+        },
+        ratio_vs_ratatui_truecolor: if baseline > 0.0 {
+            bytes_per_frame / baseline
+        } else {
+            0.0
+        },
+    })
+}
+
+/// Stock ratatui truecolor bytes per diff frame on `frames` (the baseline of every ratio).
+fn ratatui_truecolor(frames: &[Framebuffer]) -> f64 {
+    let mut r = RatatuiReference::new(
+        frames[0].width() as u16,
+        frames[0].cell_rows() as u16,
+        ColorLevel::TrueColor,
+    );
+    let sizes: Vec<usize> = frames.iter().map(|fb| r.draw(fb).len()).skip(1).collect();
+    mean(&sizes)
+}
+
+/// Replays every scene at every size and level on the default map.
+///
+/// # Errors
+/// None in practice (kept fallible like the frames bench).
+pub fn run_default(plan: &BenchPlan) -> Result<Report, BenchError> {
+    let world = World::default_world();
+    let mut report = Report::default();
+    for scene in BenchScene::ALL {
+        for (cols, rows) in SIZES {
+            let cams = camera_path(&world.map, scene, plan.frames + 1);
+            let mut frames = Vec::with_capacity(cams.len());
+            let t = Instant::now();
+            for cam in cams {
+                let mut fb = Framebuffer::for_cells(cols, rows);
+                Scene::new(&world, cam).render_into(&mut fb, None);
+                frames.push(fb);
+            }
+            let render_ms = ms(t) / frames.len() as f64;
+            let levels = plan.levels();
+            let mut baseline = 0.0;
+            if !levels.contains(&ColorLevel::TrueColor) {
+                baseline = ratatui_truecolor(&frames);
+            }
+            for level in levels {
+                let run = measure(
+                    scene.name(),
+                    &frames,
+                    plan.options(level),
+                    render_ms,
+                    baseline,
+                    |_, _| Ok(()),
+                )?;
+                if level == ColorLevel::TrueColor {
+                    baseline = run.ratatui.bytes_per_frame;
+                }
+                report.runs.push(run);
+            }
+        }
+    }
+    fix_ratios(&mut report);
+    Ok(report)
+}
+
+/// Ratios against ratatui truecolor for runs measured before their truecolor sibling.
+fn fix_ratios(report: &mut Report) {
+    let base: Vec<((String, u16, u16), f64)> = report
+        .runs
+        .iter()
+        .filter(|r| r.colors == "truecolor")
+        .map(|r| ((r.scene.clone(), r.cols, r.rows), r.ratatui.bytes_per_frame))
+        .collect();
+    for run in &mut report.runs {
+        let key = (run.scene.clone(), run.cols, run.rows);
+        if let Some((_, b)) = base.iter().find(|(k, _)| *k == key) {
+            if *b > 0.0 {
+                run.ratio_vs_ratatui_truecolor = run.halfcast.bytes_per_frame / b;
+            }
+        }
+    }
+}
+
+/// Loads a directory of PNG frames sorted by file name; all must be the same size.
+///
+/// # Errors
+/// Exit-2 errors for a missing directory, a file that is not a PNG, mismatched sizes, an odd
+/// height or an empty directory.
+pub fn load_frames(dir: &Path) -> Result<Vec<Framebuffer>, BenchError> {
+    let entries = std::fs::read_dir(dir).map_err(|e| {
+        input(format!(
+            "cannot read frames directory {}: {e}",
+            dir.display()
+        ))
+    })?;
+    let mut paths: Vec<PathBuf> = entries
+        .filter_map(Result::ok)
+        .map(|e| e.path())
+        .filter(|p| p.is_file())
+        .collect();
+    paths.sort();
+    if paths.is_empty() {
+        return Err(input(format!("no PNG frames in {}", dir.display())));
+    }
+    let mut frames: Vec<Framebuffer> = Vec::with_capacity(paths.len());
+    for p in &paths {
+        let bytes =
+            std::fs::read(p).map_err(|e| input(format!("cannot read {}: {e}", p.display())))?;
+        if !bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
+            return Err(input(format!("{} is not a PNG image", p.display())));
+        }
+        let fb = Framebuffer::from_image_bytes(&bytes)
+            .map_err(|e| input(format!("{} is not a readable PNG: {e}", p.display())))?;
+        if fb.height() % 2 != 0 || fb.width() == 0 || fb.height() == 0 {
+            return Err(input(format!(
+                "{} is {}x{} pixels; frames need an even height (two pixel rows per cell)",
+                p.display(),
+                fb.width(),
+                fb.height()
+            )));
+        }
+        if fb.width() > usize::from(u16::MAX) || fb.cell_rows() > usize::from(u16::MAX) {
+            return Err(input(format!("{} is too large", p.display())));
+        }
+        if let Some(f0) = frames.first() {
+            if (f0.width(), f0.height()) != (fb.width(), fb.height()) {
+                return Err(input(format!(
+                    "{} is {}x{} pixels but {} is {}x{}; all frames must be the same size",
+                    p.display(),
+                    fb.width(),
+                    fb.height(),
+                    paths[0].display(),
+                    f0.width(),
+                    f0.height()
+                )));
+            }
+        }
+        frames.push(fb);
+    }
+    Ok(frames)
+}
+
+/// Encodes a PNG sequence as the TUI would send it; writes `frame-NNN.ansi` files into `dump`.
+///
+/// # Errors
+/// The frame-loading errors (exit 2), or exit 1 when the dump directory cannot be written.
+pub fn run_frames(
+    dir: &Path,
+    level: ColorLevel,
+    plan: &BenchPlan,
+    dump: Option<&Path>,
+) -> Result<Report, BenchError> {
+    let frames = load_frames(dir)?;
+    if let Some(out) = dump {
+        std::fs::create_dir_all(out).map_err(|e| BenchError {
+            code: 1,
+            message: format!("cannot create {}: {e}", out.display()),
+        })?;
+    }
+    let width = frames.len().saturating_sub(1).to_string().len().max(3);
+    let name = dir.file_name().map_or_else(
+        || "frames".to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    );
+    let baseline = if level == ColorLevel::TrueColor {
+        0.0
+    } else {
+        ratatui_truecolor(&frames)
+    };
+    let run = measure(
+        &name,
+        &frames,
+        plan.options(level),
+        0.0,
+        baseline,
+        |i, bytes| {
+            if let Some(out) = dump {
+                let path = out.join(format!("frame-{i:0width$}.ansi"));
+                std::fs::write(&path, bytes).map_err(|e| BenchError {
+                    code: 1,
+                    message: format!("cannot write {}: {e}", path.display()),
+                })?;
+            }
+            Ok(())
+        },
+    )?;
+    Ok(Report { runs: vec![run] })
+}
+
+/// The report as a readable table.
+#[must_use]
+pub fn table(report: &Report) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "{:<6} {:>7} {:>9} {:>6} | {:>9} {:>9} {:>8} {:>7} {:>6} | {:>9} {:>9} {:>7} | {:>7} {:>7}",
+        "scene",
+        "size",
+        "colors",
+        "frames",
+        "B/frame",
+        "first",
+        "zlib B/f",
+        "enc ms",
+        "rnd ms",
+        "rat B/f",
+        "rat first",
+        "rat ms",
+        "vs rat",
+        "vs rtc"
+    );
+    for r in &report.runs {
+        let same = if r.ratatui.bytes_per_frame > 0.0 {
+            100.0 * r.halfcast.bytes_per_frame / r.ratatui.bytes_per_frame
+        } else {
+            0.0
+        };
+        let _ = writeln!(
+            s,
+            "{:<6} {:>7} {:>9} {:>6} | {:>9.0} {:>9} {:>8.0} {:>7.3} {:>6.2} | {:>9.0} {:>9} {:>7.3} | {:>6.1}% {:>6.1}%",
+            r.scene,
+            format!("{}x{}", r.cols, r.rows),
+            r.colors,
+            r.frames,
+            r.halfcast.bytes_per_frame,
+            r.halfcast.first_frame_bytes,
+            r.halfcast.zlib_bytes_per_frame,
+            r.halfcast.encode_ms,
+            r.halfcast.render_ms,
+            r.ratatui.bytes_per_frame,
+            r.ratatui.first_frame_bytes,
+            r.ratatui.draw_ms,
+            same,
+            100.0 * r.ratio_vs_ratatui_truecolor,
+        );
+    }
+    s.push_str(
+        "B/frame, zlib, enc ms: mean over frames after the first; vs rat: halfcast / stock ratatui \
+         at the same level; vs rtc: halfcast / stock ratatui truecolor\n",
+    );
+    s
+}

@@ -1,0 +1,25 @@
+//! Byte-lean terminal output (pure: framebuffers in, bytes out; no terminal I/O here).
+//!
+//! - [`level`]: the colour ladder (truecolor → 256 → 16 → mono) and its detection.
+//! - [`palette`]: pixel → colour code, with a precomputed nearest-colour table and optional dithering.
+//! - [`encoder`]: the live frame encoder (diff against what the terminal shows, minimal SGR and moves,
+//!   synchronized output); [`inline`]: a whole frame as printable lines for `render --format ansi`.
+//! - [`pacer`]: fitting the frame rate to a bandwidth cap.
+
+mod cursor;
+pub mod dither;
+pub mod encoder;
+pub mod inline;
+pub mod level;
+mod number;
+pub mod pacer;
+pub mod palette;
+mod plan;
+pub mod quantize;
+mod sgr;
+
+pub use encoder::{EncodeOptions, Encoder, SYNC_BEGIN, SYNC_END};
+pub use inline::full_frame;
+pub use level::ColorLevel;
+pub use pacer::{parse_rate, Pacer};
+pub use palette::Palette;

@@ -1,0 +1,274 @@
+//! Colour codes per level: exact 24-bit, or the nearest xterm-256 / ANSI-16 colour from a lookup table.
+
+use super::dither::bayer_offset;
+use super::level::ColorLevel;
+use crate::color::Rgb;
+
+/// A colour as the terminal is told it: packed `0xRRGGBB` at truecolor, a palette index otherwise.
+pub type Code = u32;
+
+/// The terminal's default colour (after `ESC[m`); never produced from a pixel.
+pub const DEFAULT: Code = 0xFFFF_FFFE;
+
+/// A colour the encoder does not know (after `invalidate`); never equal to a real one.
+pub const UNKNOWN: Code = 0xFFFF_FFFF;
+
+/// Bits per channel of the lookup table index (32 × 32 × 32 entries, 32 KiB: fits in cache).
+const LUT_BITS: u32 = 5;
+const LUT_SIDE: usize = 1 << LUT_BITS;
+
+/// The six channel levels of the xterm 6×6×6 cube (indices 16–231).
+pub const CUBE_LEVELS: [u8; 6] = [0, 95, 135, 175, 215, 255];
+
+/// xterm's default RGB for the 16 ANSI colours (what the 16-colour level matches against).
+pub const ANSI16: [Rgb; 16] = [
+    Rgb::new(0, 0, 0),
+    Rgb::new(205, 0, 0),
+    Rgb::new(0, 205, 0),
+    Rgb::new(205, 205, 0),
+    Rgb::new(0, 0, 238),
+    Rgb::new(205, 0, 205),
+    Rgb::new(0, 205, 205),
+    Rgb::new(229, 229, 229),
+    Rgb::new(127, 127, 127),
+    Rgb::new(255, 0, 0),
+    Rgb::new(0, 255, 0),
+    Rgb::new(255, 255, 0),
+    Rgb::new(92, 92, 255),
+    Rgb::new(255, 0, 255),
+    Rgb::new(0, 255, 255),
+    Rgb::new(255, 255, 255),
+];
+
+/// The xterm RGB of palette index `i` (0–15 as [`ANSI16`], then cube, then greys).
+#[must_use]
+pub fn xterm_rgb(i: u8) -> Rgb {
+    match i {
+        0..=15 => ANSI16[usize::from(i)],
+        16..=231 => {
+            let n = usize::from(i - 16);
+            Rgb::new(
+                CUBE_LEVELS[n / 36],
+                CUBE_LEVELS[(n / 6) % 6],
+                CUBE_LEVELS[n % 6],
+            )
+        }
+        _ => {
+            let g = 8 + 10 * (i - 232);
+            Rgb::new(g, g, g)
+        }
+    }
+}
+
+/// Maps pixels to codes for one level; built once per encoder (the table costs a few ms).
+#[derive(Debug, Clone)]
+pub struct Palette {
+    level: ColorLevel,
+    dither: bool,
+    /// Nearest palette index per 5-bit-per-channel bin (empty at truecolor and mono).
+    lut: Vec<u8>,
+    /// Amplitude of the ordered-dither offset, in 8-bit channel units.
+    amplitude: i16,
+    /// Channel value → lookup-table bin (rounded, so 0 and 255 sit on bin centres).
+    bin: [u8; 256],
+}
+
+impl Palette {
+    /// Builds the lookup table for `level` (perceptual nearest match in OKLab).
+    #[must_use]
+    pub fn new(level: ColorLevel, dither: bool) -> Self {
+        let (candidates, amplitude): (Vec<u8>, i16) = match level {
+            ColorLevel::Ansi256 => ((16..=255).collect(), 40),
+            ColorLevel::Ansi16 => ((0..16).collect(), 96),
+            ColorLevel::TrueColor | ColorLevel::Mono => (Vec::new(), 0),
+        };
+        let lut = if candidates.is_empty() {
+            Vec::new()
+        } else {
+            build_lut(&candidates)
+        };
+        let mut bin = [0u8; 256];
+        for (v, b) in bin.iter_mut().enumerate() {
+            *b = ((v * (LUT_SIDE - 1) + 127) / 255) as u8;
+        }
+        Self {
+            level,
+            dither: dither && !lut.is_empty(),
+            lut,
+            amplitude,
+            bin,
+        }
+    }
+
+    /// The level this palette serves.
+    #[must_use]
+    pub fn level(&self) -> ColorLevel {
+        self.level
+    }
+
+    /// The code for pixel `c` at pixel position (x, y) (the position only matters when dithering).
+    #[must_use]
+    #[inline]
+    pub fn code(&self, c: Rgb, x: usize, y: usize) -> Code {
+        if self.lut.is_empty() {
+            return (u32::from(c.r) << 16) | (u32::from(c.g) << 8) | u32::from(c.b);
+        }
+        let c = if self.dither {
+            let o = bayer_offset(x, y, self.amplitude);
+            let add = |v: u8| (i16::from(v) + o).clamp(0, 255) as u8;
+            Rgb::new(add(c.r), add(c.g), add(c.b))
+        } else {
+            c
+        };
+        let bin = |v: u8| usize::from(self.bin[usize::from(v)]);
+        let i = (bin(c.r) << (2 * LUT_BITS)) | (bin(c.g) << LUT_BITS) | bin(c.b);
+        u32::from(self.lut[i])
+    }
+
+    /// The RGB a code shows (the xterm default for palette indices).
+    #[must_use]
+    #[inline]
+    pub fn rgb(&self, code: Code) -> Rgb {
+        if self.lut.is_empty() {
+            Rgb::new((code >> 16) as u8, (code >> 8) as u8, code as u8)
+        } else {
+            xterm_rgb(code as u8)
+        }
+    }
+}
+
+/// For every bin centre, the candidate nearest in OKLab.
+fn build_lut(candidates: &[u8]) -> Vec<u8> {
+    let labs: Vec<[f32; 3]> = candidates.iter().map(|&i| oklab(xterm_rgb(i))).collect();
+    let centre = |i: usize| ((i * 255 + (LUT_SIDE - 1) / 2) / (LUT_SIDE - 1)) as u8;
+    let mut lut = vec![0u8; LUT_SIDE * LUT_SIDE * LUT_SIDE];
+    for r in 0..LUT_SIDE {
+        for g in 0..LUT_SIDE {
+            for b in 0..LUT_SIDE {
+                let lab = oklab(Rgb::new(centre(r), centre(g), centre(b)));
+                let mut best = (f32::MAX, 0u8);
+                for (k, p) in labs.iter().enumerate() {
+                    let d =
+                        (lab[0] - p[0]).powi(2) + (lab[1] - p[1]).powi(2) + (lab[2] - p[2]).powi(2);
+                    if d < best.0 {
+                        best = (d, candidates[k]);
+                    }
+                }
+                lut[(r * LUT_SIDE + g) * LUT_SIDE + b] = best.1;
+            }
+        }
+    }
+    lut
+}
+
+/// sRGB → OKLab (Björn Ottosson's perceptual space), for nearest-colour matching.
+#[must_use]
+pub fn oklab(c: Rgb) -> [f32; 3] {
+    let lin = |v: u8| {
+        let v = f32::from(v) / 255.0;
+        if v <= 0.040_45 {
+            v / 12.92
+        } else {
+            ((v + 0.055) / 1.055).powf(2.4)
+        }
+    };
+    let (r, g, b) = (lin(c.r), lin(c.g), lin(c.b));
+    let l = (0.412_221_46 * r + 0.536_332_55 * g + 0.051_445_995 * b).cbrt();
+    let m = (0.211_903_5 * r + 0.680_699_5 * g + 0.107_396_96 * b).cbrt();
+    let s = (0.088_302_46 * r + 0.281_718_85 * g + 0.629_978_7 * b).cbrt();
+    [
+        0.210_454_26 * l + 0.793_617_8 * m - 0.004_072_047 * s,
+        1.977_998_5 * l - 2.428_592_2 * m + 0.450_593_7 * s,
+        0.025_904_037 * l + 0.782_771_77 * m - 0.808_675_77 * s,
+    ]
+}
+
+/// A cheap perceptual distance ("redmean" weighted RGB), scaled so black↔white ≈ 255.
+///
+/// Used per cell by the lossy `delta` lever, where OKLab would be too slow.
+#[must_use]
+#[inline]
+pub fn distance(a: Rgb, b: Rgb) -> u32 {
+    let rmean = (u32::from(a.r) + u32::from(b.r)) / 2;
+    let dr = i32::from(a.r) - i32::from(b.r);
+    let dg = i32::from(a.g) - i32::from(b.g);
+    let db = i32::from(a.b) - i32::from(b.b);
+    let d2 = (((512 + rmean) * (dr * dr) as u32) >> 8)
+        + 4 * (dg * dg) as u32
+        + (((767 - rmean) * (db * db) as u32) >> 8);
+    // d2 of black↔white is 9·255²; divide by 9 to land on a 0..255 scale.
+    ((d2 / 9) as f64).sqrt() as u32
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_256_level_never_uses_the_theme_colours() {
+        let p = Palette::new(ColorLevel::Ansi256, false);
+        for v in (0..=255).step_by(5) {
+            for c in [
+                Rgb::new(v, 0, 0),
+                Rgb::new(v, v, v),
+                Rgb::new(0, v, 255 - v),
+            ] {
+                assert!(p.code(c, 0, 0) >= 16);
+            }
+        }
+    }
+
+    #[test]
+    fn palette_colours_map_to_themselves_or_a_near_twin() {
+        // Two entries can share a table bin (cube grey 95 and ramp grey 98), so a few map to a twin.
+        let p = Palette::new(ColorLevel::Ansi256, false);
+        let mut exact = 0;
+        for i in 16..=255u8 {
+            let c = xterm_rgb(i);
+            let got = p.rgb(p.code(c, 0, 0));
+            assert!(distance(got, c) <= 8, "index {i}: {got:?}");
+            exact += usize::from(got == c);
+        }
+        assert!(exact >= 225, "{exact}");
+        let p = Palette::new(ColorLevel::Ansi16, false);
+        assert_eq!(p.code(Rgb::new(0, 0, 0), 0, 0), 0);
+        assert_eq!(p.code(Rgb::new(255, 255, 255), 0, 0), 15);
+        assert_eq!(p.code(Rgb::new(250, 10, 10), 0, 0), 9);
+    }
+
+    #[test]
+    fn truecolor_codes_are_exact() {
+        let p = Palette::new(ColorLevel::TrueColor, true);
+        let c = Rgb::new(1, 2, 3);
+        assert_eq!(p.code(c, 5, 7), 0x010203);
+        assert_eq!(p.rgb(0x010203), c);
+    }
+
+    #[test]
+    fn xterm_indices_follow_the_cube_and_ramp() {
+        assert_eq!(xterm_rgb(16), Rgb::new(0, 0, 0));
+        assert_eq!(xterm_rgb(231), Rgb::new(255, 255, 255));
+        assert_eq!(xterm_rgb(196), Rgb::new(255, 0, 0));
+        assert_eq!(xterm_rgb(232), Rgb::new(8, 8, 8));
+        assert_eq!(xterm_rgb(255), Rgb::new(238, 238, 238));
+    }
+
+    #[test]
+    fn distance_is_zero_for_equal_and_about_255_for_black_white() {
+        let w = Rgb::new(255, 255, 255);
+        assert_eq!(distance(w, w), 0);
+        let d = distance(Rgb::default(), w);
+        assert!((250..=256).contains(&d), "{d}");
+    }
+
+    #[test]
+    fn dithering_spreads_a_flat_colour_over_neighbouring_entries() {
+        let p = Palette::new(ColorLevel::Ansi256, true);
+        let c = Rgb::new(115, 115, 115);
+        let codes: std::collections::HashSet<u32> = (0..4)
+            .flat_map(|y| (0..4).map(move |x| (x, y)))
+            .map(|(x, y)| p.code(c, x, y))
+            .collect();
+        assert!(codes.len() >= 2, "{codes:?}");
+    }
+}

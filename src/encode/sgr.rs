@@ -1,0 +1,138 @@
+//! Select Graphic Rendition: the shortest sequence that moves the terminal from one fg/bg pair to another.
+
+use super::level::ColorLevel;
+use super::number::push_num;
+use super::palette::{Code, DEFAULT};
+
+/// Decimal digits of each byte value (truecolor parameters are three of them).
+const DIGITS: [u8; 256] = {
+    let mut t = [3u8; 256];
+    let mut i = 0;
+    while i < 100 {
+        t[i] = if i < 10 { 1 } else { 2 };
+        i += 1;
+    }
+    t
+};
+
+#[inline]
+fn d8(v: u32) -> u32 {
+    u32::from(DIGITS[(v & 0xFF) as usize])
+}
+
+/// Bytes of one colour parameter (`38;2;r;g;b`, `38;5;n`, `31`, `101`, `39` …).
+#[inline]
+pub(crate) fn param_len(level: ColorLevel, code: Code, bg: bool) -> u32 {
+    if code == DEFAULT {
+        return 2;
+    }
+    match level {
+        ColorLevel::TrueColor => 7 + d8(code >> 16) + d8(code >> 8) + d8(code),
+        ColorLevel::Ansi256 => 5 + d8(code),
+        // 30–37 / 90–97 are two bytes; 40–47 two, 100–107 three.
+        ColorLevel::Ansi16 => 2 + u32::from(bg && code >= 8),
+        ColorLevel::Mono => 0,
+    }
+}
+
+/// Writes one colour parameter.
+fn push_param(out: &mut Vec<u8>, level: ColorLevel, code: Code, bg: bool) {
+    if code == DEFAULT {
+        out.extend_from_slice(if bg { b"49" } else { b"39" });
+        return;
+    }
+    match level {
+        ColorLevel::TrueColor => {
+            out.extend_from_slice(if bg { b"48;2;" } else { b"38;2;" });
+            push_num(out, (code >> 16) & 0xFF);
+            out.push(b';');
+            push_num(out, (code >> 8) & 0xFF);
+            out.push(b';');
+            push_num(out, code & 0xFF);
+        }
+        ColorLevel::Ansi256 => {
+            out.extend_from_slice(if bg { b"48;5;" } else { b"38;5;" });
+            push_num(out, code);
+        }
+        ColorLevel::Ansi16 => {
+            let base = match (bg, code >= 8) {
+                (false, false) => 30,
+                (false, true) => 90 - 8,
+                (true, false) => 40,
+                (true, true) => 100 - 8,
+            };
+            push_num(out, base + code);
+        }
+        ColorLevel::Mono => {}
+    }
+}
+
+/// Bytes needed to go from (fg, bg) `from` to `to` (the planner inlines the same arithmetic; tests pin
+/// it to what [`write`] emits).
+#[inline]
+#[cfg_attr(not(test), allow(dead_code))]
+pub(crate) fn cost(level: ColorLevel, from: (Code, Code), to: (Code, Code)) -> u32 {
+    match (from.0 != to.0, from.1 != to.1) {
+        (false, false) => 0,
+        _ if to == (DEFAULT, DEFAULT) => 3,
+        (true, false) => 3 + param_len(level, to.0, false),
+        (false, true) => 3 + param_len(level, to.1, true),
+        (true, true) => 4 + param_len(level, to.0, false) + param_len(level, to.1, true),
+    }
+}
+
+/// Writes the sequence whose length [`cost`] reports.
+pub(crate) fn write(out: &mut Vec<u8>, level: ColorLevel, from: (Code, Code), to: (Code, Code)) {
+    let (f, b) = (from.0 != to.0, from.1 != to.1);
+    if !f && !b {
+        return;
+    }
+    if to == (DEFAULT, DEFAULT) {
+        out.extend_from_slice(b"\x1b[m");
+        return;
+    }
+    out.extend_from_slice(b"\x1b[");
+    if f {
+        push_param(out, level, to.0, false);
+    }
+    if f && b {
+        out.push(b';');
+    }
+    if b {
+        push_param(out, level, to.1, true);
+    }
+    out.push(b'm');
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::palette::UNKNOWN;
+    use super::*;
+
+    fn check(level: ColorLevel, from: (Code, Code), to: (Code, Code), want: &str) {
+        let mut v = Vec::new();
+        write(&mut v, level, from, to);
+        assert_eq!(String::from_utf8(v.clone()).unwrap(), want);
+        assert_eq!(cost(level, from, to) as usize, v.len(), "{want:?}");
+    }
+
+    #[test]
+    fn sequences_are_combined_and_minimal() {
+        use ColorLevel::*;
+        check(TrueColor, (1, 2), (1, 2), "");
+        check(TrueColor, (1, 2), (0x0A_FF_00, 2), "\x1b[38;2;10;255;0m");
+        check(
+            TrueColor,
+            (UNKNOWN, UNKNOWN),
+            (0, 0x010203),
+            "\x1b[38;2;0;0;0;48;2;1;2;3m",
+        );
+        check(Ansi256, (16, 17), (16, 231), "\x1b[48;5;231m");
+        check(Ansi256, (UNKNOWN, 17), (16, 17), "\x1b[38;5;16m");
+        check(Ansi16, (0, 0), (1, 9), "\x1b[31;101m");
+        check(Ansi16, (0, 0), (15, 7), "\x1b[97;47m");
+        check(Ansi16, (3, 3), (DEFAULT, DEFAULT), "\x1b[m");
+        check(Ansi16, (DEFAULT, 3), (DEFAULT, DEFAULT), "\x1b[m");
+        check(Ansi16, (DEFAULT, DEFAULT), (DEFAULT, 3), "\x1b[43m");
+    }
+}
