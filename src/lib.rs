@@ -12,6 +12,7 @@ pub mod framebuffer;
 pub mod game;
 pub mod map;
 pub mod output;
+pub mod present;
 pub mod raster;
 pub mod replay;
 pub mod scene;

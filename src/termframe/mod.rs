@@ -6,7 +6,7 @@ mod parse;
 mod text;
 
 pub use diff::{diff, CellDiff, DiffReport};
-pub use parse::{from_ansi, load, FrameFormat};
+pub use parse::{from_ansi, from_screen, load, FrameFormat};
 pub use text::{cell_code, from_cells_text, to_cells_text, CELLS_HEADER};
 
 use crate::color::Rgb;

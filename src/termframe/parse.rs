@@ -131,7 +131,12 @@ pub fn from_ansi(bytes: &[u8]) -> TermFrame {
     );
     let mut parser = vt100::Parser::new(rows as u16 + 1, cols as u16, 0);
     parser.process(&fixed);
-    let screen = parser.screen();
+    from_screen(parser.screen(), cols, rows)
+}
+
+/// Reads the top-left `cols` × `rows` cells of a terminal model's screen.
+#[must_use]
+pub fn from_screen(screen: &vt100::Screen, cols: usize, rows: usize) -> TermFrame {
     let colour = |c: vt100::Color| match c {
         vt100::Color::Default => None,
         vt100::Color::Idx(n) => Some(xterm_rgb(n)),
@@ -142,11 +147,7 @@ pub fn from_ansi(bytes: &[u8]) -> TermFrame {
         for x in 0..cols {
             let cell = screen.cell(y as u16, x as u16);
             let (glyph, fg, bg) = cell.map_or((' ', None, None), |c| {
-                (
-                    c.contents().chars().next().unwrap_or(' '),
-                    colour(c.fgcolor()),
-                    colour(c.bgcolor()),
-                )
+                (c.contents().chars().next().unwrap_or(' '), colour(c.fgcolor()), colour(c.bgcolor()))
             });
             cells.push(TermCell { glyph, fg, bg });
         }

@@ -1,0 +1,251 @@
+//! One way to put a frame on a terminal: ratatui's cell diff for the panes, halfcast's encoder
+//! for the 3D view, one synchronized update. The TUI, replays and the SSH server all use it.
+
+use ratatui::backend::{Backend, CrosstermBackend};
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::style::{Color, Modifier};
+
+use crate::encode::{ColorLevel, EncodeOptions, Encoder, Palette, SYNC_BEGIN, SYNC_END};
+use crate::framebuffer::Framebuffer;
+use crate::termframe::ratatui_rgb;
+
+/// Turns whole screens into the bytes that update a terminal from the previous screen.
+#[derive(Debug)]
+pub struct Presenter {
+    encoder: Encoder,
+    palette: Palette,
+    previous: Option<Buffer>,
+    out: Vec<u8>,
+}
+
+impl Presenter {
+    /// A presenter for a terminal that shows nothing known yet (the first frame redraws all).
+    #[must_use]
+    pub fn new(mut opts: EncodeOptions) -> Self {
+        opts.sync = false;
+        Self { encoder: Encoder::new(opts), palette: Palette::new(opts.level, false), previous: None, out: Vec::new() }
+    }
+
+    /// The colour level frames are sent at.
+    #[must_use]
+    pub fn level(&self) -> ColorLevel {
+        self.encoder.options().level
+    }
+
+    /// Forgets the terminal's contents: the next frame clears and redraws everything.
+    pub fn invalidate(&mut self) {
+        self.previous = None;
+        self.encoder.invalidate();
+    }
+
+    /// Switches colour level (a full redraw follows).
+    pub fn set_level(&mut self, level: ColorLevel) {
+        let mut opts = *self.encoder.options();
+        opts.level = level;
+        *self = Self::new(opts);
+    }
+
+    /// The bytes for one frame: `screen` holds the panes (the view's cells are ignored),
+    /// `view` the 3D view's pixels shown at `view_area` (empty area = no view).
+    pub fn frame(&mut self, screen: &Buffer, view: &Framebuffer, view_area: Rect) -> &[u8] {
+        let area = screen.area;
+        let mut next = screen.clone();
+        for y in view_area.top()..view_area.bottom() {
+            for x in view_area.left()..view_area.right() {
+                if let Some(c) = next.cell_mut((x, y)) {
+                    c.set_skip(true);
+                }
+            }
+        }
+        self.adapt_colours(&mut next);
+        self.out.clear();
+        let level = self.level();
+        if level != ColorLevel::Mono {
+            self.out.extend_from_slice(SYNC_BEGIN);
+        }
+        let previous = match self.previous.take() {
+            Some(p) if p.area == area => p,
+            _ => {
+                self.out.extend_from_slice(b"\x1b[m\x1b[2J");
+                self.encoder.invalidate();
+                let mut blank = Buffer::empty(area);
+                // Cells that differ from a cleared screen are all that must be drawn.
+                blank.reset();
+                blank
+            }
+        };
+        {
+            let diff = previous.diff(&next);
+            if !diff.is_empty() {
+                let mut backend = CrosstermBackend::new(&mut self.out);
+                // Writing into a Vec cannot fail.
+                let _ = backend.draw(diff.into_iter());
+            }
+        }
+        if level == ColorLevel::Mono {
+            strip_sgr(&mut self.out);
+        }
+        if view_area.area() > 0 && view.width() == usize::from(view_area.width) {
+            let bytes = self.encoder.encode(view, view_area.x, view_area.y);
+            self.out.extend_from_slice(bytes);
+        }
+        if level != ColorLevel::Mono {
+            self.out.extend_from_slice(SYNC_END);
+        }
+        self.previous = Some(next);
+        &self.out
+    }
+
+    /// Maps the panes' colours to the level (ratatui would send 24-bit colours as given).
+    fn adapt_colours(&self, buf: &mut Buffer) {
+        let level = self.level();
+        if level == ColorLevel::TrueColor {
+            return;
+        }
+        let map = |c: Color| -> Color {
+            if level == ColorLevel::Mono {
+                return Color::Reset;
+            }
+            match ratatui_rgb(c) {
+                None => Color::Reset,
+                Some(rgb) => Color::Indexed(self.palette.code(rgb, 0, 0) as u8),
+            }
+        };
+        for cell in buf.content.iter_mut() {
+            cell.fg = map(cell.fg);
+            cell.bg = map(cell.bg);
+            if level == ColorLevel::Mono {
+                cell.modifier = Modifier::empty();
+                if !cell.symbol().is_ascii() {
+                    let ascii = match cell.symbol() {
+                        "│" | "┃" | "║" => "|",
+                        "─" | "━" | "═" => "-",
+                        "╭" | "╮" | "╰" | "╯" | "┌" | "┐" | "└" | "┘" | "┼" | "├" | "┤" | "┬" | "┴" => "+",
+                        _ => "#",
+                    };
+                    cell.set_symbol(ascii);
+                }
+            }
+        }
+    }
+}
+
+/// Removes SGR sequences (`ESC [ … m`) so mono output carries only cursor moves and text.
+fn strip_sgr(out: &mut Vec<u8>) {
+    let mut kept = Vec::with_capacity(out.len());
+    let mut i = 0;
+    while i < out.len() {
+        if out[i] == 0x1b && out.get(i + 1) == Some(&b'[') {
+            let mut j = i + 2;
+            while j < out.len() && !(0x40..=0x7e).contains(&out[j]) {
+                j += 1;
+            }
+            if out.get(j) == Some(&b'm') {
+                i = j + 1;
+                continue;
+            }
+        }
+        kept.push(out[i]);
+        i += 1;
+    }
+    *out = kept;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::color::Rgb;
+    use crate::termframe::{from_screen, TermFrame};
+    use ratatui::style::Style;
+
+    fn screen(text: &str) -> Buffer {
+        let mut b = Buffer::empty(Rect::new(0, 0, 20, 6));
+        b.set_string(0, 5, text, Style::new().fg(Color::Rgb(200, 100, 50)).bg(Color::Rgb(10, 10, 30)));
+        b
+    }
+
+    fn view(shade: u8) -> Framebuffer {
+        let mut fb = Framebuffer::new(10, 8);
+        for y in 0..8 {
+            for x in 0..10 {
+                fb.set(x, y, Rgb::new(shade.wrapping_add((x * 20) as u8), (y * 30) as u8, 90));
+            }
+        }
+        fb
+    }
+
+    /// What a person should see: the panes, with the view's half-blocks at its area.
+    fn intended(screen: &Buffer, view: &Framebuffer, at: Rect) -> TermFrame {
+        let mut f = TermFrame::from_buffer(screen);
+        let v = TermFrame::from_framebuffer(view);
+        for y in 0..usize::from(at.height) {
+            for x in 0..usize::from(at.width) {
+                f.cells[(y + usize::from(at.y)) * f.cols + x + usize::from(at.x)] = *v.cell(x, y);
+            }
+        }
+        f
+    }
+
+    #[test]
+    fn a_sequence_of_frames_reaches_the_screen_exactly() {
+        let mut p = Presenter::new(EncodeOptions::new(ColorLevel::TrueColor));
+        let at = Rect::new(3, 1, 10, 4);
+        let mut term = vt100::Parser::new(6, 20, 0);
+        for (i, text) in ["status one", "status two", "status two", "three"].iter().enumerate() {
+            let (s, v) = (screen(text), view(i as u8 * 40));
+            let bytes = p.frame(&s, &v, at).to_vec();
+            assert!(bytes.starts_with(SYNC_BEGIN) && bytes.ends_with(SYNC_END));
+            term.process(&bytes);
+            let seen = from_screen(term.screen(), 20, 6);
+            let want = intended(&s, &v, at);
+            for y in 0..6 {
+                for x in 0..20 {
+                    assert_eq!(seen.cell(x, y).appearance(), want.cell(x, y).appearance(), "frame {i} cell ({x},{y})");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn an_unchanged_frame_sends_only_the_sync_markers() {
+        let mut p = Presenter::new(EncodeOptions::new(ColorLevel::TrueColor));
+        let at = Rect::new(0, 0, 10, 4);
+        let _ = p.frame(&screen("x"), &view(1), at);
+        let again = p.frame(&screen("x"), &view(1), at).to_vec();
+        assert_eq!(again, [SYNC_BEGIN, SYNC_END].concat());
+    }
+
+    #[test]
+    fn mono_frames_have_no_colour_sequences() {
+        let mut p = Presenter::new(EncodeOptions::new(ColorLevel::Mono));
+        let bytes = p.frame(&screen("╭─ mono"), &view(3), Rect::new(0, 0, 10, 4)).to_vec();
+        let text = String::from_utf8(bytes).unwrap();
+        assert!(text.is_ascii(), "{text:?}");
+        for seq in text.split('\x1b').skip(1) {
+            let fin = seq.bytes().skip(1).find(|b| (0x40..=0x7e).contains(b));
+            assert!(seq.starts_with('[') && matches!(fin, Some(b'H' | b'J' | b'C')), "{seq:?} in {text:?}");
+        }
+        assert!(text.contains("+-") && text.contains("mono"), "{text:?}");
+    }
+
+    #[test]
+    fn mono_view_lands_at_its_origin() {
+        let mut p = Presenter::new(EncodeOptions::new(ColorLevel::Mono));
+        let at = Rect::new(3, 1, 10, 4);
+        let mut term = vt100::Parser::new(6, 20, 0);
+        for shade in [0u8, 90, 180] {
+            let v = view(shade);
+            term.process(p.frame(&screen("m"), &v, at));
+            let seen = from_screen(term.screen(), 20, 6);
+            for y in 0..4 {
+                for x in 0..10 {
+                    let (top, bottom) = v.cell(x, y);
+                    let want = crate::encode::quantize::mono_char(top, bottom);
+                    assert_eq!(seen.cell(x + 3, y + 1).glyph, want, "shade {shade} cell ({x},{y})");
+                }
+            }
+            assert_eq!(seen.cell(0, 5).glyph, 'm');
+        }
+    }
+}
