@@ -37,8 +37,28 @@ enum Command {
     Play(PlayArgs),
     /// Measure the terminal encoder: bytes per frame and encode time vs stock ratatui.
     Bench(BenchArgs),
+    /// Play back a `.hcr` recording: write chosen frames, or an asciicast of the whole run.
+    Replay(ReplayArgs),
     /// Compare two frames (PNG, ANSI, cells text or plain text): exit 0 equal, 1 different, 2 error.
     Diff(DiffArgs),
+}
+
+#[derive(Args, Debug)]
+struct ReplayArgs {
+    /// The recording (.hcr).
+    file: PathBuf,
+    /// Frames to write, e.g. `0,10,20` or `0-19` (frame N is drawn after N+1 steps).
+    #[arg(long, value_parser = crate::replay_cli::parse_frames)]
+    frames: Option<std::vec::Vec<usize>>,
+    /// What to write: per-frame files, or `cast` (asciicast v2 of the whole run).
+    #[arg(long, value_enum)]
+    format: Option<crate::replay_cli::ReplayFormat>,
+    /// Folder for frame files, or the file for `--format cast` (default: standard output).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Colour level of `ansi` and `cast` output (default truecolor, so replays are the same anywhere).
+    #[arg(long, value_parser = parse_level, default_value = "truecolor")]
+    colors: ColorLevel,
 }
 
 #[derive(Args, Debug)]
@@ -267,6 +287,7 @@ pub fn run() -> ExitCode {
     let result = match cli.command {
         Some(Command::Render(args)) => render(&args),
         Some(Command::Diff(args)) => diff(&args),
+        Some(Command::Replay(args)) => replay(&args),
         Some(Command::Play(args)) => play(&args),
         Some(Command::Bench(args)) => bench(&args),
         None => play(&PlayArgs::defaults()),
@@ -355,6 +376,32 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
         }
     };
     write_output(args.output.as_ref(), &bytes)
+}
+
+fn replay(args: &ReplayArgs) -> Result<(), Failure> {
+    use crate::replay_cli::{asciicast, read_replay, replay_world, write_frames, ReplayFormat};
+    let failure = |f: crate::replay_cli::ReplayFailure| Failure {
+        code: f.code,
+        message: f.message,
+    };
+    let replay = read_replay(&args.file).map_err(failure)?;
+    let world = replay_world(&replay, &args.file).map_err(failure)?;
+    match (args.format, &args.frames) {
+        (Some(ReplayFormat::Cast), _) => write_output(
+            args.out.as_ref(),
+            asciicast(&replay, world, args.colors).as_bytes(),
+        ),
+        (Some(format), Some(frames)) => {
+            let dir = args.out.clone().unwrap_or_else(|| PathBuf::from("."));
+            write_frames(&replay, world, frames, format, args.colors, &dir).map_err(failure)
+        }
+        (Some(_), None) => Err(Failure::input(
+            "--format needs --frames (or use --format cast)",
+        )),
+        (None, _) => Err(Failure::input(
+            "on-screen playback is not wired yet; give --format",
+        )),
+    }
 }
 
 fn diff(args: &DiffArgs) -> Result<(), Failure> {

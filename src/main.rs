@@ -2,6 +2,7 @@
 
 mod bench_cli;
 mod cli;
+mod replay_cli;
 
 fn main() -> std::process::ExitCode {
     cli::run()

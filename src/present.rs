@@ -2,7 +2,7 @@
 //! for the 3D view, one synchronized update. The TUI, replays and the SSH server all use it.
 
 use ratatui::backend::{Backend, CrosstermBackend};
-use ratatui::buffer::Buffer;
+use ratatui::buffer::{Buffer, CellDiffOption};
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Modifier};
 
@@ -24,7 +24,12 @@ impl Presenter {
     #[must_use]
     pub fn new(mut opts: EncodeOptions) -> Self {
         opts.sync = false;
-        Self { encoder: Encoder::new(opts), palette: Palette::new(opts.level, false), previous: None, out: Vec::new() }
+        Self {
+            encoder: Encoder::new(opts),
+            palette: Palette::new(opts.level, false),
+            previous: None,
+            out: Vec::new(),
+        }
     }
 
     /// The colour level frames are sent at.
@@ -54,7 +59,7 @@ impl Presenter {
         for y in view_area.top()..view_area.bottom() {
             for x in view_area.left()..view_area.right() {
                 if let Some(c) = next.cell_mut((x, y)) {
-                    c.set_skip(true);
+                    c.set_diff_option(CellDiffOption::Skip);
                 }
             }
         }
@@ -121,7 +126,8 @@ impl Presenter {
                     let ascii = match cell.symbol() {
                         "│" | "┃" | "║" => "|",
                         "─" | "━" | "═" => "-",
-                        "╭" | "╮" | "╰" | "╯" | "┌" | "┐" | "└" | "┘" | "┼" | "├" | "┤" | "┬" | "┴" => "+",
+                        "╭" | "╮" | "╰" | "╯" | "┌" | "┐" | "└" | "┘" | "┼" | "├" | "┤" | "┬"
+                        | "┴" => "+",
                         _ => "#",
                     };
                     cell.set_symbol(ascii);
@@ -161,7 +167,14 @@ mod tests {
 
     fn screen(text: &str) -> Buffer {
         let mut b = Buffer::empty(Rect::new(0, 0, 20, 6));
-        b.set_string(0, 5, text, Style::new().fg(Color::Rgb(200, 100, 50)).bg(Color::Rgb(10, 10, 30)));
+        b.set_string(
+            0,
+            5,
+            text,
+            Style::new()
+                .fg(Color::Rgb(200, 100, 50))
+                .bg(Color::Rgb(10, 10, 30)),
+        );
         b
     }
 
@@ -169,7 +182,11 @@ mod tests {
         let mut fb = Framebuffer::new(10, 8);
         for y in 0..8 {
             for x in 0..10 {
-                fb.set(x, y, Rgb::new(shade.wrapping_add((x * 20) as u8), (y * 30) as u8, 90));
+                fb.set(
+                    x,
+                    y,
+                    Rgb::new(shade.wrapping_add((x * 20) as u8), (y * 30) as u8, 90),
+                );
             }
         }
         fb
@@ -192,7 +209,10 @@ mod tests {
         let mut p = Presenter::new(EncodeOptions::new(ColorLevel::TrueColor));
         let at = Rect::new(3, 1, 10, 4);
         let mut term = vt100::Parser::new(6, 20, 0);
-        for (i, text) in ["status one", "status two", "status two", "three"].iter().enumerate() {
+        for (i, text) in ["status one", "status two", "status two", "three"]
+            .iter()
+            .enumerate()
+        {
             let (s, v) = (screen(text), view(i as u8 * 40));
             let bytes = p.frame(&s, &v, at).to_vec();
             assert!(bytes.starts_with(SYNC_BEGIN) && bytes.ends_with(SYNC_END));
@@ -201,7 +221,11 @@ mod tests {
             let want = intended(&s, &v, at);
             for y in 0..6 {
                 for x in 0..20 {
-                    assert_eq!(seen.cell(x, y).appearance(), want.cell(x, y).appearance(), "frame {i} cell ({x},{y})");
+                    assert_eq!(
+                        seen.cell(x, y).appearance(),
+                        want.cell(x, y).appearance(),
+                        "frame {i} cell ({x},{y})"
+                    );
                 }
             }
         }
@@ -219,12 +243,17 @@ mod tests {
     #[test]
     fn mono_frames_have_no_colour_sequences() {
         let mut p = Presenter::new(EncodeOptions::new(ColorLevel::Mono));
-        let bytes = p.frame(&screen("╭─ mono"), &view(3), Rect::new(0, 0, 10, 4)).to_vec();
+        let bytes = p
+            .frame(&screen("╭─ mono"), &view(3), Rect::new(0, 0, 10, 4))
+            .to_vec();
         let text = String::from_utf8(bytes).unwrap();
         assert!(text.is_ascii(), "{text:?}");
         for seq in text.split('\x1b').skip(1) {
             let fin = seq.bytes().skip(1).find(|b| (0x40..=0x7e).contains(b));
-            assert!(seq.starts_with('[') && matches!(fin, Some(b'H' | b'J' | b'C')), "{seq:?} in {text:?}");
+            assert!(
+                seq.starts_with('[') && matches!(fin, Some(b'H' | b'J' | b'C')),
+                "{seq:?} in {text:?}"
+            );
         }
         assert!(text.contains("+-") && text.contains("mono"), "{text:?}");
     }
@@ -242,7 +271,11 @@ mod tests {
                 for x in 0..10 {
                     let (top, bottom) = v.cell(x, y);
                     let want = crate::encode::quantize::mono_char(top, bottom);
-                    assert_eq!(seen.cell(x + 3, y + 1).glyph, want, "shade {shade} cell ({x},{y})");
+                    assert_eq!(
+                        seen.cell(x + 3, y + 1).glyph,
+                        want,
+                        "shade {shade} cell ({x},{y})"
+                    );
                 }
             }
             assert_eq!(seen.cell(0, 5).glyph, 'm');

@@ -22,7 +22,11 @@ fn render(dir: &std::path::Path, name: &str, extra: &[&str]) -> String {
 fn the_same_frame_in_png_ansi_and_cells_form_is_equal() {
     let dir = tempfile::tempdir().unwrap();
     let png = render(dir.path(), "a.png", &["--format", "png"]);
-    let ansi = render(dir.path(), "a.ansi", &["--format", "ansi", "--colors", "truecolor"]);
+    let ansi = render(
+        dir.path(),
+        "a.ansi",
+        &["--format", "ansi", "--colors", "truecolor"],
+    );
     let cells = render(dir.path(), "a.txt", &["--format", "cells"]);
     for (x, y) in [(&png, &ansi), (&ansi, &cells), (&cells, &png)] {
         let out = halfcast(&["diff", x, y]);

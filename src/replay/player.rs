@@ -23,6 +23,10 @@ pub struct Frame {
     pub index: usize,
     pub screen: Buffer,
     pub view: Framebuffer,
+    /// Where the view sits on the screen (empty when the terminal is too small for it).
+    pub view_area: Rect,
+    /// The camera this frame was seen through.
+    pub camera: Camera,
     pub cast: Cast,
 }
 
@@ -109,6 +113,8 @@ impl Player {
             index: self.next,
             screen,
             view: self.view.clone(),
+            view_area: view,
+            camera: self.state.camera,
             cast,
         };
         self.next += 1;

@@ -147,7 +147,11 @@ pub fn from_screen(screen: &vt100::Screen, cols: usize, rows: usize) -> TermFram
         for x in 0..cols {
             let cell = screen.cell(y as u16, x as u16);
             let (glyph, fg, bg) = cell.map_or((' ', None, None), |c| {
-                (c.contents().chars().next().unwrap_or(' '), colour(c.fgcolor()), colour(c.bgcolor()))
+                (
+                    c.contents().chars().next().unwrap_or(' '),
+                    colour(c.fgcolor()),
+                    colour(c.bgcolor()),
+                )
             });
             cells.push(TermCell { glyph, fg, bg });
         }

@@ -1,0 +1,230 @@
+//! `halfcast replay`: plays a `.hcr` recording headlessly and writes chosen frames or an asciicast.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use halfcast::encode::{ColorLevel, EncodeOptions};
+use halfcast::output::{json::RayReport, text};
+use halfcast::present::Presenter;
+use halfcast::replay::player::{Frame, Player};
+use halfcast::replay::{MapSource, Replay};
+use halfcast::termframe::{to_cells_text, TermFrame};
+use halfcast::world::World;
+
+/// What a replayed frame is written as.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ReplayFormat {
+    /// The 3D view's framebuffer (COLS × 2·ROWS pixels of the view pane).
+    Png,
+    /// The whole screen as the terminal receives it in a full redraw.
+    Ansi,
+    /// The 3D view as a plain ASCII shade ramp.
+    Txt,
+    /// The whole screen as colour-aware text (glyph, fg, bg per cell), for code review.
+    Cells,
+    /// The 3D view's rays (same shape as `render --format json`).
+    Json,
+    /// An asciicast v2 recording of the whole run at the recorded timing.
+    Cast,
+}
+
+/// An error with the exit code it ends the program with.
+pub struct ReplayFailure {
+    pub code: u8,
+    pub message: String,
+}
+
+fn input(message: impl std::fmt::Display) -> ReplayFailure {
+    ReplayFailure {
+        code: 2,
+        message: message.to_string(),
+    }
+}
+
+fn io(message: impl std::fmt::Display) -> ReplayFailure {
+    ReplayFailure {
+        code: 1,
+        message: message.to_string(),
+    }
+}
+
+/// Reads and parses a replay file.
+///
+/// # Errors
+/// Unreadable or invalid files (exit 2).
+pub fn read_replay(path: &Path) -> Result<Replay, ReplayFailure> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| input(format!("{}: cannot read: {e}", path.display())))?;
+    Replay::parse(&path.display().to_string(), &text).map_err(input)
+}
+
+/// Loads the world a replay was recorded in: the embedded map, or its map file (as recorded,
+/// else beside the replay file).
+///
+/// # Errors
+/// The map cannot be found or is invalid (exit 2).
+pub fn replay_world(replay: &Replay, replay_path: &Path) -> Result<Arc<World>, ReplayFailure> {
+    match &replay.header.map {
+        MapSource::Embedded => Ok(Arc::new(World::default_world())),
+        MapSource::File(p) => {
+            let direct = PathBuf::from(p);
+            let beside = replay_path.parent().map(|d| d.join(p));
+            let path = if direct.exists() {
+                direct
+            } else {
+                beside.filter(|b| b.exists()).unwrap_or(direct)
+            };
+            let (world, warnings) = World::from_file(&path, false).map_err(input)?;
+            for w in warnings {
+                eprintln!("{w}");
+            }
+            Ok(Arc::new(world))
+        }
+    }
+}
+
+/// Parses `0,5,10` and ranges like `20-30` into sorted, unique frame numbers.
+///
+/// # Errors
+/// Anything but numbers, commas and ascending ranges.
+pub fn parse_frames(s: &str) -> Result<Vec<usize>, String> {
+    let mut out = Vec::new();
+    for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
+        let num = |t: &str| {
+            t.trim()
+                .parse::<usize>()
+                .map_err(|_| format!("'{part}' is not a frame number or range"))
+        };
+        match part.split_once('-') {
+            Some((a, b)) => {
+                let (a, b) = (num(a)?, num(b)?);
+                if a > b || b - a > 1_000_000 {
+                    return Err(format!("'{part}' is not an ascending range"));
+                }
+                out.extend(a..=b);
+            }
+            None => out.push(num(part)?),
+        }
+    }
+    if out.is_empty() {
+        return Err("no frames given".into());
+    }
+    out.sort_unstable();
+    out.dedup();
+    Ok(out)
+}
+
+/// The bytes of one frame in a per-frame format.
+fn frame_bytes(
+    frame: &Frame,
+    format: ReplayFormat,
+    level: ColorLevel,
+) -> Result<Vec<u8>, ReplayFailure> {
+    Ok(match format {
+        ReplayFormat::Png => frame.view.to_png().map_err(io)?,
+        ReplayFormat::Txt => text::to_text(&frame.view).into_bytes(),
+        ReplayFormat::Cells => to_cells_text(&TermFrame::from_buffer(&frame.screen)).into_bytes(),
+        ReplayFormat::Ansi => {
+            let mut p = Presenter::new(EncodeOptions::new(level));
+            p.frame(&frame.screen, &frame.view, frame.view_area)
+                .to_vec()
+        }
+        ReplayFormat::Json => {
+            let camera = frame.camera;
+            let mut s = RayReport::new(&camera, &frame.cast, frame.view.cell_rows()).to_json();
+            s.push('\n');
+            s.into_bytes()
+        }
+        ReplayFormat::Cast => unreachable!("cast is a whole-run format"),
+    })
+}
+
+fn extension(format: ReplayFormat) -> &'static str {
+    match format {
+        ReplayFormat::Png => "png",
+        ReplayFormat::Ansi => "ansi",
+        ReplayFormat::Txt => "txt",
+        ReplayFormat::Cells => "cells.txt",
+        ReplayFormat::Json => "json",
+        ReplayFormat::Cast => "cast",
+    }
+}
+
+/// Writes the chosen frames as `DIR/frame-NNNNN.EXT`.
+///
+/// # Errors
+/// A frame past the end (exit 2), or a file that cannot be written (exit 1).
+pub fn write_frames(
+    replay: &Replay,
+    world: Arc<World>,
+    frames: &[usize],
+    format: ReplayFormat,
+    level: ColorLevel,
+    dir: &Path,
+) -> Result<(), ReplayFailure> {
+    let last = *frames
+        .last()
+        .expect("parse_frames never returns an empty list");
+    if last >= replay.frames.len() {
+        return Err(input(format!(
+            "frame {last} is past the end (the replay has {} frames, 0 to {})",
+            replay.frames.len(),
+            replay.frames.len().saturating_sub(1)
+        )));
+    }
+    std::fs::create_dir_all(dir)
+        .map_err(|e| io(format!("cannot create {}: {e}", dir.display())))?;
+    let mut player = Player::new(world, &replay.header);
+    let mut wanted = frames.iter().peekable();
+    for input_frame in &replay.frames {
+        let Some(frame) = player.play(input_frame) else {
+            break;
+        };
+        if wanted.peek() == Some(&&frame.index) {
+            wanted.next();
+            let path = dir.join(format!("frame-{:05}.{}", frame.index, extension(format)));
+            std::fs::write(&path, frame_bytes(&frame, format, level)?)
+                .map_err(|e| io(format!("cannot write {}: {e}", path.display())))?;
+        }
+        if wanted.peek().is_none() {
+            break;
+        }
+    }
+    match wanted.next() {
+        Some(f) => Err(input(format!("the replay quits before frame {f}"))),
+        None => Ok(()),
+    }
+}
+
+/// The whole run as an asciicast v2 file: a header line, then one output event per frame.
+#[must_use]
+pub fn asciicast(replay: &Replay, world: Arc<World>, level: ColorLevel) -> String {
+    let h = &replay.header;
+    let mut out = serde_json::json!({
+        "version": 2, "width": h.size.0, "height": h.size.1,
+        "title": "halfcast replay", "env": {"TERM": "xterm-256color"},
+    })
+    .to_string();
+    out.push('\n');
+    let mut presenter = Presenter::new(EncodeOptions::new(level));
+    let mut player = Player::new(world, &replay.header);
+    let mut size = h.size;
+    let event = |out: &mut String, t: f64, kind: &str, data: &str| {
+        out.push_str(&serde_json::json!([t, kind, data]).to_string());
+        out.push('\n');
+    };
+    event(&mut out, 0.0, "o", "\x1b[?25l");
+    for input_frame in &replay.frames {
+        let Some(frame) = player.play(input_frame) else {
+            break;
+        };
+        let t = frame.index as f64 / f64::from(h.fps);
+        if player.size() != size {
+            size = player.size();
+            event(&mut out, t, "r", &format!("{}x{}", size.0, size.1));
+        }
+        let bytes = presenter.frame(&frame.screen, &frame.view, frame.view_area);
+        event(&mut out, t, "o", &String::from_utf8_lossy(bytes));
+    }
+    out
+}
