@@ -3,17 +3,22 @@
 //! The pipeline, one module per stage: [`map`] → [`camera`] → [`cast`] (pure DDA) →
 //! [`raster`] into a [`framebuffer::Framebuffer`] → [`output`] writers (PNG, ANSI, text, JSON).
 
+pub mod billboard;
 pub mod camera;
 pub mod cast;
 pub mod color;
+pub mod door;
 pub mod framebuffer;
+pub mod light;
 pub mod map;
 pub mod output;
 pub mod raster;
 pub mod scene;
 pub mod snapshot;
+pub mod sprite;
 pub mod texture;
 pub mod vec2;
+pub mod view;
 pub mod world;
 
 pub use camera::Camera;
@@ -21,4 +26,5 @@ pub use color::Rgb;
 pub use framebuffer::Framebuffer;
 pub use scene::Scene;
 pub use vec2::Vec2;
+pub use view::View;
 pub use world::World;

@@ -2,6 +2,8 @@
 
 pub mod builtin;
 pub mod generate;
+pub mod sheet;
+pub mod sprite_art;
 
 use crate::color::Rgb;
 
