@@ -173,7 +173,8 @@ fn floor_and_ceiling(
             }
             let fx = start.x + step.x * x as f64;
             let fy = start.y + step.y * x as f64;
-            let zone = match world.map.cell(fx.floor() as i64, fy.floor() as i64) {
+            let (ci, cj) = (fast_floor(fx), fast_floor(fy));
+            let zone = match world.map.cell(ci, cj) {
                 Cell::Floor { zone } => zone,
                 _ => 0,
             };
@@ -184,9 +185,20 @@ fn floor_and_ceiling(
             };
             *px = shade.apply(match paint {
                 Paint::Colour(c) => c,
-                Paint::Texture(i) => world.textures[i].sample_wrapped(fx, fy),
+                Paint::Texture(i) => world.textures[i].sample_unit(fx - ci as f64, fy - cj as f64),
             });
         }
+    }
+}
+
+/// ⌊v⌋ without a libm call (f64::floor is one on baseline x86-64); saturates far outside i64.
+#[inline]
+fn fast_floor(v: f64) -> i64 {
+    let i = v as i64;
+    if (i as f64) > v {
+        i - 1
+    } else {
+        i
     }
 }
 
@@ -248,6 +260,13 @@ mod tests {
         assert_eq!(s.height, 40.0);
         assert_eq!(s.top, 10.0);
         assert_eq!(s.rows, (10, 50));
+    }
+
+    #[test]
+    fn fast_floor_matches_floor() {
+        for v in [0.0, 0.5, 1.0, -0.5, -1.0, -1.5, 3.999, -3.999, 1e12, -1e12] {
+            assert_eq!(fast_floor(v), v.floor() as i64, "{v}");
+        }
     }
 
     #[test]

@@ -92,6 +92,15 @@ impl Texture {
         &self.texels[x * self.height..(x + 1) * self.height]
     }
 
+    /// Samples at (u, v) already reduced to [0, 1) (the floor caster's hot path).
+    #[must_use]
+    #[inline]
+    pub fn sample_unit(&self, u: f64, v: f64) -> Rgb {
+        let x = (u * self.width as f64) as usize;
+        let y = (v * self.height as f64) as usize;
+        self.texel(x.min(self.width - 1), y.min(self.height - 1))
+    }
+
     /// Samples at texture coordinates (u, v) that wrap (floors repeat per cell).
     #[must_use]
     #[inline]
