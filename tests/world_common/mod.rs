@@ -39,3 +39,23 @@ pub fn golden(fb: &Framebuffer, name: &str) {
 pub fn sprite_png(name: &str) -> String {
     format!("{}/textures/sprites/{name}.png", env!("CARGO_MANIFEST_DIR"))
 }
+
+/// Runs the binary with `args`.
+pub fn halfcast(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_halfcast"))
+        .args(args)
+        .output()
+        .expect("run halfcast")
+}
+
+/// Writes a map (header + `extra` + grid) into a temporary folder; textures are absolute paths
+/// into the repository, so it loads from disk like a user's map.
+pub fn map_file(extra: &str, grid: &str) -> (tempfile::TempDir, PathBuf) {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let header = HEADER.replace("textures/", &format!("{root}/textures/"));
+    let extra = extra.replace("textures/", &format!("{root}/textures/"));
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = dir.path().join("test.cub");
+    std::fs::write(&path, format!("{header}{extra}\n{grid}")).expect("write map");
+    (dir, path)
+}
