@@ -9,7 +9,6 @@ use halfcast::camera::{Camera, DEFAULT_FOV_DEG};
 use halfcast::door::DoorState;
 use halfcast::light::Fog;
 use halfcast::output::{ansi, json::RayReport, text};
-use halfcast::view::{View, EYE_RANGE, MAX_PITCH_DEG, STANDING_EYE};
 use halfcast::world::World;
 use halfcast::{Framebuffer, Scene, Vec2};
 
@@ -81,7 +80,7 @@ struct WorldArgs {
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true, value_parser = parse_pitch)]
     pitch: f64,
     /// Eye height in wall heights: 0.5 standing, lower crouches, higher jumps (0.05 to 0.95).
-    #[arg(long, default_value_t = STANDING_EYE, value_parser = parse_eye)]
+    #[arg(long, default_value_t = halfcast::view::STANDING_EYE, value_parser = parse_eye)]
     z: f64,
     /// Fog colour and density R,G,B,DENSITY (replaces the map's FOG line).
     #[arg(long, value_parser = parse_fog)]
@@ -136,6 +135,7 @@ fn parse_fov(s: &str) -> Result<f64, String> {
 }
 
 fn parse_pitch(s: &str) -> Result<f64, String> {
+    use halfcast::view::MAX_PITCH_DEG;
     let v = parse_finite(s)?;
     if v.abs() <= MAX_PITCH_DEG {
         Ok(v)
@@ -147,6 +147,7 @@ fn parse_pitch(s: &str) -> Result<f64, String> {
 }
 
 fn parse_eye(s: &str) -> Result<f64, String> {
+    use halfcast::view::EYE_RANGE;
     let v = parse_finite(s)?;
     if (EYE_RANGE.0..=EYE_RANGE.1).contains(&v) {
         Ok(v)
@@ -274,7 +275,7 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
         doors.set_open(cell, opts.door_open);
     }
     let mut scene = Scene::new(&world, camera)
-        .with_view(View::new(opts.pitch, opts.z))
+        .with_view(halfcast::View::new(opts.pitch, opts.z))
         .with_doors(&doors)
         .at_time(opts.time);
     if let Some(fog) = opts.fog {

@@ -3,22 +3,24 @@
 //! The pipeline, one module per stage: [`map`] → [`camera`] → [`cast`] (pure DDA) →
 //! [`raster`] into a [`framebuffer::Framebuffer`] → [`output`] writers (PNG, ANSI, text, JSON).
 
+// World features: sprites, doors, light, vertical view.
 pub mod billboard;
+pub mod door;
+pub mod light;
+pub mod sprite;
+pub mod view;
+
 pub mod camera;
 pub mod cast;
 pub mod color;
-pub mod door;
 pub mod framebuffer;
-pub mod light;
 pub mod map;
 pub mod output;
 pub mod raster;
 pub mod scene;
 pub mod snapshot;
-pub mod sprite;
 pub mod texture;
 pub mod vec2;
-pub mod view;
 pub mod world;
 
 pub use camera::Camera;

@@ -30,7 +30,7 @@ fn is_blank_char(c: char) -> bool {
 /// Characters that mark a line as the grid's first even when it does not start with a digit
 /// (zone letters are left out: "WE west" is a header line).
 fn is_grid_char(c: char) -> bool {
-    c == ' ' || c.is_ascii_digit() || matches!(c, 'N' | 'S' | 'E' | 'W' | 'D')
+    c == ' ' || c.is_ascii_digit() || matches!(c, 'N' | 'S' | 'E' | 'W')
 }
 
 /// Whether a header-section line is the first line of the grid.
