@@ -1,7 +1,8 @@
 //! The grid DDA: one ray per screen column, pure maths over a [`Map`] and a [`Camera`].
 
 use crate::camera::Camera;
-use crate::map::{Cell, Map};
+use crate::door::DoorState;
+use crate::map::{Cell, DoorPlane, Map};
 use crate::vec2::Vec2;
 
 /// deltaDist for a ray component that is exactly zero (Lode's convention: finite, never chosen).
@@ -39,7 +40,8 @@ pub struct ColumnHit {
     pub side: Side,
     /// Distance along the view direction (no fisheye): sideDist − deltaDist of `side`'s axis.
     pub perp_dist: f64,
-    /// Where along the wall face the ray hit, in [0, 1).
+    /// Where along the wall face the ray hit, in [0, 1); on a door, along the door's panel
+    /// (already shifted by how far it is open).
     pub wall_x: f64,
     pub ray_dir: Vec2,
 }
@@ -75,24 +77,49 @@ pub struct Cast {
 }
 
 /// Casts one ray per column of a `width`-column view; traces column `traced` step by step.
+/// Doors count as shut.
 #[must_use]
 pub fn cast(map: &Map, camera: &Camera, width: usize, traced: Option<usize>) -> Cast {
+    cast_with_doors(map, &DoorState::none(), camera, width, traced)
+}
+
+/// [`cast`] with doors open as far as `doors` says.
+#[must_use]
+pub fn cast_with_doors(
+    map: &Map,
+    doors: &DoorState,
+    camera: &Camera,
+    width: usize,
+    traced: Option<usize>,
+) -> Cast {
     let columns = (0..width)
-        .map(|x| cast_ray(map, camera.pos, camera.ray_dir(x, width), |_| {}))
+        .map(|x| cast_ray_doors(map, doors, camera.pos, camera.ray_dir(x, width), |_| {}))
         .collect();
     let trace = traced
         .filter(|&x| x < width)
-        .map(|x| trace_column(map, camera, x, width));
+        .map(|x| trace_column_doors(map, doors, camera, x, width));
     Cast { columns, trace }
 }
 
 /// Traces column `x` of `width`: every step, for debugging and the JSON `centre_trace`.
 #[must_use]
 pub fn trace_column(map: &Map, camera: &Camera, x: usize, width: usize) -> DdaTrace {
+    trace_column_doors(map, &DoorState::none(), camera, x, width)
+}
+
+/// [`trace_column`] with doors open as far as `doors` says.
+#[must_use]
+pub fn trace_column_doors(
+    map: &Map,
+    doors: &DoorState,
+    camera: &Camera,
+    x: usize,
+    width: usize,
+) -> DdaTrace {
     let ray_dir = camera.ray_dir(x, width);
     let setup = Setup::new(camera.pos, ray_dir);
     let mut steps = Vec::new();
-    let hit = cast_ray(map, camera.pos, ray_dir, |s| steps.push(s));
+    let hit = cast_ray_doors(map, doors, camera.pos, ray_dir, |s| steps.push(s));
     DdaTrace {
         column: x,
         ray_dir,
@@ -136,13 +163,73 @@ impl Setup {
 }
 
 /// Walks one ray from `pos` until it enters a cell that blocks it, reporting each step.
-pub fn cast_ray(map: &Map, pos: Vec2, ray: Vec2, mut on_step: impl FnMut(DdaStep)) -> ColumnHit {
+/// Doors count as shut.
+pub fn cast_ray(map: &Map, pos: Vec2, ray: Vec2, on_step: impl FnMut(DdaStep)) -> ColumnHit {
+    cast_ray_doors(map, &DoorState::none(), pos, ray, on_step)
+}
+
+/// Where a ray meets a door's panel (the mid-line of its cell) while inside the cell, if it
+/// meets the part not yet slid away: Wolfenstein's inset door.
+#[inline]
+#[allow(clippy::too_many_arguments)]
+fn door_hit(
+    doors: &DoorState,
+    plane: DoorPlane,
+    cell: (i64, i64),
+    pos: Vec2,
+    ray: Vec2,
+    t_enter: f64,
+    t_exit: f64,
+) -> Option<ColumnHit> {
+    let (t, along, side) = match plane {
+        DoorPlane::X if ray.x != 0.0 => {
+            let t = (cell.0 as f64 + 0.5 - pos.x) / ray.x;
+            (t, pos.y + t * ray.y - cell.1 as f64, Side::X)
+        }
+        DoorPlane::Y if ray.y != 0.0 => {
+            let t = (cell.1 as f64 + 0.5 - pos.y) / ray.y;
+            (t, pos.x + t * ray.x - cell.0 as f64, Side::Y)
+        }
+        _ => return None,
+    };
+    if !(t >= t_enter && t < t_exit) {
+        return None;
+    }
+    let along = along.clamp(0.0, 1.0 - 1e-12);
+    let open = doors.open_amount(cell);
+    if along < open {
+        return None;
+    }
+    Some(ColumnHit {
+        cell,
+        what: Cell::Door(plane),
+        side,
+        perp_dist: t,
+        wall_x: along - open,
+        ray_dir: ray,
+    })
+}
+
+/// [`cast_ray`] with doors open as far as `doors` says.
+pub fn cast_ray_doors(
+    map: &Map,
+    doors: &DoorState,
+    pos: Vec2,
+    ray: Vec2,
+    mut on_step: impl FnMut(DdaStep),
+) -> ColumnHit {
     let Setup {
         mut cell,
         delta,
         step,
         mut side_dist,
     } = Setup::new(pos, ray);
+    if let Cell::Door(plane) = map.cell(cell.0, cell.1) {
+        let t_exit = side_dist.0.min(side_dist.1);
+        if let Some(hit) = door_hit(doors, plane, cell, pos, ray, 0.0, t_exit) {
+            return hit;
+        }
+    }
     loop {
         let side = if side_dist.0 < side_dist.1 {
             side_dist.0 += delta.0;
@@ -159,6 +246,17 @@ pub fn cast_ray(map: &Map, pos: Vec2, ray: Vec2, mut on_step: impl FnMut(DdaStep
             side_dist,
         });
         let what = map.cell(cell.0, cell.1);
+        if let Cell::Door(plane) = what {
+            let t_enter = match side {
+                Side::X => side_dist.0 - delta.0,
+                Side::Y => side_dist.1 - delta.1,
+            };
+            let t_exit = side_dist.0.min(side_dist.1);
+            if let Some(hit) = door_hit(doors, plane, cell, pos, ray, t_enter, t_exit) {
+                return hit;
+            }
+            continue;
+        }
         if what.blocks_ray() {
             let perp_dist = match side {
                 Side::X => side_dist.0 - delta.0,

@@ -7,7 +7,9 @@ use std::sync::Arc;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use halfcast::camera::{Camera, DEFAULT_FOV_DEG};
+use halfcast::door::DoorState;
 use halfcast::encode::{full_frame, ColorLevel, EncodeOptions};
+use halfcast::light::Fog;
 use halfcast::output::{ansi, json::RayReport, text};
 use halfcast::termframe;
 use halfcast::tui::{self, Ending, PlayOptions, TerminalError};
@@ -157,6 +159,31 @@ struct RenderArgs {
     /// Ordered dithering at 256 and 16 colours (`--format ansi`).
     #[arg(long)]
     dither: bool,
+    #[command(flatten)]
+    world: WorldArgs,
+}
+
+/// View, light, time and door options (world features).
+#[derive(Args, Debug)]
+struct WorldArgs {
+    /// Look up (+) or down (-), in degrees (-45 to 45); shifts the horizon.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true, value_parser = parse_pitch)]
+    pitch: f64,
+    /// Eye height in wall heights: 0.5 standing, lower crouches, higher jumps (0.05 to 0.95).
+    #[arg(long, default_value_t = halfcast::view::STANDING_EYE, value_parser = parse_eye)]
+    z: f64,
+    /// Fog colour and density R,G,B,DENSITY (replaces the map's FOG line).
+    #[arg(long, value_parser = parse_fog)]
+    fog: Option<Fog>,
+    /// Night: dark, with the view lit near the player.
+    #[arg(long)]
+    night: bool,
+    /// Game time in seconds, which picks animated sprites' frames.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true, value_parser = parse_finite)]
+    time: f64,
+    /// How far every door is open, 0 (shut) to 1 (open).
+    #[arg(long, default_value_t = 0.0, value_parser = parse_unit)]
+    door_open: f64,
 }
 
 #[derive(Args, Debug)]
@@ -238,6 +265,57 @@ fn parse_fov(s: &str) -> Result<f64, String> {
             "field of view {v} must be between 0 and 180 degrees (exclusive)"
         ))
     }
+}
+
+fn parse_pitch(s: &str) -> Result<f64, String> {
+    use halfcast::view::MAX_PITCH_DEG;
+    let v = parse_finite(s)?;
+    if v.abs() <= MAX_PITCH_DEG {
+        Ok(v)
+    } else {
+        Err(format!(
+            "pitch {v} must be between -{MAX_PITCH_DEG} and {MAX_PITCH_DEG} degrees"
+        ))
+    }
+}
+
+fn parse_eye(s: &str) -> Result<f64, String> {
+    use halfcast::view::EYE_RANGE;
+    let v = parse_finite(s)?;
+    if (EYE_RANGE.0..=EYE_RANGE.1).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!(
+            "eye height {v} must be between {} and {}",
+            EYE_RANGE.0, EYE_RANGE.1
+        ))
+    }
+}
+
+fn parse_unit(s: &str) -> Result<f64, String> {
+    let v = parse_finite(s)?;
+    if (0.0..=1.0).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("{v} must be between 0 and 1"))
+    }
+}
+
+fn parse_fog(s: &str) -> Result<Fog, String> {
+    let bad = || format!("'{s}' is not R,G,B,DENSITY (channels 0-255, density >= 0)");
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    let [r, g, b, d] = parts[..] else {
+        return Err(bad());
+    };
+    let ch = |t: &str| t.parse::<u8>().map_err(|_| bad());
+    let density = parse_finite(d).map_err(|_| bad())?;
+    if density < 0.0 {
+        return Err(bad());
+    }
+    Ok(Fog {
+        colour: halfcast::Rgb::new(ch(r)?, ch(g)?, ch(b)?),
+        density,
+    })
 }
 
 fn parse_size(s: &str) -> Result<(u16, u16), String> {
@@ -357,7 +435,21 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
     let camera = camera_for(&world, &args.pose);
     let (cols, rows) = args.size;
     let mut fb = Framebuffer::for_cells(cols, rows);
-    let cast = Scene::new(&world, camera).render_into(&mut fb, Some(usize::from(cols) / 2));
+    let opts = &args.world;
+    let mut doors = DoorState::new(&world.map);
+    for cell in doors.cells().to_vec() {
+        doors.set_open(cell, opts.door_open);
+    }
+    let mut scene = Scene::new(&world, camera)
+        .with_view(halfcast::View::new(opts.pitch, opts.z))
+        .with_doors(&doors)
+        .at_time(opts.time);
+    if let Some(fog) = opts.fog {
+        scene.light.fog = Some(fog);
+    }
+    scene.light.night |= opts.night;
+    let frame = scene.render_frame(&mut fb, Some(usize::from(cols) / 2));
+    let cast = frame.cast;
     let bytes = match args.format {
         Format::Png => fb.to_png().map_err(Failure::io)?,
         Format::Ansi => {
@@ -370,7 +462,9 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
             termframe::to_cells_text(&termframe::TermFrame::from_framebuffer(&fb)).into_bytes()
         }
         Format::Json => {
-            let mut s = RayReport::new(&camera, &cast, usize::from(rows)).to_json();
+            let mut s = RayReport::new(&camera, &cast, usize::from(rows))
+                .with_sprites(&world, &camera, &frame.sprites)
+                .to_json();
             s.push('\n');
             s.into_bytes()
         }

@@ -4,6 +4,13 @@
 //! [`raster`] into a [`framebuffer::Framebuffer`] → [`output`] writers (PNG, ANSI, text, JSON).
 
 pub mod bench;
+// World features: sprites, doors, light, vertical view.
+pub mod billboard;
+pub mod door;
+pub mod light;
+pub mod sprite;
+pub mod view;
+
 pub mod camera;
 pub mod cast;
 pub mod color;
@@ -29,4 +36,5 @@ pub use color::Rgb;
 pub use framebuffer::Framebuffer;
 pub use scene::Scene;
 pub use vec2::Vec2;
+pub use view::View;
 pub use world::World;

@@ -1,8 +1,11 @@
-//! Turns the cast rays into pixels: textured floor and ceiling rows, then wall stripes.
+//! Turns the cast rays into pixels: textured floor and ceiling rows, then wall stripes, then
+//! sprites; everything lit through one distance table and placed by the view's horizon and eye.
 
+use crate::billboard::{draw_sprites, SpriteOutcome};
 use crate::cast::{ColumnHit, Side};
 use crate::color::Rgb;
 use crate::framebuffer::Framebuffer;
+use crate::light::{Shade, ShadeTable};
 use crate::map::Cell;
 use crate::scene::Scene;
 use crate::world::{Paint, World};
@@ -10,8 +13,8 @@ use crate::world::{Paint, World};
 /// Brightness (of 256) of faces hit on a y side, so corners read as corners.
 const Y_SIDE_SHADE: u16 = 184;
 
-/// The eye's height above the floor, in wall heights (walls span 0..1).
-const EYE_HEIGHT: f64 = 0.5;
+/// The eye's height above the floor, in wall heights (walls span 0..1), when standing.
+const EYE_HEIGHT: f64 = crate::view::STANDING_EYE;
 
 /// Which compass direction a ray travels when it hits (index into a wall's face textures).
 #[must_use]
@@ -53,10 +56,27 @@ pub struct WallSpan {
 /// Projects a hit: one focal length for both axes, so a 1×1 wall face is square on screen.
 #[must_use]
 pub fn wall_span(perp_dist: f64, focal: f64, screen_h: usize) -> WallSpan {
+    wall_span_at(
+        perp_dist,
+        focal,
+        screen_h,
+        screen_h as f64 / 2.0,
+        EYE_HEIGHT,
+    )
+}
+
+/// [`wall_span`] for a horizon row and an eye height (look up/down, crouch/jump).
+#[must_use]
+pub fn wall_span_at(
+    perp_dist: f64,
+    focal: f64,
+    screen_h: usize,
+    horizon: f64,
+    eye: f64,
+) -> WallSpan {
     let height = focal / perp_dist.max(1e-9);
-    let horizon = screen_h as f64 / 2.0;
-    let top = horizon - height * (1.0 - EYE_HEIGHT);
-    let bottom = horizon + height * EYE_HEIGHT;
+    let top = horizon - height * (1.0 - eye);
+    let bottom = horizon + height * eye;
     let row = |edge: f64| (edge - 0.5).ceil().clamp(0.0, screen_h as f64) as usize;
     WallSpan {
         top,
@@ -65,58 +85,84 @@ pub fn wall_span(perp_dist: f64, focal: f64, screen_h: usize) -> WallSpan {
     }
 }
 
-/// Paints the frame: floor and ceiling where no wall covers, then the walls.
+/// Paints the frame: floor and ceiling where no wall covers, then the walls, then the sprites.
 pub fn rasterize(scene: &Scene, hits: &[ColumnHit], fb: &mut Framebuffer) {
+    rasterize_frame(scene, hits, fb);
+}
+
+/// [`rasterize`], returning what became of each sprite (for the JSON report).
+pub fn rasterize_frame(
+    scene: &Scene,
+    hits: &[ColumnHit],
+    fb: &mut Framebuffer,
+) -> Vec<SpriteOutcome> {
     let (w, h) = (fb.width(), fb.height());
     if w == 0 || h == 0 {
-        return;
+        return Vec::new();
     }
     let focal = scene.camera.focal_length(w);
+    let view = scene.view.clamped();
+    let horizon = view.horizon(focal, h);
+    let table = ShadeTable::new(&scene.light);
     let spans: Vec<WallSpan> = hits
         .iter()
-        .map(|hit| wall_span(hit.perp_dist, focal, h))
+        .map(|hit| wall_span_at(hit.perp_dist, focal, h, horizon, view.eye_z))
         .collect();
-    floor_and_ceiling(scene, &spans, fb, focal);
+    floor_and_ceiling(scene, &spans, fb, focal, horizon, view.eye_z, &table);
     for (x, (hit, span)) in hits.iter().zip(&spans).enumerate() {
-        wall_stripe(scene.world, hit, span, x, fb);
+        let shade = table.at(hit.perp_dist);
+        wall_stripe(scene.world, hit, span, x, fb, shade);
     }
+    draw_sprites(scene, hits, fb, &table)
 }
 
 /// Draws one wall column from its texture column, top to bottom.
-fn wall_stripe(world: &World, hit: &ColumnHit, span: &WallSpan, x: usize, fb: &mut Framebuffer) {
+fn wall_stripe(
+    world: &World,
+    hit: &ColumnHit,
+    span: &WallSpan,
+    x: usize,
+    fb: &mut Framebuffer,
+    shade: Shade,
+) {
     let tex = world.wall_texture(hit.what, heading(hit));
     let column = tex.column(texture_x(hit, tex.width()));
     let th = tex.height();
     let scale = th as f64 / span.height;
     let shade = if hit.side == Side::Y {
-        Y_SIDE_SHADE
+        shade.scaled(Y_SIDE_SHADE)
     } else {
-        256
+        shade
     };
     for y in span.rows.0..span.rows.1 {
         let v = ((y as f64 + 0.5 - span.top) * scale) as usize;
         let c = column[v.min(th - 1)];
-        fb.set(x, y, if shade == 256 { c } else { c.scaled(shade) });
+        fb.set(x, y, shade.apply(c));
     }
 }
 
-/// Horizontal scanline floor/ceiling casting (Lode's method with the shared focal length).
-fn floor_and_ceiling(scene: &Scene, spans: &[WallSpan], fb: &mut Framebuffer, focal: f64) {
+/// Horizontal scanline floor/ceiling casting (Lode's method with the shared focal length),
+/// with the horizon moved by pitch and the floor/ceiling distances set by the eye height.
+fn floor_and_ceiling(
+    scene: &Scene,
+    spans: &[WallSpan],
+    fb: &mut Framebuffer,
+    focal: f64,
+    horizon: f64,
+    eye: f64,
+    table: &ShadeTable,
+) {
     let (w, h) = (fb.width(), fb.height());
     let cam = &scene.camera;
     let world = scene.world;
-    let horizon = h as f64 / 2.0;
     let left = cam.dir - cam.plane;
     let across = cam.plane * (2.0 / w as f64);
     for y in 0..h {
         let p = y as f64 + 0.5 - horizon;
         let is_floor = p > 0.0;
-        let height = if is_floor {
-            EYE_HEIGHT
-        } else {
-            1.0 - EYE_HEIGHT
-        };
-        let dist = height * focal / p.abs();
+        let height = if is_floor { eye } else { 1.0 - eye };
+        let dist = height * focal / p.abs().max(1e-9);
+        let shade = table.at(dist);
         let start = cam.pos + left * dist;
         let step = across * dist;
         let row = fb.row_mut(y);
@@ -127,7 +173,8 @@ fn floor_and_ceiling(scene: &Scene, spans: &[WallSpan], fb: &mut Framebuffer, fo
             }
             let fx = start.x + step.x * x as f64;
             let fy = start.y + step.y * x as f64;
-            let zone = match world.map.cell(fx.floor() as i64, fy.floor() as i64) {
+            let (ci, cj) = (fast_floor(fx), fast_floor(fy));
+            let zone = match world.map.cell(ci, cj) {
                 Cell::Floor { zone } => zone,
                 _ => 0,
             };
@@ -136,11 +183,22 @@ fn floor_and_ceiling(scene: &Scene, spans: &[WallSpan], fb: &mut Framebuffer, fo
             } else {
                 world.ceiling_paint(zone)
             };
-            *px = match paint {
+            *px = shade.apply(match paint {
                 Paint::Colour(c) => c,
-                Paint::Texture(i) => world.textures[i].sample_wrapped(fx, fy),
-            };
+                Paint::Texture(i) => world.textures[i].sample_unit(fx - ci as f64, fy - cj as f64),
+            });
         }
+    }
+}
+
+/// ⌊v⌋ without a libm call (f64::floor is one on baseline x86-64); saturates far outside i64.
+#[inline]
+fn fast_floor(v: f64) -> i64 {
+    let i = v as i64;
+    if (i as f64) > v {
+        i - 1
+    } else {
+        i
     }
 }
 
@@ -202,6 +260,13 @@ mod tests {
         assert_eq!(s.height, 40.0);
         assert_eq!(s.top, 10.0);
         assert_eq!(s.rows, (10, 50));
+    }
+
+    #[test]
+    fn fast_floor_matches_floor() {
+        for v in [0.0, 0.5, 1.0, -0.5, -1.0, -1.5, 3.999, -3.999, 1e12, -1e12] {
+            assert_eq!(fast_floor(v), v.floor() as i64, "{v}");
+        }
     }
 
     #[test]

@@ -4,8 +4,12 @@ use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 
 use crate::color::Rgb;
-use crate::map::{Cell, Map, Surface, TextureRef};
+use crate::door::DoorState;
+use crate::map::{Cell, ColourKey, Map, SpriteDef, Surface, TextureRef};
+use crate::sprite::Sprite;
+use crate::texture::sheet::SpriteSheet;
 use crate::texture::{builtin, Texture};
+use crate::vec2::Vec2;
 
 /// The default map, compiled in so the binary needs no files.
 pub const DEFAULT_MAP: &str = include_str!("../maps/default.cub");
@@ -51,6 +55,19 @@ pub struct World {
     floor: Vec<Paint>,
     /// Ceiling paint per zone.
     ceiling: Vec<Paint>,
+    /// Texture index of door panels.
+    door_tex: usize,
+    /// Decoded sprite sheets (with alpha), indexed by [`Sprite::sheet`].
+    pub sheets: Vec<SpriteSheet>,
+    /// Every sprite: the legacy `2` cells first, then the `SPRITE` lines.
+    pub sprites: Vec<Sprite>,
+}
+
+/// A disc that blocks movement (a solid sprite).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolidDisc {
+    pub centre: Vec2,
+    pub radius: f64,
 }
 
 /// The warnings printed while loading (one line per texture that fell back).
@@ -85,6 +102,7 @@ impl World {
             textures: Vec::new(),
             warnings: Vec::new(),
             warned: HashSet::new(),
+            sheets: Vec::new(),
         };
         let faces: Vec<usize> = map
             .faces
@@ -117,8 +135,39 @@ impl World {
                     .map_or(Ok(ceiling_default), |s| loader.surface(s, "ceiling"))?,
             );
         }
+        let door_tex = match &map.door_texture {
+            Some(r) => loader.load(r, "door")?,
+            None => loader.builtin("door"),
+        };
+        let mut sprites = Vec::new();
+        if !map.sprites.is_empty() {
+            // Legacy `2` cells: the `S` texture, loaded only when something uses it.
+            let sheet = match &map.sprite_texture {
+                Some(r) => loader.sheet(r, ColourKey::Auto, LEGACY_SPRITE_FALLBACK)?,
+                None => loader.builtin_sheet(LEGACY_SPRITE_FALLBACK),
+            };
+            let texture = map.sprite_texture.clone().unwrap_or(TextureRef {
+                path: LEGACY_SPRITE_FALLBACK.to_owned(),
+                line: 0,
+                col: 0,
+            });
+            for &pos in &map.sprites {
+                let def = SpriteDef::legacy(pos, texture.clone());
+                sprites.push(Sprite { def, sheet });
+            }
+        }
+        for def in &map.sprite_defs {
+            let sheet = loader.sheet(&def.texture, def.key, LEGACY_SPRITE_FALLBACK)?;
+            sprites.push(Sprite {
+                def: def.clone(),
+                sheet,
+            });
+        }
         let Loader {
-            textures, warnings, ..
+            textures,
+            warnings,
+            sheets,
+            ..
         } = loader;
         Ok((
             Self {
@@ -127,6 +176,9 @@ impl World {
                 wall_tex,
                 floor,
                 ceiling,
+                door_tex,
+                sheets,
+                sprites,
             },
             warnings,
         ))
@@ -138,6 +190,7 @@ impl World {
     pub fn wall_texture(&self, what: Cell, heading: usize) -> &Texture {
         let kind = match what {
             Cell::Wall(d) => usize::from(d),
+            Cell::Door(_) => return &self.textures[self.door_tex],
             _ => 0,
         };
         &self.textures[self.wall_tex[kind][heading]]
@@ -164,6 +217,68 @@ impl World {
     }
 }
 
+/// The built-in sheet a sprite falls back to when its texture cannot be loaded.
+pub const LEGACY_SPRITE_FALLBACK: &str = "barrel";
+
+impl World {
+    /// The light the map asks for: its `FOG` and `SHADE` lines (day, no night).
+    #[must_use]
+    pub fn lighting(&self) -> crate::light::Lighting {
+        crate::light::Lighting {
+            fog: self.map.fog,
+            night: false,
+            falloff: self.map.shade.unwrap_or(0.0),
+        }
+    }
+
+    /// The discs of every solid sprite, for movement code that wants them directly.
+    #[must_use]
+    pub fn solid_discs(&self) -> Vec<SolidDisc> {
+        self.sprites
+            .iter()
+            .filter_map(|s| {
+                s.def.solid.map(|radius| SolidDisc {
+                    centre: s.def.pos,
+                    radius,
+                })
+            })
+            .collect()
+    }
+
+    /// Whether a body of `radius` centred at `pos` would overlap a wall, void, a door that is
+    /// not open far enough (its whole cell blocks), or a solid sprite. Pure: the game step asks.
+    #[must_use]
+    pub fn is_blocked(&self, pos: Vec2, radius: f64, doors: &DoorState) -> bool {
+        let r = radius.max(0.0);
+        let (x0, x1) = ((pos.x - r).floor() as i64, (pos.x + r).floor() as i64);
+        let (y0, y1) = ((pos.y - r).floor() as i64, (pos.y + r).floor() as i64);
+        for j in y0..=y1 {
+            for i in x0..=x1 {
+                let blocking = match self.map.cell(i, j) {
+                    Cell::Floor { .. } => false,
+                    Cell::Door(_) => doors.blocks((i, j)),
+                    _ => true,
+                };
+                if !blocking {
+                    continue;
+                }
+                // Distance from the centre to the cell's square; touching is allowed.
+                let dx = pos.x - pos.x.clamp(i as f64, i as f64 + 1.0);
+                let dy = pos.y - pos.y.clamp(j as f64, j as f64 + 1.0);
+                if dx * dx + dy * dy < r * r || (r == 0.0 && dx == 0.0 && dy == 0.0) {
+                    return true;
+                }
+            }
+        }
+        self.sprites.iter().any(|s| {
+            s.def.solid.is_some_and(|sr| {
+                let d = s.def.pos - pos;
+                d.dot(d) < (sr + r) * (sr + r)
+            })
+        })
+    }
+}
+
 /// Loads textures once each, remembering warnings.
 struct Loader<'a> {
     map_file: &'a str,
@@ -172,6 +287,7 @@ struct Loader<'a> {
     textures: Vec<Texture>,
     warnings: Warnings,
     warned: HashSet<String>,
+    sheets: Vec<SpriteSheet>,
 }
 
 impl Loader<'_> {
@@ -186,6 +302,48 @@ impl Loader<'_> {
     fn builtin(&mut self, stem: &str) -> usize {
         let t = builtin::by_name(stem).expect("fallback stems are embedded");
         self.push(t)
+    }
+
+    fn push_sheet(&mut self, t: SpriteSheet) -> usize {
+        if let Some(i) = self.sheets.iter().position(|e| *e == t) {
+            return i;
+        }
+        self.sheets.push(t);
+        self.sheets.len() - 1
+    }
+
+    fn builtin_sheet(&mut self, stem: &str) -> usize {
+        let t = builtin::sheet_by_name(stem).expect("fallback sprite stems are embedded");
+        self.push_sheet(t)
+    }
+
+    fn sheet(
+        &mut self,
+        r: &TextureRef,
+        key: ColourKey,
+        fallback: &str,
+    ) -> Result<usize, TextureError> {
+        match read_sheet(self.source, &r.path, key) {
+            Ok(t) => Ok(self.push_sheet(t)),
+            Err(reason) => {
+                let err = TextureError {
+                    file: self.map_file.to_owned(),
+                    line: r.line,
+                    col: r.col,
+                    path: r.path.clone(),
+                    reason,
+                };
+                if self.strict {
+                    return Err(err);
+                }
+                if self.warned.insert(r.path.clone()) {
+                    self.warnings.push(format!(
+                        "warning: {err}; using the built-in '{fallback}' sprite"
+                    ));
+                }
+                Ok(self.builtin_sheet(fallback))
+            }
+        }
     }
 
     fn surface(&mut self, s: &Surface, fallback: &str) -> Result<Paint, TextureError> {
@@ -233,6 +391,22 @@ fn read_texture(source: &TextureSource, path: &str) -> Result<Texture, String> {
             let full = dir.join(path);
             let bytes = std::fs::read(&full).map_err(|e| e.to_string())?;
             Texture::decode(&bytes)
+        }
+    }
+}
+
+fn read_sheet(source: &TextureSource, path: &str, key: ColourKey) -> Result<SpriteSheet, String> {
+    match source {
+        TextureSource::Embedded => {
+            let stem = Path::new(path)
+                .file_stem()
+                .and_then(|s| s.to_str())
+                .unwrap_or_default();
+            builtin::sheet_by_name(stem).ok_or_else(|| "no embedded sprite of that name".to_owned())
+        }
+        TextureSource::Dir(dir) => {
+            let bytes = std::fs::read(dir.join(path)).map_err(|e| e.to_string())?;
+            SpriteSheet::decode(&bytes, key)
         }
     }
 }

@@ -92,7 +92,7 @@ fn default_map_frames(cols: u16, rows: u16, n: usize) -> Vec<Framebuffer> {
         let cam = if i < n / 2 {
             Camera::from_angle(start, 90.0 + 2.5 * i as f64, 66.0)
         } else {
-            let p = Vec2::new(start.x - 6.0 + 0.15 * (i - n / 2) as f64, start.y);
+            let p = Vec2::new(start.x - 3.0 + 0.15 * (i - n / 2) as f64, start.y);
             assert!(world.map.is_walkable(p));
             Camera::from_angle(p, 0.0, 66.0)
         };

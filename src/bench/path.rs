@@ -9,7 +9,7 @@ use crate::vec2::Vec2;
 pub enum BenchScene {
     /// Turning on the spot at the start, 3° a frame: every column changes every frame.
     Turn,
-    /// Walking east along the start row with a gentle sway (textured floor and ceiling).
+    /// Walking east along the start row (east of its door) with a gentle sway.
     Walk,
     /// Walking through the flat-coloured zone `a` in the south-west room.
     Flat,
@@ -43,7 +43,7 @@ pub fn camera_path(map: &Map, scene: BenchScene, frames: usize) -> Vec<Camera> {
             let (pos, angle) = match scene {
                 BenchScene::Turn => (start, map.start.angle_deg() + 3.0 * t),
                 BenchScene::Walk => {
-                    let x = 2.0 + 23.0 * t / frames.max(1) as f64;
+                    let x = 12.2 + 14.0 * t / frames.max(1) as f64;
                     (Vec2::new(x, 5.5), 12.0 * (t / 15.0).sin())
                 }
                 BenchScene::Flat => {

@@ -58,6 +58,10 @@ pub enum MapErrorKind {
     SecondPlayer { first_line: usize, first_col: usize },
     #[error("map is too large ({0} cells; the limit is {1})")]
     TooLarge(usize, usize),
+    #[error("door at {line}:{col} needs walls on two opposite sides (east and west, or north and south)")]
+    DoorNotFramed { line: usize, col: usize },
+    #[error("sprite at {0} is not over a floor cell")]
+    SpriteOffFloor(String),
     #[error("cannot read the file: {0}")]
     Io(String),
 }

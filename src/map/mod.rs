@@ -2,11 +2,14 @@
 
 mod error;
 mod parse;
+mod sprite;
 
 pub use error::{MapError, MapErrorKind};
 pub use parse::parse_map;
+pub use sprite::{Blend, ColourKey, SpriteDef};
 
 use crate::color::Rgb;
+use crate::light::Fog;
 use crate::vec2::Vec2;
 
 /// What one grid cell holds; walls carry their digit (1–9), floors their zone (0 = default).
@@ -18,14 +21,26 @@ pub enum Cell {
     Floor { zone: u8 },
     /// Solid wall of type 1–9 (each type has its own texture).
     Wall(u8),
+    /// A sliding door (`D`), drawn as a thin panel across the middle of its cell.
+    Door(DoorPlane),
+}
+
+/// Which way a door panel lies, fixed by the walls that frame it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DoorPlane {
+    /// The panel is the line x = i + 0.5 (walls north and south; the passage runs east–west).
+    X,
+    /// The panel is the line y = j + 0.5 (walls east and west; the passage runs north–south).
+    Y,
 }
 
 impl Cell {
-    /// Whether a ray stops here: walls, and void (never reached from inside a closed map).
+    /// Whether a ray stops on entering: walls, and void (never reached from inside a closed map).
+    /// Doors do not: the caster tests their inset panel separately.
     #[must_use]
     #[inline]
     pub fn blocks_ray(self) -> bool {
-        !matches!(self, Cell::Floor { .. })
+        !matches!(self, Cell::Floor { .. } | Cell::Door(_))
     }
 }
 
@@ -102,6 +117,14 @@ pub struct Map {
     pub sprites: Vec<Vec2>,
     /// The legacy `R w h` line, accepted and otherwise ignored.
     pub resolution: Option<(u32, u32)>,
+    /// halfcast's own `SPRITE` lines, in file order (drawn after the legacy ones).
+    pub sprite_defs: Vec<SpriteDef>,
+    /// The `TD` door texture, if given (otherwise the built-in door).
+    pub door_texture: Option<TextureRef>,
+    /// The `FOG r,g,b density` line.
+    pub fog: Option<Fog>,
+    /// The `SHADE falloff` line: distance darkening strength (see [`crate::light::Lighting`]).
+    pub shade: Option<f64>,
 }
 
 impl Map {
@@ -117,11 +140,26 @@ impl Map {
     }
 
     /// Whether a point stands in a walkable cell (used by collision and pose checks).
+    /// Door cells are not walkable here; whether one is open is dynamic (see [`crate::door`]).
     #[must_use]
     pub fn is_walkable(&self, p: Vec2) -> bool {
         matches!(
             self.cell(p.x.floor() as i64, p.y.floor() as i64),
             Cell::Floor { .. }
         )
+    }
+}
+
+impl Map {
+    /// Every door cell, in row-major order (the index a [`crate::door::DoorState`] uses).
+    #[must_use]
+    pub fn door_cells(&self) -> Vec<(i64, i64)> {
+        let w = self.width.max(1);
+        self.cells
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| matches!(c, Cell::Door(_)))
+            .map(|(k, _)| ((k % w) as i64, (k / w) as i64))
+            .collect()
     }
 }

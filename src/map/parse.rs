@@ -2,8 +2,12 @@
 
 use std::collections::HashMap;
 
-use super::{Cell, Map, MapError, MapErrorKind, Start, Surface, TextureRef, Zone};
+use super::sprite::parse_sprite;
+use super::{
+    Cell, DoorPlane, Map, MapError, MapErrorKind, SpriteDef, Start, Surface, TextureRef, Zone,
+};
 use crate::color::Rgb;
+use crate::light::Fog;
 use crate::vec2::Vec2;
 
 /// More cells than this is refused instead of allocating without bound.
@@ -108,6 +112,10 @@ struct Header {
     zones: Vec<Zone>,
     sprite_texture: Option<TextureRef>,
     resolution: Option<(u32, u32)>,
+    sprite_defs: Vec<SpriteDef>,
+    door_texture: Option<TextureRef>,
+    fog: Option<Fog>,
+    shade: Option<f64>,
 }
 
 type LineError = ((usize, usize), MapErrorKind);
@@ -147,6 +155,11 @@ impl Header {
                 _ => (at, MapErrorKind::UnknownIdentifier(word.to_owned())),
             }
         })?;
+        if let Ident::SpriteEntry = kind {
+            let def = parse_sprite(rest, line_no, word_col, rest_col).map_err(|k| (at, k))?;
+            self.sprite_defs.push(def);
+            return Ok(());
+        }
         if let Some(&first_line) = self.seen.get(word) {
             return Err((
                 at,
@@ -199,6 +212,23 @@ impl Header {
                     z.floor = Some(surface);
                 }
             }
+            Ident::DoorTexture => {
+                self.door_texture = Some(one_path(word, rest, line_no, rest_col, at)?);
+            }
+            Ident::Fog => self.fog = Some(fog(rest).map_err(|k| (at, k))?),
+            Ident::Shade => {
+                let v = rest.trim_matches(is_blank_char);
+                let k = v.parse::<f64>().ok().filter(|k| k.is_finite() && *k >= 0.0);
+                let why = format!("expected a falloff number >= 0, got '{v}'");
+                self.shade = Some(k.ok_or((
+                    at,
+                    MapErrorKind::BadValue {
+                        id: "SHADE".to_owned(),
+                        why,
+                    },
+                ))?);
+            }
+            Ident::SpriteEntry => unreachable!("handled before the duplicate check"),
             Ident::Resolution => {
                 let nums: Vec<u32> = rest
                     .split_whitespace()
@@ -225,6 +255,10 @@ enum Ident {
     CeilingTexture,
     Zone { ceiling: bool, zone: usize },
     Resolution,
+    SpriteEntry,
+    DoorTexture,
+    Fog,
+    Shade,
 }
 
 fn classify(word: &str) -> Option<Ident> {
@@ -239,6 +273,10 @@ fn classify(word: &str) -> Option<Ident> {
         "FT" => Ident::FloorTexture,
         "CT" => Ident::CeilingTexture,
         "R" => Ident::Resolution,
+        "SPRITE" => Ident::SpriteEntry,
+        "TD" => Ident::DoorTexture,
+        "FOG" => Ident::Fog,
+        "SHADE" => Ident::Shade,
         _ => {
             let b = word.as_bytes();
             match b {
@@ -299,6 +337,23 @@ fn colour(id: &str, rest: &str) -> Result<Rgb, MapErrorKind> {
     }
 }
 
+/// Parses `r,g,b density` (density a number >= 0, fraction left per cell is e^-density).
+fn fog(rest: &str) -> Result<Fog, MapErrorKind> {
+    let v = rest.trim_matches(is_blank_char);
+    let bad = || MapErrorKind::BadValue {
+        id: "FOG".to_owned(),
+        why: format!("expected 'r,g,b density', got '{v}'"),
+    };
+    let (rgb, density) = v.rsplit_once(is_blank_char).ok_or_else(bad)?;
+    let colour = colour("FOG", rgb)?;
+    let density = density
+        .parse::<f64>()
+        .ok()
+        .filter(|d| d.is_finite() && *d >= 0.0)
+        .ok_or_else(bad)?;
+    Ok(Fog { colour, density })
+}
+
 /// Turns the grid lines into cells, then checks players and closure.
 fn build(file: &str, h: Header, grid: &[(usize, &str)]) -> Result<Map, MapError> {
     let err = |at: Option<(usize, usize)>, kind| MapError {
@@ -333,6 +388,8 @@ fn build(file: &str, h: Header, grid: &[(usize, &str)]) -> Result<Map, MapError>
                     Cell::Floor { zone: 0 }
                 }
                 '1'..='9' => Cell::Wall(ch as u8 - b'0'),
+                // The plane is fixed below, once the neighbours are known.
+                'D' => Cell::Door(DoorPlane::X),
                 'N' | 'S' | 'E' | 'W' => {
                     if let Some((_, l, c)) = start {
                         return Err(err(
@@ -379,7 +436,7 @@ fn build(file: &str, h: Header, grid: &[(usize, &str)]) -> Result<Map, MapError>
     };
     for (j, &(line_no, line)) in grid.iter().enumerate() {
         for (i, ch) in line.chars().enumerate() {
-            if !matches!(cells[j * width + i], Cell::Floor { .. }) {
+            if !matches!(cells[j * width + i], Cell::Floor { .. } | Cell::Door(_)) {
                 continue;
             }
             let (x, y) = (i as i64, j as i64);
@@ -390,6 +447,7 @@ fn build(file: &str, h: Header, grid: &[(usize, &str)]) -> Result<Map, MapError>
                 let what = match ch {
                     'N' | 'S' | 'E' | 'W' => "player",
                     '2' => "sprite",
+                    'D' => "door",
                     'a'..='z' => "zone floor",
                     _ => "floor",
                 };
@@ -401,6 +459,38 @@ fn build(file: &str, h: Header, grid: &[(usize, &str)]) -> Result<Map, MapError>
                 return Err(err(Some((line_no, i + 1)), kind));
             }
         }
+    }
+    let mut planes = Vec::new();
+    for (j, &(line_no, line)) in grid.iter().enumerate() {
+        for (i, ch) in line.chars().enumerate() {
+            if ch != 'D' {
+                continue;
+            }
+            let (x, y) = (i as i64, j as i64);
+            let wall = |a: i64, b: i64| matches!(at(a, b), Cell::Wall(_));
+            let plane = if wall(x - 1, y) && wall(x + 1, y) {
+                DoorPlane::Y
+            } else if wall(x, y - 1) && wall(x, y + 1) {
+                DoorPlane::X
+            } else {
+                let kind = MapErrorKind::DoorNotFramed {
+                    line: line_no,
+                    col: i + 1,
+                };
+                return Err(err(Some((line_no, i + 1)), kind));
+            };
+            planes.push((j * width + i, plane));
+        }
+    }
+    for def in &h.sprite_defs {
+        let (x, y) = (def.pos.x.floor() as i64, def.pos.y.floor() as i64);
+        if !matches!(at(x, y), Cell::Floor { .. }) {
+            let kind = MapErrorKind::SpriteOffFloor(format!("{},{}", def.pos.x, def.pos.y));
+            return Err(err(Some(def.at), kind));
+        }
+    }
+    for (k, plane) in planes {
+        cells[k] = Cell::Door(plane);
     }
     let surface = |tex: Option<TextureRef>, colour: Option<Surface>| {
         tex.map(Surface::Texture)
@@ -426,6 +516,10 @@ fn build(file: &str, h: Header, grid: &[(usize, &str)]) -> Result<Map, MapError>
         sprite_texture: h.sprite_texture,
         sprites,
         resolution: h.resolution,
+        sprite_defs: h.sprite_defs,
+        door_texture: h.door_texture,
+        fog: h.fog,
+        shade: h.shade,
     })
 }
 

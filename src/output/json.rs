@@ -2,8 +2,11 @@
 
 use serde::Serialize;
 
+use crate::billboard::SpriteOutcome;
 use crate::camera::Camera;
 use crate::cast::{Cast, Side};
+use crate::sprite::{to_camera_space, Culled};
+use crate::world::World;
 
 /// The JSON document `render --format json` prints (field order as documented).
 #[derive(Debug, Serialize)]
@@ -16,6 +19,26 @@ pub struct RayReport {
     pub centre_column: usize,
     pub columns: Vec<ColumnReport>,
     pub centre_trace: Vec<StepReport>,
+    /// Every sprite's projection, in world order (empty for maps without sprites).
+    pub sprites: Vec<SpriteReport>,
+}
+
+/// One sprite's projection: where it landed and whether any of it was drawn.
+#[derive(Debug, Serialize)]
+pub struct SpriteReport {
+    pub index: usize,
+    pub pos: [f64; 2],
+    /// Left and right edges in columns, unclipped; `null` when behind the camera.
+    pub screen_x: Option<[f64; 2]>,
+    /// Columns covered after clipping, [first, end); `null` when culled.
+    pub columns: Option<[usize; 2]>,
+    /// Depth along the view direction (what the wall depth buffer is compared with);
+    /// zero or negative when behind.
+    pub distance: f64,
+    /// Whether at least one texel reached the screen (false when walls hide it all).
+    pub drawn: bool,
+    /// `"behind"`, `"offscreen"`, or `null` when projected onto the screen.
+    pub culled: Option<Culled>,
 }
 
 /// One column's hit.
@@ -67,7 +90,52 @@ impl RayReport {
                     })
                     .collect()
             }),
+            sprites: Vec::new(),
         }
+    }
+
+    /// Adds the sprites of a frame rendered from `world` with `camera`.
+    #[must_use]
+    pub fn with_sprites(
+        mut self,
+        world: &World,
+        camera: &Camera,
+        outcomes: &[SpriteOutcome],
+    ) -> Self {
+        self.sprites = outcomes
+            .iter()
+            .map(|o| {
+                let pos = world.sprites[o.index].def.pos;
+                let (lateral, depth) = to_camera_space(camera, pos);
+                let (screen_x, columns, culled) = match o.projection {
+                    Ok(p) => (Some([p.left, p.right]), Some([p.cols.0, p.cols.1]), None),
+                    Err(Culled::Behind) => (None, None, Some(Culled::Behind)),
+                    Err(Culled::Offscreen) => {
+                        let w = self.size[0] as f64;
+                        let centre = w / 2.0 * (1.0 + lateral / depth);
+                        let half = camera.focal_length(self.size[0])
+                            * world.sprites[o.index].def.scale.0
+                            / depth
+                            / 2.0;
+                        (
+                            Some([centre - half, centre + half]),
+                            None,
+                            Some(Culled::Offscreen),
+                        )
+                    }
+                };
+                SpriteReport {
+                    index: o.index,
+                    pos: [pos.x, pos.y],
+                    screen_x,
+                    columns,
+                    distance: depth,
+                    drawn: o.drawn,
+                    culled,
+                }
+            })
+            .collect();
+        self
     }
 
     /// Serialises with full f64 precision (shortest round-trip form).

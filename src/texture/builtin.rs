@@ -1,9 +1,11 @@
 //! The textures compiled into the binary, so it runs with no files beside it.
 
+use super::sheet::SpriteSheet;
 use super::Texture;
+use crate::map::ColourKey;
 
 /// The generated PNGs from `textures/`, by file stem.
-pub const EMBEDDED: [(&str, &[u8]); 7] = [
+pub const EMBEDDED: [(&str, &[u8]); 8] = [
     ("bricks", include_bytes!("../../textures/bricks.png")),
     ("stone", include_bytes!("../../textures/stone.png")),
     ("wood", include_bytes!("../../textures/wood.png")),
@@ -11,7 +13,37 @@ pub const EMBEDDED: [(&str, &[u8]); 7] = [
     ("mossy", include_bytes!("../../textures/mossy.png")),
     ("floor", include_bytes!("../../textures/floor.png")),
     ("ceiling", include_bytes!("../../textures/ceiling.png")),
+    ("door", include_bytes!("../../textures/door.png")),
 ];
+
+/// The generated sprite sheets (RGBA) from `textures/sprites/`, by file stem.
+pub const EMBEDDED_SPRITES: [(&str, &[u8]); 5] = [
+    (
+        "barrel",
+        include_bytes!("../../textures/sprites/barrel.png"),
+    ),
+    (
+        "pillar",
+        include_bytes!("../../textures/sprites/pillar.png"),
+    ),
+    ("lamp", include_bytes!("../../textures/sprites/lamp.png")),
+    ("plant", include_bytes!("../../textures/sprites/plant.png")),
+    (
+        "creature",
+        include_bytes!("../../textures/sprites/creature.png"),
+    ),
+];
+
+/// Decodes the embedded sprite sheet named `stem` (e.g. "barrel"), if there is one.
+#[must_use]
+pub fn sheet_by_name(stem: &str) -> Option<SpriteSheet> {
+    EMBEDDED_SPRITES
+        .iter()
+        .find(|(name, _)| *name == stem)
+        .map(|(_, bytes)| {
+            SpriteSheet::decode(bytes, ColourKey::Auto).expect("embedded sprites are valid PNGs")
+        })
+}
 
 /// Decodes the embedded texture named `stem` (e.g. "bricks"), if there is one.
 #[must_use]
@@ -41,6 +73,17 @@ mod tests {
                 by_name(name).as_ref(),
                 Some(&f()),
                 "textures/{name}.png is stale: run `cargo run --example gen-textures`"
+            );
+        }
+    }
+
+    #[test]
+    fn embedded_sprite_pngs_match_the_generator() {
+        for (name, f) in crate::texture::sprite_art::ALL {
+            assert_eq!(
+                sheet_by_name(name).as_ref(),
+                Some(&f()),
+                "textures/sprites/{name}.png is stale: run `cargo run --example gen-textures`"
             );
         }
     }

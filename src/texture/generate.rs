@@ -10,7 +10,7 @@ pub const SIZE: usize = 64;
 pub type Generator = fn() -> Texture;
 
 /// Every generated texture with the file stem it is saved under in `textures/`.
-pub const ALL: [(&str, Generator); 7] = [
+pub const ALL: [(&str, Generator); 8] = [
     ("bricks", bricks),
     ("stone", stone),
     ("wood", wood),
@@ -18,10 +18,11 @@ pub const ALL: [(&str, Generator); 7] = [
     ("mossy", mossy),
     ("floor", floor),
     ("ceiling", ceiling),
+    ("door", door),
 ];
 
 /// A well-mixed 32-bit hash of a lattice point, the root of all the noise here.
-fn hash(x: i64, y: i64, seed: u32) -> u32 {
+pub(super) fn hash(x: i64, y: i64, seed: u32) -> u32 {
     let mut h = (x as u32).wrapping_mul(0x9E37_79B1)
         ^ (y as u32).wrapping_mul(0x85EB_CA77)
         ^ seed.wrapping_mul(0xC2B2_AE3D);
@@ -33,12 +34,12 @@ fn hash(x: i64, y: i64, seed: u32) -> u32 {
 }
 
 /// Hash noise in [0, 1).
-fn white(x: i64, y: i64, seed: u32) -> f64 {
+pub(super) fn white(x: i64, y: i64, seed: u32) -> f64 {
     f64::from(hash(x, y, seed) >> 8) / f64::from(1u32 << 24)
 }
 
 /// Smooth value noise in [0, 1) that tiles every `SIZE` pixels (lattice step `cell`).
-fn smooth(x: usize, y: usize, cell: usize, seed: u32) -> f64 {
+pub(super) fn smooth(x: usize, y: usize, cell: usize, seed: u32) -> f64 {
     let n = (SIZE / cell) as i64;
     let (gx, gy) = ((x / cell) as i64, (y / cell) as i64);
     let (fx, fy) = (
@@ -53,13 +54,13 @@ fn smooth(x: usize, y: usize, cell: usize, seed: u32) -> f64 {
 }
 
 /// Three octaves of tiling value noise in [0, 1).
-fn fbm(x: usize, y: usize, seed: u32) -> f64 {
+pub(super) fn fbm(x: usize, y: usize, seed: u32) -> f64 {
     (smooth(x, y, 16, seed) * 4.0 + smooth(x, y, 8, seed + 1) * 2.0 + smooth(x, y, 4, seed + 2))
         / 7.0
 }
 
 /// Multiplies a base colour by `k` (around 1.0) and clamps.
-fn tint(base: (f64, f64, f64), k: f64) -> Rgb {
+pub(super) fn tint(base: (f64, f64, f64), k: f64) -> Rgb {
     let c = |v: f64| (v * k).round().clamp(0.0, 255.0) as u8;
     Rgb::new(c(base.0), c(base.1), c(base.2))
 }
@@ -196,6 +197,45 @@ pub fn ceiling() -> Texture {
         let n = fbm(x, y, 71);
         let k = if seam { 0.7 } else { 0.85 + 0.2 * n };
         tint((150.0, 146.0, 136.0), k)
+    })
+}
+
+/// A sliding steel door: two recessed panels, rivets, a handle slot and a warning stripe.
+#[must_use]
+pub fn door() -> Texture {
+    Texture::from_fn(SIZE, SIZE, |x, y| {
+        let brushed = smooth(x, y / 2 * 2, 4, 81) * 0.1 + white(x as i64, y as i64, 83) * 0.05;
+        let frame = !(3..SIZE - 3).contains(&x) || !(3..SIZE - 3).contains(&y);
+        if frame {
+            return tint((70.0, 74.0, 82.0), 0.9 + brushed);
+        }
+        let in_panel = |y0: usize, y1: usize| (8..56).contains(&x) && (y0..y1).contains(&y);
+        if (28..34).contains(&y) {
+            // Hazard stripe across the middle.
+            let band = (x + y) / 4 % 2 == 0;
+            return if band {
+                tint((210.0, 170.0, 40.0), 0.95 + brushed)
+            } else {
+                tint((40.0, 38.0, 36.0), 1.0 + brushed)
+            };
+        }
+        if (50..54).contains(&x) && (38..48).contains(&y) {
+            return Rgb::new(24, 24, 28);
+        }
+        let rivet = [5usize, 58].contains(&x) && [6usize, 20, 44, 58].contains(&y);
+        if rivet {
+            return Rgb::new(190, 196, 204);
+        }
+        let mut k = 0.95 + brushed;
+        if in_panel(8, 24) || in_panel(38, 56) {
+            k *= 0.82;
+            if x == 8 || y == 8 || y == 38 {
+                k *= 0.7;
+            } else if x == 55 || y == 23 || y == 55 {
+                k *= 1.3;
+            }
+        }
+        tint((120.0, 128.0, 140.0), k)
     })
 }
 

@@ -2,6 +2,8 @@
 
 pub mod builtin;
 pub mod generate;
+pub mod sheet;
+pub mod sprite_art;
 
 use crate::color::Rgb;
 
@@ -88,6 +90,15 @@ impl Texture {
     #[inline]
     pub fn column(&self, x: usize) -> &[Rgb] {
         &self.texels[x * self.height..(x + 1) * self.height]
+    }
+
+    /// Samples at (u, v) already reduced to [0, 1) (the floor caster's hot path).
+    #[must_use]
+    #[inline]
+    pub fn sample_unit(&self, u: f64, v: f64) -> Rgb {
+        let x = (u * self.width as f64) as usize;
+        let y = (v * self.height as f64) as usize;
+        self.texel(x.min(self.width - 1), y.min(self.height - 1))
     }
 
     /// Samples at texture coordinates (u, v) that wrap (floors repeat per cell).

@@ -203,6 +203,7 @@ impl<'a> DebugPane<'a> {
             Cell::Wall(d) => format!("wall {d}"),
             Cell::Void => "void".to_owned(),
             Cell::Floor { .. } => "floor".to_owned(),
+            Cell::Door(_) => "door".to_owned(),
         };
         vec![
             Line::from(vec![

@@ -26,6 +26,8 @@ pub const MAX_SCALE: usize = 12;
 /// How many rays of the frame's fan are drawn (plus the two cone edges).
 const FAN_RAYS: usize = 16;
 
+/// Doors on the minimap: a warm wood colour, distinct from every wall type.
+const DOOR: Rgb = Rgb::new(196, 140, 60);
 const VOID: Rgb = Rgb::new(14, 14, 18);
 const PLAYER: Rgb = Rgb::new(255, 255, 255);
 const FACING: Rgb = Rgb::new(255, 120, 60);
@@ -218,6 +220,7 @@ impl Palette {
         let checker = (i + j).rem_euclid(2) == 0;
         match what {
             Cell::Void => VOID,
+            Cell::Door(_) => DOOR,
             Cell::Wall(d) => {
                 let c = self.walls[usize::from(d).min(9)];
                 if checker {

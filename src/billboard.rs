@@ -1,0 +1,146 @@
+//! Draws the sprites over the walls: far to near, column by column, each column tested against
+//! the walls' depth buffer (the per-column perpendicular distances from the cast).
+
+use crate::cast::ColumnHit;
+use crate::color::Rgb;
+use crate::framebuffer::Framebuffer;
+use crate::light::{Shade, ShadeTable};
+use crate::map::Blend;
+use crate::scene::Scene;
+use crate::sprite::{far_to_near, frame_index, project, view_index, Culled, Projection};
+
+/// What became of one sprite in a frame (the JSON `sprites` array is built from these).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpriteOutcome {
+    /// Index into [`crate::World::sprites`].
+    pub index: usize,
+    pub projection: Result<Projection, Culled>,
+    /// Whether at least one texel reached the screen (false when walls hide it all).
+    pub drawn: bool,
+}
+
+/// Projects, sorts and draws every sprite of the scene; `hits` is the frame's cast (depth buffer).
+pub fn draw_sprites(
+    scene: &Scene,
+    hits: &[ColumnHit],
+    fb: &mut Framebuffer,
+    table: &ShadeTable,
+) -> Vec<SpriteOutcome> {
+    let (w, h) = (fb.width(), fb.height());
+    let view = scene.view.clamped();
+    let mut outcomes: Vec<SpriteOutcome> = scene
+        .world
+        .sprites
+        .iter()
+        .enumerate()
+        .map(|(index, s)| SpriteOutcome {
+            index,
+            projection: project(
+                &scene.camera,
+                &view,
+                s.def.pos,
+                s.def.scale,
+                s.def.offset,
+                w,
+                h,
+            ),
+            drawn: false,
+        })
+        .collect();
+    let depths: Vec<(usize, f64)> = outcomes
+        .iter()
+        .filter_map(|o| o.projection.ok().map(|p| (o.index, p.depth)))
+        .collect();
+    for i in far_to_near(&depths) {
+        let Ok(p) = outcomes[i].projection else {
+            continue;
+        };
+        outcomes[i].drawn = draw_one(scene, i, &p, hits, fb, table.at(p.depth));
+    }
+    outcomes
+}
+
+/// Mixes `fg` over `bg` by `a`/255.
+#[inline]
+fn mix(bg: Rgb, fg: Rgb, a: u16) -> Rgb {
+    let ch = |b: u8, f: u8| ((u16::from(f) * a + u16::from(b) * (255 - a) + 127) / 255) as u8;
+    Rgb::new(ch(bg.r, fg.r), ch(bg.g, fg.g), ch(bg.b, fg.b))
+}
+
+/// Draws sprite `i` at its projection; returns whether any texel was written.
+fn draw_one(
+    scene: &Scene,
+    i: usize,
+    p: &Projection,
+    hits: &[ColumnHit],
+    fb: &mut Framebuffer,
+    shade: Shade,
+) -> bool {
+    let sprite = &scene.world.sprites[i];
+    let def = &sprite.def;
+    let sheet = &scene.world.sheets[sprite.sheet];
+    let views = usize::from(def.views).max(1);
+    let views = if sheet.width() >= views { views } else { 1 };
+    let frames = usize::from(def.frames).max(1);
+    let frames = if sheet.height() >= frames { frames } else { 1 };
+    let (cell_w, cell_h) = (sheet.width() / views, sheet.height() / frames);
+    let vi = view_index(def.pos, def.facing_deg, scene.camera.pos, def.views).min(views - 1);
+    let fi = frame_index(def.frames, def.fps, scene.time).min(frames - 1);
+    let (x0, y0) = (vi * cell_w, fi * cell_h);
+    let width = p.right - p.left;
+    let v_step = cell_h as f64 / (p.bottom - p.top);
+    let v_start = (p.rows.0 as f64 + 0.5 - p.top) * v_step;
+    let mut drawn = false;
+    for (x, hit) in hits.iter().enumerate().take(p.cols.1).skip(p.cols.0) {
+        if p.depth >= hit.perp_dist {
+            continue;
+        }
+        let u = (x as f64 - p.left) / width;
+        let tx = x0 + ((u * cell_w as f64) as usize).min(cell_w - 1);
+        let (colours, alphas) = sheet.column(tx);
+        let mut v = v_start;
+        for y in p.rows.0..p.rows.1 {
+            let ty = y0 + (v as usize).min(cell_h - 1);
+            v += v_step;
+            let a = alphas[ty];
+            if a == 0 {
+                continue;
+            }
+            drawn = true;
+            let c = colours[ty];
+            let bg = fb.get(x, y);
+            let out = match def.blend {
+                Blend::Normal if a == 255 => shade.apply(c),
+                Blend::Normal => mix(bg, shade.apply(c), u16::from(a)),
+                Blend::Average => mix(bg, shade.apply(c), u16::from(a) / 2 + 1),
+                Blend::Additive => {
+                    // Glow fades with distance but does not pick up fog colour.
+                    let lit = Shade {
+                        mul: shade.mul,
+                        add: [0; 3],
+                    }
+                    .apply(c);
+                    let add = |b: u8, f: u8| {
+                        (u16::from(b) + u16::from(f) * u16::from(a) / 255).min(255) as u8
+                    };
+                    Rgb::new(add(bg.r, lit.r), add(bg.g, lit.g), add(bg.b, lit.b))
+                }
+            };
+            fb.set(x, y, out);
+        }
+    }
+    drawn
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mixing_by_alpha() {
+        let (bg, fg) = (Rgb::new(0, 100, 200), Rgb::new(200, 100, 0));
+        assert_eq!(mix(bg, fg, 255), fg);
+        assert_eq!(mix(bg, fg, 0), bg);
+        assert_eq!(mix(bg, fg, 128), Rgb::new(100, 100, 100));
+    }
+}

@@ -1,0 +1,146 @@
+//! Sprite sheets: RGBA texels (column-major, like wall textures) cut into views × frames.
+//!
+//! Walls stay on the opaque [`super::Texture`]; only sprites pay for alpha. A sheet of
+//! `views` columns and `frames` rows holds one picture per (view, frame), all the same size.
+
+use crate::color::Rgb;
+use crate::map::ColourKey;
+
+/// A sprite image with transparency, possibly holding several views and animation frames.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SpriteSheet {
+    width: usize,
+    height: usize,
+    texels: Vec<Rgb>,
+    /// 0 = see-through, 255 = opaque; same layout as `texels`.
+    alpha: Vec<u8>,
+}
+
+impl SpriteSheet {
+    /// Builds a sheet from a function of (x, y) giving colour and alpha (generators, tests).
+    #[must_use]
+    pub fn from_fn(
+        width: usize,
+        height: usize,
+        mut f: impl FnMut(usize, usize) -> (Rgb, u8),
+    ) -> Self {
+        let mut texels = Vec::with_capacity(width * height);
+        let mut alpha = Vec::with_capacity(width * height);
+        for x in 0..width {
+            for y in 0..height {
+                let (c, a) = f(x, y);
+                texels.push(c);
+                alpha.push(a);
+            }
+        }
+        Self {
+            width,
+            height,
+            texels,
+            alpha,
+        }
+    }
+
+    /// Decodes an image; without an alpha channel `key` (black under [`ColourKey::Auto`]) is clear.
+    ///
+    /// # Errors
+    /// The decoder's message, or "image has no pixels".
+    pub fn decode(bytes: &[u8], key: ColourKey) -> Result<Self, String> {
+        let img = image::load_from_memory(bytes).map_err(|e| e.to_string())?;
+        let has_alpha = img.color().has_alpha();
+        let img = img.to_rgba8();
+        let (w, h) = (img.width() as usize, img.height() as usize);
+        if w == 0 || h == 0 {
+            return Err("image has no pixels".into());
+        }
+        let key = match key {
+            ColourKey::Auto if !has_alpha => Some(Rgb::default()),
+            ColourKey::Colour(c) => Some(c),
+            _ => None,
+        };
+        Ok(Self::from_fn(w, h, |x, y| {
+            let p = img.get_pixel(x as u32, y as u32);
+            let c = Rgb::new(p[0], p[1], p[2]);
+            let a = if key == Some(c) { 0 } else { p[3] };
+            (c, a)
+        }))
+    }
+
+    /// Encodes as an RGBA PNG (what the generator writes into `textures/sprites/`).
+    ///
+    /// # Errors
+    /// The encoder's message.
+    pub fn to_png(&self) -> Result<Vec<u8>, String> {
+        let mut img = image::RgbaImage::new(self.width as u32, self.height as u32);
+        for (x, y, p) in img.enumerate_pixels_mut() {
+            let (c, a) = self.texel(x as usize, y as usize);
+            *p = image::Rgba([c.r, c.g, c.b, a]);
+        }
+        let mut out = std::io::Cursor::new(Vec::new());
+        img.write_to(&mut out, image::ImageFormat::Png)
+            .map_err(|e| e.to_string())?;
+        Ok(out.into_inner())
+    }
+
+    /// Width in texels (all views side by side).
+    #[must_use]
+    pub fn width(&self) -> usize {
+        self.width
+    }
+
+    /// Height in texels (all frames stacked).
+    #[must_use]
+    pub fn height(&self) -> usize {
+        self.height
+    }
+
+    /// Colour and alpha at (x, y).
+    #[must_use]
+    #[inline]
+    pub fn texel(&self, x: usize, y: usize) -> (Rgb, u8) {
+        let i = x * self.height + y;
+        (self.texels[i], self.alpha[i])
+    }
+
+    /// One column's colours and alphas, top to bottom (the slice a sprite stripe reads).
+    #[must_use]
+    #[inline]
+    pub fn column(&self, x: usize) -> (&[Rgb], &[u8]) {
+        let r = x * self.height..(x + 1) * self.height;
+        (&self.texels[r.clone()], &self.alpha[r])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn png_round_trip_keeps_alpha() {
+        let s = SpriteSheet::from_fn(3, 2, |x, y| {
+            (Rgb::new(x as u8, y as u8, 7), (x * 100) as u8)
+        });
+        assert_eq!(
+            SpriteSheet::decode(&s.to_png().unwrap(), ColourKey::Auto).unwrap(),
+            s
+        );
+    }
+
+    #[test]
+    fn images_without_alpha_use_the_key_colour() {
+        let t = crate::texture::Texture::from_fn(2, 1, |x, _| {
+            if x == 0 {
+                Rgb::default()
+            } else {
+                Rgb::new(255, 0, 255)
+            }
+        });
+        let png = t.to_png().unwrap();
+        let auto = SpriteSheet::decode(&png, ColourKey::Auto).unwrap();
+        assert_eq!((auto.texel(0, 0).1, auto.texel(1, 0).1), (0, 255));
+        let magenta = SpriteSheet::decode(&png, ColourKey::Colour(Rgb::new(255, 0, 255))).unwrap();
+        assert_eq!((magenta.texel(0, 0).1, magenta.texel(1, 0).1), (255, 0));
+        let none = SpriteSheet::decode(&png, ColourKey::None).unwrap();
+        assert_eq!((none.texel(0, 0).1, none.texel(1, 0).1), (255, 255));
+    }
+}
