@@ -16,7 +16,7 @@ use crate::framebuffer::Framebuffer;
 use crate::game::{Cursor, GameState};
 use crate::widget::{DebugPane, HalfBlockView, Minimap, RevealedTrace};
 
-const BORDER: Style = Style::new().fg(Color::Rgb(66, 70, 88));
+const BORDER: Style = Style::new().fg(Color::Rgb(84, 90, 112));
 const TITLE: Style = Style::new()
     .fg(Color::Rgb(110, 200, 230))
     .add_modifier(Modifier::BOLD);
@@ -100,7 +100,8 @@ fn draw_minimap(screen: &Screen, revealed: Option<RevealedTrace>, r: Rect, buf: 
     let inner = block.inner(r);
     block.render(r, buf);
     let s = screen.state;
-    let mut map = Minimap::new(&s.world, &s.camera, &screen.cast.columns);
+    let mut map =
+        Minimap::new(&s.world, &s.camera, &screen.cast.columns).focus_on_ray(s.debugger.paused);
     if let Some(t) = revealed {
         map = map.debug_ray(t);
     }

@@ -44,7 +44,7 @@ pub fn status_line(
     let cam = &state.camera;
     let mut spans = Vec::new();
     if state.debugger.paused {
-        spans.push(Span::styled(" ⏸ PAUSED ", PAUSED));
+        spans.push(Span::styled(" PAUSED ", PAUSED));
         spans.push(l(" col "));
         spans.push(v(state.debug_column().to_string()));
         let shown = match (state.debugger.cursor, steps) {
