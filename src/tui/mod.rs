@@ -9,6 +9,7 @@ pub mod help;
 pub mod keys;
 pub mod layout;
 pub mod render;
+pub mod repeat;
 pub mod screen;
 pub mod stats;
 pub mod status;
