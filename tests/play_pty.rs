@@ -37,6 +37,10 @@ struct Session {
 
 impl Session {
     fn spawn(args: &[&str]) -> Self {
+        Self::spawn_with(args, &[])
+    }
+
+    fn spawn_with(args: &[&str], env: &[(&str, &str)]) -> Self {
         let pty = native_pty_system();
         let pair = pty
             .openpty(PtySize {
@@ -50,6 +54,9 @@ impl Session {
         let mut cmd = CommandBuilder::new(env!("CARGO_BIN_EXE_halfcast"));
         cmd.args(args);
         cmd.env("TERM", "xterm-256color");
+        for (k, v) in env {
+            cmd.env(k, v);
+        }
         let child = pair.slave.spawn_command(cmd).expect("spawn halfcast");
         drop(pair.slave);
         let mut reader = pair.master.try_clone_reader().expect("reader");
@@ -321,4 +328,35 @@ fn kitty_keyboard_protocol_holds_until_release() {
     thread::sleep(Duration::from_millis(200));
     // The keyboard mode was popped before leaving.
     assert!(contains(&s.bytes(), b"\x1b[<1u"));
+}
+
+/// Debug builds panic after the first frame when HALFCAST_TEST_PANIC is set.
+#[cfg(debug_assertions)]
+#[test]
+fn a_panic_restores_the_terminal_before_the_message() {
+    let mut s = Session::spawn_with(&["play"], &[("HALFCAST_TEST_PANIC", "1")]);
+    let before = s.cooked.clone();
+    let start = Instant::now();
+    let status = loop {
+        s.answer_probe();
+        if let Some(st) = s.child.try_wait().unwrap() {
+            break st;
+        }
+        assert!(start.elapsed() < PATIENCE, "no panic exit");
+        thread::sleep(Duration::from_millis(20));
+    };
+    assert!(!status.success());
+    thread::sleep(Duration::from_millis(200));
+    let out = s.bytes();
+    let left = last_index(&out, b"\x1b[?1049l").expect("left the alternate screen");
+    let message = last_index(&out, b"HALFCAST_TEST_PANIC is set").expect("panic message shown");
+    assert!(
+        left < message,
+        "the message must come after the restore, on the main screen"
+    );
+    assert!(last_index(&out, b"\x1b[?25h") > last_index(&out, b"\x1b[?25l"));
+    // The buffered frame that was being drawn is not spilled after the restore.
+    assert!(!contains(&out[left..], "\u{2580}".as_bytes()));
+    let after = s.master.get_termios().expect("termios");
+    assert_eq!(before.local_flags, after.local_flags);
 }
