@@ -74,8 +74,14 @@ pub fn draw(screen: &Screen, panes: &Panes, area: Rect, buf: &mut Buffer) {
                 );
             }
             let steps = screen.cast.trace.as_ref().map(|t| t.steps.len());
-            let line = status_line(screen.state, screen.stats, screen.input_mode, steps);
             let status = status.intersection(area);
+            let line = status_line(
+                screen.state,
+                screen.stats,
+                screen.input_mode,
+                steps,
+                status.width,
+            );
             buf.set_style(status, BAR);
             Paragraph::new(line).render(status, buf);
             if screen.toggles.help {
