@@ -15,18 +15,32 @@ const ROWS: u16 = 48;
 /// A hang guard only (the test never asserts on speed): generous for a loaded CI machine.
 const PATIENCE: Duration = Duration::from_secs(60);
 
+/// Probe answer of a terminal without the kitty keyboard protocol.
+const NO_KITTY: &[u8] = b"\x1b[?62;22c";
+
+/// Probe answer of a terminal with it (current flags 0, then device attributes).
+const KITTY: &[u8] = b"\x1b[?0u\x1b[?62;22c";
+
 struct Session {
     master: Box<dyn MasterPty + Send>,
     writer: Box<dyn Write + Send>,
     child: Box<dyn Child + Send + Sync>,
     out: Arc<Mutex<Vec<u8>>>,
     answered_da1: bool,
+    parser: vt100::Parser,
+    parsed: usize,
+    /// What the "terminal" answers to the keyboard probe.
+    probe_answer: &'static [u8],
     /// The line discipline before the game started (to compare after it exits).
     cooked: nix::sys::termios::Termios,
 }
 
 impl Session {
     fn spawn(args: &[&str]) -> Self {
+        Self::spawn_with(args, &[])
+    }
+
+    fn spawn_with(args: &[&str], env: &[(&str, &str)]) -> Self {
         let pty = native_pty_system();
         let pair = pty
             .openpty(PtySize {
@@ -40,6 +54,9 @@ impl Session {
         let mut cmd = CommandBuilder::new(env!("CARGO_BIN_EXE_halfcast"));
         cmd.args(args);
         cmd.env("TERM", "xterm-256color");
+        for (k, v) in env {
+            cmd.env(k, v);
+        }
         let child = pair.slave.spawn_command(cmd).expect("spawn halfcast");
         drop(pair.slave);
         let mut reader = pair.master.try_clone_reader().expect("reader");
@@ -61,6 +78,9 @@ impl Session {
             child,
             out,
             answered_da1: false,
+            parser: vt100::Parser::new(ROWS, COLS, 0),
+            parsed: 0,
+            probe_answer: NO_KITTY,
             cooked,
         }
     }
@@ -69,17 +89,19 @@ impl Session {
         self.out.lock().unwrap().clone()
     }
 
-    fn screen(&self) -> vt100::Parser {
-        let mut p = vt100::Parser::new(ROWS, COLS, 0);
-        p.process(&self.bytes());
-        p
+    /// The screen so far (only new output is parsed each time).
+    fn screen(&mut self) -> &vt100::Parser {
+        let new = self.out.lock().unwrap()[self.parsed..].to_vec();
+        self.parsed += new.len();
+        self.parser.process(&new);
+        &self.parser
     }
 
-    /// Answers the start-up keyboard probe like a terminal without the kitty protocol would
-    /// (primary device attributes only), so the probe does not wait for its timeout.
+    /// Answers the start-up keyboard probe (by default like a terminal without the kitty
+    /// protocol: primary device attributes only), so it does not wait for its timeout.
     fn answer_probe(&mut self) {
         if !self.answered_da1 && contains(&self.bytes(), b"\x1b[c") {
-            self.writer.write_all(b"\x1b[?62;22c").unwrap();
+            self.writer.write_all(self.probe_answer).unwrap();
             self.writer.flush().unwrap();
             self.answered_da1 = true;
         }
@@ -92,10 +114,10 @@ impl Session {
             if ok(self.screen().screen()) {
                 return;
             }
+            let contents = self.screen().screen().contents();
             assert!(
                 start.elapsed() < PATIENCE,
-                "gave up waiting for {what}; screen:\n{}",
-                self.screen().screen().contents()
+                "gave up waiting for {what}; screen:\n{contents}"
             );
             thread::sleep(Duration::from_millis(50));
         }
@@ -249,6 +271,92 @@ fn sigterm_restores_the_terminal_and_exits() {
     thread::sleep(Duration::from_millis(200));
     let out = s.bytes();
     assert!(last_index(&out, b"\x1b[?1049l") > last_index(&out, b"\x1b[?1049h"));
+    let after = s.master.get_termios().expect("termios");
+    assert_eq!(before.local_flags, after.local_flags);
+}
+
+fn pos_of(sc: &vt100::Screen) -> String {
+    let st = status_line(sc);
+    st.split("pos ")
+        .nth(1)
+        .and_then(|r| r.split_whitespace().next())
+        .unwrap_or_default()
+        .to_owned()
+}
+
+#[test]
+fn kitty_keyboard_protocol_holds_until_release() {
+    let mut s = Session::spawn(&["play"]);
+    s.probe_answer = KITTY;
+    s.wait_for("the first frame in kitty mode", |sc| {
+        status_line(sc).contains("kitty keys") && status_line(sc).contains("q quit")
+    });
+    // The game asked for press/repeat/release events with all keys as escape codes.
+    let out = s.bytes();
+    // 15 = disambiguate | event types | alternate keys | all keys as escape codes.
+    assert!(contains(&out, b"\x1b[>15u"), "kitty flags not pushed");
+    let start_pos = pos_of(s.screen().screen());
+    // Press w (no repeats are sent): the player keeps walking while it is held...
+    s.send(b"\x1b[119;1:1u");
+    s.wait_for("walking", |sc| pos_of(sc) != start_pos);
+    let walking = pos_of(s.screen().screen());
+    s.wait_for("still walking", |sc| pos_of(sc) != walking);
+    // ...and stops at the release.
+    s.send(b"\x1b[119;1:3u");
+    let start = Instant::now();
+    loop {
+        let a = pos_of(s.screen().screen());
+        thread::sleep(Duration::from_millis(300));
+        if pos_of(s.screen().screen()) == a {
+            break;
+        }
+        assert!(
+            start.elapsed() < PATIENCE,
+            "still walking after the release"
+        );
+    }
+    s.send(b"\x1b[113;1:1u");
+    let start = Instant::now();
+    let status = loop {
+        if let Some(st) = s.child.try_wait().unwrap() {
+            break st;
+        }
+        assert!(start.elapsed() < PATIENCE, "q (kitty-encoded) did not quit");
+        thread::sleep(Duration::from_millis(20));
+    };
+    assert!(status.success());
+    thread::sleep(Duration::from_millis(200));
+    // The keyboard mode was popped before leaving.
+    assert!(contains(&s.bytes(), b"\x1b[<1u"));
+}
+
+/// Debug builds panic after the first frame when HALFCAST_TEST_PANIC is set.
+#[cfg(debug_assertions)]
+#[test]
+fn a_panic_restores_the_terminal_before_the_message() {
+    let mut s = Session::spawn_with(&["play"], &[("HALFCAST_TEST_PANIC", "1")]);
+    let before = s.cooked.clone();
+    let start = Instant::now();
+    let status = loop {
+        s.answer_probe();
+        if let Some(st) = s.child.try_wait().unwrap() {
+            break st;
+        }
+        assert!(start.elapsed() < PATIENCE, "no panic exit");
+        thread::sleep(Duration::from_millis(20));
+    };
+    assert!(!status.success());
+    thread::sleep(Duration::from_millis(200));
+    let out = s.bytes();
+    let left = last_index(&out, b"\x1b[?1049l").expect("left the alternate screen");
+    let message = last_index(&out, b"HALFCAST_TEST_PANIC is set").expect("panic message shown");
+    assert!(
+        left < message,
+        "the message must come after the restore, on the main screen"
+    );
+    assert!(last_index(&out, b"\x1b[?25h") > last_index(&out, b"\x1b[?25l"));
+    // The buffered frame that was being drawn is not spilled after the restore.
+    assert!(!contains(&out[left..], "\u{2580}".as_bytes()));
     let after = s.master.get_termios().expect("termios");
     assert_eq!(before.local_flags, after.local_flags);
 }

@@ -125,6 +125,11 @@ pub fn run_loop(
         })?;
         let draw_time = t.elapsed();
         app.stats.record(Instant::now(), render_time, draw_time);
+        // Lets the end-to-end tests prove the panic hook restores the terminal (debug builds only).
+        #[cfg(debug_assertions)]
+        if std::env::var_os("HALFCAST_TEST_PANIC").is_some() {
+            panic!("HALFCAST_TEST_PANIC is set");
+        }
     }
 }
 

@@ -11,6 +11,7 @@ use crossterm::event::{
     Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,
 };
 
+use super::repeat::RepeatTiming;
 use crate::game::{Action, Command, Held, Input};
 
 /// How key presses and releases reach us; shown in the status line and help.
@@ -32,12 +33,6 @@ impl InputMode {
         }
     }
 }
-
-/// Emulated mode: a first press is held this long, covering the usual auto-repeat delay.
-pub const FIRST_HOLD: Duration = Duration::from_millis(520);
-
-/// Emulated mode: after a repeat the key is held this much longer (repeats come every ~30–80 ms).
-pub const REPEAT_HOLD: Duration = Duration::from_millis(140);
 
 /// Kitty mode: a key with no event for this long is let go (tmux and friends drop releases).
 pub const KITTY_STALE: Duration = Duration::from_millis(900);
@@ -112,6 +107,10 @@ struct HeldKey {
     code: KeyCode,
     action: Action,
     until: Instant,
+    /// Presses seen since the key went down (emulated mode), to learn the repeat timing.
+    presses: u32,
+    last: Instant,
+    first_gap: Option<Duration>,
 }
 
 /// Collects events between frames and hands them to the game as one [`Input`].
@@ -124,6 +123,7 @@ pub struct Controls {
     drag_column: Option<u16>,
     /// Radians turned per terminal column of mouse drag.
     turn_per_column: f64,
+    repeat: RepeatTiming,
 }
 
 impl Controls {
@@ -137,6 +137,7 @@ impl Controls {
             ui: Vec::new(),
             drag_column: None,
             turn_per_column: 0.02,
+            repeat: RepeatTiming::default(),
         }
     }
 
@@ -190,26 +191,37 @@ impl Controls {
     }
 
     fn hold(&mut self, code: KeyCode, action: Action, now: Instant) {
-        let existing = self.held.iter().position(|h| h.code == code);
-        let until = now
-            + match (self.mode, existing) {
-                (InputMode::Kitty, _) => KITTY_STALE,
-                (InputMode::Emulated, None) => FIRST_HOLD,
-                (InputMode::Emulated, Some(_)) => REPEAT_HOLD,
-            };
-        match existing {
-            Some(i) => self.held[i].until = until,
-            None => {
-                // Emulated mode never sees releases, so pressing the opposite key lets go.
-                let opposite = opposite(action);
-                self.held.retain(|h| h.action != opposite);
-                self.held.push(HeldKey {
-                    code,
-                    action,
-                    until,
-                });
+        if let Some(h) = self.held.iter_mut().find(|h| h.code == code) {
+            let gap = now.saturating_duration_since(h.last);
+            h.presses += 1;
+            h.last = now;
+            match (h.presses, h.first_gap) {
+                (2, _) => h.first_gap = Some(gap),
+                (3, Some(delay)) => self.repeat.observe(delay, gap),
+                _ => {}
             }
+            h.until = now
+                + match self.mode {
+                    InputMode::Kitty => KITTY_STALE,
+                    InputMode::Emulated => self.repeat.repeat_hold(),
+                };
+            return;
         }
+        // Emulated mode never sees releases, so pressing the opposite key lets go.
+        let opposite = opposite(action);
+        self.held.retain(|h| h.action != opposite);
+        let hold = match self.mode {
+            InputMode::Kitty => KITTY_STALE,
+            InputMode::Emulated => self.repeat.first_hold(),
+        };
+        self.held.push(HeldKey {
+            code,
+            action,
+            until: now + hold,
+            presses: 1,
+            last: now,
+            first_gap: None,
+        });
     }
 
     fn mouse(&mut self, m: &MouseEvent) {
@@ -289,9 +301,24 @@ mod tests {
             c.handle(&press('w'), ms(t0, t));
             assert!(c.take_input(ms(t0, t + 20)).held.contains(Action::Forward));
         }
-        // The last repeat was at 896 ms; shortly after it stops, the key is let go.
-        assert!(c.take_input(ms(t0, 1000)).held.contains(Action::Forward));
+        // The last repeat was at 896 ms; shortly after it stops (a few intervals), it is let go.
+        assert!(c.take_input(ms(t0, 960)).held.contains(Action::Forward));
         assert!(c.take_input(ms(t0, 1100)).held.is_empty());
+    }
+
+    #[test]
+    fn emulated_learns_a_short_repeat_delay_so_taps_stop_sooner() {
+        let t0 = Instant::now();
+        let mut c = Controls::new(InputMode::Emulated);
+        // A held key on a fast keyboard: 250 ms delay, then every 30 ms.
+        for t in [0, 250, 280, 310] {
+            c.handle(&press('w'), ms(t0, t));
+        }
+        assert!(c.take_input(ms(t0, 400)).held.is_empty());
+        // Now a single tap is held only about as long as that delay.
+        c.handle(&press('w'), ms(t0, 1000));
+        assert!(c.take_input(ms(t0, 1290)).held.contains(Action::Forward));
+        assert!(c.take_input(ms(t0, 1320)).held.is_empty());
     }
 
     #[test]

@@ -9,6 +9,7 @@ pub mod help;
 pub mod keys;
 pub mod layout;
 pub mod render;
+pub mod repeat;
 pub mod screen;
 pub mod stats;
 pub mod status;
@@ -45,12 +46,10 @@ pub fn play(
 ) -> Result<(Ending, FrameStats), TerminalError> {
     terminal::require_tty()?;
     let signal = Arc::new(AtomicUsize::new(0));
-    for sig in [
-        signal_hook::consts::SIGTERM,
-        signal_hook::consts::SIGHUP,
-        signal_hook::consts::SIGINT,
-        signal_hook::consts::SIGQUIT,
-    ] {
+    let mut signals = vec![signal_hook::consts::SIGTERM, signal_hook::consts::SIGINT];
+    #[cfg(unix)]
+    signals.extend([signal_hook::consts::SIGHUP, signal_hook::consts::SIGQUIT]);
+    for sig in signals {
         signal_hook::flag::register_usize(sig, Arc::clone(&signal), sig as usize)?;
     }
     let mut session = terminal::Session::start(options.mouse)?;

@@ -16,7 +16,7 @@ use crate::framebuffer::Framebuffer;
 use crate::game::{Cursor, GameState};
 use crate::widget::{DebugPane, HalfBlockView, Minimap, RevealedTrace};
 
-const BORDER: Style = Style::new().fg(Color::Rgb(66, 70, 88));
+const BORDER: Style = Style::new().fg(Color::Rgb(84, 90, 112));
 const TITLE: Style = Style::new()
     .fg(Color::Rgb(110, 200, 230))
     .add_modifier(Modifier::BOLD);
@@ -74,8 +74,14 @@ pub fn draw(screen: &Screen, panes: &Panes, area: Rect, buf: &mut Buffer) {
                 );
             }
             let steps = screen.cast.trace.as_ref().map(|t| t.steps.len());
-            let line = status_line(screen.state, screen.stats, screen.input_mode, steps);
             let status = status.intersection(area);
+            let line = status_line(
+                screen.state,
+                screen.stats,
+                screen.input_mode,
+                steps,
+                status.width,
+            );
             buf.set_style(status, BAR);
             Paragraph::new(line).render(status, buf);
             if screen.toggles.help {
@@ -100,7 +106,8 @@ fn draw_minimap(screen: &Screen, revealed: Option<RevealedTrace>, r: Rect, buf: 
     let inner = block.inner(r);
     block.render(r, buf);
     let s = screen.state;
-    let mut map = Minimap::new(&s.world, &s.camera, &screen.cast.columns);
+    let mut map =
+        Minimap::new(&s.world, &s.camera, &screen.cast.columns).focus_on_ray(s.debugger.paused);
     if let Some(t) = revealed {
         map = map.debug_ray(t);
     }

@@ -33,61 +33,172 @@ fn l(s: &'static str) -> Span<'static> {
     Span::raw(s)
 }
 
-/// The status line for this frame.
+/// A piece of the status line; when the row is too narrow the lowest `keep` goes first.
+struct Segment {
+    keep: u8,
+    spans: Vec<Span<'static>>,
+}
+
+fn seg(keep: u8, spans: Vec<Span<'static>>) -> Segment {
+    Segment { keep, spans }
+}
+
+/// The status line for this frame, fitted to `width` columns by dropping the least useful parts.
 #[must_use]
 pub fn status_line(
     state: &GameState,
     stats: &FrameStats,
     mode: InputMode,
     steps: Option<usize>,
+    width: u16,
 ) -> Line<'static> {
     let cam = &state.camera;
-    let mut spans = Vec::new();
+    let mut segs = Vec::new();
     if state.debugger.paused {
-        spans.push(Span::styled(" ⏸ PAUSED ", PAUSED));
-        spans.push(l(" col "));
-        spans.push(v(state.debug_column().to_string()));
         let shown = match (state.debugger.cursor, steps) {
             (Cursor::Steps(n), Some(all)) if n < all => format!("{n}/{all}"),
             (_, Some(all)) => format!("{all}/{all} hit"),
             (_, None) => "-".to_owned(),
         };
-        spans.push(l("  step "));
-        spans.push(v(shown));
-        spans.push(sep());
+        segs.push(seg(
+            9,
+            vec![
+                Span::styled(" PAUSED ", PAUSED),
+                l(" col "),
+                v(state.debug_column().to_string()),
+                l("  step "),
+                v(shown),
+            ],
+        ));
+        let mut hints = Vec::new();
         for (k, what) in [
             ("←→[]", " column  "),
             ("n", " step  "),
             ("⏎", " hit  "),
             ("space", " resume"),
         ] {
-            spans.push(Span::styled(k, HINT_KEY));
-            spans.push(l(what));
+            hints.push(Span::styled(k, HINT_KEY));
+            hints.push(l(what));
         }
-        spans.push(sep());
+        segs.push(seg(7, hints));
     } else {
-        spans.push(v(format!(" {:>3.0}", stats.fps)));
-        spans.push(l(" fps  render "));
-        spans.push(v(format!("{:.1}", stats.render_ms)));
-        spans.push(l(" ms  draw "));
-        spans.push(v(format!("{:.1}", stats.draw_ms)));
-        spans.push(l(" ms"));
-        spans.push(sep());
+        segs.push(seg(8, vec![v(format!(" {:>3.0}", stats.fps)), l(" fps")]));
+        segs.push(seg(
+            3,
+            vec![
+                l("render "),
+                v(format!("{:.1}", stats.render_ms)),
+                l(" ms  draw "),
+                v(format!("{:.1}", stats.draw_ms)),
+                l(" ms"),
+            ],
+        ));
     }
-    spans.push(l("pos "));
-    spans.push(v(format!("{:.2},{:.2}", cam.pos.x, cam.pos.y)));
-    spans.push(l("  angle "));
-    spans.push(v(format!("{:.1}°", cam.angle_deg().rem_euclid(360.0))));
-    spans.push(l("  FOV "));
-    spans.push(v(format!("{:.0}°", cam.fov_deg())));
-    spans.push(sep());
-    spans.push(v(state.world.map.name.clone()));
-    spans.push(sep());
-    spans.push(l(mode.label()));
-    spans.push(sep());
-    spans.push(Span::styled("?", HINT_KEY));
-    spans.push(l(" help  "));
-    spans.push(Span::styled("q", HINT_KEY));
-    spans.push(l(" quit"));
+    segs.push(seg(
+        6,
+        vec![l("pos "), v(format!("{:.2},{:.2}", cam.pos.x, cam.pos.y))],
+    ));
+    segs.push(seg(
+        5,
+        vec![
+            l("angle "),
+            v(format!("{:.1}°", cam.angle_deg().rem_euclid(360.0))),
+        ],
+    ));
+    segs.push(seg(1, vec![l("FOV "), v(format!("{:.0}°", cam.fov_deg()))]));
+    segs.push(seg(2, vec![v(state.world.map.name.clone())]));
+    segs.push(seg(0, vec![l(mode.label())]));
+    segs.push(seg(
+        10,
+        vec![
+            Span::styled("?", HINT_KEY),
+            l(" help  "),
+            Span::styled("q", HINT_KEY),
+            l(" quit"),
+        ],
+    ));
+    fit(&mut segs, usize::from(width));
+    let mut spans = Vec::new();
+    for (i, s) in segs.into_iter().enumerate() {
+        if i > 0 {
+            spans.push(sep());
+        }
+        spans.extend(s.spans);
+    }
     Line::from(spans).style(BAR)
+}
+
+/// Drops the least useful segments until the line (with separators) fits.
+fn fit(segs: &mut Vec<Segment>, width: usize) {
+    let len = |segs: &[Segment]| {
+        let text: usize = segs
+            .iter()
+            .flat_map(|s| &s.spans)
+            .map(|s| s.content.chars().count())
+            .sum();
+        text + 3 * segs.len().saturating_sub(1)
+    };
+    while segs.len() > 1 && len(segs) > width {
+        let lowest = segs
+            .iter()
+            .enumerate()
+            .min_by_key(|(_, s)| s.keep)
+            .map(|(i, _)| i)
+            .expect("not empty");
+        segs.remove(lowest);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::camera::Camera;
+    use crate::world::World;
+    use std::sync::Arc;
+
+    fn text(width: u16, paused: bool) -> String {
+        let world = Arc::new(World::default_world());
+        let cam = Camera::from_angle(world.map.start.pos(), 90.0, 66.0);
+        let mut state = GameState::new(world, cam, 80);
+        if paused {
+            state.debugger.toggle_pause();
+        }
+        status_line(
+            &state,
+            &FrameStats::default(),
+            InputMode::Kitty,
+            Some(5),
+            width,
+        )
+        .to_string()
+    }
+
+    #[test]
+    fn wide_rows_show_everything() {
+        let t = text(200, false);
+        for part in [
+            "fps",
+            "render",
+            "pos 15.50,5.50",
+            "angle 90.0°",
+            "FOV 66°",
+            "default.cub",
+            "kitty keys",
+            "q quit",
+        ] {
+            assert!(t.contains(part), "{part}: {t}");
+        }
+    }
+
+    #[test]
+    fn narrow_rows_keep_fps_position_and_the_quit_hint() {
+        let t = text(60, false);
+        assert!(t.chars().count() <= 60, "{t}");
+        for part in ["fps", "pos 15.50,5.50", "q quit"] {
+            assert!(t.contains(part), "{part}: {t}");
+        }
+        assert!(!t.contains("kitty"));
+        let t = text(70, true);
+        assert!(t.contains("PAUSED") && t.contains("q quit"), "{t}");
+    }
 }

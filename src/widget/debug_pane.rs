@@ -146,7 +146,7 @@ impl<'a> DebugPane<'a> {
         rows.push(Line::styled(
             format!(
                 "{:>3} {hidden} more step{}",
-                "⋮",
+                "…",
                 if hidden == 1 { "" } else { "s" }
             ),
             LABEL,

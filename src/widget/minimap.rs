@@ -24,7 +24,7 @@ pub const MIN_SCALE: usize = 3;
 pub const MAX_SCALE: usize = 12;
 
 /// How many rays of the frame's fan are drawn (plus the two cone edges).
-const FAN_RAYS: usize = 16;
+const FAN_RAYS: usize = 12;
 
 /// Doors on the minimap: a warm wood colour, distinct from every wall type.
 const DOOR: Rgb = Rgb::new(196, 140, 60);
@@ -68,6 +68,24 @@ impl MapView {
         }
     }
 
+    /// Zooms on a segment (the debugged ray): as large as fits with a cell of margin around it.
+    #[must_use]
+    pub fn around(a: Vec2, b: Vec2, canvas: (usize, usize)) -> Self {
+        let span = |d: f64, px: usize| px as f64 / (d.abs() + 2.0);
+        let scale = span(a.x - b.x, canvas.0)
+            .min(span(a.y - b.y, canvas.1))
+            .floor()
+            .clamp(MIN_SCALE as f64, MAX_SCALE as f64);
+        let centre = Vec2::new((a.x + b.x) / 2.0, (a.y + b.y) / 2.0);
+        Self {
+            scale,
+            origin: Vec2::new(
+                centre.x - canvas.0 as f64 / scale / 2.0,
+                centre.y - canvas.1 as f64 / scale / 2.0,
+            ),
+        }
+    }
+
     /// A map point in canvas pixels.
     #[must_use]
     pub fn to_px(&self, p: Vec2) -> (f64, f64) {
@@ -93,6 +111,7 @@ pub struct Minimap<'a> {
     camera: &'a Camera,
     rays: &'a [ColumnHit],
     debug: Option<RevealedTrace<'a>>,
+    focus: bool,
 }
 
 impl<'a> Minimap<'a> {
@@ -104,7 +123,16 @@ impl<'a> Minimap<'a> {
             camera,
             rays,
             debug: None,
+            focus: false,
         }
+    }
+
+    /// Debugger focus: zoom on the debugged ray (its whole path to the hit) and drop the fan
+    /// of rays, so single steps are easy to follow.
+    #[must_use]
+    pub fn focus_on_ray(mut self, on: bool) -> Self {
+        self.focus = on;
+        self
     }
 
     /// Also shows the debugged ray's revealed cells and its path so far.
@@ -117,11 +145,15 @@ impl<'a> Minimap<'a> {
     /// Paints into a pixel canvas (two pixels per terminal row); also used for PNG screenshots.
     pub fn paint(&self, fb: &mut Framebuffer) {
         let map = &self.world.map;
-        let view = MapView::new(
-            (map.width, map.height),
-            (fb.width(), fb.height()),
-            self.camera.pos,
-        );
+        let canvas = (fb.width(), fb.height());
+        let pos = self.camera.pos;
+        let view = match &self.debug {
+            Some(d) if self.focus => {
+                let hit = pos + d.trace.ray_dir * d.trace.hit.perp_dist;
+                MapView::around(pos, hit, canvas)
+            }
+            _ => MapView::new((map.width, map.height), canvas, pos),
+        };
         let palette = Palette::new(self.world);
         for py in 0..fb.height() {
             for px in 0..fb.width() {
@@ -168,9 +200,11 @@ impl<'a> Minimap<'a> {
         }
         let from = view.to_px(self.camera.pos);
         let end = |hit: &ColumnHit| view.to_px(self.camera.pos + hit.ray_dir * hit.perp_dist);
-        let every = (n / FAN_RAYS).max(1);
-        for hit in self.rays.iter().step_by(every) {
-            line(fb, from, end(hit), FAN, 70);
+        if !self.focus {
+            let every = (n / FAN_RAYS).max(1);
+            for hit in self.rays.iter().step_by(every) {
+                line(fb, from, end(hit), FAN, 48);
+            }
         }
         for hit in [&self.rays[0], &self.rays[n - 1]] {
             line(fb, from, end(hit), FAN, 190);
@@ -281,6 +315,17 @@ mod tests {
         assert_eq!(v.cell_at(0, 0), (40, 90));
         let v = MapView::new((100, 100), (60, 30), Vec2::new(1.0, 1.0));
         assert_eq!(v.origin, Vec2::new(0.0, 0.0));
+    }
+
+    #[test]
+    fn focus_zooms_on_the_ray_with_a_margin() {
+        let v = MapView::around(Vec2::new(2.0, 2.0), Vec2::new(6.0, 4.0), (60, 40));
+        assert_eq!(v.scale, 10.0);
+        let (a, b) = (v.to_px(Vec2::new(2.0, 2.0)), v.to_px(Vec2::new(6.0, 4.0)));
+        assert!(
+            a.0 >= 0.0 && a.1 >= 0.0 && b.0 <= 60.0 && b.1 <= 40.0,
+            "{a:?} {b:?}"
+        );
     }
 
     #[test]
