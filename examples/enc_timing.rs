@@ -38,7 +38,24 @@ fn main() {
                 }
             }
             let m: f64 = best[1..].iter().sum::<f64>() / 20.0;
-            println!("{} {} {:.3} ms", scene.name(), level, m);
+            // Stock ratatui on the same frames, timed the same way (fastest of the repeats).
+            let mut rbest = vec![f64::MAX; frames.len()];
+            for _ in 0..5 {
+                let mut r = halfcast::bench::RatatuiReference::new(240, 68, level);
+                for (i, fb) in frames.iter().enumerate() {
+                    let t = Instant::now();
+                    std::hint::black_box(r.draw(fb).len());
+                    rbest[i] = rbest[i].min(t.elapsed().as_secs_f64() * 1000.0);
+                }
+            }
+            let rm: f64 = rbest[1..].iter().sum::<f64>() / 20.0;
+            println!(
+                "{} {} {:.3} ms (stock ratatui draw {:.3} ms)",
+                scene.name(),
+                level,
+                m,
+                rm
+            );
         }
     }
 }

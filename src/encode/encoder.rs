@@ -216,7 +216,10 @@ impl Encoder {
                 let cell = intent[x];
                 let next = choice.colours(cell, colours);
                 sgr::write(&mut self.out, level, colours, next);
-                self.out.extend_from_slice(choice.glyph());
+                match choice {
+                    Choice::Space => self.out.push(b' '),
+                    _ => self.out.extend_from_slice(&glyph3(choice)),
+                }
                 colours = next;
                 cursor = Cursor::At { col: col + 1, row };
                 self.shown[y * w + x] = cell;
@@ -266,6 +269,13 @@ impl Encoder {
             }
         }
     }
+}
+
+/// The three UTF-8 bytes of a block glyph, as a fixed-size array (copied without a memcpy call).
+#[inline]
+fn glyph3(choice: Choice) -> [u8; 3] {
+    let g = choice.glyph();
+    [g[0], g[1], g[2]]
 }
 
 #[cfg(test)]

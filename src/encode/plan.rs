@@ -165,8 +165,7 @@ impl RowPlanner {
                 sgr::param_len(level, cell[0], true),
                 sgr::param_len(level, cell[1], true),
             ];
-            let len_of =
-                |code: Code, lens: &[u32; 2]| if code == cell[0] { lens[0] } else { lens[1] };
+            let len_of = |code: Code, lens: &[u32; 2]| lens[usize::from(code != cell[0])];
             let base = step * BEAM;
             let out = (step + 1) * BEAM;
             let next_entry = if skip_ok { entry(end) } else { 0 };
@@ -186,12 +185,10 @@ impl RowPlanner {
                 let mut drawn = [(Choice::Skip, 0u32, 0u32, 0u32); 2];
                 for (slot, choice) in drawn.iter_mut().zip(options) {
                     let (fg, bg) = choice.colours(cell, (p.fg, p.bg));
-                    let colour = match (fg != p.fg, bg != p.bg) {
-                        (false, false) => 0,
-                        (true, false) => 3 + len_of(fg, &fg_len),
-                        (false, true) => 3 + len_of(bg, &bg_len),
-                        (true, true) => 4 + len_of(fg, &fg_len) + len_of(bg, &bg_len),
-                    };
+                    // Branch-free: one parameter costs `ESC[`…`m` plus itself; two share them.
+                    let (cf, cb) = (u32::from(fg != p.fg), u32::from(bg != p.bg));
+                    let colour = cf * (3 + len_of(fg, &fg_len)) + cb * (3 + len_of(bg, &bg_len))
+                        - 2 * (cf & cb);
                     *slot = (choice, fg, bg, colour);
                 }
                 let free = drawn.iter().position(|d| d.3 == 0);
