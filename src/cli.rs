@@ -89,7 +89,7 @@ struct BenchArgs {
     #[arg(long, value_parser = parse_level)]
     colors: Option<ColorLevel>,
     /// Frames per replayed path after the first one.
-    #[arg(long, default_value_t = 100, value_parser = clap::value_parser!(u16).range(1..=5000))]
+    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u16).range(1..=5000))]
     frame_count: u16,
     /// Ordered dithering at 256 and 16 colours.
     #[arg(long)]

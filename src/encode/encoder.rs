@@ -49,9 +49,33 @@ impl Default for EncodeOptions {
 
 /// Diffs each framebuffer against what the terminal shows and emits the cheapest update.
 ///
-/// It owns a rectangle of the terminal: `cols × rows` cells at (`origin_col`, `origin_row`).
-/// It assumes nobody else writes into that rectangle; the cursor may be moved and colours reset
-/// by others between frames (every frame starts with an absolute move and ends with `ESC[m`).
+/// It owns a rectangle of the terminal: `cols × rows` cells at (`origin_col`, `origin_row`)
+/// (0-based). It assumes nobody else writes into that rectangle; others may move the cursor and
+/// draw elsewhere between frames, as long as they leave the colours at the default (ratatui does:
+/// every `Terminal::draw` ends with a reset), because every frame starts with an absolute move and
+/// ends with `ESC[m`. After anything that clears or scrolls the screen (a resize, `Terminal::clear`)
+/// call [`Encoder::invalidate`]; a new framebuffer size or origin invalidates by itself.
+///
+/// Sharing a terminal with ratatui: draw the other panes with `terminal.draw` leaving the view's
+/// `Rect` untouched (render nothing there, so both of ratatui's buffers stay blank and it never
+/// writes into it), then write `encoder.encode(&fb, rect.x, rect.y)` to the same writer and flush:
+/// one write per frame. With `sync: false` the caller can put `BeginSynchronizedUpdate` before the
+/// ratatui draw and `EndSynchronizedUpdate` after the encoder's bytes, so panes and view update
+/// together.
+///
+/// ```
+/// use halfcast::encode::{ColorLevel, EncodeOptions, Encoder};
+/// use halfcast::{Scene, World};
+///
+/// let world = World::default_world();
+/// let start = world.map.start;
+/// let mut camera = halfcast::Camera::from_angle(start.pos(), start.angle_deg(), 66.0);
+/// let mut encoder = Encoder::new(EncodeOptions::new(ColorLevel::Ansi256));
+/// let first = encoder.encode(&Scene::new(&world, camera).render(40, 12), 2, 1).len();
+/// camera.rotate(0.05);
+/// let next = encoder.encode(&Scene::new(&world, camera).render(40, 12), 2, 1).len();
+/// assert!(next < first); // only what changed is sent
+/// ```
 #[derive(Debug)]
 pub struct Encoder {
     opts: EncodeOptions,
@@ -192,7 +216,10 @@ impl Encoder {
                 let cell = intent[x];
                 let next = choice.colours(cell, colours);
                 sgr::write(&mut self.out, level, colours, next);
-                self.out.extend_from_slice(choice.glyph());
+                match choice {
+                    Choice::Space => self.out.push(b' '),
+                    _ => self.out.extend_from_slice(&glyph3(choice)),
+                }
                 colours = next;
                 cursor = Cursor::At { col: col + 1, row };
                 self.shown[y * w + x] = cell;
@@ -242,6 +269,13 @@ impl Encoder {
             }
         }
     }
+}
+
+/// The three UTF-8 bytes of a block glyph, as a fixed-size array (copied without a memcpy call).
+#[inline]
+fn glyph3(choice: Choice) -> [u8; 3] {
+    let g = choice.glyph();
+    [g[0], g[1], g[2]]
 }
 
 #[cfg(test)]

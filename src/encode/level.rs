@@ -47,6 +47,17 @@ impl ColorLevel {
         }
     }
 
+    /// The next rung down the ladder (what a bandwidth cap falls back to), `None` at mono.
+    #[must_use]
+    pub fn lower(self) -> Option<Self> {
+        match self {
+            ColorLevel::TrueColor => Some(ColorLevel::Ansi256),
+            ColorLevel::Ansi256 => Some(ColorLevel::Ansi16),
+            ColorLevel::Ansi16 => Some(ColorLevel::Mono),
+            ColorLevel::Mono => None,
+        }
+    }
+
     /// The name used on the command line and in bench JSON.
     #[must_use]
     pub fn name(self) -> &'static str {
@@ -103,6 +114,17 @@ mod tests {
         assert_eq!(d(None, Some("dumb"), None), Mono);
         assert_eq!(d(Some("truecolor"), Some("xterm"), Some("1")), Mono);
         assert_eq!(d(Some("truecolor"), None, Some("")), TrueColor);
+    }
+
+    #[test]
+    fn the_ladder_goes_down_to_mono() {
+        let mut l = ColorLevel::TrueColor;
+        let mut steps = vec![l];
+        while let Some(n) = l.lower() {
+            steps.push(n);
+            l = n;
+        }
+        assert_eq!(steps, ColorLevel::ALL);
     }
 
     #[test]

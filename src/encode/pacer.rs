@@ -3,6 +3,8 @@
 
 use std::time::Duration;
 
+use super::level::ColorLevel;
+
 /// Parses a rate such as `2mbit`, `500kbit`, `1MB`, `64kB/s`, `3.5Mbps` into bits per second.
 ///
 /// Decimal prefixes (k = 1000); `bit`, `bps` or a lowercase `b` count bits, an uppercase `B` or
@@ -102,6 +104,18 @@ impl Pacer {
         self.fps() + 1e-9 >= min_fps
     }
 
+    /// The colour level to use next: `current`, or one rung lower when the cap cannot sustain
+    /// `min_fps` at the measured frame size (call after a few frames; reset the pacer after a switch,
+    /// since frame sizes change with the level).
+    #[must_use]
+    pub fn level_for(&self, current: ColorLevel, min_fps: f64) -> ColorLevel {
+        if self.mean.is_some() && !self.sustains(min_fps) {
+            current.lower().unwrap_or(current)
+        } else {
+            current
+        }
+    }
+
     /// The link use at the current frame rate, in kbit/s (for the status line).
     #[must_use]
     pub fn kbit_per_sec(&self) -> f64 {
@@ -138,6 +152,24 @@ mod tests {
         assert!((p.kbit_per_sec() - 2000.0).abs() < 1e-3);
         p.record(1_000); // small frames pull the mean down gradually
         assert!(p.fps() > 10.0 && p.fps() < 12.0);
+    }
+
+    #[test]
+    fn a_cap_too_small_for_the_minimum_rate_steps_the_level_down() {
+        let mut p = Pacer::new(2_000_000, 60.0);
+        assert_eq!(
+            p.level_for(ColorLevel::TrueColor, 15.0),
+            ColorLevel::TrueColor
+        );
+        p.record(400_000); // 3.2 Mbit a frame: 0.6 fps on 2 Mbit/s
+        assert_eq!(
+            p.level_for(ColorLevel::TrueColor, 15.0),
+            ColorLevel::Ansi256
+        );
+        assert_eq!(p.level_for(ColorLevel::Mono, 15.0), ColorLevel::Mono);
+        let mut q = Pacer::new(2_000_000, 60.0);
+        q.record(8_000); // 64 kbit: 31 fps
+        assert_eq!(q.level_for(ColorLevel::Ansi256, 15.0), ColorLevel::Ansi256);
     }
 
     #[test]

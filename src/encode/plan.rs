@@ -94,6 +94,8 @@ pub(crate) struct RowPlanner {
     nodes: Vec<Node>,
     counts: Vec<u8>,
     choices: Vec<Choice>,
+    /// (first column, length) of each run of identical cells.
+    runs: Vec<(u16, u16)>,
 }
 
 impl RowPlanner {
@@ -123,22 +125,38 @@ impl RowPlanner {
             prev: 0,
             choice: Choice::Skip,
         };
-        self.nodes.clear();
-        self.nodes.resize((w + 1) * BEAM, blank);
+        // Runs of identical cells (same colours, same skippability) are one step: after the first
+        // cell of a run the terminal's colours already fit, so the rest cost their glyphs only.
+        self.runs.clear();
+        let mut x0 = 0;
+        for x in 1..=w {
+            if x == w || cells[x] != cells[x0] || skippable[x] != skippable[x0] {
+                self.runs.push((x0 as u16, (x - x0) as u16));
+                x0 = x;
+            }
+        }
+        let steps = self.runs.len();
+        // Only the first `counts[step]` nodes of a step are ever read, so stale ones can stay.
+        if self.nodes.len() < (steps + 1) * BEAM {
+            self.nodes.resize((steps + 1) * BEAM, blank);
+        }
+        self.nodes[0] = blank;
         self.counts.clear();
-        self.counts.resize(w + 1, 0);
+        self.counts.resize(steps + 1, 0);
         self.counts[0] = 1;
         let entry = |x: usize| move_cost(start.cursor, start.origin_col + x as u16, start.row);
         let level = start.level;
-        for x in 0..w {
+        for (step, &(x0, len)) in self.runs.iter().enumerate() {
+            let (x, end) = (usize::from(x0), usize::from(x0 + len));
             let cell = cells[x];
+            let skip_ok = skippable[x];
             let uniform = cell[0] == cell[1];
             let options: [Choice; 2] = if uniform {
                 [Choice::Space, Choice::Full]
             } else {
                 [Choice::Upper, Choice::Lower]
             };
-            // Parameter bytes of this cell's colours as fg and as bg, computed once per cell.
+            // Parameter bytes of this cell's colours as fg and as bg, computed once per run.
             let fg_len = [
                 sgr::param_len(level, cell[0], false),
                 sgr::param_len(level, cell[1], false),
@@ -147,13 +165,12 @@ impl RowPlanner {
                 sgr::param_len(level, cell[0], true),
                 sgr::param_len(level, cell[1], true),
             ];
-            let len_of =
-                |code: Code, lens: &[u32; 2]| if code == cell[0] { lens[0] } else { lens[1] };
-            let base = x * BEAM;
-            let out = (x + 1) * BEAM;
-            let next_entry = if skippable[x] { entry(x + 1) } else { 0 };
+            let len_of = |code: Code, lens: &[u32; 2]| lens[usize::from(code != cell[0])];
+            let base = step * BEAM;
+            let out = (step + 1) * BEAM;
+            let next_entry = if skip_ok { entry(end) } else { 0 };
             let mut kept = 0usize;
-            for i in 0..usize::from(self.counts[x]) {
+            for i in 0..usize::from(self.counts[step]) {
                 let p = self.nodes[base + i];
                 let mv = if p.cursor == x as u16 {
                     0
@@ -168,12 +185,10 @@ impl RowPlanner {
                 let mut drawn = [(Choice::Skip, 0u32, 0u32, 0u32); 2];
                 for (slot, choice) in drawn.iter_mut().zip(options) {
                     let (fg, bg) = choice.colours(cell, (p.fg, p.bg));
-                    let colour = match (fg != p.fg, bg != p.bg) {
-                        (false, false) => 0,
-                        (true, false) => 3 + len_of(fg, &fg_len),
-                        (false, true) => 3 + len_of(bg, &bg_len),
-                        (true, true) => 4 + len_of(fg, &fg_len) + len_of(bg, &bg_len),
-                    };
+                    // Branch-free: one parameter costs `ESC[`…`m` plus itself; two share them.
+                    let (cf, cb) = (u32::from(fg != p.fg), u32::from(bg != p.bg));
+                    let colour = cf * (3 + len_of(fg, &fg_len)) + cb * (3 + len_of(bg, &bg_len))
+                        - 2 * (cf & cb);
                     *slot = (choice, fg, bg, colour);
                 }
                 let free = drawn.iter().position(|d| d.3 == 0);
@@ -181,11 +196,11 @@ impl RowPlanner {
                     if free.is_some_and(|f| f != k) {
                         continue;
                     }
-                    let cost = p.cost + mv + colour + choice.glyph().len() as u32;
+                    let cost = p.cost + mv + colour + choice.glyph().len() as u32 * u32::from(len);
                     let node = Node {
                         fg,
                         bg,
-                        cursor: x as u16 + 1,
+                        cursor: end as u16,
                         cost,
                         key: cost,
                         prev: i as u8,
@@ -193,7 +208,7 @@ impl RowPlanner {
                     };
                     kept = keep(&mut self.nodes[out..out + beam], kept, node);
                 }
-                if skippable[x] {
+                if skip_ok {
                     let pending = if p.cursor == NOWHERE {
                         next_entry
                     } else {
@@ -208,20 +223,22 @@ impl RowPlanner {
                     kept = keep(&mut self.nodes[out..out + beam], kept, node);
                 }
             }
-            self.counts[x + 1] = kept as u8;
+            self.counts[step + 1] = kept as u8;
         }
         // Best final state: no pending move matters at the row's end.
-        let last = w * BEAM;
+        let last = steps * BEAM;
         let mut best = 0;
-        for i in 1..usize::from(self.counts[w]) {
+        for i in 1..usize::from(self.counts[steps]) {
             if self.nodes[last + i].cost < self.nodes[last + best].cost {
                 best = i;
             }
         }
         let mut i = best;
-        for x in (0..w).rev() {
-            let node = self.nodes[(x + 1) * BEAM + i];
-            self.choices[x] = node.choice;
+        for step in (0..steps).rev() {
+            let node = self.nodes[(step + 1) * BEAM + i];
+            let (x0, len) = self.runs[step];
+            let (x0, len) = (usize::from(x0), usize::from(len));
+            self.choices[x0..x0 + len].fill(node.choice);
             i = usize::from(node.prev);
         }
         &self.choices

@@ -1,7 +1,6 @@
 //! Select Graphic Rendition: the shortest sequence that moves the terminal from one fg/bg pair to another.
 
 use super::level::ColorLevel;
-use super::number::push_num;
 use super::palette::{Code, DEFAULT};
 
 /// Decimal digits of each byte value (truecolor parameters are three of them).
@@ -10,6 +9,24 @@ const DIGITS: [u8; 256] = {
     let mut i = 0;
     while i < 100 {
         t[i] = if i < 10 { 1 } else { 2 };
+        i += 1;
+    }
+    t
+};
+
+/// Each byte value's decimal digits (left-aligned) and how many there are.
+const DECIMAL: [([u8; 3], u8); 256] = {
+    let mut t = [([0u8; 3], 0u8); 256];
+    let mut i = 0;
+    while i < 256 {
+        let (h, d, o) = ((i / 100) as u8, (i / 10 % 10) as u8, (i % 10) as u8);
+        t[i] = if i >= 100 {
+            ([b'0' + h, b'0' + d, b'0' + o], 3)
+        } else if i >= 10 {
+            ([b'0' + d, b'0' + o, 0], 2)
+        } else {
+            ([b'0' + o, 0, 0], 1)
+        };
         i += 1;
     }
     t
@@ -35,24 +52,53 @@ pub(crate) fn param_len(level: ColorLevel, code: Code, bg: bool) -> u32 {
     }
 }
 
+/// A small stack buffer: a whole SGR sequence is assembled here and appended in one copy.
+struct Buf {
+    bytes: [u8; 48],
+    len: usize,
+}
+
+impl Buf {
+    #[inline]
+    fn push(&mut self, b: u8) {
+        self.bytes[self.len] = b;
+        self.len += 1;
+    }
+
+    #[inline]
+    fn extend(&mut self, s: &[u8]) {
+        self.bytes[self.len..self.len + s.len()].copy_from_slice(s);
+        self.len += s.len();
+    }
+
+    /// A byte value in decimal, no leading zeros (one table lookup, one 3-byte copy).
+    #[inline]
+    fn num(&mut self, v: u32) {
+        let (digits, n) = DECIMAL[(v & 0xFF) as usize];
+        self.bytes[self.len..self.len + 3].copy_from_slice(&digits);
+        self.len += usize::from(n);
+    }
+}
+
 /// Writes one colour parameter.
-fn push_param(out: &mut Vec<u8>, level: ColorLevel, code: Code, bg: bool) {
+#[inline]
+fn push_param(out: &mut Buf, level: ColorLevel, code: Code, bg: bool) {
     if code == DEFAULT {
-        out.extend_from_slice(if bg { b"49" } else { b"39" });
+        out.extend(if bg { b"49" } else { b"39" });
         return;
     }
     match level {
         ColorLevel::TrueColor => {
-            out.extend_from_slice(if bg { b"48;2;" } else { b"38;2;" });
-            push_num(out, (code >> 16) & 0xFF);
+            out.extend(if bg { b"48;2;" } else { b"38;2;" });
+            out.num(code >> 16);
             out.push(b';');
-            push_num(out, (code >> 8) & 0xFF);
+            out.num(code >> 8);
             out.push(b';');
-            push_num(out, code & 0xFF);
+            out.num(code);
         }
         ColorLevel::Ansi256 => {
-            out.extend_from_slice(if bg { b"48;5;" } else { b"38;5;" });
-            push_num(out, code);
+            out.extend(if bg { b"48;5;" } else { b"38;5;" });
+            out.num(code);
         }
         ColorLevel::Ansi16 => {
             let base = match (bg, code >= 8) {
@@ -61,7 +107,7 @@ fn push_param(out: &mut Vec<u8>, level: ColorLevel, code: Code, bg: bool) {
                 (true, false) => 40,
                 (true, true) => 100 - 8,
             };
-            push_num(out, base + code);
+            out.num(base + code);
         }
         ColorLevel::Mono => {}
     }
@@ -82,6 +128,7 @@ pub(crate) fn cost(level: ColorLevel, from: (Code, Code), to: (Code, Code)) -> u
 }
 
 /// Writes the sequence whose length [`cost`] reports.
+#[inline]
 pub(crate) fn write(out: &mut Vec<u8>, level: ColorLevel, from: (Code, Code), to: (Code, Code)) {
     let (f, b) = (from.0 != to.0, from.1 != to.1);
     if !f && !b {
@@ -91,17 +138,25 @@ pub(crate) fn write(out: &mut Vec<u8>, level: ColorLevel, from: (Code, Code), to
         out.extend_from_slice(b"\x1b[m");
         return;
     }
-    out.extend_from_slice(b"\x1b[");
+    let mut buf = Buf {
+        bytes: [0; 48],
+        len: 0,
+    };
+    buf.extend(b"\x1b[");
     if f {
-        push_param(out, level, to.0, false);
+        push_param(&mut buf, level, to.0, false);
     }
     if f && b {
-        out.push(b';');
+        buf.push(b';');
     }
     if b {
-        push_param(out, level, to.1, true);
+        push_param(&mut buf, level, to.1, true);
     }
-    out.push(b'm');
+    buf.push(b'm');
+    // A fixed-size copy compiles to a few vector stores (no memcpy call); then drop the slack.
+    let at = out.len();
+    out.extend_from_slice(&buf.bytes);
+    out.truncate(at + buf.len);
 }
 
 #[cfg(test)]
