@@ -74,15 +74,20 @@ pub struct SolidDisc {
 pub type Warnings = Vec<String>;
 
 impl World {
-    /// The embedded default map with its embedded textures.
+    /// The embedded default map with its embedded textures (decoded once per process).
     #[must_use]
     pub fn default_world() -> Self {
-        let map = crate::map::parse_map(DEFAULT_MAP_NAME, DEFAULT_MAP.as_bytes())
-            .expect("the default map is valid");
-        let (world, warnings) =
-            Self::load(map, &TextureSource::Embedded, true).expect("default textures are embedded");
-        debug_assert!(warnings.is_empty());
-        world
+        static DEFAULT: std::sync::OnceLock<World> = std::sync::OnceLock::new();
+        DEFAULT
+            .get_or_init(|| {
+                let map = crate::map::parse_map(DEFAULT_MAP_NAME, DEFAULT_MAP.as_bytes())
+                    .expect("the default map is valid");
+                let (world, warnings) = Self::load(map, &TextureSource::Embedded, true)
+                    .expect("default textures are embedded");
+                debug_assert!(warnings.is_empty());
+                world
+            })
+            .clone()
     }
 
     /// Loads every texture the map names; a missing one falls back to a built-in with a warning,

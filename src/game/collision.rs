@@ -4,8 +4,10 @@
 //! axis stops exactly `radius` short of the wall, so the eye never enters a wall and the
 //! view never reaches past a corner.
 
+use crate::door::DoorState;
 use crate::map::{Cell, Map};
 use crate::vec2::Vec2;
+use crate::world::SolidDisc;
 
 /// Player half-size in cells; small enough to pass a one-cell corridor comfortably.
 pub const PLAYER_RADIUS: f64 = 0.2;
@@ -16,8 +18,42 @@ const MAX_SUBSTEP: f64 = 0.1;
 /// Slack so a player resting exactly against a wall does not count as overlapping it.
 const EPS: f64 = 1e-9;
 
-fn blocks(map: &Map, i: i64, j: i64) -> bool {
-    !matches!(map.cell(i, j), Cell::Floor { .. })
+/// Everything that stops the player: the grid (walls, void, doors not open far enough) and
+/// solid sprites as discs.
+#[derive(Debug, Clone, Copy)]
+pub struct Obstacles<'a> {
+    pub map: &'a Map,
+    /// `None` treats every door as shut.
+    pub doors: Option<&'a DoorState>,
+    pub discs: &'a [SolidDisc],
+}
+
+impl<'a> Obstacles<'a> {
+    /// Only the grid, every door shut (tests, maps without doors or solid sprites).
+    #[must_use]
+    pub fn grid(map: &'a Map) -> Self {
+        Self {
+            map,
+            doors: None,
+            discs: &[],
+        }
+    }
+
+    fn blocks(&self, i: i64, j: i64) -> bool {
+        match self.map.cell(i, j) {
+            Cell::Floor { .. } => false,
+            Cell::Door(_) => self.doors.is_none_or(|d| d.blocks((i, j))),
+            _ => true,
+        }
+    }
+
+    /// Whether a player of half-size `r` at `p` overlaps a solid sprite's disc.
+    fn hits_disc(&self, p: Vec2, r: f64) -> bool {
+        self.discs.iter().any(|d| {
+            let gap = d.radius + r;
+            (d.centre - p).dot(d.centre - p) < gap * gap - EPS
+        })
+    }
 }
 
 /// The cells (inclusive ranges) a square of half-size `r` at `p` overlaps.
@@ -27,16 +63,17 @@ fn covered(p: Vec2, r: f64) -> ((i64, i64), (i64, i64)) {
     ((lo(p.x), hi(p.x)), (lo(p.y), hi(p.y)))
 }
 
-/// Whether a player of half-size `r` standing at `p` overlaps anything solid (walls or void).
+/// Whether a player of half-size `r` standing at `p` overlaps a solid cell (wall, void, shut door).
 #[must_use]
-pub fn overlaps_wall(map: &Map, p: Vec2, r: f64) -> bool {
+pub fn overlaps_wall(obstacles: &Obstacles, p: Vec2, r: f64) -> bool {
     let ((i0, i1), (j0, j1)) = covered(p, r);
-    (j0..=j1).any(|j| (i0..=i1).any(|i| blocks(map, i, j)))
+    (j0..=j1).any(|j| (i0..=i1).any(|i| obstacles.blocks(i, j)))
 }
 
-/// Moves `from` by `delta`, x then y in short sub-steps, stopping each axis at the walls.
+/// Moves `from` by `delta`, x then y in short sub-steps, stopping each axis at walls, shut
+/// doors and solid sprites.
 #[must_use]
-pub fn slide(map: &Map, from: Vec2, delta: Vec2, r: f64) -> Vec2 {
+pub fn slide(obstacles: &Obstacles, from: Vec2, delta: Vec2, r: f64) -> Vec2 {
     let len = delta.length();
     if len == 0.0 || !len.is_finite() {
         return from;
@@ -45,14 +82,14 @@ pub fn slide(map: &Map, from: Vec2, delta: Vec2, r: f64) -> Vec2 {
     let part = delta * (1.0 / n);
     let mut p = from;
     for _ in 0..n as usize {
-        p.x = move_axis(map, p, part.x, r, true);
-        p.y = move_axis(map, p, part.y, r, false);
+        p.x = move_axis(obstacles, p, part.x, r, true);
+        p.y = move_axis(obstacles, p, part.y, r, false);
     }
     p
 }
 
 /// The new coordinate on one axis: `p + d` if free, else flush against the wall it met.
-fn move_axis(map: &Map, p: Vec2, d: f64, r: f64, along_x: bool) -> f64 {
+fn move_axis(obstacles: &Obstacles, p: Vec2, d: f64, r: f64, along_x: bool) -> f64 {
     if d == 0.0 {
         return if along_x { p.x } else { p.y };
     }
@@ -61,10 +98,16 @@ fn move_axis(map: &Map, p: Vec2, d: f64, r: f64, along_x: bool) -> f64 {
     } else {
         Vec2::new(p.x, p.y + d)
     };
-    if !overlaps_wall(map, moved, r) {
-        return if along_x { moved.x } else { moved.y };
-    }
     let c = if along_x { p.x } else { p.y };
+    if !overlaps_wall(obstacles, moved, r) {
+        // A sprite stops the sub-step; moving away from one that overlaps already is allowed.
+        let into_disc = obstacles.hits_disc(moved, r) && !obstacles.hits_disc(p, r);
+        return match (into_disc, along_x) {
+            (true, _) => c,
+            (false, true) => moved.x,
+            (false, false) => moved.y,
+        };
+    }
     // The sub-step is shorter than a cell, so the only new line of cells is the leading one:
     // rest against its near edge (or stay put if that is behind us, e.g. starting overlapped).
     let flush = if d > 0.0 {
@@ -82,7 +125,7 @@ fn move_axis(map: &Map, p: Vec2, d: f64, r: f64, along_x: bool) -> f64 {
 /// Nudges a spawn point that overlaps a wall back inside its own cell (the cell is floor).
 #[must_use]
 pub fn settle(map: &Map, p: Vec2, r: f64) -> Vec2 {
-    if !overlaps_wall(map, p, r) {
+    if !overlaps_wall(&Obstacles::grid(map), p, r) {
         return p;
     }
     let clamp = |c: f64| {
@@ -117,24 +160,49 @@ mod tests {
     #[test]
     fn walking_into_a_wall_stops_at_the_radius() {
         let m = room();
-        let p = slide(&m, Vec2::new(1.5, 4.5), Vec2::new(10.0, 0.0), R);
+        let p = slide(
+            &Obstacles::grid(&m),
+            Vec2::new(1.5, 4.5),
+            Vec2::new(10.0, 0.0),
+            R,
+        );
         assert!(close(p.x, 5.0 - R) && close(p.y, 4.5), "{p:?}");
-        let p = slide(&m, Vec2::new(1.5, 4.5), Vec2::new(-3.0, 0.0), R);
+        let p = slide(
+            &Obstacles::grid(&m),
+            Vec2::new(1.5, 4.5),
+            Vec2::new(-3.0, 0.0),
+            R,
+        );
         assert!(close(p.x, 1.0 + R), "{p:?}");
-        let p = slide(&m, Vec2::new(1.5, 4.5), Vec2::new(0.0, 3.0), R);
+        let p = slide(
+            &Obstacles::grid(&m),
+            Vec2::new(1.5, 4.5),
+            Vec2::new(0.0, 3.0),
+            R,
+        );
         assert!(close(p.y, 5.0 - R), "{p:?}");
-        let p = slide(&m, Vec2::new(1.5, 4.5), Vec2::new(0.0, -9.0), R);
+        let p = slide(
+            &Obstacles::grid(&m),
+            Vec2::new(1.5, 4.5),
+            Vec2::new(0.0, -9.0),
+            R,
+        );
         assert!(close(p.y, 1.0 + R), "{p:?}");
     }
 
     #[test]
     fn resting_against_a_wall_is_not_overlapping_and_can_leave() {
         let m = room();
-        let p = slide(&m, Vec2::new(1.5, 4.5), Vec2::new(10.0, 0.0), R);
-        assert!(!overlaps_wall(&m, p, R));
+        let p = slide(
+            &Obstacles::grid(&m),
+            Vec2::new(1.5, 4.5),
+            Vec2::new(10.0, 0.0),
+            R,
+        );
+        assert!(!overlaps_wall(&Obstacles::grid(&m), p, R));
         // Pushing on into the wall again changes nothing; backing off works.
-        assert_eq!(slide(&m, p, Vec2::new(0.5, 0.0), R), p);
-        let back = slide(&m, p, Vec2::new(-0.5, 0.0), R);
+        assert_eq!(slide(&Obstacles::grid(&m), p, Vec2::new(0.5, 0.0), R), p);
+        let back = slide(&Obstacles::grid(&m), p, Vec2::new(-0.5, 0.0), R);
         assert!(close(back.x, p.x - 0.5));
     }
 
@@ -143,11 +211,11 @@ mod tests {
         let m = room();
         // Against the east wall, moving north-east: x is stuck, y keeps going.
         let start = Vec2::new(5.0 - R, 4.5);
-        let p = slide(&m, start, Vec2::new(0.3, -0.6), R);
+        let p = slide(&Obstacles::grid(&m), start, Vec2::new(0.3, -0.6), R);
         assert!(close(p.x, 5.0 - R), "{p:?}");
         assert!(close(p.y, 3.9), "{p:?}");
         // The slide continues past the pillar's row since the pillar is not in the way.
-        let p = slide(&m, start, Vec2::new(0.3, -2.0), R);
+        let p = slide(&Obstacles::grid(&m), start, Vec2::new(0.3, -2.0), R);
         assert!(close(p.x, 5.0 - R) && close(p.y, 2.5), "{p:?}");
     }
 
@@ -155,8 +223,13 @@ mod tests {
     fn a_pillar_corner_stops_the_player_at_the_radius_on_both_axes() {
         let m = room();
         // Pillar (3,2) spans [3,4)×[2,3). Approach its north-west corner diagonally.
-        let p = slide(&m, Vec2::new(2.5, 1.5), Vec2::new(1.0, 1.0), R);
-        assert!(!overlaps_wall(&m, p, R), "{p:?}");
+        let p = slide(
+            &Obstacles::grid(&m),
+            Vec2::new(2.5, 1.5),
+            Vec2::new(1.0, 1.0),
+            R,
+        );
+        assert!(!overlaps_wall(&Obstacles::grid(&m), p, R), "{p:?}");
         // One axis got blocked at the radius, the other slid past the corner's reach.
         let x_blocked = close(p.x, 3.0 - R);
         let y_blocked = close(p.y, 2.0 - R);
@@ -169,7 +242,7 @@ mod tests {
         let m = map("11111\n1N101\n11001\n10001\n11111\n");
         let mut p = Vec2::new(1.5, 1.5);
         for _ in 0..100 {
-            p = slide(&m, p, Vec2::new(0.05, 0.05), R);
+            p = slide(&Obstacles::grid(&m), p, Vec2::new(0.05, 0.05), R);
         }
         assert!(p.x < 2.0 - R + 1e-6 && p.y < 2.0 - R + 1e-6, "{p:?}");
     }
@@ -177,12 +250,22 @@ mod tests {
     #[test]
     fn a_huge_frame_step_does_not_tunnel() {
         let m = room();
-        let p = slide(&m, Vec2::new(1.5, 1.5), Vec2::new(1000.0, 0.0), R);
+        let p = slide(
+            &Obstacles::grid(&m),
+            Vec2::new(1.5, 1.5),
+            Vec2::new(1000.0, 0.0),
+            R,
+        );
         assert!(close(p.x, 3.0 - R) || close(p.x, 5.0 - R), "{p:?}");
-        assert!(!overlaps_wall(&m, p, R));
+        assert!(!overlaps_wall(&Obstacles::grid(&m), p, R));
         // A non-finite step is ignored.
         assert_eq!(
-            slide(&m, Vec2::new(1.5, 1.5), Vec2::new(f64::NAN, 0.0), R),
+            slide(
+                &Obstacles::grid(&m),
+                Vec2::new(1.5, 1.5),
+                Vec2::new(f64::NAN, 0.0),
+                R
+            ),
             Vec2::new(1.5, 1.5)
         );
     }
@@ -192,7 +275,7 @@ mod tests {
         let m = room();
         let p = settle(&m, Vec2::new(1.05, 1.02), R);
         assert!(close(p.x, 1.0 + R) && close(p.y, 1.0 + R), "{p:?}");
-        assert!(!overlaps_wall(&m, p, R));
+        assert!(!overlaps_wall(&Obstacles::grid(&m), p, R));
         let free = Vec2::new(2.5, 2.5);
         assert_eq!(settle(&m, free, R), free);
     }
@@ -200,12 +283,12 @@ mod tests {
     proptest::proptest! {
         #[test]
         fn random_walks_never_enter_a_wall(moves in proptest::collection::vec((-1.5f64..1.5, -1.5f64..1.5), 1..60)) {
-            let world = crate::world::World::default_world();
-            let m = &world.map;
+            let map = crate::map::parse_map(crate::world::DEFAULT_MAP_NAME, crate::world::DEFAULT_MAP.as_bytes()).unwrap();
+            let m = &map;
             let mut p = m.start.pos();
             for (dx, dy) in moves {
-                p = slide(m, p, Vec2::new(dx, dy), R);
-                proptest::prop_assert!(!overlaps_wall(m, p, R), "{:?}", p);
+                p = slide(&Obstacles::grid(m), p, Vec2::new(dx, dy), R);
+                proptest::prop_assert!(!overlaps_wall(&Obstacles::grid(m), p, R), "{:?}", p);
             }
         }
     }

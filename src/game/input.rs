@@ -12,27 +12,36 @@ pub enum Action {
     TurnRight,
     StrafeLeft,
     StrafeRight,
+    /// Tilt the view up (shifts the horizon down).
+    LookUp,
+    /// Tilt the view down.
+    LookDown,
+    /// Lower the eye while held.
+    Crouch,
 }
 
 impl Action {
     /// Every action, for iteration (bit order of [`Held`]).
-    pub const ALL: [Action; 6] = [
+    pub const ALL: [Action; 9] = [
         Action::Forward,
         Action::Back,
         Action::TurnLeft,
         Action::TurnRight,
         Action::StrafeLeft,
         Action::StrafeRight,
+        Action::LookUp,
+        Action::LookDown,
+        Action::Crouch,
     ];
 
-    fn bit(self) -> u8 {
+    fn bit(self) -> u16 {
         1 << (self as u8)
     }
 }
 
 /// The set of actions held during a step (a bitset: cheap to copy into replays).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
-pub struct Held(u8);
+pub struct Held(u16);
 
 impl Held {
     /// Whether `a` is held.
@@ -87,6 +96,12 @@ pub enum Command {
     RunToHit,
     /// Turn by this many radians at once, positive to the left (mouse drag; ignored while paused).
     Turn(f64),
+    /// Open or close the door straight ahead, if one is within reach.
+    UseDoor,
+    /// Jump (only from standing on the floor).
+    Jump,
+    /// Switch night mode (dark, lit near the player) on or off.
+    ToggleNight,
 }
 
 /// Everything one step reads from the outside world.
@@ -126,6 +141,6 @@ mod tests {
         h.remove(Action::Back);
         h.remove(Action::TurnRight);
         assert!(h.is_empty());
-        assert_eq!(Action::ALL.len(), 6);
+        assert_eq!(Action::ALL.len(), 9);
     }
 }

@@ -10,8 +10,10 @@ pub mod input;
 use std::sync::Arc;
 
 use crate::camera::Camera;
-use crate::cast::{trace_column, DdaTrace};
-use crate::world::World;
+use crate::cast::{trace_column_doors, DdaTrace};
+use crate::door::DoorState;
+use crate::view::{View, EYE_RANGE, MAX_PITCH_DEG, STANDING_EYE};
+use crate::world::{SolidDisc, World};
 
 pub use debugger::{Cursor, Debugger};
 pub use input::{Action, Command, Held, Input};
@@ -21,6 +23,21 @@ pub const MOVE_SPEED: f64 = 3.0;
 
 /// Turning speed in radians per second (about 150°/s).
 pub const TURN_SPEED: f64 = 2.6;
+
+/// Looking up or down, in degrees per second.
+pub const LOOK_SPEED: f64 = 60.0;
+
+/// Eye height while crouching (walls are 1 high).
+pub const CROUCH_EYE: f64 = 0.3;
+
+/// How fast the eye moves toward the crouching or standing height, in wall heights per second.
+pub const CROUCH_SPEED: f64 = 2.0;
+
+/// Upward speed at take-off, in wall heights per second.
+pub const JUMP_SPEED: f64 = 2.2;
+
+/// Gravity, in wall heights per second squared (a jump peaks about 0.27 above the eye).
+pub const GRAVITY: f64 = 9.0;
 
 /// Longest frame time one step honours, so a stall (suspend, slow terminal) is not a jump.
 pub const MAX_DT: f64 = 0.25;
@@ -33,6 +50,18 @@ pub struct GameState {
     pub debugger: Debugger,
     /// Columns of the 3D view, so the debugged column can be clamped and stepped.
     pub view_width: usize,
+    /// How far each door is open.
+    pub doors: DoorState,
+    /// Pitch and eye height.
+    pub view: View,
+    /// Eye height without the jump (standing or crouching), and the jump's height and speed.
+    pub base_eye: f64,
+    pub jump: (f64, f64),
+    /// Night mode (dark, lit near the player).
+    pub night: bool,
+    /// Game time in seconds (animations); advances with the steps, paused with the world.
+    pub time: f64,
+    solids: Vec<SolidDisc>,
 }
 
 impl GameState {
@@ -40,11 +69,30 @@ impl GameState {
     #[must_use]
     pub fn new(world: Arc<World>, mut camera: Camera, view_width: usize) -> Self {
         camera.pos = collision::settle(&world.map, camera.pos, collision::PLAYER_RADIUS);
+        let doors = DoorState::new(&world.map);
+        let solids = world.solid_discs();
         Self {
             world,
             camera,
             debugger: Debugger::default(),
             view_width,
+            doors,
+            view: View::default(),
+            base_eye: STANDING_EYE,
+            jump: (0.0, 0.0),
+            night: false,
+            time: 0.0,
+            solids,
+        }
+    }
+
+    /// What stops the player now: the grid, the doors as they are, solid sprites.
+    #[must_use]
+    pub fn obstacles(&self) -> collision::Obstacles<'_> {
+        collision::Obstacles {
+            map: &self.world.map,
+            doors: Some(&self.doors),
+            discs: &self.solids,
         }
     }
 
@@ -58,8 +106,9 @@ impl GameState {
     #[must_use]
     pub fn debug_trace(&self) -> Option<DdaTrace> {
         (self.view_width > 0).then(|| {
-            trace_column(
+            trace_column_doors(
                 &self.world.map,
+                &self.doors,
                 &self.camera,
                 self.debug_column(),
                 self.view_width,
@@ -91,13 +140,22 @@ pub fn step(state: &mut GameState, input: &Input, dt: f64) {
             }
             Command::RunToHit if d.paused => d.cursor = Cursor::AtHit,
             Command::Turn(radians) if !d.paused && radians.is_finite() => turn += radians,
+            Command::UseDoor if !d.paused => {
+                let (map, cam) = (&state.world.map, &state.camera);
+                state.doors.toggle_facing(map, cam.pos, cam.dir);
+            }
+            Command::Jump if !d.paused && state.jump == (0.0, 0.0) => state.jump.1 = JUMP_SPEED,
+            Command::ToggleNight => state.night = !state.night,
             _ => {}
         }
     }
     if state.debugger.paused {
         return;
     }
+    state.time += dt;
+    state.doors.update(dt);
     let held = input.held;
+    vertical(state, held, dt);
     turn += held.axis(Action::TurnLeft, Action::TurnRight) * TURN_SPEED * dt;
     if turn != 0.0 {
         state.camera.rotate(turn);
@@ -110,12 +168,36 @@ pub fn step(state: &mut GameState, input: &Input, dt: f64) {
     if len > 0.0 {
         wish = wish * (MOVE_SPEED * dt / len);
         state.camera.pos = collision::slide(
-            &state.world.map,
+            &state.obstacles(),
             state.camera.pos,
             wish,
             collision::PLAYER_RADIUS,
         );
     }
+}
+
+/// Looking up/down, crouching and jumping: the pitch and eye height of the view.
+fn vertical(state: &mut GameState, held: Held, dt: f64) {
+    let look = held.axis(Action::LookUp, Action::LookDown) * LOOK_SPEED * dt;
+    let pitch = (state.view.pitch_deg + look).clamp(-MAX_PITCH_DEG, MAX_PITCH_DEG);
+    let target = if held.contains(Action::Crouch) {
+        CROUCH_EYE
+    } else {
+        STANDING_EYE
+    };
+    let reach = CROUCH_SPEED * dt;
+    state.base_eye += (target - state.base_eye).clamp(-reach, reach);
+    let (mut height, mut speed) = state.jump;
+    if height > 0.0 || speed > 0.0 {
+        height += speed * dt;
+        speed -= GRAVITY * dt;
+        if height <= 0.0 {
+            (height, speed) = (0.0, 0.0);
+        }
+    }
+    state.jump = (height, speed);
+    let eye = (state.base_eye + height).clamp(EYE_RANGE.0, EYE_RANGE.1);
+    state.view = View::new(pitch, eye);
 }
 
 #[cfg(test)]
@@ -225,5 +307,86 @@ mod tests {
         let here = s.camera.pos;
         step(&mut s, &Input::holding(&[Action::Forward]), f64::NAN);
         assert_eq!(s.camera.pos, here);
+    }
+
+    fn at(pos: (f64, f64), angle: f64) -> GameState {
+        let world = Arc::new(World::default_world());
+        GameState::new(
+            world,
+            Camera::from_angle(crate::vec2::Vec2::new(pos.0, pos.1), angle, 66.0),
+            80,
+        )
+    }
+
+    fn walk(s: &mut GameState, seconds: f64) {
+        for _ in 0..(seconds * 30.0) as usize {
+            step(s, &Input::holding(&[Action::Forward]), 1.0 / 30.0);
+        }
+    }
+
+    #[test]
+    fn a_shut_door_blocks_until_used_then_lets_the_player_through() {
+        // The default map's door at (11,5), west of the start room's doorway.
+        let mut s = at((12.5, 5.5), 180.0);
+        walk(&mut s, 1.0);
+        assert!(
+            s.camera.pos.x >= 12.0 + collision::PLAYER_RADIUS - 1e-9,
+            "{:?}",
+            s.camera.pos
+        );
+        let open = Input {
+            held: Held::default(),
+            commands: vec![Command::UseDoor],
+        };
+        step(&mut s, &open, 1.0 / 30.0);
+        for _ in 0..45 {
+            step(&mut s, &Input::default(), 1.0 / 30.0);
+        }
+        assert!(s.doors.open_amount((11, 5)) >= crate::door::PASSABLE_OPEN);
+        walk(&mut s, 1.0);
+        assert!(s.camera.pos.x < 11.0, "walked through: {:?}", s.camera.pos);
+    }
+
+    #[test]
+    fn solid_sprites_stop_the_player() {
+        // A solid pillar stands at (13.5, 2.5); walk north into it from below.
+        let mut s = at((13.5, 4.5), 90.0);
+        walk(&mut s, 2.0);
+        assert!(s.camera.pos.y > 2.5 + 0.2, "{:?}", s.camera.pos);
+        assert!((s.camera.pos.x - 13.5).abs() < 1e-9);
+    }
+
+    #[test]
+    fn jump_rises_and_lands_crouch_lowers_and_look_is_clamped() {
+        let mut s = state();
+        let jump = Input {
+            held: Held::default(),
+            commands: vec![Command::Jump],
+        };
+        step(&mut s, &jump, 1.0 / 30.0);
+        let mut peak: f64 = 0.0;
+        for _ in 0..60 {
+            step(&mut s, &Input::default(), 1.0 / 30.0);
+            peak = peak.max(s.view.eye_z);
+        }
+        assert!(peak > STANDING_EYE + 0.2, "{peak}");
+        assert!((s.view.eye_z - STANDING_EYE).abs() < 1e-9);
+        for _ in 0..15 {
+            step(
+                &mut s,
+                &Input::holding(&[Action::Crouch, Action::LookUp]),
+                1.0 / 30.0,
+            );
+        }
+        assert!((s.view.eye_z - CROUCH_EYE).abs() < 1e-9);
+        assert!(
+            (s.view.pitch_deg - 30.0).abs() < 1e-6,
+            "{}",
+            s.view.pitch_deg
+        );
+        for _ in 0..120 {
+            step(&mut s, &Input::holding(&[Action::LookDown]), 1.0 / 30.0);
+        }
+        assert!((s.view.pitch_deg + MAX_PITCH_DEG).abs() < 1e-9);
     }
 }

@@ -78,13 +78,16 @@ pub struct ReplayError {
     pub message: String,
 }
 
-const ACTIONS: [(Action, &str); 6] = [
+const ACTIONS: [(Action, &str); 9] = [
     (Action::Forward, "forward"),
     (Action::Back, "back"),
     (Action::TurnLeft, "turn_left"),
     (Action::TurnRight, "turn_right"),
     (Action::StrafeLeft, "strafe_left"),
     (Action::StrafeRight, "strafe_right"),
+    (Action::LookUp, "look_up"),
+    (Action::LookDown, "look_down"),
+    (Action::Crouch, "crouch"),
 ];
 
 const UI: [(UiCommand, &str); 5] = [
@@ -121,6 +124,9 @@ fn command_json(frame: usize, c: &Command) -> Value {
         Command::StepDda => json!({"frame": frame, "command": "step_dda"}),
         Command::RunToHit => json!({"frame": frame, "command": "run_to_hit"}),
         Command::Turn(r) => json!({"frame": frame, "command": "turn", "radians": r}),
+        Command::UseDoor => json!({"frame": frame, "command": "use_door"}),
+        Command::Jump => json!({"frame": frame, "command": "jump"}),
+        Command::ToggleNight => json!({"frame": frame, "command": "toggle_night"}),
     }
 }
 
@@ -314,7 +320,7 @@ fn parse_event(v: &Value, held: &mut Held, slot: &mut FrameInput) -> Result<(), 
         let mut h = Held::default();
         for a in list {
             let name = a.as_str().unwrap_or_default();
-            let (action, _) = ACTIONS.iter().find(|(_, n)| *n == name).ok_or_else(|| format!("unknown action '{a}' (known: forward, back, turn_left, turn_right, strafe_left, strafe_right)"))?;
+            let (action, _) = ACTIONS.iter().find(|(_, n)| *n == name).ok_or_else(|| format!("unknown action '{a}' (known: forward, back, turn_left, turn_right, strafe_left, strafe_right, look_up, look_down, crouch)"))?;
             h.insert(*action);
         }
         *held = h;
@@ -325,6 +331,9 @@ fn parse_event(v: &Value, held: &mut Held, slot: &mut FrameInput) -> Result<(), 
             "toggle_pause" => Command::TogglePause,
             "step_dda" => Command::StepDda,
             "run_to_hit" => Command::RunToHit,
+            "use_door" => Command::UseDoor,
+            "jump" => Command::Jump,
+            "toggle_night" => Command::ToggleNight,
             "move_column" => Command::MoveColumn(
                 v.get("by")
                     .and_then(Value::as_i64)

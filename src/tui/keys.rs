@@ -76,6 +76,8 @@ fn binding(key: &KeyEvent) -> Option<Binding> {
         KeyCode::Esc => Ui(UiCommand::Back),
         KeyCode::F(1) => Ui(UiCommand::ToggleHelp),
         KeyCode::Enter => Game(Command::RunToHit),
+        KeyCode::PageUp => Hold(LookUp),
+        KeyCode::PageDown => Hold(LookDown),
         KeyCode::Char(c) => match c {
             'w' | 'W' => Hold(Forward),
             's' | 'S' => Hold(Back),
@@ -88,6 +90,12 @@ fn binding(key: &KeyEvent) -> Option<Binding> {
             '{' | '[' => Game(Command::MoveColumn(-10)),
             '}' | ']' => Game(Command::MoveColumn(10)),
             'n' | 'N' => Game(Command::StepDda),
+            'e' | 'E' | 'f' | 'F' => Toggle(Command::UseDoor),
+            'j' | 'J' => Toggle(Command::Jump),
+            'c' | 'C' => Hold(Crouch),
+            'r' | 'R' => Hold(LookUp),
+            'v' | 'V' => Hold(LookDown),
+            'l' | 'L' => Toggle(Command::ToggleNight),
             'g' | 'G' => Game(Command::RunToHit),
             ' ' | 'p' | 'P' => Toggle(Command::TogglePause),
             'q' | 'Q' => Ui(UiCommand::Quit),
@@ -208,8 +216,9 @@ impl Controls {
             return;
         }
         // Emulated mode never sees releases, so pressing the opposite key lets go.
-        let opposite = opposite(action);
-        self.held.retain(|h| h.action != opposite);
+        if let Some(opposite) = opposite(action) {
+            self.held.retain(|h| h.action != opposite);
+        }
         let hold = match self.mode {
             InputMode::Kitty => KITTY_STALE,
             InputMode::Emulated => self.repeat.first_hold(),
@@ -257,15 +266,18 @@ impl Controls {
     }
 }
 
-fn opposite(a: Action) -> Action {
-    match a {
+fn opposite(a: Action) -> Option<Action> {
+    Some(match a {
         Action::Forward => Action::Back,
         Action::Back => Action::Forward,
         Action::TurnLeft => Action::TurnRight,
         Action::TurnRight => Action::TurnLeft,
         Action::StrafeLeft => Action::StrafeRight,
         Action::StrafeRight => Action::StrafeLeft,
-    }
+        Action::LookUp => Action::LookDown,
+        Action::LookDown => Action::LookUp,
+        Action::Crouch => return None,
+    })
 }
 
 #[cfg(test)]
