@@ -12,7 +12,7 @@ use halfcast::encode::{full_frame, ColorLevel, EncodeOptions};
 use halfcast::light::Fog;
 use halfcast::output::{ansi, json::RayReport, text};
 use halfcast::termframe;
-use halfcast::tui::{self, Ending, PlayOptions, TerminalError};
+use halfcast::tui::{self, Ending, LoopOptions, PlayOptions, TerminalError};
 use halfcast::world::World;
 use halfcast::{Framebuffer, Scene, Vec2};
 
@@ -39,6 +39,8 @@ enum Command {
     Play(PlayArgs),
     /// Measure the terminal encoder: bytes per frame and encode time vs stock ratatui.
     Bench(BenchArgs),
+    /// Play and record the input into a `.hcr` file (fixed timestep, replayable exactly).
+    Record(RecordArgs),
     /// Play back a `.hcr` recording: write chosen frames, or an asciicast of the whole run.
     Replay(ReplayArgs),
     /// Compare two frames (PNG, ANSI, cells text or plain text): exit 0 equal, 1 different, 2 error.
@@ -58,7 +60,7 @@ struct ReplayArgs {
     /// Folder for frame files, or the file for `--format cast` (default: standard output).
     #[arg(long)]
     out: Option<PathBuf>,
-    /// Colour level of `ansi` and `cast` output (default truecolor, so replays are the same anywhere).
+    /// Colour level of `ansi`, `cast` and on-screen output (default truecolor, the same anywhere).
     #[arg(long, value_parser = parse_level, default_value = "truecolor")]
     colors: ColorLevel,
 }
@@ -201,6 +203,30 @@ struct PlayArgs {
     /// Print frame-time statistics (fps, render and draw ms) to stderr on exit.
     #[arg(long)]
     frame_stats: bool,
+    /// Colour level (default: detected from COLORTERM, TERM, NO_COLOR).
+    #[arg(long, value_parser = parse_level)]
+    colors: Option<ColorLevel>,
+    /// Ordered dithering at 256 and 16 colours, so walls don't band.
+    #[arg(long)]
+    dither: bool,
+    /// Lossy: don't resend a cell whose colours moved less than N (0-255) since it was sent.
+    #[arg(long, value_name = "N")]
+    delta: Option<u8>,
+    /// Cap the output rate (e.g. 2mbit, 500kbit, 1MB): the frame rate drops to fit.
+    #[arg(long, value_name = "RATE", value_parser = halfcast::encode::parse_rate)]
+    max_bandwidth: Option<u64>,
+    /// With --max-bandwidth: also step down the colour level when the cap allows under 12 fps.
+    #[arg(long, requires = "max_bandwidth")]
+    adapt_colors: bool,
+}
+
+#[derive(Args, Debug)]
+struct RecordArgs {
+    #[command(flatten)]
+    play: PlayArgs,
+    /// Where to write the recording (.hcr).
+    #[arg(short, long)]
+    output: PathBuf,
 }
 
 impl PlayArgs {
@@ -219,6 +245,11 @@ impl PlayArgs {
             fps: 60,
             no_mouse: false,
             frame_stats: false,
+            colors: None,
+            dither: false,
+            delta: None,
+            max_bandwidth: None,
+            adapt_colors: false,
         }
     }
 }
@@ -366,9 +397,10 @@ pub fn run() -> ExitCode {
         Some(Command::Render(args)) => render(&args),
         Some(Command::Diff(args)) => diff(&args),
         Some(Command::Replay(args)) => replay(&args),
-        Some(Command::Play(args)) => play(&args),
+        Some(Command::Play(args)) => play(&args, None),
+        Some(Command::Record(args)) => play(&args.play, Some(&args.output)),
         Some(Command::Bench(args)) => bench(&args),
-        None => play(&PlayArgs::defaults()),
+        None => play(&PlayArgs::defaults(), None),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -401,7 +433,7 @@ fn camera_for(world: &World, pose: &PoseArgs) -> Camera {
     Camera::from_angle(pos, angle, pose.fov)
 }
 
-fn play(args: &PlayArgs) -> Result<(), Failure> {
+fn play(args: &PlayArgs, record: Option<&PathBuf>) -> Result<(), Failure> {
     let world = load_world(&args.map)?;
     let camera = camera_for(&world, &args.pose);
     if !world.map.is_walkable(camera.pos) {
@@ -410,17 +442,62 @@ fn play(args: &PlayArgs) -> Result<(), Failure> {
             camera.pos.x, camera.pos.y, world.map.name
         )));
     }
+    let mut encode = EncodeOptions::new(args.colors.unwrap_or_else(detect_level));
+    encode.dither = args.dither;
+    encode.delta = args.delta;
     let options = PlayOptions {
-        fps: args.fps,
+        looping: LoopOptions {
+            fps: args.fps,
+            encode,
+            max_bandwidth: args.max_bandwidth,
+            adapt_colours: args.adapt_colors,
+            record: record.is_some(),
+        },
         mouse: !args.no_mouse,
     };
-    let (ending, stats) = tui::play(Arc::new(world), camera, options).map_err(|e| match e {
-        TerminalError::NotATerminal(_) => Failure::input(e),
-        TerminalError::Io(_) => Failure::io(e),
-    })?;
+    let (ending, stats, recording) =
+        tui::play(Arc::new(world), camera, options).map_err(terminal_failure)?;
     if args.frame_stats {
         eprintln!("halfcast: {}", stats.summary());
     }
+    if let (Some(path), Some(rec)) = (record, recording) {
+        let header = halfcast::replay::Header {
+            map: args
+                .map
+                .map
+                .as_ref()
+                .map_or(halfcast::replay::MapSource::Embedded, |p| {
+                    halfcast::replay::MapSource::File(p.display().to_string())
+                }),
+            pos: camera.pos,
+            angle_deg: camera.angle_deg(),
+            fov_deg: camera.fov_deg(),
+            size: rec.size,
+            fps: args.fps,
+            seed: 0,
+        };
+        let replay = halfcast::replay::Replay {
+            header,
+            frames: rec.frames,
+        };
+        write_output(Some(path), replay.to_jsonl().as_bytes())?;
+        eprintln!(
+            "halfcast: recorded {} frames into {}",
+            replay.frames.len(),
+            path.display()
+        );
+    }
+    ending_result(ending)
+}
+
+fn terminal_failure(e: TerminalError) -> Failure {
+    match e {
+        TerminalError::NotATerminal(_) => Failure::input(e),
+        TerminalError::Io(_) => Failure::io(e),
+    }
+}
+
+fn ending_result(ending: Ending) -> Result<(), Failure> {
     match ending {
         Ending::Quit => Ok(()),
         Ending::Signal(sig) => Err(Failure {

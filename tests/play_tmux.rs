@@ -80,6 +80,8 @@ fn under_tmux_the_first_screen_walks_and_quits_cleanly() {
     let started = tmux.run(&[
         "new-session",
         "-d",
+        "-e",
+        "COLORTERM=truecolor",
         "-s",
         "t",
         "-x",

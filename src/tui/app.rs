@@ -6,6 +6,7 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use crossterm::event;
+use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 
 use super::keys::{Controls, UiCommand};
@@ -14,8 +15,11 @@ use super::render::render_view;
 use super::screen::{draw, Screen};
 use super::stats::FrameStats;
 use super::terminal::Session;
+use crate::encode::{EncodeOptions, Pacer};
 use crate::framebuffer::Framebuffer;
 use crate::game::{step, GameState};
+use crate::present::Presenter;
+use crate::replay::FrameInput;
 
 /// How a play session ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -26,6 +30,32 @@ pub enum Ending {
     Signal(i32),
 }
 
+/// How the loop paces and encodes frames, and whether it records its input.
+#[derive(Debug, Clone, Copy)]
+pub struct LoopOptions {
+    /// Target frames per second.
+    pub fps: u32,
+    /// Colour level, dithering and the lossy delta for the terminal encoder.
+    pub encode: EncodeOptions,
+    /// Bandwidth cap in bits per second: the frame rate drops to fit.
+    pub max_bandwidth: Option<u64>,
+    /// With `min_fps`, drop a colour level when the cap cannot sustain this frame rate.
+    pub adapt_colours: bool,
+    /// Record each frame's input (then every step is exactly 1/fps seconds long).
+    pub record: bool,
+}
+
+/// Frame-by-frame input captured while playing, for a `.hcr` replay.
+#[derive(Debug, Clone, Default)]
+pub struct Recording {
+    /// Terminal size at the first frame.
+    pub size: (u16, u16),
+    pub frames: Vec<FrameInput>,
+}
+
+/// Frame rate below which an adapting bandwidth cap lowers the colour level.
+const MIN_ADAPT_FPS: f64 = 12.0;
+
 /// The loop's mutable parts that are not game state.
 struct App {
     state: GameState,
@@ -33,6 +63,10 @@ struct App {
     toggles: Toggles,
     stats: FrameStats,
     fb: Framebuffer,
+    presenter: Presenter,
+    pacer: Option<Pacer>,
+    recording: Option<Recording>,
+    last_size: Option<(u16, u16)>,
 }
 
 /// Runs frames until quit or a signal; `signal` holds the number of a caught signal (0 = none).
@@ -42,17 +76,23 @@ struct App {
 pub fn run_loop(
     session: &mut Session,
     state: GameState,
-    fps: u32,
+    options: LoopOptions,
     signal: &Arc<AtomicUsize>,
-) -> io::Result<(Ending, FrameStats)> {
+) -> io::Result<(Ending, FrameStats, Option<Recording>)> {
+    let fps = f64::from(options.fps.max(1));
     let mut app = App {
         state,
         controls: Controls::new(session.input_mode()),
         toggles: Toggles::default(),
         stats: FrameStats::default(),
         fb: Framebuffer::new(0, 0),
+        presenter: Presenter::new(options.encode),
+        pacer: options.max_bandwidth.map(|bits| Pacer::new(bits, fps)),
+        recording: options.record.then(Recording::default),
+        last_size: None,
     };
-    let period = Duration::from_secs_f64(1.0 / f64::from(fps.max(1)));
+    app.stats.level = Some(options.encode.level);
+    let period = Duration::from_secs_f64(1.0 / fps);
     let mut last = Instant::now();
     let mut next = last;
     loop {
@@ -72,17 +112,27 @@ pub fn run_loop(
         }
         let sig = signal.load(Ordering::SeqCst);
         if sig != 0 {
-            return Ok((Ending::Signal(sig as i32), app.stats));
+            return Ok((Ending::Signal(sig as i32), app.stats, app.recording));
         }
-        if app.ui_commands() {
-            return Ok((Ending::Quit, app.stats));
+        let ui = app.controls.take_ui();
+        if app.ui_commands(&ui) {
+            return Ok((Ending::Quit, app.stats, app.recording));
         }
         let now = Instant::now();
-        let dt = now.duration_since(last).as_secs_f64();
+        // Recording steps exactly 1/fps per frame, so the replay is the same run.
+        let dt = if app.recording.is_some() {
+            1.0 / fps
+        } else {
+            now.duration_since(last).as_secs_f64()
+        };
         last = now;
-        next += period;
+        let interval = app
+            .pacer
+            .as_ref()
+            .map_or(period, |p| p.frame_interval().max(period));
+        next += interval;
         if next < now {
-            next = now + period;
+            next = now + interval;
         }
 
         // 2. Step: the layout decides the view width the debugger works in.
@@ -100,6 +150,23 @@ pub fn run_loop(
                 .set_turn_per_column(fov / f64::from(view.width));
         }
         let input = app.controls.take_input(now);
+        if let Some(rec) = app.recording.as_mut() {
+            let size = (size.width, size.height);
+            let resize = match app.last_size {
+                None => {
+                    rec.size = size;
+                    None
+                }
+                Some(prev) if prev != size => Some(size),
+                Some(_) => None,
+            };
+            rec.frames.push(FrameInput {
+                input: input.clone(),
+                ui,
+                resize,
+            });
+        }
+        app.last_size = Some((size.width, size.height));
         step(&mut app.state, &input, dt);
 
         // 3. Render the 3D view at exactly the pane's size.
@@ -109,7 +176,7 @@ pub fn run_loop(
         let cast = render_view(&app.state, &mut app.fb);
         let render_time = t.elapsed();
 
-        // 4. Draw the terminal frame.
+        // 4. Draw the panes into a buffer, encode the frame, write it once.
         let t = Instant::now();
         let screen = Screen {
             state: &app.state,
@@ -119,11 +186,23 @@ pub fn run_loop(
             toggles: app.toggles,
             input_mode: app.controls.mode(),
         };
-        session.draw(|frame| {
-            let area = frame.area();
-            draw(&screen, &panes, area, frame.buffer_mut());
-        })?;
+        let mut buf = Buffer::empty(area);
+        draw(&screen, &panes, area, &mut buf);
+        let bytes = app.presenter.frame(&buf, &app.fb, view);
+        session.write_frame(bytes)?;
+        let sent = bytes.len();
         let draw_time = t.elapsed();
+        app.stats.record_bytes(sent);
+        if let Some(p) = app.pacer.as_mut() {
+            p.record(sent);
+            let level = app.presenter.level();
+            let lower = p.level_for(level, MIN_ADAPT_FPS);
+            if options.adapt_colours && lower != level {
+                app.presenter.set_level(lower);
+                app.stats.level = Some(lower);
+                *p = Pacer::new(options.max_bandwidth.unwrap_or(u64::MAX), fps);
+            }
+        }
         app.stats.record(Instant::now(), render_time, draw_time);
         // Lets the end-to-end tests prove the panic hook restores the terminal (debug builds only).
         #[cfg(debug_assertions)]
@@ -135,8 +214,8 @@ pub fn run_loop(
 
 impl App {
     /// Applies UI commands; true when the player asked to quit.
-    fn ui_commands(&mut self) -> bool {
-        for c in self.controls.take_ui() {
+    fn ui_commands(&mut self, ui: &[UiCommand]) -> bool {
+        for &c in ui {
             match c {
                 UiCommand::Quit => return true,
                 UiCommand::Back if self.toggles.help => self.toggles.help = false,

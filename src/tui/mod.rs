@@ -8,6 +8,7 @@ pub mod app;
 pub mod help;
 pub mod keys;
 pub mod layout;
+pub mod playback;
 pub mod render;
 pub mod repeat;
 pub mod screen;
@@ -21,17 +22,30 @@ use std::sync::Arc;
 use crate::camera::Camera;
 use crate::world::World;
 
-pub use app::Ending;
+pub use app::{Ending, LoopOptions, Recording};
 pub use stats::FrameStats;
 pub use terminal::TerminalError;
 
 /// What `halfcast play` was asked for.
 #[derive(Debug, Clone, Copy)]
 pub struct PlayOptions {
-    /// Target frames per second.
-    pub fps: u32,
+    /// Pacing, encoding and recording.
+    pub looping: LoopOptions,
     /// Capture the mouse so dragging turns the view.
     pub mouse: bool,
+}
+
+/// Registers the signals that end a session (SIGTERM, SIGINT; SIGHUP and SIGQUIT on unix)
+/// into one flag holding the signal's number.
+fn watch_signals() -> std::io::Result<Arc<AtomicUsize>> {
+    let signal = Arc::new(AtomicUsize::new(0));
+    let mut signals = vec![signal_hook::consts::SIGTERM, signal_hook::consts::SIGINT];
+    #[cfg(unix)]
+    signals.extend([signal_hook::consts::SIGHUP, signal_hook::consts::SIGQUIT]);
+    for sig in signals {
+        signal_hook::flag::register_usize(sig, Arc::clone(&signal), sig as usize)?;
+    }
+    Ok(signal)
 }
 
 /// Plays in this terminal until the player quits or a signal arrives; the terminal is
@@ -43,18 +57,30 @@ pub fn play(
     world: Arc<World>,
     camera: Camera,
     options: PlayOptions,
-) -> Result<(Ending, FrameStats), TerminalError> {
+) -> Result<(Ending, FrameStats, Option<Recording>), TerminalError> {
     terminal::require_tty()?;
-    let signal = Arc::new(AtomicUsize::new(0));
-    let mut signals = vec![signal_hook::consts::SIGTERM, signal_hook::consts::SIGINT];
-    #[cfg(unix)]
-    signals.extend([signal_hook::consts::SIGHUP, signal_hook::consts::SIGQUIT]);
-    for sig in signals {
-        signal_hook::flag::register_usize(sig, Arc::clone(&signal), sig as usize)?;
-    }
+    let signal = watch_signals()?;
     let mut session = terminal::Session::start(options.mouse)?;
     let state = crate::game::GameState::new(world, camera, 0);
-    let result = app::run_loop(&mut session, state, options.fps, &signal);
+    let result = app::run_loop(&mut session, state, options.looping, &signal);
+    drop(session);
+    Ok(result?)
+}
+
+/// Shows a replay in this terminal at its recorded pace (q, Esc or Ctrl-C stop it early);
+/// the frames are exactly those `halfcast replay --format cast` writes.
+///
+/// # Errors
+/// Not a terminal, or terminal I/O failing.
+pub fn watch(
+    world: Arc<World>,
+    replay: &crate::replay::Replay,
+    encode: crate::encode::EncodeOptions,
+) -> Result<Ending, TerminalError> {
+    terminal::require_tty()?;
+    let signal = watch_signals()?;
+    let mut session = terminal::Session::start(false)?;
+    let result = playback::run(&mut session, world, replay, encode, &signal);
     drop(session);
     Ok(result?)
 }

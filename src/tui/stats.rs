@@ -17,6 +17,13 @@ pub struct FrameStats {
     pub render_ms: f64,
     /// Smoothed time to build, diff and write the terminal frame, in ms.
     pub draw_ms: f64,
+    /// Smoothed bytes sent to the terminal per frame.
+    pub bytes_per_frame: f64,
+    /// Output rate over the last window, in kbit/s.
+    pub kbit_s: f64,
+    /// The colour level frames are sent at (shown in the status line).
+    pub level: Option<crate::encode::ColorLevel>,
+    window_bytes: u64,
     window_start: Option<Instant>,
     window_frames: u32,
     first: Option<Instant>,
@@ -25,6 +32,17 @@ pub struct FrameStats {
 }
 
 impl FrameStats {
+    /// Records the bytes one frame sent (before [`FrameStats::record`] for that frame).
+    pub fn record_bytes(&mut self, bytes: usize) {
+        let b = bytes as f64;
+        self.bytes_per_frame = if self.bytes_per_frame == 0.0 {
+            b
+        } else {
+            self.bytes_per_frame * 0.9 + b * 0.1
+        };
+        self.window_bytes += bytes as u64;
+    }
+
     /// Records one finished frame.
     pub fn record(&mut self, now: Instant, render: Duration, draw: Duration) {
         let (r, d) = (render.as_secs_f64() * 1e3, draw.as_secs_f64() * 1e3);
@@ -42,8 +60,10 @@ impl FrameStats {
         let elapsed = now.duration_since(start);
         if elapsed >= FPS_WINDOW {
             self.fps = f64::from(self.window_frames) / elapsed.as_secs_f64();
+            self.kbit_s = self.window_bytes as f64 * 8.0 / 1000.0 / elapsed.as_secs_f64();
             self.window_start = Some(now);
             self.window_frames = 0;
+            self.window_bytes = 0;
         }
         self.first.get_or_insert(now);
         self.last = Some(now);

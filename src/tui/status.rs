@@ -93,6 +93,19 @@ pub fn status_line(
                 l(" ms"),
             ],
         ));
+        if stats.bytes_per_frame > 0.0 {
+            let mut out = vec![
+                v(format!("{:.1}", stats.bytes_per_frame / 1000.0)),
+                l(" kB/f "),
+                v(format!("{:.0}", stats.kbit_s)),
+                l(" kbit/s"),
+            ];
+            if let Some(level) = stats.level {
+                out.push(l(" "));
+                out.push(v(level.name().to_owned()));
+            }
+            segs.push(seg(4, out));
+        }
     }
     segs.push(seg(
         6,

@@ -10,12 +10,10 @@ use crossterm::event::{
     KeyboardEnhancementFlags, PopKeyboardEnhancementFlags, PushKeyboardEnhancementFlags,
 };
 use crossterm::terminal::{
-    disable_raw_mode, enable_raw_mode, BeginSynchronizedUpdate, Clear, ClearType,
-    EndSynchronizedUpdate, EnterAlternateScreen, LeaveAlternateScreen,
+    disable_raw_mode, enable_raw_mode, Clear, ClearType, EndSynchronizedUpdate,
+    EnterAlternateScreen, LeaveAlternateScreen,
 };
 use crossterm::{cursor, execute, queue, style};
-use ratatui::backend::CrosstermBackend;
-use ratatui::{Frame, Terminal};
 
 use super::keys::InputMode;
 
@@ -70,12 +68,9 @@ impl Write for GatedStdout {
     }
 }
 
-/// The ratatui terminal the game draws on (one buffered write per frame).
-pub type GameTerminal = Terminal<CrosstermBackend<BufWriter<GatedStdout>>>;
-
 /// An active game-mode terminal; dropping it restores the user's terminal.
 pub struct Session {
-    terminal: GameTerminal,
+    out: BufWriter<GatedStdout>,
     mode: InputMode,
 }
 
@@ -129,11 +124,9 @@ impl Session {
                 )
             )?;
         }
-        let writer = BufWriter::with_capacity(1 << 18, GatedStdout(io::stdout()));
-        // (Not `Terminal::clear`: it asks for the cursor position, which needs an answer.)
-        let terminal = Terminal::new(CrosstermBackend::new(writer))?;
+        let out = BufWriter::with_capacity(1 << 18, GatedStdout(io::stdout()));
         Ok(Self {
-            terminal,
+            out,
             mode: if kitty {
                 InputMode::Kitty
             } else {
@@ -153,18 +146,17 @@ impl Session {
     /// # Errors
     /// The size query's I/O error.
     pub fn size(&self) -> io::Result<ratatui::layout::Size> {
-        self.terminal.size()
+        let (width, height) = crossterm::terminal::size()?;
+        Ok(ratatui::layout::Size { width, height })
     }
 
-    /// Draws one frame inside a synchronized update (no tearing on terminals that support it).
+    /// Writes one frame's bytes (from [`crate::present::Presenter`]) in one write and flush.
     ///
     /// # Errors
     /// Writing to the terminal failed (e.g. it went away).
-    pub fn draw(&mut self, f: impl FnOnce(&mut Frame)) -> io::Result<()> {
-        queue!(self.terminal.backend_mut(), BeginSynchronizedUpdate)?;
-        self.terminal.draw(f)?;
-        execute!(self.terminal.backend_mut(), EndSynchronizedUpdate)?;
-        Ok(())
+    pub fn write_frame(&mut self, bytes: &[u8]) -> io::Result<()> {
+        self.out.write_all(bytes)?;
+        self.out.flush()
     }
 }
 
