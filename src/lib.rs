@@ -11,6 +11,7 @@ pub mod map;
 pub mod output;
 pub mod raster;
 pub mod scene;
+pub mod serve;
 pub mod snapshot;
 pub mod texture;
 pub mod vec2;
