@@ -171,7 +171,7 @@ fn main() {
     };
     let per: Vec<Arc<PerClient>> = (0..o.clients).map(|_| Arc::default()).collect();
     let secs = o.secs;
-    let (cpu, elapsed) =
+    let (cpu, client_cpu, elapsed) =
         client_rt.block_on(async {
             let mut tasks = Vec::new();
             for (i, pc) in per.iter().enumerate() {
@@ -230,12 +230,19 @@ fn main() {
             }));
             }
             let cpu0 = thread_cpu("srv-worker");
+            let ccpu0 = thread_cpu("cli-worker");
             let t0 = Instant::now();
             for t in tasks {
                 let _ = t.await;
             }
-            (thread_cpu("srv-worker") - cpu0, t0.elapsed().as_secs_f64())
+            (
+                thread_cpu("srv-worker") - cpu0,
+                thread_cpu("cli-worker") - ccpu0,
+                t0.elapsed().as_secs_f64(),
+            )
         });
+    // Sessions add their counters when they end, just after their clients leave.
+    std::thread::sleep(Duration::from_secs(1));
     let stats = server.stats();
     server_rt.block_on(server.shutdown());
     let n = per.len() as f64;
@@ -260,7 +267,7 @@ fn main() {
     let mean_fps = mean(&fps);
     println!(
         "{{\"clients\":{},\"secs\":{:.1},\"cols\":{},\"rows\":{},\"term\":\"{}\",\"compression\":\"{}\",\
-\"target_fps\":{},\"server_threads\":{},\"server_cpu_percent\":{:.1},\"fps_per_client_mean\":{:.1},\
+\"target_fps\":{},\"server_threads\":{},\"server_cpu_percent\":{:.1},\"client_cpu_percent\":{:.1},\"fps_per_client_mean\":{:.1},\
 \"fps_per_client_min\":{:.1},\"payload_bytes_per_s_per_client\":{:.0},\"wire_bytes_per_s_per_client\":{:.0},\
 \"server_frames_sent\":{},\"server_frame_ticks_skipped\":{},\"refused\":{},\
 \"clients_per_core_at_target_fps\":{:.1}}}",
@@ -273,6 +280,7 @@ fn main() {
         o.fps,
         o.server_threads,
         cpu_frac * 100.0,
+        client_cpu / elapsed * 100.0,
         mean_fps,
         fps.iter().copied().fold(f64::INFINITY, f64::min),
         payload,

@@ -147,3 +147,29 @@ async fn spectators_follow_a_player_and_tab_switches() {
     assert!(status_has(w.screen.screen(), "2 here: ann, bob"));
     srv.shutdown().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_shell_without_a_pty_request_gets_the_default_size() {
+    let (srv, _dir) = server(|_| {}).await;
+    let mut h = serve_support::connect_raw(srv.local_addr(), None)
+        .await
+        .expect("connect");
+    assert!(h.authenticate_none("ann").await.expect("auth").success());
+    let ch = h.channel_open_session().await.expect("session");
+    ch.request_shell(true).await.expect("shell");
+    let mut c = Client {
+        handle: h,
+        channel: ch,
+        screen: vt100::Parser::new(24, 80, 0),
+        bytes: 0,
+        closed: false,
+    };
+    // No TERM: mono, plain ASCII; the status line sits on row 24 of 80x24.
+    assert!(
+        c.until(|s| status_has(s, "you are ann")).await,
+        "{}",
+        c.screen.screen().contents()
+    );
+    assert!(row_text(c.screen.screen(), 0).trim_end().len() > 40);
+    srv.shutdown().await;
+}

@@ -255,13 +255,11 @@ impl russh::server::Handler for ConnHandler {
                 self.term
             ),
         );
-        let stats = Arc::clone(&sh.stats);
-        ServeStats::add(&stats.sessions_live, 1);
+        let live = LiveSession::new(Arc::clone(&sh.stats));
         tokio::spawn(async move {
+            // Held for the task's life, so the count drops even if the session panics.
+            let _live = live;
             session::run(params, inputs).await;
-            stats
-                .sessions_live
-                .fetch_sub(1, std::sync::atomic::Ordering::Relaxed);
         });
         Ok(())
     }
@@ -368,6 +366,24 @@ impl russh::server::Handler for ConnHandler {
     }
     // Channel opens other than "session" (direct-tcpip, x11, streamlocal, forwarded) keep the
     // default handlers, which drop the open handle and so refuse the channel.
+}
+
+/// Counts a running session in [`ServeStats::sessions_live`] until dropped.
+struct LiveSession(Arc<ServeStats>);
+
+impl LiveSession {
+    fn new(stats: Arc<ServeStats>) -> Self {
+        ServeStats::add(&stats.sessions_live, 1);
+        Self(stats)
+    }
+}
+
+impl Drop for LiveSession {
+    fn drop(&mut self) {
+        self.0
+            .sessions_live
+            .fetch_sub(1, std::sync::atomic::Ordering::Relaxed);
+    }
 }
 
 #[cfg(test)]
