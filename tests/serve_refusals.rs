@@ -110,3 +110,18 @@ async fn password_mode_rejects_none_and_wrong_passwords() {
         .success());
     srv.shutdown().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn idle_clients_are_closed_with_a_message() {
+    let (srv, _dir) = server(|c| c.idle_timeout = std::time::Duration::from_secs(1)).await;
+    let mut c = Client::connect(srv.local_addr(), "ann", 60, 12, "xterm").await;
+    assert!(c.until(|s| status_has(s, "you are ann")).await);
+    assert!(
+        c.until(|s| s.contents().contains("idle too long")).await,
+        "{}",
+        c.screen.screen().contents()
+    );
+    c.until(|_| false).await;
+    assert!(c.closed);
+    srv.shutdown().await;
+}

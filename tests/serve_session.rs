@@ -173,3 +173,35 @@ async fn a_shell_without_a_pty_request_gets_the_default_size() {
     assert!(row_text(c.screen.screen(), 0).trim_end().len() > 40);
     srv.shutdown().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_client_that_stops_reading_gets_frames_dropped_then_the_latest_state() {
+    let (srv, _dir) = server(|_| {}).await;
+    let addr = srv.local_addr();
+    // A big truecolor view (about 1 MB a frame) that changes every tick: ann holds "turn right"
+    // (a kitty-protocol press with no release).
+    let mut ann = Client::connect(addr, "ann", 300, 100, "xterm-direct").await;
+    assert!(ann.until(|s| status_has(s, "you are ann")).await);
+    ann.keys(b"\x1b[?11u\x1b[100u").await;
+    // Ann stops reading; bob joins meanwhile.
+    tokio::time::sleep(Duration::from_secs(2)).await;
+    let mut bob = Client::connect(addr, "bob", 60, 12, "xterm").await;
+    assert!(bob.until(|s| status_has(s, "2 here")).await);
+    tokio::time::sleep(Duration::from_secs(1)).await;
+    // When ann reads again she catches up to the present rather than replaying a backlog.
+    assert!(ann.until(|s| status_has(s, "2 here: ann, bob")).await);
+    ann.keys(b"\x03").await;
+    ann.until(|_| false).await;
+    // Ann's session adds its counters as it ends: frame ticks were skipped, not queued.
+    let mut dropped = 0;
+    for _ in 0..200 {
+        dropped = srv.stats().frames_dropped;
+        if dropped > 0 {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(25)).await;
+    }
+    assert!(dropped > 0, "the stalled session skipped frames");
+    drop(bob);
+    srv.shutdown().await;
+}
