@@ -205,3 +205,22 @@ async fn a_client_that_stops_reading_gets_frames_dropped_then_the_latest_state()
     drop(bob);
     srv.shutdown().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_colour_key_cycles_levels_down_to_mono_and_back() {
+    let (srv, _dir) = server(|_| {}).await;
+    let mut c = Client::connect(srv.local_addr(), "ann", 100, 16, "xterm-direct").await;
+    assert!(
+        c.until(|s| status_has(s, "· truecolor ·") && half_block_cells(s) > 0)
+            .await
+    );
+    for level in ["· 256 ·", "· 16 ·", "· mono ·", "· truecolor ·"] {
+        c.keys(b"c").await;
+        assert!(
+            c.until(|s| status_has(s, level)).await,
+            "{level}: {}",
+            row_text(c.screen.screen(), 15)
+        );
+    }
+    srv.shutdown().await;
+}

@@ -256,10 +256,16 @@ impl russh::server::Handler for ConnHandler {
             ),
         );
         let live = LiveSession::new(Arc::clone(&sh.stats));
+        let (handle, log, id, peer) = (session.handle(), sh.log, self.id, self.peer);
         tokio::spawn(async move {
             // Held for the task's life, so the count drops even if the session panics.
             let _live = live;
-            session::run(params, inputs).await;
+            if let Err(e) = tokio::spawn(session::run(params, inputs)).await {
+                // A bug in one session ends that session only: log it and hang up on its client.
+                log.session(id, peer, format_args!("session failed: {e}"));
+                let _ = handle.data(channel, session::LEAVE.to_vec()).await;
+                let _ = handle.close(channel).await;
+            }
         });
         Ok(())
     }

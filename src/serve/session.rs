@@ -33,7 +33,7 @@ use crate::world::World;
 /// types, all keys as escapes) and queried, so release events arrive where supported.
 const ENTER: &[u8] = b"\x1b[?1049h\x1b[?25l\x1b[0m\x1b[2J\x1b[>11u\x1b[?u";
 /// Everything [`ENTER`] changed, undone.
-const LEAVE: &[u8] = b"\x1b[<u\x1b[0m\x1b[?25h\x1b[?1049l";
+pub const LEAVE: &[u8] = b"\x1b[<u\x1b[0m\x1b[?25h\x1b[?1049l";
 /// How long an unfinished escape sequence may wait before a lone ESC counts as the Esc key.
 const ESC_WAIT: Duration = Duration::from_millis(50);
 /// A client that takes no frame for this long is dropped (its link is dead or it never reads).
