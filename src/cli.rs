@@ -43,8 +43,43 @@ enum Command {
     Record(RecordArgs),
     /// Play back a `.hcr` recording: write chosen frames, or an asciicast of the whole run.
     Replay(ReplayArgs),
+    /// Run an SSH server where everyone connected plays in one world (`ssh -p 2222 host`).
+    Serve(ServeArgs),
     /// Compare two frames (PNG, ANSI, cells text or plain text): exit 0 equal, 1 different, 2 error.
     Diff(DiffArgs),
+}
+
+#[derive(Args, Debug)]
+struct ServeArgs {
+    #[command(flatten)]
+    map: MapArgs,
+    /// Address to listen on (port 0 picks a free one; the log says which).
+    #[arg(long, default_value = "127.0.0.1:2222")]
+    listen: std::net::SocketAddr,
+    /// Ed25519 host key: read if it exists, else generated there with mode 0600.
+    #[arg(long, default_value = "halfcast_host_ed25519")]
+    host_key: PathBuf,
+    /// Require this password (default: no authentication).
+    #[arg(long, conflicts_with = "authorized_keys")]
+    password: Option<String>,
+    /// Accept only the public keys in this OpenSSH authorized_keys file.
+    #[arg(long)]
+    authorized_keys: Option<PathBuf>,
+    /// Most concurrent connections.
+    #[arg(long, default_value_t = 32, value_parser = clap::value_parser!(u32).range(1..=10_000))]
+    max_sessions: u32,
+    /// Most concurrent connections from one IP address.
+    #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u32).range(1..=10_000))]
+    max_per_ip: u32,
+    /// Close a connection after this many seconds without a keystroke.
+    #[arg(long, default_value_t = 600, value_parser = clap::value_parser!(u64).range(1..=86_400))]
+    idle_timeout: u64,
+    /// Frames per second per session (slow links get fewer).
+    #[arg(long, default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=240))]
+    fps: u32,
+    /// No connect/disconnect log on stderr.
+    #[arg(long)]
+    quiet: bool,
 }
 
 #[derive(Args, Debug)]
@@ -400,6 +435,7 @@ pub fn run() -> ExitCode {
         Some(Command::Play(args)) => play(&args, None),
         Some(Command::Record(args)) => play(&args.play, Some(&args.output)),
         Some(Command::Bench(args)) => bench(&args),
+        Some(Command::Serve(args)) => serve(args),
         None => play(&PlayArgs::defaults(), None),
     };
     match result {
@@ -569,9 +605,11 @@ fn replay(args: &ReplayArgs) -> Result<(), Failure> {
         (Some(_), None) => Err(Failure::input(
             "--format needs --frames (or use --format cast)",
         )),
-        (None, _) => Err(Failure::input(
-            "on-screen playback is not wired yet; give --format",
-        )),
+        (None, _) => {
+            let ending = tui::watch(world, &replay, EncodeOptions::new(args.colors))
+                .map_err(terminal_failure)?;
+            ending_result(ending)
+        }
     }
 }
 
@@ -600,6 +638,25 @@ fn diff(args: &DiffArgs) -> Result<(), Failure> {
             message: String::new(),
         })
     }
+}
+
+fn serve(args: ServeArgs) -> Result<(), Failure> {
+    use halfcast::serve::{auth::AuthMode, run_until_signal, ServeConfig};
+    let world = load_world(&args.map)?;
+    let auth = match (args.password, &args.authorized_keys) {
+        (Some(p), _) if p.is_empty() => return Err(Failure::input("--password must not be empty")),
+        (Some(p), _) => AuthMode::Password(p),
+        (None, Some(path)) => AuthMode::from_authorized_keys(path).map_err(Failure::input)?,
+        (None, None) => AuthMode::None,
+    };
+    let mut config = ServeConfig::local(args.listen, args.host_key);
+    config.auth = auth;
+    config.max_sessions = args.max_sessions as usize;
+    config.max_per_ip = args.max_per_ip as usize;
+    config.idle_timeout = std::time::Duration::from_secs(args.idle_timeout);
+    config.fps = args.fps;
+    config.quiet = args.quiet;
+    run_until_signal(config, world).map_err(Failure::input)
 }
 
 fn write_output(path: Option<&PathBuf>, bytes: &[u8]) -> Result<(), Failure> {

@@ -23,6 +23,7 @@ pub mod present;
 pub mod raster;
 pub mod replay;
 pub mod scene;
+pub mod serve;
 pub mod snapshot;
 pub mod termframe;
 pub mod texture;

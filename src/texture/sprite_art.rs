@@ -265,7 +265,7 @@ fn creature_picture(view: usize, frame: usize) -> Canvas {
     for y in 12..20 {
         c.px[y * SIZE + 32] = (Rgb::new(60, 50, 70), 255);
     }
-    let glow = if frame % 2 == 0 { 1.1 } else { 0.7 };
+    let glow = if frame.is_multiple_of(2) { 1.1 } else { 0.7 };
     c.ellipse(32.5, 11.0 - bob, 3.0, 3.0, |nx, ny| {
         tint((250.0, 220.0, 80.0), sphere(nx, ny) * glow)
     });

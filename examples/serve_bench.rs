@@ -1,0 +1,293 @@
+//! Load test for `halfcast serve`, loopback only and bounded: N russh clients for T seconds,
+//! each pressing random movement keys, against an in-process server whose runtime has its own
+//! named threads, so its CPU time can be read apart from the clients'.
+//!
+//! `cargo run --release --example serve_bench -- --clients 32 --secs 10 --term xterm-direct \
+//!     --compression none --cols 80 --rows 24 --server-threads 1`
+//!
+//! Prints one JSON object: server CPU, frames/s and bytes/s per client (payload and on the wire).
+
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use halfcast::serve::{start, ServeConfig};
+use halfcast::World;
+use russh::keys::PublicKeyOrCertificate;
+use russh::{client, compression, ChannelMsg, Preferred};
+
+struct Trusting;
+
+impl client::Handler for Trusting {
+    type Error = russh::Error;
+
+    async fn check_server_key(&mut self, _: &PublicKeyOrCertificate) -> Result<bool, Self::Error> {
+        Ok(true)
+    }
+}
+
+struct Counting {
+    inner: tokio::net::TcpStream,
+    read: Arc<AtomicU64>,
+}
+
+impl tokio::io::AsyncRead for Counting {
+    fn poll_read(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+        buf: &mut tokio::io::ReadBuf<'_>,
+    ) -> std::task::Poll<std::io::Result<()>> {
+        let before = buf.filled().len();
+        let r = std::pin::Pin::new(&mut self.inner).poll_read(cx, buf);
+        self.read
+            .fetch_add((buf.filled().len() - before) as u64, Ordering::Relaxed);
+        r
+    }
+}
+
+impl tokio::io::AsyncWrite for Counting {
+    fn poll_write(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+        buf: &[u8],
+    ) -> std::task::Poll<std::io::Result<usize>> {
+        std::pin::Pin::new(&mut self.inner).poll_write(cx, buf)
+    }
+    fn poll_flush(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+    ) -> std::task::Poll<std::io::Result<()>> {
+        std::pin::Pin::new(&mut self.inner).poll_flush(cx)
+    }
+    fn poll_shutdown(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+    ) -> std::task::Poll<std::io::Result<()>> {
+        std::pin::Pin::new(&mut self.inner).poll_shutdown(cx)
+    }
+}
+
+struct Opts {
+    clients: usize,
+    secs: u64,
+    cols: u32,
+    rows: u32,
+    term: String,
+    compression: String,
+    fps: u32,
+    server_threads: usize,
+}
+
+fn opts() -> Opts {
+    let mut o = Opts {
+        clients: 32,
+        secs: 10,
+        cols: 80,
+        rows: 24,
+        term: "xterm-direct".into(),
+        compression: "none".into(),
+        fps: 30,
+        server_threads: 1,
+    };
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    for pair in args.chunks(2) {
+        let v = pair.get(1).cloned().unwrap_or_default();
+        let num = |v: &str| v.parse::<u64>().expect("a number");
+        match pair[0].as_str() {
+            // Bounded on purpose: this is a loopback load test, not a flood tool.
+            "--clients" => o.clients = num(&v).clamp(1, 256) as usize,
+            "--secs" => o.secs = num(&v).clamp(1, 120),
+            "--cols" => o.cols = num(&v) as u32,
+            "--rows" => o.rows = num(&v) as u32,
+            "--term" => o.term = v,
+            "--compression" => o.compression = v,
+            "--fps" => o.fps = num(&v) as u32,
+            "--server-threads" => o.server_threads = num(&v).clamp(1, 8) as usize,
+            other => panic!("unknown option {other}"),
+        }
+    }
+    o
+}
+
+/// CPU seconds used so far by this process's threads whose name starts with `prefix` (Linux).
+fn thread_cpu(prefix: &str) -> f64 {
+    let Ok(dir) = std::fs::read_dir("/proc/self/task") else {
+        return f64::NAN;
+    };
+    let tick = 100.0; // USER_HZ on Linux
+    let mut total = 0u64;
+    for t in dir.flatten() {
+        let comm = std::fs::read_to_string(t.path().join("comm")).unwrap_or_default();
+        if !comm.starts_with(prefix) {
+            continue;
+        }
+        let stat = std::fs::read_to_string(t.path().join("stat")).unwrap_or_default();
+        // Fields after the ")" that closes the command name: utime is the 12th, stime the 13th.
+        if let Some(rest) = stat.rsplit_once(')').map(|x| x.1) {
+            let f: Vec<&str> = rest.split_whitespace().collect();
+            let n = |i: usize| f.get(i).and_then(|s| s.parse::<u64>().ok()).unwrap_or(0);
+            total += n(11) + n(12);
+        }
+    }
+    total as f64 / tick
+}
+
+#[derive(Default)]
+struct PerClient {
+    frames: AtomicU64,
+    payload: AtomicU64,
+    wire: Arc<AtomicU64>,
+}
+
+fn main() {
+    let o = opts();
+    let server_rt = tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(o.server_threads)
+        .thread_name("srv-worker")
+        .enable_all()
+        .build()
+        .expect("server runtime");
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mut cfg = ServeConfig::local("127.0.0.1:0".parse().expect("addr"), dir.path().join("hk"));
+    cfg.quiet = true;
+    cfg.max_sessions = o.clients + 1;
+    cfg.max_per_ip = o.clients + 1;
+    cfg.fps = o.fps;
+    let server = server_rt
+        .block_on(start(cfg, World::default_world()))
+        .expect("server");
+    let addr = server.local_addr();
+
+    let client_rt = tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(1)
+        .thread_name("cli-worker")
+        .enable_all()
+        .build()
+        .expect("client runtime");
+    let alg = match o.compression.as_str() {
+        "zlib" => compression::ZLIB,
+        "zlib@openssh.com" => compression::ZLIB_LEGACY,
+        _ => compression::NONE,
+    };
+    let per: Vec<Arc<PerClient>> = (0..o.clients).map(|_| Arc::default()).collect();
+    let secs = o.secs;
+    let (cpu, client_cpu, elapsed) =
+        client_rt.block_on(async {
+            let mut tasks = Vec::new();
+            for (i, pc) in per.iter().enumerate() {
+                let pc = Arc::clone(pc);
+                let term = o.term.clone();
+                let (cols, rows) = (o.cols, o.rows);
+                tasks.push(tokio::spawn(async move {
+                let stream = Counting {
+                    inner: tokio::net::TcpStream::connect(addr).await.expect("tcp"),
+                    read: Arc::clone(&pc.wire),
+                };
+                let cfg = client::Config {
+                    preferred: Preferred {
+                        compression: std::borrow::Cow::Owned(vec![alg]),
+                        ..Preferred::default()
+                    },
+                    ..client::Config::default()
+                };
+                let mut h = client::connect_stream(Arc::new(cfg), stream, Trusting)
+                    .await
+                    .expect("connect");
+                assert!(h.authenticate_none(format!("bot{i}")).await.expect("auth").success());
+                let mut ch = h.channel_open_session().await.expect("session");
+                ch.request_pty(false, &term, cols, rows, 0, 0, &[]).await.expect("pty");
+                ch.request_shell(false).await.expect("shell");
+                let end = tokio::time::Instant::now() + Duration::from_secs(secs);
+                let mut next_key = tokio::time::Instant::now();
+                let mut lcg = 0x9e37_79b9u32.wrapping_mul(i as u32 + 1);
+                let mut tail: Vec<u8> = Vec::new();
+                loop {
+                    let wake = next_key.min(end);
+                    tokio::select! {
+                        msg = ch.wait() => match msg {
+                            Some(ChannelMsg::Data { data }) => {
+                                pc.payload.fetch_add(data.len() as u64, Ordering::Relaxed);
+                                tail.extend_from_slice(&data);
+                                let n = tail.windows(8).filter(|w| *w == b"\x1b[?2026h").count();
+                                pc.frames.fetch_add(n as u64, Ordering::Relaxed);
+                                let keep = tail.len().min(7);
+                                tail.drain(..tail.len() - keep);
+                            }
+                            None => break,
+                            _ => {}
+                        },
+                        () = tokio::time::sleep_until(wake) => {
+                            if tokio::time::Instant::now() >= end { break; }
+                            lcg = lcg.wrapping_mul(1_103_515_245).wrapping_add(12345);
+                            let key = b"wasdqe"[(lcg >> 16) as usize % 6];
+                            let _ = ch.data(&[key][..]).await;
+                            next_key += Duration::from_millis(100);
+                        }
+                    }
+                }
+                let _ = ch.data(&b"\x03"[..]).await;
+                let _ = h.disconnect(russh::Disconnect::ByApplication, "", "").await;
+            }));
+            }
+            let cpu0 = thread_cpu("srv-worker");
+            let ccpu0 = thread_cpu("cli-worker");
+            let t0 = Instant::now();
+            for t in tasks {
+                let _ = t.await;
+            }
+            (
+                thread_cpu("srv-worker") - cpu0,
+                thread_cpu("cli-worker") - ccpu0,
+                t0.elapsed().as_secs_f64(),
+            )
+        });
+    // Sessions add their counters when they end, just after their clients leave.
+    std::thread::sleep(Duration::from_secs(1));
+    let stats = server.stats();
+    server_rt.block_on(server.shutdown());
+    let n = per.len() as f64;
+    let fps: Vec<f64> = per
+        .iter()
+        .map(|p| p.frames.load(Ordering::Relaxed) as f64 / elapsed)
+        .collect();
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+    let payload = per
+        .iter()
+        .map(|p| p.payload.load(Ordering::Relaxed) as f64)
+        .sum::<f64>()
+        / n
+        / elapsed;
+    let wire = per
+        .iter()
+        .map(|p| p.wire.load(Ordering::Relaxed) as f64)
+        .sum::<f64>()
+        / n
+        / elapsed;
+    let cpu_frac = cpu / elapsed;
+    let mean_fps = mean(&fps);
+    println!(
+        "{{\"clients\":{},\"secs\":{:.1},\"cols\":{},\"rows\":{},\"term\":\"{}\",\"compression\":\"{}\",\
+\"target_fps\":{},\"server_threads\":{},\"server_cpu_percent\":{:.1},\"client_cpu_percent\":{:.1},\"fps_per_client_mean\":{:.1},\
+\"fps_per_client_min\":{:.1},\"payload_bytes_per_s_per_client\":{:.0},\"wire_bytes_per_s_per_client\":{:.0},\
+\"server_frames_sent\":{},\"server_frame_ticks_skipped\":{},\"refused\":{},\
+\"clients_per_core_at_target_fps\":{:.1}}}",
+        o.clients,
+        elapsed,
+        o.cols,
+        o.rows,
+        o.term,
+        o.compression,
+        o.fps,
+        o.server_threads,
+        cpu_frac * 100.0,
+        client_cpu / elapsed * 100.0,
+        mean_fps,
+        fps.iter().copied().fold(f64::INFINITY, f64::min),
+        payload,
+        wire,
+        stats.frames_sent,
+        stats.frames_dropped,
+        stats.refused,
+        n * (mean_fps / f64::from(o.fps)) / cpu_frac.max(1e-9),
+    );
+}

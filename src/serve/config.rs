@@ -1,0 +1,84 @@
+//! What an operator can set for `halfcast serve`, and the hard bounds no client can push past.
+
+use std::net::SocketAddr;
+use std::path::PathBuf;
+use std::time::Duration;
+
+use super::auth::AuthMode;
+
+/// Widest terminal a client may claim, in columns (larger claims are clamped, never trusted).
+pub const MAX_COLS: u16 = 500;
+/// Tallest terminal a client may claim, in rows.
+pub const MAX_ROWS: u16 = 200;
+/// The size used when a client opens a shell without asking for a pty first.
+pub const DEFAULT_SIZE: (u16, u16) = (80, 24);
+
+/// Everything `serve` needs besides the world; built by the CLI, or by tests with `ServeConfig::local`.
+#[derive(Debug, Clone)]
+pub struct ServeConfig {
+    /// Where to listen; port 0 picks a free port (tests).
+    pub listen: SocketAddr,
+    /// Ed25519 host key file: read if present, generated (0600) otherwise.
+    pub host_key: PathBuf,
+    /// How clients prove who they are (nothing, by default).
+    pub auth: AuthMode,
+    /// Concurrent connections beyond this are refused at accept.
+    pub max_sessions: usize,
+    /// Concurrent connections from one IP address beyond this are refused at accept.
+    pub max_per_ip: usize,
+    /// A connection with no keystroke for this long is closed.
+    pub idle_timeout: Duration,
+    /// World ticks per second (movement, collisions, snapshots).
+    pub tick_hz: u32,
+    /// Frames per second each session aims for; slower links get fewer (latest frame wins).
+    pub fps: u32,
+    /// Silence the connect/disconnect log on stderr.
+    pub quiet: bool,
+}
+
+impl ServeConfig {
+    /// Defaults for a loopback server on `listen` with its host key at `host_key`.
+    #[must_use]
+    pub fn local(listen: SocketAddr, host_key: PathBuf) -> Self {
+        Self {
+            listen,
+            host_key,
+            auth: AuthMode::None,
+            max_sessions: 32,
+            max_per_ip: 8,
+            idle_timeout: Duration::from_secs(600),
+            tick_hz: 30,
+            fps: 30,
+            quiet: false,
+        }
+    }
+}
+
+/// Turns a client's claimed terminal size into one we render: each side clamped to 1..=max.
+///
+/// The SSH wire carries `u32`; anything above the bounds (including values that would wrap a
+/// `u16`) becomes the bound, and 0 becomes 1.
+#[must_use]
+pub fn clamp_size(cols: u32, rows: u32) -> (u16, u16) {
+    let c = cols.clamp(1, u32::from(MAX_COLS));
+    let r = rows.clamp(1, u32::from(MAX_ROWS));
+    // Both are now within u16 range by construction.
+    (
+        u16::try_from(c).unwrap_or(MAX_COLS),
+        u16::try_from(r).unwrap_or(MAX_ROWS),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sizes_are_clamped_without_wrapping() {
+        assert_eq!(clamp_size(0, 0), (1, 1));
+        assert_eq!(clamp_size(80, 24), (80, 24));
+        assert_eq!(clamp_size(501, 201), (500, 200));
+        assert_eq!(clamp_size(65_536 + 80, 65_536 + 24), (500, 200));
+        assert_eq!(clamp_size(u32::MAX, u32::MAX), (500, 200));
+    }
+}

@@ -1,0 +1,406 @@
+//! The SSH protocol side of one connection: authentication, one session channel with a pty, and
+//! refusal of everything that is not the game (exec, subsystems, forwarding, X11, agent).
+
+use std::net::SocketAddr;
+use std::sync::Arc;
+
+use russh::keys::PublicKey;
+use russh::server::{Auth, ChannelOpenHandle, Msg, Session};
+use russh::{Channel, ChannelId, Pty};
+use tokio::sync::{mpsc, watch};
+
+use super::config::{ServeConfig, DEFAULT_SIZE};
+use super::log::Log;
+use super::session::{self, SessionInputs, SessionParams};
+use super::stats::ServeStats;
+use super::world_task::WorldHandle;
+use crate::world::World;
+
+/// The user name that watches instead of playing (`ssh -p 2222 watch@host`).
+pub const SPECTATOR_USER: &str = "watch";
+/// Key reads a session may have waiting; a client that floods beyond this loses its own keys.
+const INPUT_QUEUE: usize = 64;
+/// Longest player name shown to others.
+const MAX_NAME: usize = 16;
+
+/// What every connection shares.
+pub struct Shared {
+    pub config: ServeConfig,
+    pub world: WorldHandle,
+    pub world_data: Arc<World>,
+    pub stats: Arc<ServeStats>,
+    pub log: Log,
+    pub shutdown: watch::Receiver<bool>,
+}
+
+/// The per-connection russh handler.
+pub struct ConnHandler {
+    id: u64,
+    peer: SocketAddr,
+    shared: Arc<Shared>,
+    user: String,
+    channel: Option<ChannelId>,
+    term: String,
+    colorterm: Option<String>,
+    size: watch::Sender<(u32, u32)>,
+    data: Option<mpsc::Sender<Vec<u8>>>,
+    started: bool,
+}
+
+impl ConnHandler {
+    /// A handler for connection `id` from `peer`.
+    #[must_use]
+    pub fn new(id: u64, peer: SocketAddr, shared: Arc<Shared>) -> Self {
+        let (size, _) = watch::channel((u32::from(DEFAULT_SIZE.0), u32::from(DEFAULT_SIZE.1)));
+        Self {
+            id,
+            peer,
+            shared,
+            user: String::new(),
+            channel: None,
+            term: String::new(),
+            colorterm: None,
+            size,
+            data: None,
+            started: false,
+        }
+    }
+
+    fn ours(&self, channel: ChannelId) -> bool {
+        self.channel == Some(channel)
+    }
+
+    fn accept_user(&mut self, user: &str) -> Auth {
+        self.user = user.to_string();
+        Auth::Accept
+    }
+
+    fn reject(&self) -> Auth {
+        Auth::Reject {
+            proceed_with_methods: Some(self.shared.config.auth.methods()),
+            partial_success: false,
+        }
+    }
+}
+
+/// A name safe to show on other people's screens: printable ASCII, at most [`MAX_NAME`] chars.
+#[must_use]
+pub fn display_name(user: &str, id: u64) -> String {
+    let name: String = user
+        .chars()
+        .filter(|c| c.is_ascii_graphic())
+        .take(MAX_NAME)
+        .collect();
+    if name.is_empty() {
+        format!("player{id}")
+    } else {
+        name
+    }
+}
+
+impl russh::server::Handler for ConnHandler {
+    type Error = russh::Error;
+
+    async fn auth_none(&mut self, user: &str) -> Result<Auth, Self::Error> {
+        if self.shared.config.auth.allows_none() {
+            Ok(self.accept_user(user))
+        } else {
+            Ok(self.reject())
+        }
+    }
+
+    async fn auth_password(&mut self, user: &str, password: &str) -> Result<Auth, Self::Error> {
+        if self.shared.config.auth.allows_password(password) {
+            Ok(self.accept_user(user))
+        } else {
+            Ok(self.reject())
+        }
+    }
+
+    async fn auth_publickey_offered(
+        &mut self,
+        _user: &str,
+        offer: russh::server::PublicKeyOffer<'_>,
+    ) -> Result<Auth, Self::Error> {
+        if self.shared.config.auth.allows_key(offer.public_key) {
+            Ok(Auth::Accept)
+        } else {
+            Ok(self.reject())
+        }
+    }
+
+    async fn auth_publickey(
+        &mut self,
+        user: &str,
+        key: russh::server::VerifiedPublicKey<'_>,
+    ) -> Result<Auth, Self::Error> {
+        let key: &PublicKey = key.public_key;
+        if self.shared.config.auth.allows_key(key) {
+            Ok(self.accept_user(user))
+        } else {
+            Ok(self.reject())
+        }
+    }
+
+    async fn channel_open_session(
+        &mut self,
+        channel: Channel<Msg>,
+        reply: ChannelOpenHandle,
+        _session: &mut Session,
+    ) -> Result<(), Self::Error> {
+        if self.channel.is_some() {
+            // One game per connection; dropping `reply` refuses the channel.
+            return Ok(());
+        }
+        self.channel = Some(channel.id());
+        // We read the channel through this handler's callbacks; dropping the channel object
+        // keeps russh from queueing a second copy of every key for nobody.
+        drop(channel);
+        reply.accept().await;
+        Ok(())
+    }
+
+    async fn pty_request(
+        &mut self,
+        channel: ChannelId,
+        term: &str,
+        col_width: u32,
+        row_height: u32,
+        _pix_width: u32,
+        _pix_height: u32,
+        _modes: &[(Pty, u32)],
+        session: &mut Session,
+    ) -> Result<(), Self::Error> {
+        if !self.ours(channel) || self.started {
+            return session.channel_failure(channel);
+        }
+        self.term = term.chars().take(64).collect();
+        self.size.send_replace((col_width, row_height));
+        session.channel_success(channel)
+    }
+
+    async fn window_change_request(
+        &mut self,
+        channel: ChannelId,
+        col_width: u32,
+        row_height: u32,
+        _pix_width: u32,
+        _pix_height: u32,
+        _session: &mut Session,
+    ) -> Result<(), Self::Error> {
+        if self.ours(channel) {
+            // Latest size wins; a client resizing 1000 times a second costs one store each.
+            self.size.send_replace((col_width, row_height));
+        }
+        Ok(())
+    }
+
+    async fn env_request(
+        &mut self,
+        channel: ChannelId,
+        name: &str,
+        value: &str,
+        session: &mut Session,
+    ) -> Result<(), Self::Error> {
+        // Only COLORTERM is read, to pick the colour level; nothing runs with the client's env.
+        if self.ours(channel) && name == "COLORTERM" && !self.started {
+            self.colorterm = Some(value.chars().take(32).collect());
+            return session.channel_success(channel);
+        }
+        session.channel_failure(channel)
+    }
+
+    async fn shell_request(
+        &mut self,
+        channel: ChannelId,
+        session: &mut Session,
+    ) -> Result<(), Self::Error> {
+        if !self.ours(channel) || self.started {
+            return session.channel_failure(channel);
+        }
+        self.started = true;
+        session.channel_success(channel)?;
+        let (tx, rx) = mpsc::channel(INPUT_QUEUE);
+        self.data = Some(tx);
+        let sh = &self.shared;
+        let spectator = self.user == SPECTATOR_USER;
+        let params = SessionParams {
+            id: self.id,
+            peer: self.peer,
+            name: display_name(&self.user, self.id),
+            spectator,
+            term: self.term.clone(),
+            colorterm: self.colorterm.clone(),
+            handle: session.handle(),
+            channel,
+            world: sh.world.clone(),
+            world_data: Arc::clone(&sh.world_data),
+            fps: sh.config.fps,
+            idle_timeout: sh.config.idle_timeout,
+            stats: Arc::clone(&sh.stats),
+            log: sh.log,
+            shutdown: sh.shutdown.clone(),
+        };
+        let inputs = SessionInputs {
+            data: rx,
+            size: self.size.subscribe(),
+        };
+        sh.log.session(
+            self.id,
+            self.peer,
+            format_args!(
+                "{} as {:?} (TERM={:?})",
+                if spectator { "watching" } else { "playing" },
+                params.name,
+                self.term
+            ),
+        );
+        let live = LiveSession::new(Arc::clone(&sh.stats));
+        let (handle, log, id, peer) = (session.handle(), sh.log, self.id, self.peer);
+        tokio::spawn(async move {
+            // Held for the task's life, so the count drops even if the session panics.
+            let _live = live;
+            if let Err(e) = tokio::spawn(session::run(params, inputs)).await {
+                // A bug in one session ends that session only: log it and hang up on its client.
+                log.session(id, peer, format_args!("session failed: {e}"));
+                let _ = handle.data(channel, session::LEAVE.to_vec()).await;
+                let _ = handle.close(channel).await;
+            }
+        });
+        Ok(())
+    }
+
+    async fn data(
+        &mut self,
+        channel: ChannelId,
+        data: &[u8],
+        _session: &mut Session,
+    ) -> Result<(), Self::Error> {
+        if let (true, Some(tx)) = (self.ours(channel), &self.data) {
+            // Full queue: this client is typing faster than its session reads; drop the excess.
+            let _ = tx.try_send(data.to_vec());
+        }
+        Ok(())
+    }
+
+    async fn channel_eof(
+        &mut self,
+        channel: ChannelId,
+        _session: &mut Session,
+    ) -> Result<(), Self::Error> {
+        if self.ours(channel) {
+            self.data = None;
+        }
+        Ok(())
+    }
+
+    async fn channel_close(
+        &mut self,
+        channel: ChannelId,
+        _session: &mut Session,
+    ) -> Result<(), Self::Error> {
+        if self.ours(channel) {
+            self.data = None;
+        }
+        Ok(())
+    }
+
+    async fn exec_request(
+        &mut self,
+        channel: ChannelId,
+        _data: &[u8],
+        session: &mut Session,
+    ) -> Result<(), Self::Error> {
+        self.shared
+            .log
+            .session(self.id, self.peer, "refused an exec request");
+        session.channel_failure(channel)
+    }
+
+    async fn subsystem_request(
+        &mut self,
+        channel: ChannelId,
+        name: &str,
+        session: &mut Session,
+    ) -> Result<(), Self::Error> {
+        self.shared.log.session(
+            self.id,
+            self.peer,
+            format_args!(
+                "refused subsystem {:?}",
+                name.chars().take(32).collect::<String>()
+            ),
+        );
+        session.channel_failure(channel)
+    }
+
+    async fn x11_request(
+        &mut self,
+        channel: ChannelId,
+        _single_connection: bool,
+        _x11_auth_protocol: &str,
+        _x11_auth_cookie: &str,
+        _x11_screen_number: u32,
+        session: &mut Session,
+    ) -> Result<(), Self::Error> {
+        session.channel_failure(channel)
+    }
+
+    async fn agent_request(
+        &mut self,
+        _channel: ChannelId,
+        _session: &mut Session,
+    ) -> Result<bool, Self::Error> {
+        Ok(false)
+    }
+
+    async fn tcpip_forward(
+        &mut self,
+        _address: &str,
+        _port: &mut u32,
+        _session: &mut Session,
+    ) -> Result<bool, Self::Error> {
+        Ok(false)
+    }
+
+    async fn streamlocal_forward(
+        &mut self,
+        _socket_path: &str,
+        _session: &mut Session,
+    ) -> Result<bool, Self::Error> {
+        Ok(false)
+    }
+    // Channel opens other than "session" (direct-tcpip, x11, streamlocal, forwarded) keep the
+    // default handlers, which drop the open handle and so refuse the channel.
+}
+
+/// Counts a running session in [`ServeStats::sessions_live`] until dropped.
+struct LiveSession(Arc<ServeStats>);
+
+impl LiveSession {
+    fn new(stats: Arc<ServeStats>) -> Self {
+        ServeStats::add(&stats.sessions_live, 1);
+        Self(stats)
+    }
+}
+
+impl Drop for LiveSession {
+    fn drop(&mut self) {
+        self.0
+            .sessions_live
+            .fetch_sub(1, std::sync::atomic::Ordering::Relaxed);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_are_printable_and_short() {
+        assert_eq!(display_name("ann", 1), "ann");
+        assert_eq!(display_name("\x1b[31mevil", 2), "[31mevil");
+        assert_eq!(display_name("", 3), "player3");
+        assert_eq!(display_name(&"x".repeat(100), 4).len(), MAX_NAME);
+    }
+}

@@ -1,0 +1,131 @@
+//! The server's identity: an Ed25519 host key, generated once and reused so clients never see a
+//! changed host key on restart.
+
+use std::fs;
+use std::io::Write;
+use std::path::Path;
+
+use russh::keys::ssh_key::private::Ed25519Keypair;
+use russh::keys::ssh_key::LineEnding;
+use russh::keys::{HashAlg, PrivateKey};
+
+/// Reads the OpenSSH private key at `path`, or creates a new Ed25519 key there (mode 0600).
+///
+/// Returns the key and notes for the log (generated, fingerprint, loose permissions).
+///
+/// # Errors
+/// A message naming the path when the file cannot be read, parsed or created, or is encrypted.
+pub fn load_or_generate(path: &Path) -> Result<(PrivateKey, Vec<String>), String> {
+    let mut notes = Vec::new();
+    let key = match fs::read_to_string(path) {
+        Ok(text) => {
+            let key = PrivateKey::from_openssh(text.as_bytes()).map_err(|e| {
+                format!(
+                    "host key {}: not an OpenSSH private key ({e})",
+                    path.display()
+                )
+            })?;
+            if key.is_encrypted() {
+                return Err(format!(
+                    "host key {}: encrypted keys are not supported",
+                    path.display()
+                ));
+            }
+            if let Some(mode) = loose_mode(path) {
+                notes.push(format!(
+                    "warning: host key {} is readable by others (mode {mode:o}); run chmod 600",
+                    path.display()
+                ));
+            }
+            key
+        }
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            let key = generate()?;
+            write_private(path, &key)?;
+            notes.push(format!("generated a new host key at {}", path.display()));
+            key
+        }
+        Err(e) => return Err(format!("host key {}: {e}", path.display())),
+    };
+    notes.push(format!(
+        "host key {} {}",
+        key.algorithm().as_str(),
+        key.public_key().fingerprint(HashAlg::Sha256)
+    ));
+    Ok((key, notes))
+}
+
+fn generate() -> Result<PrivateKey, String> {
+    let mut seed = [0u8; 32];
+    getrandom::fill(&mut seed).map_err(|e| format!("no randomness for a host key: {e}"))?;
+    Ok(PrivateKey::from(Ed25519Keypair::from_seed(&seed)))
+}
+
+/// Writes a new file readable by its owner only; never overwrites an existing one.
+fn write_private(path: &Path, key: &PrivateKey) -> Result<(), String> {
+    let text = key
+        .to_openssh(LineEnding::LF)
+        .map_err(|e| format!("cannot encode the host key: {e}"))?;
+    let mut opts = fs::OpenOptions::new();
+    opts.write(true).create_new(true);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        opts.mode(0o600);
+    }
+    let mut f = opts
+        .open(path)
+        .map_err(|e| format!("cannot create host key {}: {e}", path.display()))?;
+    f.write_all(text.as_bytes())
+        .and_then(|()| f.sync_all())
+        .map_err(|e| format!("cannot write host key {}: {e}", path.display()))
+}
+
+/// The file's permission bits if group or others may read it (Unix only).
+fn loose_mode(path: &Path) -> Option<u32> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        let mode = fs::metadata(path).ok()?.permissions().mode() & 0o777;
+        (mode & 0o077 != 0).then_some(mode)
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = path;
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn generated_once_then_reused_with_owner_only_permissions() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let path = dir.path().join("host_ed25519");
+        let (a, notes) = load_or_generate(&path).expect("generate");
+        assert!(notes.iter().any(|n| n.starts_with("generated")));
+        let (b, notes) = load_or_generate(&path).expect("load");
+        assert!(!notes.iter().any(|n| n.starts_with("generated")));
+        assert_eq!(a.public_key(), b.public_key());
+        assert_eq!(a.algorithm(), russh::keys::Algorithm::Ed25519);
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            let mode = fs::metadata(&path).expect("meta").permissions().mode() & 0o777;
+            assert_eq!(mode, 0o600);
+        }
+    }
+
+    #[test]
+    fn garbage_key_file_is_a_clear_error() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let path = dir.path().join("bad");
+        fs::write(&path, "hello").expect("write");
+        let err = load_or_generate(&path).expect_err("must fail");
+        assert!(err.contains("not an OpenSSH private key"), "{err}");
+        let missing_dir = dir.path().join("no/such/dir/key");
+        assert!(load_or_generate(&missing_dir).is_err());
+    }
+}

@@ -1,0 +1,82 @@
+//! The one task that owns the shared game state and advances it at a fixed tick.
+//!
+//! Sessions talk to it only through [`WorldHandle`]: messages in (join, leave, held keys) and the
+//! latest [`Snapshot`] out through a `watch` channel, so a slow session never slows the world.
+
+use std::sync::Arc;
+use std::time::Duration;
+
+use tokio::sync::{mpsc, watch};
+use tokio::time::MissedTickBehavior;
+
+use super::player::Held;
+use super::players::{PlayerId, Players, SharedSnapshot, Snapshot};
+use crate::world::World;
+
+/// What a session tells the world.
+#[derive(Debug, Clone)]
+pub enum WorldMsg {
+    Join { id: PlayerId, name: String },
+    Leave { id: PlayerId },
+    Held { id: PlayerId, held: Held },
+}
+
+/// A session's line to the world task; cheap to clone.
+#[derive(Debug, Clone)]
+pub struct WorldHandle {
+    tx: mpsc::Sender<WorldMsg>,
+    snapshots: watch::Receiver<SharedSnapshot>,
+}
+
+impl WorldHandle {
+    /// Sends a message; waits if the world's inbox is full (it drains it every tick).
+    pub async fn send(&self, msg: WorldMsg) {
+        // An error means the world task has ended (server shutdown): nothing left to tell.
+        let _ = self.tx.send(msg).await;
+    }
+
+    /// A receiver that always holds the newest snapshot.
+    #[must_use]
+    pub fn snapshots(&self) -> watch::Receiver<SharedSnapshot> {
+        self.snapshots.clone()
+    }
+
+    /// The newest snapshot now.
+    #[must_use]
+    pub fn latest(&self) -> SharedSnapshot {
+        self.snapshots.borrow().clone()
+    }
+}
+
+/// Starts the world task on the current runtime; it ends when every handle is dropped.
+#[must_use]
+pub fn spawn_world(world: Arc<World>, tick_hz: u32) -> WorldHandle {
+    let (tx, mut rx) = mpsc::channel::<WorldMsg>(1024);
+    let (snap_tx, snap_rx) = watch::channel(Arc::new(Snapshot::default()));
+    let tick_hz = tick_hz.clamp(1, 1000);
+    let dt = 1.0 / f64::from(tick_hz);
+    tokio::spawn(async move {
+        let mut players = Players::new();
+        let mut tick = tokio::time::interval(Duration::from_secs_f64(dt));
+        tick.set_missed_tick_behavior(MissedTickBehavior::Skip);
+        loop {
+            tick.tick().await;
+            loop {
+                match rx.try_recv() {
+                    Ok(WorldMsg::Join { id, name }) => players.join(&world.map, id, &name),
+                    Ok(WorldMsg::Leave { id }) => players.leave(id),
+                    Ok(WorldMsg::Held { id, held }) => players.set_held(id, held),
+                    Err(mpsc::error::TryRecvError::Empty) => break,
+                    Err(mpsc::error::TryRecvError::Disconnected) => return,
+                }
+            }
+            if players.tick(&world.map, dt) {
+                let _ = snap_tx.send(Arc::new(players.snapshot()));
+            }
+        }
+    });
+    WorldHandle {
+        tx,
+        snapshots: snap_rx,
+    }
+}

@@ -1,0 +1,127 @@
+//! `halfcast serve` offers only the game: no exec, no subsystems, no forwarding; and it keeps to
+//! its connection limits and authentication mode.
+
+mod serve_support;
+
+use halfcast::serve::auth::AuthMode;
+use russh::ChannelMsg;
+use serve_support::{connect_raw, server, status_has, Client, PATIENCE};
+
+/// Waits for the reply to a want-reply channel request: true = success.
+async fn reply(ch: &mut russh::Channel<russh::client::Msg>) -> Option<bool> {
+    let deadline = tokio::time::Instant::now() + PATIENCE;
+    loop {
+        match tokio::time::timeout_at(deadline, ch.wait()).await.ok()?? {
+            ChannelMsg::Success => return Some(true),
+            ChannelMsg::Failure => return Some(false),
+            _ => {}
+        }
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn exec_subsystem_and_forwarding_are_refused() {
+    let (srv, _dir) = server(|_| {}).await;
+    let mut h = connect_raw(srv.local_addr(), None).await.expect("connect");
+    assert!(h
+        .authenticate_none("mallory")
+        .await
+        .expect("auth")
+        .success());
+    let mut ch = h.channel_open_session().await.expect("session");
+    ch.exec(true, "cat /etc/passwd").await.expect("send exec");
+    assert_eq!(reply(&mut ch).await, Some(false), "exec is refused");
+    ch.request_subsystem(true, "sftp")
+        .await
+        .expect("send subsystem");
+    assert_eq!(reply(&mut ch).await, Some(false), "sftp is refused");
+    ch.set_env(true, "LD_PRELOAD", "/tmp/x.so")
+        .await
+        .expect("send env");
+    assert_eq!(reply(&mut ch).await, Some(false), "env is refused");
+    assert!(
+        h.channel_open_direct_tcpip("127.0.0.1", 22, "127.0.0.1", 5555)
+            .await
+            .is_err(),
+        "port forwarding is refused"
+    );
+    assert!(
+        h.tcpip_forward("127.0.0.1", 0).await.is_err(),
+        "remote forwarding is refused"
+    );
+    assert!(
+        h.channel_open_session().await.is_err(),
+        "one session channel per connection"
+    );
+    // The session channel still works as the game after all that.
+    ch.request_pty(true, "xterm", 40, 12, 0, 0, &[])
+        .await
+        .expect("pty");
+    assert_eq!(reply(&mut ch).await, Some(true));
+    ch.request_shell(true).await.expect("shell");
+    assert_eq!(reply(&mut ch).await, Some(true));
+    srv.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn max_sessions_and_per_address_limits_refuse_extra_connections() {
+    let (srv, _dir) = server(|c| {
+        c.max_sessions = 2;
+        c.max_per_ip = 2;
+    })
+    .await;
+    let addr = srv.local_addr();
+    let mut a = Client::connect(addr, "a", 40, 10, "xterm").await;
+    let _b = Client::connect(addr, "b", 40, 10, "xterm").await;
+    assert!(a.until(|s| status_has(s, "2 here")).await);
+    assert!(
+        connect_raw(addr, None).await.is_err(),
+        "a third connection is refused"
+    );
+    assert_eq!(srv.stats().refused, 1);
+    drop(a);
+    // The freed place is usable again (the server notices the drop first).
+    let mut ok = false;
+    for _ in 0..100 {
+        if connect_raw(addr, None).await.is_ok() {
+            ok = true;
+            break;
+        }
+        tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+    }
+    assert!(ok, "a place frees up when a client leaves");
+    srv.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn password_mode_rejects_none_and_wrong_passwords() {
+    let (srv, _dir) = server(|c| c.auth = AuthMode::Password("sesame".into())).await;
+    let mut h = connect_raw(srv.local_addr(), None).await.expect("connect");
+    assert!(!h.authenticate_none("ann").await.expect("auth").success());
+    assert!(!h
+        .authenticate_password("ann", "open")
+        .await
+        .expect("auth")
+        .success());
+    assert!(h
+        .authenticate_password("ann", "sesame")
+        .await
+        .expect("auth")
+        .success());
+    srv.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn idle_clients_are_closed_with_a_message() {
+    let (srv, _dir) = server(|c| c.idle_timeout = std::time::Duration::from_secs(1)).await;
+    let mut c = Client::connect(srv.local_addr(), "ann", 60, 12, "xterm").await;
+    assert!(c.until(|s| status_has(s, "you are ann")).await);
+    assert!(
+        c.until(|s| s.contents().contains("idle too long")).await,
+        "{}",
+        c.screen.screen().contents()
+    );
+    c.until(|_| false).await;
+    assert!(c.closed);
+    srv.shutdown().await;
+}

@@ -1,0 +1,293 @@
+//! Helpers for the `serve` integration tests: an in-process server on a free loopback port and
+//! a real russh client whose output goes through a vt100 terminal model.
+#![allow(dead_code)]
+
+use std::sync::Arc;
+use std::time::Duration;
+
+use halfcast::serve::{start, RunningServer, ServeConfig};
+use halfcast::World;
+use russh::client;
+use russh::keys::PublicKeyOrCertificate;
+use russh::{ChannelMsg, Preferred};
+use tempfile::TempDir;
+
+/// Upper bound on any wait in these tests, so a broken server fails a test instead of hanging it.
+pub const PATIENCE: Duration = Duration::from_secs(20);
+
+/// Starts a server on 127.0.0.1:0 with the default world; `tweak` may change the config.
+pub async fn server(tweak: impl FnOnce(&mut ServeConfig)) -> (RunningServer, TempDir) {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mut cfg = ServeConfig::local("127.0.0.1:0".parse().expect("addr"), dir.path().join("hk"));
+    cfg.quiet = true;
+    tweak(&mut cfg);
+    let s = start(cfg, World::default_world())
+        .await
+        .expect("server starts");
+    (s, dir)
+}
+
+pub struct Trusting;
+
+impl client::Handler for Trusting {
+    type Error = russh::Error;
+
+    async fn check_server_key(&mut self, _: &PublicKeyOrCertificate) -> Result<bool, Self::Error> {
+        Ok(true)
+    }
+}
+
+/// A connected client with a pty-backed shell channel and a terminal model of its screen.
+pub struct Client {
+    pub handle: client::Handle<Trusting>,
+    pub channel: russh::Channel<client::Msg>,
+    pub screen: vt100::Parser,
+    pub bytes: usize,
+    pub closed: bool,
+}
+
+/// Connects without shell: authenticated handle only (for refusals and auth tests).
+pub async fn connect_raw(
+    addr: std::net::SocketAddr,
+    compression: Option<russh::compression::Name>,
+) -> Result<client::Handle<Trusting>, russh::Error> {
+    let mut cfg = client::Config::default();
+    if let Some(c) = compression {
+        cfg.preferred = Preferred {
+            compression: std::borrow::Cow::Owned(vec![c]),
+            ..Preferred::default()
+        };
+    }
+    client::connect(Arc::new(cfg), addr, Trusting).await
+}
+
+impl Client {
+    /// Connects as `user` (no auth), asks for a `cols`×`rows` pty with `term`, starts the shell.
+    pub async fn connect(
+        addr: std::net::SocketAddr,
+        user: &str,
+        cols: u16,
+        rows: u16,
+        term: &str,
+    ) -> Self {
+        Self::connect_with(addr, user, cols, rows, term, None).await
+    }
+
+    /// As [`Client::connect`], offering only the given compression.
+    pub async fn connect_with(
+        addr: std::net::SocketAddr,
+        user: &str,
+        cols: u16,
+        rows: u16,
+        term: &str,
+        compression: Option<russh::compression::Name>,
+    ) -> Self {
+        let mut handle = connect_raw(addr, compression).await.expect("connect");
+        let auth = handle.authenticate_none(user).await.expect("auth");
+        assert!(auth.success(), "auth none accepted");
+        let channel = handle.channel_open_session().await.expect("session");
+        channel
+            .request_pty(true, term, u32::from(cols), u32::from(rows), 0, 0, &[])
+            .await
+            .expect("pty");
+        channel.request_shell(true).await.expect("shell");
+        Self {
+            handle,
+            channel,
+            screen: vt100::Parser::new(rows, cols, 0),
+            bytes: 0,
+            closed: false,
+        }
+    }
+
+    /// Reads output into the screen model until `done(screen)` holds; false on close or timeout.
+    pub async fn until(&mut self, mut done: impl FnMut(&vt100::Screen) -> bool) -> bool {
+        let deadline = tokio::time::Instant::now() + PATIENCE;
+        loop {
+            if done(self.screen.screen()) {
+                return true;
+            }
+            if self.closed {
+                return false;
+            }
+            match tokio::time::timeout_at(deadline, self.channel.wait()).await {
+                Err(_) => return false,
+                Ok(None) => self.closed = true,
+                Ok(Some(ChannelMsg::Data { data })) => {
+                    self.bytes += data.len();
+                    self.screen.process(&data);
+                }
+                Ok(Some(ChannelMsg::Close | ChannelMsg::Eof)) => self.closed = true,
+                Ok(Some(_)) => {}
+            }
+        }
+    }
+
+    /// Reads whatever arrives for `d` (to measure or to let the server act).
+    pub async fn drain_for(&mut self, d: Duration) {
+        let end = tokio::time::Instant::now() + d;
+        while let Ok(Some(msg)) = tokio::time::timeout_at(end, self.channel.wait()).await {
+            if let ChannelMsg::Data { data } = msg {
+                self.bytes += data.len();
+                self.screen.process(&data);
+            }
+        }
+    }
+
+    /// Sends key bytes.
+    pub async fn keys(&self, bytes: &[u8]) {
+        self.channel.data(bytes).await.expect("send keys");
+    }
+
+    /// Tells the server the terminal changed size, and resizes the model.
+    pub async fn resize(&mut self, cols: u16, rows: u16) {
+        self.channel
+            .window_change(u32::from(cols), u32::from(rows), 0, 0)
+            .await
+            .expect("window change");
+        self.screen.set_size(rows, cols);
+    }
+}
+
+/// The text of screen row `r`.
+pub fn row_text(s: &vt100::Screen, r: u16) -> String {
+    let (_, cols) = s.size();
+    s.contents_between(r, 0, r, cols)
+}
+
+/// Whether the bottom row (the status line) contains `needle`.
+pub fn status_has(s: &vt100::Screen, needle: &str) -> bool {
+    let (rows, _) = s.size();
+    row_text(s, rows - 1).contains(needle)
+}
+
+/// Counts view cells drawn as half-blocks (or one-colour cells) in 24-bit colour.
+pub fn half_block_cells(s: &vt100::Screen) -> usize {
+    let (rows, cols) = s.size();
+    let mut n = 0;
+    for r in 0..rows.saturating_sub(1) {
+        for c in 0..cols {
+            if let Some(cell) = s.cell(r, c) {
+                // The encoder draws a cell as ▀ or ▄ (two colours), or as a space / █ (one).
+                let rgb = |c: vt100::Color| matches!(c, vt100::Color::Rgb(..));
+                let drawn = match cell.contents().as_str() {
+                    "▀" | "▄" => rgb(cell.fgcolor()) && rgb(cell.bgcolor()),
+                    "█" => rgb(cell.fgcolor()),
+                    "" | " " => rgb(cell.bgcolor()),
+                    _ => false,
+                };
+                if drawn {
+                    n += 1;
+                }
+            }
+        }
+    }
+    n
+}
+
+/// All 24-bit colours on the screen (fg and bg).
+pub fn colours(s: &vt100::Screen) -> Vec<(u8, u8, u8)> {
+    let (rows, cols) = s.size();
+    let mut v = Vec::new();
+    for r in 0..rows {
+        for c in 0..cols {
+            if let Some(cell) = s.cell(r, c) {
+                for col in [cell.fgcolor(), cell.bgcolor()] {
+                    if let vt100::Color::Rgb(r, g, b) = col {
+                        v.push((r, g, b));
+                    }
+                }
+            }
+        }
+    }
+    v
+}
+
+/// A TCP stream that counts the bytes read from the wire (after SSH compression/encryption).
+pub struct Counting {
+    inner: tokio::net::TcpStream,
+    pub read: Arc<std::sync::atomic::AtomicU64>,
+}
+
+impl tokio::io::AsyncRead for Counting {
+    fn poll_read(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+        buf: &mut tokio::io::ReadBuf<'_>,
+    ) -> std::task::Poll<std::io::Result<()>> {
+        let before = buf.filled().len();
+        let r = std::pin::Pin::new(&mut self.inner).poll_read(cx, buf);
+        let n = (buf.filled().len() - before) as u64;
+        self.read.fetch_add(n, std::sync::atomic::Ordering::Relaxed);
+        r
+    }
+}
+
+impl tokio::io::AsyncWrite for Counting {
+    fn poll_write(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+        buf: &[u8],
+    ) -> std::task::Poll<std::io::Result<usize>> {
+        std::pin::Pin::new(&mut self.inner).poll_write(cx, buf)
+    }
+
+    fn poll_flush(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+    ) -> std::task::Poll<std::io::Result<()>> {
+        std::pin::Pin::new(&mut self.inner).poll_flush(cx)
+    }
+
+    fn poll_shutdown(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+    ) -> std::task::Poll<std::io::Result<()>> {
+        std::pin::Pin::new(&mut self.inner).poll_shutdown(cx)
+    }
+}
+
+/// Like [`Client::connect_with`], over a stream that counts wire bytes received.
+pub async fn connect_counting(
+    addr: std::net::SocketAddr,
+    user: &str,
+    cols: u16,
+    rows: u16,
+    term: &str,
+    compression: russh::compression::Name,
+) -> (Client, Arc<std::sync::atomic::AtomicU64>) {
+    let read = Arc::new(std::sync::atomic::AtomicU64::new(0));
+    let stream = Counting {
+        inner: tokio::net::TcpStream::connect(addr).await.expect("tcp"),
+        read: Arc::clone(&read),
+    };
+    let cfg = client::Config {
+        preferred: Preferred {
+            compression: std::borrow::Cow::Owned(vec![compression]),
+            ..Preferred::default()
+        },
+        ..client::Config::default()
+    };
+    let mut handle = client::connect_stream(Arc::new(cfg), stream, Trusting)
+        .await
+        .expect("connect");
+    assert!(handle
+        .authenticate_none(user)
+        .await
+        .expect("auth")
+        .success());
+    let channel = handle.channel_open_session().await.expect("session");
+    channel
+        .request_pty(true, term, u32::from(cols), u32::from(rows), 0, 0, &[])
+        .await
+        .expect("pty");
+    channel.request_shell(true).await.expect("shell");
+    let c = Client {
+        handle,
+        channel,
+        screen: vt100::Parser::new(rows, cols, 0),
+        bytes: 0,
+        closed: false,
+    };
+    (c, read)
+}
