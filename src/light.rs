@@ -9,7 +9,9 @@ use crate::color::Rgb;
 /// Fog: colour things fade toward, and how fast (fraction remaining = e^(−density · distance)).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Fog {
+    /// The colour far things become.
     pub colour: Rgb,
+    /// Per cell of distance; 0 = no fog.
     pub density: f64,
 }
 
@@ -64,7 +66,9 @@ impl Lighting {
 /// One table entry: `out = c · mul / 256 + add` per channel.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Shade {
+    /// Surface brightness in 256ths.
     pub mul: u16,
+    /// Fog colour already weighted by the fog amount, per channel.
     pub add: [u16; 3],
 }
 

@@ -29,7 +29,9 @@ pub struct Scene<'a> {
 /// One rendered frame's by-products: the rays and what became of each sprite.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Frame {
+    /// The rays (and the traced column), as [`Scene::render_into`] returns them.
     pub cast: Cast,
+    /// One outcome per world sprite, in world order.
     pub sprites: Vec<SpriteOutcome>,
 }
 

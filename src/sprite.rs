@@ -12,6 +12,7 @@ pub const NEAR_PLANE: f64 = 0.05;
 /// A sprite of the loaded world: its map description and the sheet it draws from.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Sprite {
+    /// Position, size and drawing options as the map gave them.
     pub def: SpriteDef,
     /// Index into [`crate::World::sheets`].
     pub sheet: usize,

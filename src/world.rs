@@ -66,7 +66,9 @@ pub struct World {
 /// A disc that blocks movement (a solid sprite).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SolidDisc {
+    /// The sprite's position on the map plane.
     pub centre: Vec2,
+    /// Blocking radius in cells.
     pub radius: f64,
 }
 

@@ -35,11 +35,18 @@ proptest! {
             }
             Err(Culled::Behind) => prop_assert!(depth <= 0.05),
             Err(Culled::Offscreen) => {
-                // Entirely left, entirely right, or thinner than a column between two rays.
+                // Entirely left, entirely right, or thinner than a column between two rays,
+                // or shorter than a pixel row between two row centres.
                 let centre = w as f64 / 2.0 * (1.0 + lateral / depth);
                 let half = cam.focal_length(w) / depth / 2.0;
                 let (left, right) = (centre - half, centre + half);
-                prop_assert!(right <= 0.0 || left > (w - 1) as f64 || left.ceil() >= right.ceil());
+                let (top, bottom) = (30.0 - half, 30.0 + half);
+                prop_assert!(
+                    right <= 0.0
+                        || left > (w - 1) as f64
+                        || left.ceil() >= right.ceil()
+                        || (top - 0.5).ceil() >= (bottom - 0.5).ceil()
+                );
             }
         }
     }

@@ -38,6 +38,7 @@ pub enum ColourKey {
 pub struct SpriteDef {
     /// Centre on the map plane, in cells (sub-cell precision).
     pub pos: Vec2,
+    /// The sprite sheet image (one picture, or views × frames).
     pub texture: TextureRef,
     /// Width and height in cells (Lode's 1/uDiv and 1/vDiv).
     pub scale: (f64, f64),
@@ -45,6 +46,7 @@ pub struct SpriteDef {
     pub offset: f64,
     /// Radius of the disc that blocks movement, when solid.
     pub solid: Option<f64>,
+    /// How it mixes with what is behind it.
     pub blend: Blend,
     /// 1, or 8 direction-dependent views laid out left to right in the texture.
     pub views: u8,
@@ -54,6 +56,7 @@ pub struct SpriteDef {
     pub frames: u16,
     /// Animation speed in frames per second.
     pub fps: f64,
+    /// Which texels are transparent.
     pub key: ColourKey,
     /// Where the line was written (1-based line, column), for messages.
     pub at: (usize, usize),
