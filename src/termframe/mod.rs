@@ -126,7 +126,7 @@ pub fn ratatui_rgb(c: ratatui::style::Color) -> Option<Rgb> {
         C::LightCyan => 14,
         C::White => 15,
     };
-    Some(crate::color::xterm_rgb(idx))
+    Some(crate::encode::palette::xterm_rgb(idx))
 }
 
 #[cfg(test)]

@@ -4,7 +4,8 @@
 use std::path::Path;
 
 use super::{from_cells_text, TermCell, TermFrame, CELLS_HEADER};
-use crate::color::{xterm_rgb, Rgb};
+use crate::color::Rgb;
+use crate::encode::palette::xterm_rgb;
 use crate::framebuffer::Framebuffer;
 
 /// What kind of frame file was read.
