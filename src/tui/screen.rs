@@ -106,8 +106,9 @@ fn draw_minimap(screen: &Screen, revealed: Option<RevealedTrace>, r: Rect, buf: 
     let inner = block.inner(r);
     block.render(r, buf);
     let s = screen.state;
-    let mut map =
-        Minimap::new(&s.world, &s.camera, &screen.cast.columns).focus_on_ray(s.debugger.paused);
+    let mut map = Minimap::new(&s.world, &s.camera, &screen.cast.columns)
+        .focus_on_ray(s.debugger.paused)
+        .doors(&s.doors);
     if let Some(t) = revealed {
         map = map.debug_ray(t);
     }

@@ -1,18 +1,22 @@
-//! The map seen from above: walls by type, the player, the view cone, a fan of this frame's
-//! rays and the debugged ray's traversal. Drawn as square pixels in half-blocks.
+//! The map seen from above: walls by type, doors as far as they are open, sprites, other
+//! players, the player, the view cone, a fan of this frame's rays and the debugged ray's
+//! traversal. Drawn as square pixels in half-blocks.
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::widgets::Widget;
 
 use super::half_block::HalfBlockView;
-use super::plot::{blend, dot, line, mix};
+use super::plot::{blend, disc, dot, line, mix};
 use super::revealed::RevealedTrace;
 use crate::camera::Camera;
 use crate::cast::ColumnHit;
 use crate::color::Rgb;
+use crate::door::DoorState;
 use crate::framebuffer::Framebuffer;
-use crate::map::Cell;
+use crate::map::{Cell, DoorPlane, Map};
+use crate::sprite::Sprite;
+use crate::texture::sheet::SpriteSheet;
 use crate::texture::Texture;
 use crate::vec2::Vec2;
 use crate::world::{Paint, World};
@@ -36,6 +40,24 @@ const VISITED: Rgb = Rgb::new(60, 200, 255);
 const CURRENT: Rgb = Rgb::new(255, 236, 64);
 const HIT: Rgb = Rgb::new(255, 70, 70);
 const DEBUG_RAY: Rgb = Rgb::new(150, 240, 255);
+/// Outline of a sprite that blocks movement, so obstacles read as obstacles.
+const SOLID_RIM: Rgb = Rgb::new(20, 20, 24);
+
+/// Radius on the map of a sprite that does not block (it has no collision radius to show).
+const DECOR_RADIUS: f64 = 0.18;
+
+/// Something else moving in the world (another player), drawn as a disc with a facing tick and a
+/// name beside it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Marker<'a> {
+    pub pos: Vec2,
+    /// Facing, any length (zero: no tick).
+    pub dir: Vec2,
+    pub radius: f64,
+    pub colour: Rgb,
+    /// Written in the cell right of the marker when it fits in the pane.
+    pub label: Option<&'a str>,
+}
 
 /// Which part of the map is on the canvas: pixels per cell and the map point at pixel (0, 0).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -112,6 +134,8 @@ pub struct Minimap<'a> {
     rays: &'a [ColumnHit],
     debug: Option<RevealedTrace<'a>>,
     focus: bool,
+    doors: Option<&'a DoorState>,
+    markers: &'a [Marker<'a>],
 }
 
 impl<'a> Minimap<'a> {
@@ -124,7 +148,23 @@ impl<'a> Minimap<'a> {
             rays,
             debug: None,
             focus: false,
+            doors: None,
+            markers: &[],
         }
+    }
+
+    /// Draws each door as the part of its panel still shut (without this every door is shut).
+    #[must_use]
+    pub fn doors(mut self, doors: &'a DoorState) -> Self {
+        self.doors = Some(doors);
+        self
+    }
+
+    /// Also shows these (other players).
+    #[must_use]
+    pub fn markers(mut self, markers: &'a [Marker<'a>]) -> Self {
+        self.markers = markers;
+        self
     }
 
     /// Debugger focus: zoom on the debugged ray (its whole path to the hit) and drop the fan
@@ -142,24 +182,44 @@ impl<'a> Minimap<'a> {
         self
     }
 
-    /// Paints into a pixel canvas (two pixels per terminal row); also used for PNG screenshots.
-    pub fn paint(&self, fb: &mut Framebuffer) {
+    /// Which part of the map a canvas of `canvas` pixels shows (the debugged ray when focused).
+    #[must_use]
+    pub fn map_view(&self, canvas: (usize, usize)) -> MapView {
         let map = &self.world.map;
-        let canvas = (fb.width(), fb.height());
         let pos = self.camera.pos;
-        let view = match &self.debug {
+        match &self.debug {
             Some(d) if self.focus => {
                 let hit = pos + d.trace.ray_dir * d.trace.hit.perp_dist;
                 MapView::around(pos, hit, canvas)
             }
             _ => MapView::new((map.width, map.height), canvas, pos),
-        };
+        }
+    }
+
+    /// Paints into a pixel canvas (two pixels per terminal row); also used for PNG screenshots.
+    pub fn paint(&self, fb: &mut Framebuffer) {
+        let map = &self.world.map;
+        let view = self.map_view((fb.width(), fb.height()));
         let palette = Palette::new(self.world);
         for py in 0..fb.height() {
             for px in 0..fb.width() {
                 let (i, j) = view.cell_at(px, py);
-                fb.set(px, py, palette.cell(map.cell(i, j), i, j));
+                let what = match map.cell(i, j) {
+                    // The panel is drawn on top, as far as it is shut.
+                    Cell::Door(_) if self.doors.is_some() => Cell::Floor { zone: 0 },
+                    c => c,
+                };
+                fb.set(px, py, palette.cell(what, i, j));
             }
+        }
+        if let Some(doors) = self.doors {
+            paint_door_panels(fb, &view, map, doors);
+        }
+        for s in &self.world.sprites {
+            paint_sprite(fb, &view, s, palette.sprites[s.sheet]);
+        }
+        for m in self.markers {
+            paint_marker(fb, &view, m);
         }
         if let Some(d) = &self.debug {
             self.paint_visited(fb, &view, d);
@@ -212,6 +272,71 @@ impl<'a> Minimap<'a> {
     }
 }
 
+/// Each door's shut part: a bar along its panel line from `open` to the far end of the cell.
+fn paint_door_panels(fb: &mut Framebuffer, view: &MapView, map: &Map, doors: &DoorState) {
+    let half_width = (view.scale * 0.12).max(0.5);
+    for &(i, j) in doors.cells() {
+        let open = doors.open_amount((i, j));
+        if open >= 1.0 {
+            continue;
+        }
+        let (x, y) = (i as f64, j as f64);
+        let Cell::Door(plane) = map.cell(i, j) else {
+            continue;
+        };
+        let (a, b) = match plane {
+            DoorPlane::X => (Vec2::new(x + 0.5, y + open), Vec2::new(x + 0.5, y + 1.0)),
+            DoorPlane::Y => (Vec2::new(x + open, y + 0.5), Vec2::new(x + 1.0, y + 0.5)),
+        };
+        let (pa, pb) = (view.to_px(a), view.to_px(b));
+        let (lo, hi) = (
+            (pa.0.min(pb.0) - half_width, pa.1.min(pb.1) - half_width),
+            (pa.0.max(pb.0) + half_width, pa.1.max(pb.1) + half_width),
+        );
+        for py in lo.1.round() as i64..hi.1.round() as i64 {
+            for px in lo.0.round() as i64..hi.0.round() as i64 {
+                blend(fb, px, py, DOOR, 256);
+            }
+        }
+    }
+}
+
+/// A sprite as a disc of its collision radius in its own colour; solid ones get a dark rim and
+/// directional ones a tick toward their facing.
+fn paint_sprite(fb: &mut Framebuffer, view: &MapView, s: &Sprite, colour: Rgb) {
+    let def = &s.def;
+    let radius = def.solid.unwrap_or(DECOR_RADIUS);
+    let at = view.to_px(def.pos);
+    let r = (radius * view.scale).max(1.0);
+    if def.solid.is_some() {
+        disc(fb, at, r + 0.75, SOLID_RIM, 256);
+    }
+    disc(fb, at, r, colour, 256);
+    if def.views > 1 {
+        let a = def.facing_deg.to_radians();
+        let dir = Vec2::new(a.cos(), -a.sin());
+        line(
+            fb,
+            at,
+            view.to_px(def.pos + dir * (radius * 2.0)),
+            colour,
+            256,
+        );
+    }
+}
+
+fn paint_marker(fb: &mut Framebuffer, view: &MapView, m: &Marker) {
+    let at = view.to_px(m.pos);
+    let r = (m.radius * view.scale).max(1.0);
+    disc(fb, at, r + 0.75, SOLID_RIM, 256);
+    disc(fb, at, r, m.colour, 256);
+    let len = m.dir.length();
+    if len > 0.0 {
+        let tip = m.pos + m.dir * (m.radius * 2.5 / len);
+        line(fb, at, view.to_px(tip), m.colour, 256);
+    }
+}
+
 /// Tints every canvas pixel of map cell `cell`.
 fn fill_cell(fb: &mut Framebuffer, view: &MapView, cell: (i64, i64), c: Rgb, alpha: u16) {
     let (x0, y0) = view.to_px(Vec2::new(cell.0 as f64, cell.1 as f64));
@@ -228,6 +353,8 @@ fn fill_cell(fb: &mut Framebuffer, view: &MapView, cell: (i64, i64), c: Rgb, alp
 struct Palette {
     walls: [Rgb; 10],
     floors: Vec<Rgb>,
+    /// Per sprite sheet: the mean opaque colour of its first picture.
+    sprites: Vec<Rgb>,
 }
 
 impl Palette {
@@ -247,7 +374,12 @@ impl Palette {
                 c.scaled(110)
             })
             .collect();
-        Self { walls, floors }
+        let sprites = world.sheets.iter().map(sheet_average).collect();
+        Self {
+            walls,
+            floors,
+            sprites,
+        }
     }
 
     fn cell(&self, what: Cell, i: i64, j: i64) -> Rgb {
@@ -288,6 +420,28 @@ fn texture_average(t: &Texture) -> Rgb {
     Rgb::new((r / n) as u8, (g / n) as u8, (b / n) as u8)
 }
 
+/// The mean colour of a sheet's opaque texels, brightened a little so small discs stand out.
+fn sheet_average(sheet: &SpriteSheet) -> Rgb {
+    let (mut r, mut g, mut b, mut n) = (0u64, 0u64, 0u64, 0u64);
+    for x in 0..sheet.width() {
+        let (texels, alpha) = sheet.column(x);
+        for (c, &a) in texels.iter().zip(alpha) {
+            if a >= 128 {
+                r += u64::from(c.r);
+                g += u64::from(c.g);
+                b += u64::from(c.b);
+                n += 1;
+            }
+        }
+    }
+    let n = n.max(1);
+    mix(
+        Rgb::new((r / n) as u8, (g / n) as u8, (b / n) as u8),
+        Rgb::new(255, 255, 255),
+        40,
+    )
+}
+
 impl Widget for Minimap<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let area = area.intersection(buf.area);
@@ -297,7 +451,31 @@ impl Widget for Minimap<'_> {
         let mut fb = Framebuffer::for_cells(area.width, area.height);
         self.paint(&mut fb);
         HalfBlockView::new(&fb).render(area, buf);
+        let view = self.map_view((fb.width(), fb.height()));
+        for m in self.markers {
+            if let Some(label) = m.label {
+                write_label(&view, m, label, area, buf);
+            }
+        }
     }
+}
+
+/// A marker's name in the cells right of it, clipped to the pane (skipped if its start is off it).
+fn write_label(view: &MapView, m: &Marker, label: &str, area: Rect, buf: &mut Buffer) {
+    let (px, py) = view.to_px(m.pos);
+    let col = (px + m.radius * view.scale + 1.0).floor();
+    let row = (py / 2.0).floor();
+    if col < 0.0 || row < 0.0 || col >= f64::from(area.width) || row >= f64::from(area.height) {
+        return;
+    }
+    let (x, y) = (area.x + col as u16, area.y + row as u16);
+    let room = usize::from(area.right() - x);
+    let style = ratatui::style::Style::new()
+        .fg(ratatui::style::Color::Rgb(
+            m.colour.r, m.colour.g, m.colour.b,
+        ))
+        .bg(ratatui::style::Color::Rgb(VOID.r, VOID.g, VOID.b));
+    buf.set_stringn(x, y, label, room, style);
 }
 
 #[cfg(test)]
@@ -326,6 +504,109 @@ mod tests {
             a.0 >= 0.0 && a.1 >= 0.0 && b.0 <= 60.0 && b.1 <= 40.0,
             "{a:?} {b:?}"
         );
+    }
+
+    fn painted(map: &Minimap, canvas: (usize, usize)) -> (Framebuffer, MapView) {
+        let mut fb = Framebuffer::new(canvas.0, canvas.1);
+        map.paint(&mut fb);
+        (fb, map.map_view(canvas))
+    }
+
+    fn pixel(fb: &Framebuffer, view: &MapView, p: Vec2) -> Rgb {
+        let (x, y) = view.to_px(p);
+        fb.get(x as usize, y as usize)
+    }
+
+    #[test]
+    fn sprites_show_in_their_sheet_colour_where_they_stand() {
+        let world = World::default_world();
+        let cam = Camera::from_angle(Vec2::new(5.5, 5.5), 0.0, 66.0);
+        let map = Minimap::new(&world, &cam, &[]);
+        let (fb, view) = painted(&map, (224, 176));
+        let palette = Palette::new(&world);
+        for s in &world.sprites {
+            assert_eq!(
+                pixel(&fb, &view, s.def.pos),
+                palette.sprites[s.sheet],
+                "sprite at {:?}",
+                s.def.pos
+            );
+        }
+        // Solid sprites wear a dark rim just outside their radius.
+        let barrel = world
+            .sprites
+            .iter()
+            .find(|s| s.def.solid.is_some())
+            .unwrap();
+        let r = barrel.def.solid.unwrap();
+        let rim = barrel.def.pos + Vec2::new(r + 0.5 / view.scale, 0.0);
+        assert_eq!(pixel(&fb, &view, rim), SOLID_RIM);
+    }
+
+    #[test]
+    fn door_panels_shrink_as_doors_open() {
+        let world = World::default_world();
+        let cam = Camera::from_angle(Vec2::new(5.5, 5.5), 0.0, 66.0);
+        let mut doors = DoorState::new(&world.map);
+        let &cell = doors.cells().first().unwrap();
+        let Cell::Door(plane) = world.map.cell(cell.0, cell.1) else {
+            panic!("not a door");
+        };
+        let on_panel = |along: f64| {
+            let (x, y) = (cell.0 as f64, cell.1 as f64);
+            match plane {
+                DoorPlane::X => Vec2::new(x + 0.5, y + along),
+                DoorPlane::Y => Vec2::new(x + along, y + 0.5),
+            }
+        };
+        let at = |doors: &DoorState, along: f64| {
+            let map = Minimap::new(&world, &cam, &[]).doors(doors);
+            let (fb, view) = painted(&map, (224, 176));
+            pixel(&fb, &view, on_panel(along))
+        };
+        assert_eq!(at(&doors, 0.2), DOOR);
+        assert_eq!(at(&doors, 0.8), DOOR);
+        doors.set_open(cell, 0.5);
+        assert_ne!(at(&doors, 0.2), DOOR, "the open half is passage");
+        assert_eq!(at(&doors, 0.8), DOOR, "the shut half is still panel");
+        doors.set_open(cell, 1.0);
+        assert_ne!(at(&doors, 0.8), DOOR);
+        // Without a door state every door is a whole shut cell, as before.
+        let map = Minimap::new(&world, &cam, &[]);
+        let (fb, view) = painted(&map, (224, 176));
+        assert_eq!(pixel(&fb, &view, on_panel(0.1)), DOOR);
+    }
+
+    #[test]
+    fn markers_are_drawn_with_their_label_beside_them() {
+        let world = World::default_world();
+        let cam = Camera::from_angle(Vec2::new(5.5, 5.5), 0.0, 66.0);
+        let other = Marker {
+            pos: Vec2::new(3.5, 3.5),
+            dir: Vec2::new(1.0, 0.0),
+            radius: 0.25,
+            colour: Rgb::new(250, 40, 200),
+            label: Some("ada"),
+        };
+        let markers = [other];
+        let map = Minimap::new(&world, &cam, &[]).markers(&markers);
+        let (fb, view) = painted(&map, (112, 88));
+        assert_eq!(pixel(&fb, &view, other.pos), other.colour);
+        // The facing tick runs east of the disc.
+        assert_eq!(
+            pixel(&fb, &view, other.pos + Vec2::new(0.5, 0.0)),
+            other.colour
+        );
+        let area = Rect::new(0, 0, 112, 44);
+        let mut buf = Buffer::empty(area);
+        map.render(area, &mut buf);
+        let (px, py) = view.to_px(other.pos);
+        let row = (py / 2.0) as u16;
+        let text: String = (0..area.width)
+            .map(|x| buf[(x, row)].symbol().to_owned())
+            .collect();
+        let col = text.find("ada").expect("label on the marker's row");
+        assert!(col as f64 > px, "label {col} right of the marker at {px}");
     }
 
     #[test]

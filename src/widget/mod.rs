@@ -12,5 +12,5 @@ pub mod revealed;
 
 pub use debug_pane::DebugPane;
 pub use half_block::HalfBlockView;
-pub use minimap::Minimap;
+pub use minimap::{Marker, Minimap};
 pub use revealed::RevealedTrace;

@@ -55,6 +55,29 @@ pub fn dot(fb: &mut Framebuffer, at: (f64, f64), size: usize, c: Rgb) {
     }
 }
 
+/// A filled disc of `radius` pixels centred on a point (pixel centres inside it are blended).
+pub fn disc(fb: &mut Framebuffer, at: (f64, f64), radius: f64, c: Rgb, alpha: u16) {
+    if !(radius.is_finite() && at.0.is_finite() && at.1.is_finite()) || radius > 1e4 {
+        return;
+    }
+    let (x0, x1) = (
+        (at.0 - radius).floor() as i64,
+        (at.0 + radius).ceil() as i64,
+    );
+    let (y0, y1) = (
+        (at.1 - radius).floor() as i64,
+        (at.1 + radius).ceil() as i64,
+    );
+    for y in y0..y1 {
+        for x in x0..x1 {
+            let (dx, dy) = (x as f64 + 0.5 - at.0, y as f64 + 0.5 - at.1);
+            if dx * dx + dy * dy <= radius * radius {
+                blend(fb, x, y, c, alpha);
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
