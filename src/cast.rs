@@ -282,12 +282,10 @@ pub fn cast_ray_doors(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::map::parse_map;
-
-    const HEADER: &str = "NO n\nSO s\nWE w\nEA e\nF 1,2,3\nC 4,5,6\n";
+    use crate::map::grid_map;
 
     fn map(grid: &str) -> Map {
-        parse_map("t.cub", format!("{HEADER}{grid}").as_bytes()).unwrap()
+        grid_map(grid)
     }
 
     fn room() -> Map {

@@ -97,10 +97,7 @@ impl Framebuffer {
         let raw: Vec<u8> = self.pixels.iter().flat_map(|p| [p.r, p.g, p.b]).collect();
         let img = image::RgbImage::from_raw(self.width as u32, self.height as u32, raw)
             .ok_or("size mismatch")?;
-        let mut out = std::io::Cursor::new(Vec::new());
-        img.write_to(&mut out, image::ImageFormat::Png)
-            .map_err(|e| e.to_string())?;
-        Ok(out.into_inner())
+        crate::output::png::encode(img)
     }
 
     /// Decodes a PNG (or other readable image) into a framebuffer, for diffs and `bench --frames`.

@@ -146,6 +146,11 @@ mod tests {
         Camera::from_angle(Vec2::new(2.0, 2.0), 0.0, 90.0)
     }
 
+    /// A unit sprite standing at (4, 2), two cells ahead of [`cam`], on an 80×60 screen.
+    fn ahead(view: &View) -> Result<Projection, Culled> {
+        project(&cam(), view, Vec2::new(4.0, 2.0), (1.0, 1.0), 0.0, 80, 60)
+    }
+
     #[test]
     fn camera_space_of_points_ahead_and_to_the_right() {
         let (l, d) = to_camera_space(&cam(), Vec2::new(5.0, 2.0));
@@ -159,16 +164,7 @@ mod tests {
 
     #[test]
     fn a_unit_sprite_two_cells_ahead_is_centred_and_sized_by_the_focal_length() {
-        let p = project(
-            &cam(),
-            &View::default(),
-            Vec2::new(4.0, 2.0),
-            (1.0, 1.0),
-            0.0,
-            80,
-            60,
-        )
-        .unwrap();
+        let p = ahead(&View::default()).unwrap();
         // focal = 40 → 20 px wide and tall at depth 2, standing on the floor.
         assert!(
             (p.left - 30.0).abs() < 1e-9 && (p.right - 50.0).abs() < 1e-9,
@@ -196,31 +192,14 @@ mod tests {
     #[test]
     fn pitch_and_eye_height_shift_sprites_like_walls() {
         let up = View::new(20.0, 0.5);
-        let p = project(&cam(), &up, Vec2::new(4.0, 2.0), (1.0, 1.0), 0.0, 80, 60).unwrap();
+        let p = ahead(&up).unwrap();
         let shift = 40.0 * 20f64.to_radians().tan();
         assert!((p.top - 20.0 - shift).abs() < 1e-9, "{p:?}");
         let way_up = View::new(45.0, 0.5);
-        let far_below = project(
-            &cam(),
-            &way_up,
-            Vec2::new(4.0, 2.0),
-            (1.0, 1.0),
-            0.0,
-            80,
-            60,
-        );
+        let far_below = ahead(&way_up);
         assert_eq!(far_below, Err(Culled::Offscreen));
         let crouch = View::new(0.0, 0.25);
-        let p = project(
-            &cam(),
-            &crouch,
-            Vec2::new(4.0, 2.0),
-            (1.0, 1.0),
-            0.0,
-            80,
-            60,
-        )
-        .unwrap();
+        let p = ahead(&crouch).unwrap();
         assert!(
             (p.top - 15.0).abs() < 1e-9 && (p.bottom - 35.0).abs() < 1e-9,
             "{p:?}"

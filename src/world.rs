@@ -333,21 +333,7 @@ impl Loader<'_> {
         match read_sheet(self.source, &r.path, key) {
             Ok(t) => Ok(self.push_sheet(t)),
             Err(reason) => {
-                let err = TextureError {
-                    file: self.map_file.to_owned(),
-                    line: r.line,
-                    col: r.col,
-                    path: r.path.clone(),
-                    reason,
-                };
-                if self.strict {
-                    return Err(err);
-                }
-                if self.warned.insert(r.path.clone()) {
-                    self.warnings.push(format!(
-                        "warning: {err}; using the built-in '{fallback}' sprite"
-                    ));
-                }
+                self.fall_back(r, reason, fallback, "sprite")?;
                 Ok(self.builtin_sheet(fallback))
             }
         }
@@ -364,24 +350,37 @@ impl Loader<'_> {
         match read_texture(self.source, &r.path) {
             Ok(t) => Ok(self.push(t)),
             Err(reason) => {
-                let err = TextureError {
-                    file: self.map_file.to_owned(),
-                    line: r.line,
-                    col: r.col,
-                    path: r.path.clone(),
-                    reason,
-                };
-                if self.strict {
-                    return Err(err);
-                }
-                if self.warned.insert(r.path.clone()) {
-                    self.warnings.push(format!(
-                        "warning: {err}; using the built-in '{fallback}' texture"
-                    ));
-                }
+                self.fall_back(r, reason, fallback, "texture")?;
                 Ok(self.builtin(fallback))
             }
         }
+    }
+
+    /// A file that could not be read: the error under `strict`, else one warning per path (the
+    /// caller then uses the built-in `fallback` `kind`).
+    fn fall_back(
+        &mut self,
+        r: &TextureRef,
+        reason: String,
+        fallback: &str,
+        kind: &str,
+    ) -> Result<(), TextureError> {
+        let err = TextureError {
+            file: self.map_file.to_owned(),
+            line: r.line,
+            col: r.col,
+            path: r.path.clone(),
+            reason,
+        };
+        if self.strict {
+            return Err(err);
+        }
+        if self.warned.insert(r.path.clone()) {
+            self.warnings.push(format!(
+                "warning: {err}; using the built-in '{fallback}' {kind}"
+            ));
+        }
+        Ok(())
     }
 }
 

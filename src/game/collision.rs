@@ -138,12 +138,10 @@ pub fn settle(map: &Map, p: Vec2, r: f64) -> Vec2 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::map::parse_map;
-
-    const HEADER: &str = "NO n\nSO s\nWE w\nEA e\nF 1,2,3\nC 4,5,6\n";
+    use crate::map::grid_map;
 
     fn map(grid: &str) -> Map {
-        parse_map("t.cub", format!("{HEADER}{grid}").as_bytes()).unwrap()
+        grid_map(grid)
     }
 
     /// A 4×4 room (cells 1..=4) with a pillar at (3,2).

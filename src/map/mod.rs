@@ -163,3 +163,10 @@ impl Map {
             .collect()
     }
 }
+
+/// A map from just a grid (minimal header, no textures on disk): unit tests of the maths on maps.
+#[cfg(test)]
+pub(crate) fn grid_map(grid: &str) -> Map {
+    const HEADER: &str = "NO n\nSO s\nWE w\nEA e\nF 1,2,3\nC 4,5,6\n";
+    parse_map("t.cub", format!("{HEADER}{grid}").as_bytes()).expect("test grid parses")
+}

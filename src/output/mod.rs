@@ -2,4 +2,5 @@
 
 pub mod ansi;
 pub mod json;
+pub mod png;
 pub mod text;

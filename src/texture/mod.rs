@@ -60,10 +60,7 @@ impl Texture {
             let c = self.texel(x as usize, y as usize);
             *p = image::Rgb([c.r, c.g, c.b]);
         }
-        let mut out = std::io::Cursor::new(Vec::new());
-        img.write_to(&mut out, image::ImageFormat::Png)
-            .map_err(|e| e.to_string())?;
-        Ok(out.into_inner())
+        crate::output::png::encode(img)
     }
 
     /// Width in texels.

@@ -76,10 +76,7 @@ impl SpriteSheet {
             let (c, a) = self.texel(x as usize, y as usize);
             *p = image::Rgba([c.r, c.g, c.b, a]);
         }
-        let mut out = std::io::Cursor::new(Vec::new());
-        img.write_to(&mut out, image::ImageFormat::Png)
-            .map_err(|e| e.to_string())?;
-        Ok(out.into_inner())
+        crate::output::png::encode(img)
     }
 
     /// Width in texels (all views side by side).
