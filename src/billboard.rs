@@ -55,7 +55,11 @@ pub fn draw_sprites(
         let Ok(p) = outcomes[i].projection else {
             continue;
         };
-        outcomes[i].drawn = draw_one(scene, i, &p, hits, fb, table.at(p.depth));
+        let mut shade = table.at(p.depth);
+        if let Some(lamps) = scene.lamp_light() {
+            shade = shade.lit(lamps.at(scene.world.sprites[i].def.pos));
+        }
+        outcomes[i].drawn = draw_one(scene, i, &p, hits, fb, shade);
     }
     outcomes
 }
@@ -116,8 +120,8 @@ fn draw_one(
                 Blend::Additive => {
                     // Glow fades with distance but does not pick up fog colour.
                     let lit = Shade {
-                        mul: shade.mul,
                         add: [0; 3],
+                        ..shade
                     }
                     .apply(c);
                     let add = |b: u8, f: u8| {

@@ -8,6 +8,7 @@ pub mod bench;
 pub mod billboard;
 pub mod door;
 pub mod light;
+pub mod lightmap;
 pub mod sprite;
 pub mod view;
 

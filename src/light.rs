@@ -56,6 +56,12 @@ impl Lighting {
             .map_or(0.0, |f| 1.0 - (-f.density.max(0.0) * dist).exp())
     }
 
+    /// Whether surfaces are darker than fog alone makes them (night or falloff), so lamps show.
+    #[must_use]
+    pub fn is_dark(&self) -> bool {
+        self.night || self.falloff > 0.0
+    }
+
     /// Whether every colour passes unchanged (lets renderers skip the table).
     #[must_use]
     pub fn is_neutral(&self) -> bool {
@@ -70,6 +76,8 @@ pub struct Shade {
     pub mul: u16,
     /// Fog colour already weighted by the fog amount, per channel.
     pub add: [u16; 3],
+    /// The surface's share left after fog, in 256ths: the most any light can bring back.
+    pub keep: u16,
 }
 
 impl Shade {
@@ -77,6 +85,7 @@ impl Shade {
     pub const IDENTITY: Shade = Shade {
         mul: 256,
         add: [0; 3],
+        keep: 256,
     };
 
     /// Applies the entry to a colour (integer maths, the per-pixel cost of lighting).
@@ -97,9 +106,23 @@ impl Shade {
     #[must_use]
     #[inline]
     pub fn scaled(self, k: u16) -> Shade {
+        let by_k = |v: u16| ((u32::from(v) * u32::from(k)) >> 8) as u16;
         Shade {
-            mul: ((u32::from(self.mul) * u32::from(k)) >> 8) as u16,
+            mul: by_k(self.mul),
             add: self.add,
+            keep: by_k(self.keep),
+        }
+    }
+
+    /// This entry where lamps shine `lamp`/256 on the surface: the brighter of the two lights
+    /// wins, still seen through the same fog.
+    #[must_use]
+    #[inline]
+    pub fn lit(self, lamp: u16) -> Shade {
+        let by_lamp = ((u32::from(lamp) * u32::from(self.keep)) >> 8) as u16;
+        Shade {
+            mul: self.mul.max(by_lamp),
+            ..self
         }
     }
 }
@@ -125,6 +148,7 @@ impl ShadeTable {
                 *e = Shade {
                     mul: (b * 256.0).round() as u16,
                     add: [add(fog.r), add(fog.g), add(fog.b)],
+                    keep: ((1.0 - f) * 256.0).round() as u16,
                 };
             }
         }
@@ -197,17 +221,46 @@ mod tests {
         let s = Shade {
             mul: 128,
             add: [10, 20, 30],
+            keep: 200,
         };
         assert_eq!(
             s.scaled(128),
             Shade {
                 mul: 64,
-                add: [10, 20, 30]
+                add: [10, 20, 30],
+                keep: 100,
             }
         );
         assert_eq!(
             Shade::IDENTITY.scaled(184).apply(Rgb::new(100, 0, 0)),
             Rgb::new(100, 0, 0).scaled(184)
         );
+    }
+
+    #[test]
+    fn lamps_brighten_dark_surfaces_up_to_what_fog_leaves() {
+        let light = Lighting {
+            night: true,
+            fog: Some(Fog {
+                colour: Rgb::new(0, 0, 0),
+                density: 0.1,
+            }),
+            ..Lighting::default()
+        };
+        let t = ShadeTable::new(&light);
+        let far = t.at(10.0);
+        let c = Rgb::new(200, 200, 200);
+        assert!(far.apply(c).r < 10);
+        // A full lamp gives back what fog leaves at that distance (e^-1 of the colour).
+        let lit = far.lit(256).apply(c);
+        let expect = 200.0 * (-1.0f64).exp();
+        assert!(
+            (f64::from(lit.r) - expect).abs() < 3.0,
+            "{lit:?} vs {expect}"
+        );
+        // A lamp dimmer than the lantern changes nothing.
+        let near = t.at(0.1);
+        assert_eq!(near.lit(10), near);
+        assert!(light.is_dark() && !Lighting::default().is_dark());
     }
 }

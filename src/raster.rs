@@ -8,6 +8,7 @@ use crate::framebuffer::Framebuffer;
 use crate::light::{Shade, ShadeTable};
 use crate::map::Cell;
 use crate::scene::Scene;
+use crate::vec2::Vec2;
 use crate::world::{Paint, World};
 
 /// Brightness (of 256) of faces hit on a y side, so corners read as corners.
@@ -109,8 +110,15 @@ pub fn rasterize_frame(
         .map(|hit| wall_span_at(hit.perp_dist, focal, h, horizon, view.eye_z))
         .collect();
     floor_and_ceiling(scene, &spans, fb, focal, horizon, view.eye_z, &table);
+    let lamps = scene.lamp_light();
     for (x, (hit, span)) in hits.iter().zip(&spans).enumerate() {
-        let shade = table.at(hit.perp_dist);
+        let mut shade = table.at(hit.perp_dist);
+        if let Some(lamps) = lamps {
+            // Just in front of the wall, on the side the ray came from.
+            let back = 0.01 / hit.ray_dir.length().max(1e-9);
+            let at = scene.camera.pos + hit.ray_dir * (hit.perp_dist - back);
+            shade = shade.lit(lamps.at(at));
+        }
         wall_stripe(scene.world, hit, span, x, fb, shade);
     }
     draw_sprites(scene, hits, fb, &table)
@@ -157,6 +165,7 @@ fn floor_and_ceiling(
     let world = scene.world;
     let left = cam.dir - cam.plane;
     let across = cam.plane * (2.0 / w as f64);
+    let lamps = scene.lamp_light();
     for y in 0..h {
         let p = y as f64 + 0.5 - horizon;
         let is_floor = p > 0.0;
@@ -182,6 +191,10 @@ fn floor_and_ceiling(
                 world.floor_paint(zone)
             } else {
                 world.ceiling_paint(zone)
+            };
+            let shade = match lamps {
+                Some(lamps) => shade.lit(lamps.at(Vec2::new(fx, fy))),
+                None => shade,
             };
             *px = shade.apply(match paint {
                 Paint::Colour(c) => c,

@@ -7,6 +7,7 @@ use crate::cast::{cast_with_doors, Cast};
 use crate::door::DoorState;
 use crate::framebuffer::Framebuffer;
 use crate::light::Lighting;
+use crate::lightmap::LightMap;
 use crate::raster::rasterize_frame;
 use crate::view::View;
 use crate::world::World;
@@ -75,6 +76,13 @@ impl<'a> Scene<'a> {
     pub fn at_time(mut self, seconds: f64) -> Self {
         self.time = seconds;
         self
+    }
+
+    /// The lamp light map, when this scene is dark enough for lamps to show (night or falloff).
+    #[must_use]
+    pub fn lamp_light(&self) -> Option<&'a LightMap> {
+        let lamps = &self.world.lightmap;
+        (self.light.is_dark() && !lamps.is_empty()).then_some(lamps)
     }
 
     /// Casts and rasterizes into `fb` at its size; returns the rays (with `traced`'s full trace).

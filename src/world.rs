@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 
 use crate::color::Rgb;
 use crate::door::DoorState;
+use crate::lightmap::LightMap;
 use crate::map::{Cell, ColourKey, Map, SpriteDef, Surface, TextureRef};
 use crate::sprite::Sprite;
 use crate::texture::sheet::SpriteSheet;
@@ -61,6 +62,8 @@ pub struct World {
     pub sheets: Vec<SpriteSheet>,
     /// Every sprite: the legacy `2` cells first, then the `SPRITE` lines.
     pub sprites: Vec<Sprite>,
+    /// The `LIGHT`s baked onto the floor plan (empty without lights).
+    pub lightmap: LightMap,
 }
 
 /// A disc that blocks movement (a solid sprite).
@@ -176,8 +179,10 @@ impl World {
             sheets,
             ..
         } = loader;
+        let lightmap = LightMap::build(&map);
         Ok((
             Self {
+                lightmap,
                 map,
                 textures,
                 wall_tex,

@@ -20,6 +20,14 @@ const CASES: &[(&str, &str)] = &[
         "13:1: content after the blank line at 12 that ended the map (the grid must be contiguous and come last)",
     ),
     ("invalid_duplicate_texture", "7:1: duplicate identifier 'NO' (first given at line 1)"),
+    (
+        "invalid_light_in_wall",
+        "8:1: light at 0.5,1.5 is not over a floor cell",
+    ),
+    (
+        "invalid_light_radius",
+        "7:1: bad value for LIGHT: radius must be above 0 and at most 16, got 40",
+    ),
     ("invalid_missing_ea", " missing identifier 'EA' (east wall texture) before the map"),
     ("invalid_no_map", " no map grid after the header"),
     ("invalid_no_player", " no player start (N, S, E or W) in the map"),

@@ -62,6 +62,8 @@ pub enum MapErrorKind {
     DoorNotFramed { line: usize, col: usize },
     #[error("sprite at {0} is not over a floor cell")]
     SpriteOffFloor(String),
+    #[error("light at {0} is not over a floor cell")]
+    LightOffFloor(String),
     #[error("cannot read the file: {0}")]
     Io(String),
 }

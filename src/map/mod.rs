@@ -1,10 +1,12 @@
 //! The world's grid and header, as parsed from a `.cub` file (no textures loaded yet).
 
 mod error;
+mod lamp;
 mod parse;
 mod sprite;
 
 pub use error::{MapError, MapErrorKind};
+pub use lamp::{LightDef, MAX_LIGHT_RADIUS};
 pub use parse::parse_map;
 pub use sprite::{Blend, ColourKey, SpriteDef};
 
@@ -125,6 +127,8 @@ pub struct Map {
     pub fog: Option<Fog>,
     /// The `SHADE falloff` line: distance darkening strength (see [`crate::light::Lighting`]).
     pub shade: Option<f64>,
+    /// halfcast's `LIGHT` lines, in file order.
+    pub lights: Vec<LightDef>,
 }
 
 impl Map {

@@ -2,9 +2,11 @@
 
 use std::collections::HashMap;
 
+use super::lamp::parse_light;
 use super::sprite::parse_sprite;
 use super::{
-    Cell, DoorPlane, Map, MapError, MapErrorKind, SpriteDef, Start, Surface, TextureRef, Zone,
+    Cell, DoorPlane, LightDef, Map, MapError, MapErrorKind, SpriteDef, Start, Surface, TextureRef,
+    Zone,
 };
 use crate::color::Rgb;
 use crate::light::Fog;
@@ -113,6 +115,7 @@ struct Header {
     sprite_texture: Option<TextureRef>,
     resolution: Option<(u32, u32)>,
     sprite_defs: Vec<SpriteDef>,
+    lights: Vec<LightDef>,
     door_texture: Option<TextureRef>,
     fog: Option<Fog>,
     shade: Option<f64>,
@@ -155,6 +158,11 @@ impl Header {
                 _ => (at, MapErrorKind::UnknownIdentifier(word.to_owned())),
             }
         })?;
+        if let Ident::Light = kind {
+            let def = parse_light(rest, at).map_err(|k| (at, k))?;
+            self.lights.push(def);
+            return Ok(());
+        }
         if let Ident::SpriteEntry = kind {
             let def = parse_sprite(rest, line_no, word_col, rest_col).map_err(|k| (at, k))?;
             self.sprite_defs.push(def);
@@ -228,7 +236,9 @@ impl Header {
                     },
                 ))?);
             }
-            Ident::SpriteEntry => unreachable!("handled before the duplicate check"),
+            Ident::SpriteEntry | Ident::Light => {
+                unreachable!("handled before the duplicate check")
+            }
             Ident::Resolution => {
                 let nums: Vec<u32> = rest
                     .split_whitespace()
@@ -259,6 +269,7 @@ enum Ident {
     DoorTexture,
     Fog,
     Shade,
+    Light,
 }
 
 fn classify(word: &str) -> Option<Ident> {
@@ -277,6 +288,7 @@ fn classify(word: &str) -> Option<Ident> {
         "TD" => Ident::DoorTexture,
         "FOG" => Ident::Fog,
         "SHADE" => Ident::Shade,
+        "LIGHT" => Ident::Light,
         _ => {
             let b = word.as_bytes();
             match b {
@@ -489,6 +501,13 @@ fn build(file: &str, h: Header, grid: &[(usize, &str)]) -> Result<Map, MapError>
             return Err(err(Some(def.at), kind));
         }
     }
+    for def in &h.lights {
+        let (x, y) = (def.pos.x.floor() as i64, def.pos.y.floor() as i64);
+        if !matches!(at(x, y), Cell::Floor { .. } | Cell::Door(_)) {
+            let kind = MapErrorKind::LightOffFloor(format!("{},{}", def.pos.x, def.pos.y));
+            return Err(err(Some(def.at), kind));
+        }
+    }
     for (k, plane) in planes {
         cells[k] = Cell::Door(plane);
     }
@@ -517,6 +536,7 @@ fn build(file: &str, h: Header, grid: &[(usize, &str)]) -> Result<Map, MapError>
         sprites,
         resolution: h.resolution,
         sprite_defs: h.sprite_defs,
+        lights: h.lights,
         door_texture: h.door_texture,
         fog: h.fog,
         shade: h.shade,
