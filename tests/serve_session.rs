@@ -275,3 +275,68 @@ async fn the_colour_key_cycles_levels_down_to_mono_and_back() {
     }
     srv.shutdown().await;
 }
+
+/// The cells of the view as (glyph, fg, bg) text, to compare two moments of one client.
+fn view_cells(s: &vt100::Screen, cols: u16, rows: u16) -> Vec<String> {
+    let v = view_rect(cols, rows);
+    let mut out = Vec::new();
+    for r in v.top()..v.bottom() {
+        for c in v.left()..v.right() {
+            let cell = s.cell(r, c).expect("cell");
+            out.push(format!(
+                "{}{:?}{:?}",
+                cell.contents(),
+                cell.fgcolor(),
+                cell.bgcolor()
+            ));
+        }
+    }
+    out
+}
+
+/// Reads until the view stops changing for a moment, then returns it.
+async fn settled_view(c: &mut Client, cols: u16, rows: u16) -> Vec<String> {
+    let mut last = view_cells(c.screen.screen(), cols, rows);
+    for _ in 0..40 {
+        c.drain_for(Duration::from_millis(250)).await;
+        let now = view_cells(c.screen.screen(), cols, rows);
+        if now == last {
+            return now;
+        }
+        last = now;
+    }
+    last
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_player_in_view_is_drawn_as_a_sprite_and_vanishes_on_leaving() {
+    let (srv, _dir) = server(|_| {}).await;
+    let addr = srv.local_addr();
+    let (cols, rows) = (80, 24);
+    let mut ann = Client::connect(addr, "ann", cols, rows, "xterm-direct").await;
+    assert!(ann.until(|s| header_has(s, "you are ann")).await);
+    let bob = Client::connect(addr, "bob", cols, rows, "xterm-direct").await;
+    assert!(ann.until(|s| header_has(s, "2 here: ann, bob")).await);
+    // On the default map ann starts facing north and bob appears one cell north-west of her:
+    // ann turns left about 45° (kitty press, 0.3 s at 2.6 rad/s, release) to face him. Nothing
+    // else in that direction moves (doors shut, no animated sprites).
+    ann.keys(b"\x1b[?11u").await;
+    tokio::time::sleep(Duration::from_millis(100)).await;
+    ann.keys(b"\x1b[97u").await;
+    tokio::time::sleep(Duration::from_millis(300)).await;
+    ann.keys(b"\x1b[97;1:3u").await;
+    let with_bob = settled_view(&mut ann, cols, rows).await;
+    bob.keys(b"q").await;
+    assert!(ann.until(|s| header_has(s, "1 here: ann")).await);
+    let without = settled_view(&mut ann, cols, rows).await;
+    let changed = with_bob
+        .iter()
+        .zip(&without)
+        .filter(|(a, b)| a != b)
+        .count();
+    assert!(
+        changed > 20,
+        "bob's sprite covered {changed} cells of ann's view"
+    );
+    srv.shutdown().await;
+}
