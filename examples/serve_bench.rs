@@ -5,7 +5,8 @@
 //! `cargo run --release --example serve_bench -- --clients 32 --secs 10 --term xterm-direct \
 //!     --compression none --cols 80 --rows 24 --server-threads 1`
 //!
-//! Prints one JSON object: server CPU, frames/s and bytes/s per client (payload and on the wire).
+//! Prints one JSON object: server CPU, frames/s and bytes/s per client (payload and on the wire),
+//! frames the server sent and frame ticks it skipped (slow readers), connections refused.
 
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
@@ -13,59 +14,14 @@ use std::time::{Duration, Instant};
 
 use halfcast::serve::{start, ServeConfig};
 use halfcast::World;
-use russh::keys::PublicKeyOrCertificate;
-use russh::{client, compression, ChannelMsg, Preferred};
+use russh::{compression, ChannelMsg};
 
-struct Trusting;
+/// The same client the integration tests use (one copy of the SSH client code).
+#[path = "../tests/serve_support/mod.rs"]
+mod serve_support;
 
-impl client::Handler for Trusting {
-    type Error = russh::Error;
-
-    async fn check_server_key(&mut self, _: &PublicKeyOrCertificate) -> Result<bool, Self::Error> {
-        Ok(true)
-    }
-}
-
-struct Counting {
-    inner: tokio::net::TcpStream,
-    read: Arc<AtomicU64>,
-}
-
-impl tokio::io::AsyncRead for Counting {
-    fn poll_read(
-        mut self: std::pin::Pin<&mut Self>,
-        cx: &mut std::task::Context<'_>,
-        buf: &mut tokio::io::ReadBuf<'_>,
-    ) -> std::task::Poll<std::io::Result<()>> {
-        let before = buf.filled().len();
-        let r = std::pin::Pin::new(&mut self.inner).poll_read(cx, buf);
-        self.read
-            .fetch_add((buf.filled().len() - before) as u64, Ordering::Relaxed);
-        r
-    }
-}
-
-impl tokio::io::AsyncWrite for Counting {
-    fn poll_write(
-        mut self: std::pin::Pin<&mut Self>,
-        cx: &mut std::task::Context<'_>,
-        buf: &[u8],
-    ) -> std::task::Poll<std::io::Result<usize>> {
-        std::pin::Pin::new(&mut self.inner).poll_write(cx, buf)
-    }
-    fn poll_flush(
-        mut self: std::pin::Pin<&mut Self>,
-        cx: &mut std::task::Context<'_>,
-    ) -> std::task::Poll<std::io::Result<()>> {
-        std::pin::Pin::new(&mut self.inner).poll_flush(cx)
-    }
-    fn poll_shutdown(
-        mut self: std::pin::Pin<&mut Self>,
-        cx: &mut std::task::Context<'_>,
-    ) -> std::task::Poll<std::io::Result<()>> {
-        std::pin::Pin::new(&mut self.inner).poll_shutdown(cx)
-    }
-}
+/// Movement keys a bot presses (the local TUI's key map: walk, turn, strafe).
+const MOVES: &[u8] = b"wasdzx";
 
 struct Opts {
     clients: usize,
@@ -97,8 +53,8 @@ fn opts() -> Opts {
             // Bounded on purpose: this is a loopback load test, not a flood tool.
             "--clients" => o.clients = num(&v).clamp(1, 256) as usize,
             "--secs" => o.secs = num(&v).clamp(1, 120),
-            "--cols" => o.cols = num(&v) as u32,
-            "--rows" => o.rows = num(&v) as u32,
+            "--cols" => o.cols = num(&v).clamp(1, 500) as u32,
+            "--rows" => o.rows = num(&v).clamp(1, 200) as u32,
             "--term" => o.term = v,
             "--compression" => o.compression = v,
             "--fps" => o.fps = num(&v) as u32,
@@ -134,9 +90,10 @@ fn thread_cpu(prefix: &str) -> f64 {
 
 #[derive(Default)]
 struct PerClient {
+    /// Frames seen by the client (synchronized-update markers; mono frames have none).
     frames: AtomicU64,
     payload: AtomicU64,
-    wire: Arc<AtomicU64>,
+    wire: std::sync::Mutex<Option<Arc<AtomicU64>>>,
 }
 
 fn main() {
@@ -150,8 +107,8 @@ fn main() {
     let dir = tempfile::tempdir().expect("tempdir");
     let mut cfg = ServeConfig::local("127.0.0.1:0".parse().expect("addr"), dir.path().join("hk"));
     cfg.quiet = true;
-    cfg.max_sessions = o.clients + 1;
-    cfg.max_per_ip = o.clients + 1;
+    cfg.max_sessions = o.clients;
+    cfg.max_per_ip = o.clients;
     cfg.fps = o.fps;
     let server = server_rt
         .block_on(start(cfg, World::default_world()))
@@ -171,32 +128,17 @@ fn main() {
     };
     let per: Vec<Arc<PerClient>> = (0..o.clients).map(|_| Arc::default()).collect();
     let secs = o.secs;
-    let (cpu, client_cpu, elapsed) =
-        client_rt.block_on(async {
-            let mut tasks = Vec::new();
-            for (i, pc) in per.iter().enumerate() {
-                let pc = Arc::clone(pc);
-                let term = o.term.clone();
-                let (cols, rows) = (o.cols, o.rows);
-                tasks.push(tokio::spawn(async move {
-                let stream = Counting {
-                    inner: tokio::net::TcpStream::connect(addr).await.expect("tcp"),
-                    read: Arc::clone(&pc.wire),
-                };
-                let cfg = client::Config {
-                    preferred: Preferred {
-                        compression: std::borrow::Cow::Owned(vec![alg]),
-                        ..Preferred::default()
-                    },
-                    ..client::Config::default()
-                };
-                let mut h = client::connect_stream(Arc::new(cfg), stream, Trusting)
-                    .await
-                    .expect("connect");
-                assert!(h.authenticate_none(format!("bot{i}")).await.expect("auth").success());
-                let mut ch = h.channel_open_session().await.expect("session");
-                ch.request_pty(false, &term, cols, rows, 0, 0, &[]).await.expect("pty");
-                ch.request_shell(false).await.expect("shell");
+    let (cpu, client_cpu, elapsed) = client_rt.block_on(async {
+        let mut tasks = Vec::new();
+        for (i, pc) in per.iter().enumerate() {
+            let pc = Arc::clone(pc);
+            let term = o.term.clone();
+            let (cols, rows) = (o.cols as u16, o.rows as u16);
+            tasks.push(tokio::spawn(async move {
+                let (h, mut ch, wire) =
+                    serve_support::open_counting(addr, &format!("bot{i}"), cols, rows, &term, alg)
+                        .await;
+                *pc.wire.lock().expect("wire") = Some(wire);
                 let end = tokio::time::Instant::now() + Duration::from_secs(secs);
                 let mut next_key = tokio::time::Instant::now();
                 let mut lcg = 0x9e37_79b9u32.wrapping_mul(i as u32 + 1);
@@ -219,7 +161,7 @@ fn main() {
                         () = tokio::time::sleep_until(wake) => {
                             if tokio::time::Instant::now() >= end { break; }
                             lcg = lcg.wrapping_mul(1_103_515_245).wrapping_add(12345);
-                            let key = b"wasdqe"[(lcg >> 16) as usize % 6];
+                            let key = MOVES[(lcg >> 16) as usize % MOVES.len()];
                             let _ = ch.data(&[key][..]).await;
                             next_key += Duration::from_millis(100);
                         }
@@ -228,19 +170,19 @@ fn main() {
                 let _ = ch.data(&b"\x03"[..]).await;
                 let _ = h.disconnect(russh::Disconnect::ByApplication, "", "").await;
             }));
-            }
-            let cpu0 = thread_cpu("srv-worker");
-            let ccpu0 = thread_cpu("cli-worker");
-            let t0 = Instant::now();
-            for t in tasks {
-                let _ = t.await;
-            }
-            (
-                thread_cpu("srv-worker") - cpu0,
-                thread_cpu("cli-worker") - ccpu0,
-                t0.elapsed().as_secs_f64(),
-            )
-        });
+        }
+        let cpu0 = thread_cpu("srv-worker");
+        let ccpu0 = thread_cpu("cli-worker");
+        let t0 = Instant::now();
+        for t in tasks {
+            let _ = t.await;
+        }
+        (
+            thread_cpu("srv-worker") - cpu0,
+            thread_cpu("cli-worker") - ccpu0,
+            t0.elapsed().as_secs_f64(),
+        )
+    });
     // Sessions add their counters when they end, just after their clients leave.
     std::thread::sleep(Duration::from_secs(1));
     let stats = server.stats();
@@ -250,7 +192,6 @@ fn main() {
         .iter()
         .map(|p| p.frames.load(Ordering::Relaxed) as f64 / elapsed)
         .collect();
-    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
     let payload = per
         .iter()
         .map(|p| p.payload.load(Ordering::Relaxed) as f64)
@@ -259,16 +200,20 @@ fn main() {
         / elapsed;
     let wire = per
         .iter()
-        .map(|p| p.wire.load(Ordering::Relaxed) as f64)
+        .map(|p| {
+            let w = p.wire.lock().expect("wire");
+            w.as_ref().map_or(0, |w| w.load(Ordering::Relaxed)) as f64
+        })
         .sum::<f64>()
         / n
         / elapsed;
     let cpu_frac = cpu / elapsed;
-    let mean_fps = mean(&fps);
+    // Frames the server sent (every level); the client-side count needs the sync markers.
+    let mean_fps = stats.frames_sent as f64 / n / elapsed;
     println!(
         "{{\"clients\":{},\"secs\":{:.1},\"cols\":{},\"rows\":{},\"term\":\"{}\",\"compression\":\"{}\",\
 \"target_fps\":{},\"server_threads\":{},\"server_cpu_percent\":{:.1},\"client_cpu_percent\":{:.1},\"fps_per_client_mean\":{:.1},\
-\"fps_per_client_min\":{:.1},\"payload_bytes_per_s_per_client\":{:.0},\"wire_bytes_per_s_per_client\":{:.0},\
+\"fps_per_client_min_seen\":{:.1},\"payload_bytes_per_s_per_client\":{:.0},\"wire_bytes_per_s_per_client\":{:.0},\
 \"server_frames_sent\":{},\"server_frame_ticks_skipped\":{},\"refused\":{},\
 \"clients_per_core_at_target_fps\":{:.1}}}",
         o.clients,

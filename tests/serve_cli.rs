@@ -8,7 +8,7 @@ use std::process::{Child, Command, Stdio};
 use std::sync::mpsc;
 use std::time::Duration;
 
-use serve_support::{status_has, Client};
+use serve_support::{header_has, Client};
 
 fn halfcast() -> Command {
     Command::new(env!("CARGO_BIN_EXE_halfcast"))
@@ -147,7 +147,7 @@ fn serves_a_frame_keeps_its_host_key_and_stops_on_sigterm() {
         rt.block_on(async {
             let addr = format!("127.0.0.1:{port}").parse().expect("addr");
             let mut c = Client::connect(addr, "ann", 50, 14, "xterm-256color").await;
-            assert!(c.until(|s| status_has(s, "you are ann")).await);
+            assert!(c.until(|s| header_has(s, "you are ann")).await);
         });
         assert!(
             wait_line(&rx, "[session 1 127.0.0.1:", &mut seen),

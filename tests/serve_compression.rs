@@ -8,7 +8,7 @@ use std::sync::atomic::Ordering;
 use std::time::Duration;
 
 use russh::compression;
-use serve_support::{connect_counting, half_block_cells, server, status_has};
+use serve_support::{connect_counting, full_view, header_has, server};
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn every_compression_carries_many_frames_and_zlib_shrinks_them() {
@@ -22,7 +22,7 @@ async fn every_compression_carries_many_frames_and_zlib_shrinks_them() {
     ] {
         let (mut c, read) = connect_counting(addr, "ann", 80, 24, "xterm-direct", alg).await;
         assert!(
-            c.until(|s| status_has(s, "you are ann")).await,
+            c.until(|s| header_has(s, "you are ann")).await,
             "{name}: first frame"
         );
         // Turn for a while: every frame changes, hundreds of packets after authentication.
@@ -36,7 +36,7 @@ async fn every_compression_carries_many_frames_and_zlib_shrinks_them() {
         c.drain_for(Duration::from_millis(200)).await;
         assert!(!c.closed, "{name}: the stream stays in sync");
         assert!(
-            c.until(|s| half_block_cells(s) == 80 * 23 && status_has(s, "you are ann"))
+            c.until(|s| full_view(s, 80, 24) && header_has(s, "you are ann"))
                 .await,
             "{name}: frames still decode"
         );

@@ -8,7 +8,7 @@ use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
 use portable_pty::{native_pty_system, CommandBuilder, PtySize};
-use serve_support::{half_block_cells, server, status_has, PATIENCE};
+use serve_support::{half_block_cells, header_has, server, view_rect, PATIENCE};
 
 fn ssh_available() -> bool {
     std::process::Command::new("ssh")
@@ -95,7 +95,7 @@ fn openssh_client_plays_with_compression_resizes_and_quits() {
         }
     });
     let mut screen = vt100::Parser::new(24, 80, 0);
-    let ok = until(&rx, &mut screen, |s| status_has(s, "you are ann"));
+    let ok = until(&rx, &mut screen, |s| header_has(s, "you are ann"));
     let ssh_log = std::fs::read_to_string(&log).unwrap_or_default();
     assert!(
         ok,
@@ -107,7 +107,7 @@ fn openssh_client_plays_with_compression_resizes_and_quits() {
         "ssh -C negotiated delayed zlib:\n{ssh_log}"
     );
     // xterm-256color picks 256 colours: no 24-bit cells, but the view is half blocks.
-    assert_eq!(half_block_cells(screen.screen()), 0);
+    assert_eq!(half_block_cells(screen.screen(), view_rect(80, 24)), 0);
 
     // Keys go through, and the stream stays in sync for many compressed packets.
     let before = screen.screen().contents_formatted();
@@ -128,7 +128,7 @@ fn openssh_client_plays_with_compression_resizes_and_quits() {
         .expect("resize");
     screen.set_size(15, 50);
     assert!(
-        until(&rx, &mut screen, |s| status_has(s, "you are ann")),
+        until(&rx, &mut screen, |s| header_has(s, "you are ann")),
         "after resize:\n{}",
         screen.screen().contents()
     );

@@ -5,7 +5,7 @@ mod serve_support;
 
 use halfcast::serve::auth::AuthMode;
 use russh::ChannelMsg;
-use serve_support::{connect_raw, server, status_has, Client, PATIENCE};
+use serve_support::{connect_raw, header_has, server, Client, PATIENCE};
 
 /// Waits for the reply to a want-reply channel request: true = success.
 async fn reply(ch: &mut russh::Channel<russh::client::Msg>) -> Option<bool> {
@@ -73,7 +73,7 @@ async fn max_sessions_and_per_address_limits_refuse_extra_connections() {
     let addr = srv.local_addr();
     let mut a = Client::connect(addr, "a", 40, 10, "xterm").await;
     let _b = Client::connect(addr, "b", 40, 10, "xterm").await;
-    assert!(a.until(|s| status_has(s, "2 here")).await);
+    assert!(a.until(|s| header_has(s, "2 here")).await);
     assert!(
         connect_raw(addr, None).await.is_err(),
         "a third connection is refused"
@@ -112,10 +112,12 @@ async fn password_mode_rejects_none_and_wrong_passwords() {
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn idle_clients_are_closed_with_a_message() {
+async fn idle_players_are_closed_with_a_message_but_spectators_stay() {
     let (srv, _dir) = server(|c| c.idle_timeout = std::time::Duration::from_secs(1)).await;
+    let mut w = Client::connect(srv.local_addr(), "watch", 60, 12, "xterm").await;
     let mut c = Client::connect(srv.local_addr(), "ann", 60, 12, "xterm").await;
-    assert!(c.until(|s| status_has(s, "you are ann")).await);
+    assert!(c.until(|s| header_has(s, "you are ann")).await);
+    assert!(w.until(|s| header_has(s, "watching ann")).await);
     assert!(
         c.until(|s| s.contents().contains("idle too long")).await,
         "{}",
@@ -123,5 +125,9 @@ async fn idle_clients_are_closed_with_a_message() {
     );
     c.until(|_| false).await;
     assert!(c.closed);
+    // The spectator, silent just as long, still watches (now waiting for a player).
+    assert!(w.until(|s| header_has(s, "waiting for players")).await);
+    w.drain_for(std::time::Duration::from_millis(1500)).await;
+    assert!(!w.closed, "a spectator who only watches is not idle-kicked");
     srv.shutdown().await;
 }

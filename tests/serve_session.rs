@@ -5,18 +5,36 @@ mod serve_support;
 
 use std::time::Duration;
 
-use serve_support::{colours, half_block_cells, row_text, server, status_has, Client};
+use serve_support::{
+    colours, full_view, half_block_cells, header_has, row_text, server, status_has, view_rect,
+    Client,
+};
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn a_frame_arrives_and_decodes_to_half_blocks() {
+async fn a_frame_arrives_and_decodes_to_the_tui_layout() {
     let (srv, _dir) = server(|_| {}).await;
-    let mut c = Client::connect(srv.local_addr(), "ann", 60, 20, "xterm-direct").await;
+    let mut c = Client::connect(srv.local_addr(), "ann", 120, 40, "xterm-direct").await;
     assert!(
-        c.until(|s| status_has(s, "you are ann") && half_block_cells(s) == 60 * 19)
+        c.until(|s| header_has(s, "you are ann") && full_view(s, 120, 40) && status_has(s, "help"))
             .await,
-        "a full truecolor half-block view and the status line arrive; screen:\n{}",
+        "the header, a full truecolor half-block view and the status line arrive; screen:\n{}",
         c.screen.screen().contents()
     );
+    // The local TUI's side panes: the minimap and the debugger's pane of the centre ray.
+    let text = c.screen.screen().contents();
+    for needle in [
+        " map ",
+        " ray ",
+        "column",
+        "rayDir",
+        "deltaDist",
+        "sideDistX",
+    ] {
+        assert!(text.contains(needle), "{needle:?} in:\n{text}");
+    }
+    let v = view_rect(120, 40);
+    assert_eq!((v.x, v.y), (0, 1), "the view sits under the header");
+    assert!(v.width < 120, "the side panes take the right-hand side");
     srv.shutdown().await;
 }
 
@@ -24,12 +42,15 @@ async fn a_frame_arrives_and_decodes_to_half_blocks() {
 async fn window_change_changes_the_frame_size_and_absurd_sizes_are_clamped() {
     let (srv, _dir) = server(|_| {}).await;
     let mut c = Client::connect(srv.local_addr(), "ann", 60, 20, "xterm-direct").await;
-    assert!(c.until(|s| status_has(s, "you are ann")).await);
+    assert!(
+        c.until(|s| header_has(s, "you are ann") && full_view(s, 60, 20))
+            .await
+    );
     c.resize(40, 12).await;
     assert!(
-        c.until(|s| status_has(s, "you are ann") && half_block_cells(s) == 40 * 11)
+        c.until(|s| header_has(s, "you are ann") && full_view(s, 40, 12))
             .await,
-        "after the resize the view is 40x11 plus the status line:\n{}",
+        "after the resize the view fills 40x12 under the header:\n{}",
         c.screen.screen().contents()
     );
     // A flood of resizes, some absurd, then a sane one: the server keeps up and draws the last.
@@ -41,7 +62,7 @@ async fn window_change_changes_the_frame_size_and_absurd_sizes_are_clamped() {
     }
     c.resize(30, 10).await;
     assert!(
-        c.until(|s| status_has(s, "you are ann") && half_block_cells(s) == 30 * 9)
+        c.until(|s| header_has(s, "you are ann") && full_view(s, 30, 10))
             .await,
         "the last size wins:\n{}",
         c.screen.screen().contents()
@@ -53,26 +74,35 @@ async fn window_change_changes_the_frame_size_and_absurd_sizes_are_clamped() {
 async fn two_players_see_each_other_and_survive_garbage_and_abrupt_disconnects() {
     let (srv, _dir) = server(|_| {}).await;
     let addr = srv.local_addr();
-    let mut ann = Client::connect(addr, "ann", 80, 24, "xterm-direct").await;
-    assert!(ann.until(|s| status_has(s, "you are ann")).await);
-    let mut bob = Client::connect(addr, "bob", 80, 24, "xterm-direct").await;
+    let mut ann = Client::connect(addr, "ann", 120, 40, "xterm-direct").await;
+    assert!(ann.until(|s| header_has(s, "you are ann")).await);
+    let mut bob = Client::connect(addr, "bob", 120, 40, "xterm-direct").await;
     assert!(
-        ann.until(|s| status_has(s, "2 here: ann, bob")).await,
+        ann.until(|s| header_has(s, "2 here: ann, bob")).await,
         "ann sees bob join"
     );
     assert!(
-        bob.until(|s| status_has(s, "2 here: ann, bob")).await,
+        bob.until(|s| header_has(s, "2 here: ann, bob")).await,
         "bob sees ann"
     );
-    // The second player's colour (second in the palette) is on ann's screen: minimap or marker.
+    // Each sees the other's name on the minimap, in the other's colour (second in the palette
+    // for bob, first for ann); the sprites themselves are checked pixel by pixel in
+    // `serve::screen`'s tests.
     assert!(
-        ann.until(|s| colours(s).contains(&(64, 200, 255))).await,
-        "bob is drawn on ann's screen"
+        ann.until(|s| s.contents().contains("●bob") && colours(s).contains(&(64, 200, 255)))
+            .await,
+        "bob is on ann's minimap:\n{}",
+        ann.screen.screen().contents()
+    );
+    assert!(
+        bob.until(|s| s.contents().contains("●ann") && colours(s).contains(&(255, 64, 64)))
+            .await,
+        "ann is on bob's minimap"
     );
 
     // A third client sends garbage: broken escapes, invalid UTF-8, huge CSI parameters.
     let mut eve = Client::connect(addr, "eve", 80, 24, "xterm").await;
-    assert!(eve.until(|s| status_has(s, "3 here")).await);
+    assert!(eve.until(|s| header_has(s, "3 here")).await);
     let mut junk = Vec::new();
     let mut x: u32 = 12345;
     for i in 0..20_000u32 {
@@ -102,13 +132,13 @@ async fn two_players_see_each_other_and_survive_garbage_and_abrupt_disconnects()
     );
     drop(bob);
     assert!(
-        ann.until(|s| status_has(s, "1 here: ann")).await,
+        ann.until(|s| header_has(s, "1 here: ann")).await,
         "abrupt disconnects leave the world:\n{}",
-        row_text(ann.screen.screen(), 23)
+        row_text(ann.screen.screen(), 0)
     );
     // And the server still accepts newcomers.
     let mut cat = Client::connect(addr, "cat", 80, 10, "xterm").await;
-    assert!(cat.until(|s| status_has(s, "2 here: ann, cat")).await);
+    assert!(cat.until(|s| header_has(s, "2 here: ann, cat")).await);
     srv.shutdown().await;
 }
 
@@ -117,7 +147,7 @@ async fn quitting_restores_the_terminal_and_closes_the_channel() {
     let (srv, _dir) = server(|_| {}).await;
     let mut c = Client::connect(srv.local_addr(), "ann", 40, 12, "xterm-256color").await;
     assert!(
-        c.until(|s| status_has(s, "you are ann") && s.alternate_screen())
+        c.until(|s| header_has(s, "you are ann") && s.alternate_screen())
             .await
     );
     c.keys(b"\x03").await;
@@ -131,20 +161,31 @@ async fn quitting_restores_the_terminal_and_closes_the_channel() {
 async fn spectators_follow_a_player_and_tab_switches() {
     let (srv, _dir) = server(|_| {}).await;
     let addr = srv.local_addr();
-    let mut w = Client::connect(addr, "watch", 60, 16, "xterm-direct").await;
-    assert!(w.until(|s| status_has(s, "waiting for players")).await);
+    let mut w = Client::connect(addr, "watch", 120, 40, "xterm-direct").await;
+    assert!(w.until(|s| header_has(s, "waiting for players")).await);
     let mut ann = Client::connect(addr, "ann", 60, 16, "xterm-direct").await;
     let mut bob = Client::connect(addr, "bob", 60, 16, "xterm-direct").await;
-    assert!(ann.until(|s| status_has(s, "2 here")).await);
-    assert!(bob.until(|s| status_has(s, "2 here")).await);
-    assert!(w.until(|s| status_has(s, "watching ann")).await);
-    assert!(half_block_cells(w.screen.screen()) > 0);
+    assert!(ann.until(|s| header_has(s, "2 here")).await);
+    assert!(bob.until(|s| header_has(s, "2 here")).await);
+    // The followed player's view, minimap and debug pane, at the spectator's own size.
+    assert!(
+        w.until(|s| header_has(s, "watching ann")
+            && full_view(s, 120, 40)
+            && s.contents().contains("rayDir")
+            && s.contents().contains("●bob"))
+            .await,
+        "{}",
+        w.screen.screen().contents()
+    );
     w.keys(b"\t").await;
-    assert!(w.until(|s| status_has(s, "watching bob")).await);
+    assert!(
+        w.until(|s| header_has(s, "watching bob") && s.contents().contains("●ann"))
+            .await
+    );
     w.keys(b"\x1b[Z").await;
-    assert!(w.until(|s| status_has(s, "watching ann")).await);
+    assert!(w.until(|s| header_has(s, "watching ann")).await);
     // A spectator is not a player.
-    assert!(status_has(w.screen.screen(), "2 here: ann, bob"));
+    assert!(header_has(w.screen.screen(), "2 here: ann, bob"));
     srv.shutdown().await;
 }
 
@@ -164,13 +205,15 @@ async fn a_shell_without_a_pty_request_gets_the_default_size() {
         bytes: 0,
         closed: false,
     };
-    // No TERM: mono, plain ASCII; the status line sits on row 24 of 80x24.
+    // No TERM: mono, plain ASCII at the default 80x24: header on top, status line at the bottom.
     assert!(
-        c.until(|s| status_has(s, "you are ann")).await,
+        c.until(|s| header_has(s, "you are ann") && status_has(s, "help"))
+            .await,
         "{}",
         c.screen.screen().contents()
     );
-    assert!(row_text(c.screen.screen(), 0).trim_end().len() > 40);
+    assert!(row_text(c.screen.screen(), 1).trim_end().len() > 40);
+    assert!(row_text(c.screen.screen(), 1).is_ascii());
     srv.shutdown().await;
 }
 
@@ -181,15 +224,23 @@ async fn a_client_that_stops_reading_gets_frames_dropped_then_the_latest_state()
     // A big truecolor view (about 1 MB a frame) that changes every tick: ann holds "turn right"
     // (a kitty-protocol press with no release).
     let mut ann = Client::connect(addr, "ann", 300, 100, "xterm-direct").await;
-    assert!(ann.until(|s| status_has(s, "you are ann")).await);
+    assert!(ann.until(|s| header_has(s, "you are ann")).await);
     ann.keys(b"\x1b[?11u\x1b[100u").await;
-    // Ann stops reading; bob joins meanwhile.
-    tokio::time::sleep(Duration::from_secs(2)).await;
+    // Ann stops reading (her terminal keeps sending the held key's repeats); bob joins meanwhile.
+    for _ in 0..10 {
+        tokio::time::sleep(Duration::from_millis(200)).await;
+        // Bounded: a client that does not read may stop taking what it sends, too.
+        let _ = tokio::time::timeout(Duration::from_millis(50), ann.keys(b"\x1b[100;1:2u")).await;
+    }
     let mut bob = Client::connect(addr, "bob", 60, 12, "xterm").await;
-    assert!(bob.until(|s| status_has(s, "2 here")).await);
-    tokio::time::sleep(Duration::from_secs(1)).await;
+    assert!(bob.until(|s| header_has(s, "2 here")).await);
+    for _ in 0..5 {
+        tokio::time::sleep(Duration::from_millis(200)).await;
+        // Bounded: a client that does not read may stop taking what it sends, too.
+        let _ = tokio::time::timeout(Duration::from_millis(50), ann.keys(b"\x1b[100;1:2u")).await;
+    }
     // When ann reads again she catches up to the present rather than replaying a backlog.
-    assert!(ann.until(|s| status_has(s, "2 here: ann, bob")).await);
+    assert!(ann.until(|s| header_has(s, "2 here: ann, bob")).await);
     ann.keys(b"\x03").await;
     ann.until(|_| false).await;
     // Ann's session adds its counters as it ends: frame ticks were skipped, not queued.
@@ -211,16 +262,81 @@ async fn the_colour_key_cycles_levels_down_to_mono_and_back() {
     let (srv, _dir) = server(|_| {}).await;
     let mut c = Client::connect(srv.local_addr(), "ann", 100, 16, "xterm-direct").await;
     assert!(
-        c.until(|s| status_has(s, "· truecolor ·") && half_block_cells(s) > 0)
+        c.until(|s| header_has(s, "| truecolor |") && half_block_cells(s, view_rect(100, 16)) > 0)
             .await
     );
-    for level in ["· 256 ·", "· 16 ·", "· mono ·", "· truecolor ·"] {
-        c.keys(b"c").await;
+    for level in ["| 256 |", "| 16 |", "| mono |", "| truecolor |"] {
+        c.keys(b"o").await;
         assert!(
-            c.until(|s| status_has(s, level)).await,
+            c.until(|s| header_has(s, level)).await,
             "{level}: {}",
-            row_text(c.screen.screen(), 15)
+            row_text(c.screen.screen(), 0)
         );
     }
+    srv.shutdown().await;
+}
+
+/// The cells of the view as (glyph, fg, bg) text, to compare two moments of one client.
+fn view_cells(s: &vt100::Screen, cols: u16, rows: u16) -> Vec<String> {
+    let v = view_rect(cols, rows);
+    let mut out = Vec::new();
+    for r in v.top()..v.bottom() {
+        for c in v.left()..v.right() {
+            let cell = s.cell(r, c).expect("cell");
+            out.push(format!(
+                "{}{:?}{:?}",
+                cell.contents(),
+                cell.fgcolor(),
+                cell.bgcolor()
+            ));
+        }
+    }
+    out
+}
+
+/// Reads until the view stops changing for a moment, then returns it.
+async fn settled_view(c: &mut Client, cols: u16, rows: u16) -> Vec<String> {
+    let mut last = view_cells(c.screen.screen(), cols, rows);
+    for _ in 0..40 {
+        c.drain_for(Duration::from_millis(250)).await;
+        let now = view_cells(c.screen.screen(), cols, rows);
+        if now == last {
+            return now;
+        }
+        last = now;
+    }
+    last
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_player_in_view_is_drawn_as_a_sprite_and_vanishes_on_leaving() {
+    let (srv, _dir) = server(|_| {}).await;
+    let addr = srv.local_addr();
+    let (cols, rows) = (80, 24);
+    let mut ann = Client::connect(addr, "ann", cols, rows, "xterm-direct").await;
+    assert!(ann.until(|s| header_has(s, "you are ann")).await);
+    let bob = Client::connect(addr, "bob", cols, rows, "xterm-direct").await;
+    assert!(ann.until(|s| header_has(s, "2 here: ann, bob")).await);
+    // On the default map ann starts facing north and bob appears one cell north-west of her:
+    // ann turns left about 45° (kitty press, 0.3 s at 2.6 rad/s, release) to face him. Nothing
+    // else in that direction moves (doors shut, no animated sprites).
+    ann.keys(b"\x1b[?11u").await;
+    tokio::time::sleep(Duration::from_millis(100)).await;
+    ann.keys(b"\x1b[97u").await;
+    tokio::time::sleep(Duration::from_millis(300)).await;
+    ann.keys(b"\x1b[97;1:3u").await;
+    let with_bob = settled_view(&mut ann, cols, rows).await;
+    bob.keys(b"q").await;
+    assert!(ann.until(|s| header_has(s, "1 here: ann")).await);
+    let without = settled_view(&mut ann, cols, rows).await;
+    let changed = with_bob
+        .iter()
+        .zip(&without)
+        .filter(|(a, b)| a != b)
+        .count();
+    assert!(
+        changed > 20,
+        "bob's sprite covered {changed} cells of ann's view"
+    );
     srv.shutdown().await;
 }

@@ -119,6 +119,16 @@ impl GameState {
 
 /// Advances the game by `dt` seconds: commands first, then movement (unless paused).
 pub fn step(state: &mut GameState, input: &Input, dt: f64) {
+    advance(state, input, dt, true, &[]);
+}
+
+/// [`step`] for one of several players in a shared world (`halfcast serve`): the caller owns
+/// the clock and slides the doors once per tick, and `bodies` (the other players) block too.
+pub fn step_shared(state: &mut GameState, input: &Input, dt: f64, bodies: &[SolidDisc]) {
+    advance(state, input, dt, false, bodies);
+}
+
+fn advance(state: &mut GameState, input: &Input, dt: f64, owns_world: bool, bodies: &[SolidDisc]) {
     let dt = if dt.is_finite() {
         dt.clamp(0.0, MAX_DT)
     } else {
@@ -152,8 +162,10 @@ pub fn step(state: &mut GameState, input: &Input, dt: f64) {
     if state.debugger.paused {
         return;
     }
-    state.time += dt;
-    state.doors.update(dt);
+    if owns_world {
+        state.time += dt;
+        state.doors.update(dt);
+    }
     let held = input.held;
     vertical(state, held, dt);
     turn += held.axis(Action::TurnLeft, Action::TurnRight) * TURN_SPEED * dt;
@@ -167,12 +179,15 @@ pub fn step(state: &mut GameState, input: &Input, dt: f64) {
     let len = wish.length();
     if len > 0.0 {
         wish = wish * (MOVE_SPEED * dt / len);
-        state.camera.pos = collision::slide(
-            &state.obstacles(),
-            state.camera.pos,
-            wish,
-            collision::PLAYER_RADIUS,
-        );
+        let mut discs = Vec::new();
+        let mut obstacles = state.obstacles();
+        if !bodies.is_empty() {
+            discs.extend_from_slice(&state.solids);
+            discs.extend_from_slice(bodies);
+            obstacles.discs = &discs;
+        }
+        state.camera.pos =
+            collision::slide(&obstacles, state.camera.pos, wish, collision::PLAYER_RADIUS);
     }
 }
 
@@ -354,6 +369,30 @@ mod tests {
         walk(&mut s, 2.0);
         assert!(s.camera.pos.y > 2.5 + 0.2, "{:?}", s.camera.pos);
         assert!((s.camera.pos.x - 13.5).abs() < 1e-9);
+    }
+
+    #[test]
+    fn shared_steps_leave_the_clock_and_doors_to_the_caller_and_bodies_block() {
+        let mut s = state();
+        let ahead = s.camera.pos + s.camera.dir * 1.0;
+        let body = SolidDisc {
+            centre: ahead,
+            radius: collision::PLAYER_RADIUS,
+        };
+        for _ in 0..60 {
+            step_shared(
+                &mut s,
+                &Input::holding(&[Action::Forward]),
+                1.0 / 30.0,
+                &[body],
+            );
+        }
+        assert_eq!(s.time, 0.0);
+        let gap = (s.camera.pos - ahead).length();
+        assert!(
+            (2.0 * collision::PLAYER_RADIUS - 1e-9..0.5).contains(&gap),
+            "stopped at the other body: {gap}"
+        );
     }
 
     #[test]

@@ -27,7 +27,9 @@ const MAX_NAME: usize = 16;
 pub struct Shared {
     pub config: ServeConfig,
     pub world: WorldHandle,
+    /// The served world, with the avatar sheet at `avatar_sheet`.
     pub world_data: Arc<World>,
+    pub avatar_sheet: usize,
     pub stats: Arc<ServeStats>,
     pub log: Log,
     pub shutdown: watch::Receiver<bool>,
@@ -235,6 +237,7 @@ impl russh::server::Handler for ConnHandler {
             channel,
             world: sh.world.clone(),
             world_data: Arc::clone(&sh.world_data),
+            avatar_sheet: sh.avatar_sheet,
             fps: sh.config.fps,
             idle_timeout: sh.config.idle_timeout,
             stats: Arc::clone(&sh.stats),

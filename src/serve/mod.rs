@@ -5,28 +5,27 @@
 //!   [`hostkey`]: the persisted Ed25519 identity; [`limits`]: admission at accept.
 //! - [`server`]: the accept loop; [`handler`]: the SSH side of one connection (pty, resize,
 //!   refusals); [`session`]: one terminal's loop (keys in, frames out, bounded).
-//! - [`world_task`]: the fixed-tick task owning [`players::Players`] (the shared game state);
-//!   sessions send it input and read its snapshots.
-//! - [`input`]: the raw key byte parser. Stand-ins for other branches' work, marked in each file:
-//!   [`player`] (movement), [`controls`] (key map), [`view`] (panes), [`frame`] (encoder),
-//!   [`color_level`] (colour ladder).
+//! - [`world_task`]: the fixed-tick task owning [`players::Players`] (one `game::GameState` per
+//!   player, moved by `game::step_shared`, and the doors they share); sessions send it the
+//!   `game::Input` of their keys and read its snapshots.
+//! - [`input`]: the raw key byte parser; [`keys`]: server keys, the rest to the TUI's key map.
+//! - [`screen`]: the TUI's panes under a header, through the `Presenter`; [`avatars`]: other
+//!   players as the world's 8-view sprite, and their names on the minimap.
 
 pub mod auth;
-pub mod color_level;
+pub mod avatars;
 pub mod config;
-pub mod controls;
-pub mod frame;
 pub mod handler;
 pub mod hostkey;
 pub mod input;
+pub mod keys;
 pub mod limits;
 pub mod log;
-pub mod player;
 pub mod players;
+pub mod screen;
 pub mod server;
 pub mod session;
 pub mod stats;
-pub mod view;
 pub mod world_task;
 
 pub use config::ServeConfig;

@@ -1,19 +1,26 @@
-//! Everyone in the shared world: joins, leaves, held keys, and one fixed-size step for all.
+//! Everyone in the shared world: one [`GameState`] per player moved by the game's own step, the
+//! doors they share, and the snapshot sessions render from.
 //!
 //! Pure (no clock, no channels): the world task in `world_task.rs` drives it at a fixed tick.
 
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
-use super::player::{spawn_point, step_pose, Held, Pose};
+use crate::camera::{Camera, DEFAULT_FOV_DEG};
 use crate::color::Rgb;
-use crate::map::Map;
+use crate::door::DoorState;
+use crate::game::collision::{overlaps_wall, Obstacles, PLAYER_RADIUS};
+use crate::game::{step_shared, Command, GameState, Held, Input};
 use crate::vec2::Vec2;
+use crate::world::{SolidDisc, World};
 
 /// A connection's id; also names its player in the world.
 pub type PlayerId = u64;
 
-/// Colours players are told apart by (in the minimap and as markers), by join order.
+/// Commands a player may have waiting for the next tick; more are dropped (a flood of keys).
+const MAX_COMMANDS: usize = 64;
+
+/// Colours players are told apart by (their names on the minimap), by join order.
 const PALETTE: [Rgb; 8] = [
     Rgb::new(255, 64, 64),
     Rgb::new(64, 200, 255),
@@ -26,21 +33,36 @@ const PALETTE: [Rgb; 8] = [
 ];
 
 /// What a session may know about one player when it renders.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct PlayerView {
     pub id: PlayerId,
     pub name: String,
-    pub pose: Pose,
     pub color: Rgb,
+    /// The player's game state (its `doors` are stale: the world's are in [`Snapshot::doors`]).
+    pub state: GameState,
+    /// Whether the player moved in the last tick (its sprite walks).
+    pub walking: bool,
 }
 
 /// The world as sessions see it after a tick: immutable, shared by `Arc`.
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct Snapshot {
     /// Counts published snapshots; a session re-renders only when it changes.
     pub version: u64,
+    /// The doors everybody shares.
+    pub doors: DoorState,
     /// In join order.
     pub players: Vec<PlayerView>,
+}
+
+impl Default for Snapshot {
+    fn default() -> Self {
+        Self {
+            version: 0,
+            doors: DoorState::none(),
+            players: Vec::new(),
+        }
+    }
 }
 
 impl Snapshot {
@@ -54,60 +76,81 @@ impl Snapshot {
 #[derive(Debug, Clone)]
 struct Player {
     name: String,
-    pose: Pose,
-    held: Held,
     color: Rgb,
+    state: GameState,
+    held: Held,
+    commands: Vec<Command>,
+    walking: bool,
 }
 
-/// The game state of the shared world: every player, keyed by id.
-#[derive(Debug, Clone, Default)]
+/// The game state of the shared world: every player, keyed by id, and the doors.
+#[derive(Debug, Clone)]
 pub struct Players {
+    world: Arc<World>,
+    solids: Vec<SolidDisc>,
     players: BTreeMap<PlayerId, Player>,
+    doors: DoorState,
+    /// World time in seconds: sprite animations, the same for everyone.
+    time: f64,
     joined: u64,
     version: u64,
-    changed: bool,
 }
 
 impl Players {
-    /// Nobody here yet.
+    /// Nobody here yet; every door shut.
     #[must_use]
-    pub fn new() -> Self {
-        Self::default()
+    pub fn new(world: Arc<World>) -> Self {
+        Self {
+            solids: world.solid_discs(),
+            doors: DoorState::new(&world.map),
+            world,
+            players: BTreeMap::new(),
+            time: 0.0,
+            joined: 0,
+            version: 0,
+        }
     }
 
-    /// Adds a player at a free spawn point (ignored if `id` is already here).
-    pub fn join(&mut self, map: &Map, id: PlayerId, name: &str) {
+    /// Adds a player at a free spawn point, facing the map's start direction (ignored if `id`
+    /// is already here).
+    pub fn join(&mut self, id: PlayerId, name: &str) {
         if self.players.contains_key(&id) {
             return;
         }
-        let taken: Vec<Vec2> = self.players.values().map(|p| p.pose.pos).collect();
-        let pos = spawn_point(map, &taken);
+        let taken: Vec<Vec2> = self.players.values().map(|p| p.state.camera.pos).collect();
+        let pos = self.spawn_point(&taken);
+        let camera = Camera::from_angle(pos, self.world.map.start.angle_deg(), DEFAULT_FOV_DEG);
+        let mut state = GameState::new(Arc::clone(&self.world), camera, 0);
+        state.time = self.time;
         let color = PALETTE[(self.joined % PALETTE.len() as u64) as usize];
         self.joined += 1;
         self.players.insert(
             id,
             Player {
                 name: name.to_string(),
-                pose: Pose {
-                    pos,
-                    angle_deg: map.start.angle_deg(),
-                },
-                held: Held::default(),
                 color,
+                state,
+                held: Held::default(),
+                commands: Vec::new(),
+                walking: false,
             },
         );
-        self.changed = true;
     }
 
     /// Removes a player (no-op if absent).
     pub fn leave(&mut self, id: PlayerId) {
-        self.changed |= self.players.remove(&id).is_some();
+        self.players.remove(&id);
     }
 
-    /// Sets which keys a player holds until the next change.
-    pub fn set_held(&mut self, id: PlayerId, held: Held) {
+    /// A session's input since its last message: `input.held` replaces what the player holds,
+    /// its commands wait for the next tick; `view_width` is the player's view in columns (the
+    /// debugger's column range).
+    pub fn input(&mut self, id: PlayerId, input: Input, view_width: usize) {
         if let Some(p) = self.players.get_mut(&id) {
-            p.held = held;
+            p.held = input.held;
+            let room = MAX_COMMANDS.saturating_sub(p.commands.len());
+            p.commands.extend(input.commands.into_iter().take(room));
+            p.state.view_width = view_width;
         }
     }
 
@@ -123,32 +166,36 @@ impl Players {
         self.players.is_empty()
     }
 
-    /// Moves everyone by `dt` seconds, in id order, each against the others' current places.
-    /// Returns whether anything changed since the last call (then a new snapshot is due).
-    pub fn tick(&mut self, map: &Map, dt: f64) -> bool {
+    /// Advances the world by `dt` seconds: doors slide once, then each player (in id order)
+    /// takes one `game::step_shared` against the others' current places.
+    pub fn tick(&mut self, dt: f64) {
+        self.time += dt;
+        self.doors.update(dt);
         let ids: Vec<PlayerId> = self.players.keys().copied().collect();
         for id in ids {
-            let Some(me) = self.players.get(&id) else {
-                continue;
-            };
-            if !me.held.any() {
-                continue;
-            }
-            let others: Vec<Vec2> = self
+            let bodies: Vec<SolidDisc> = self
                 .players
                 .iter()
                 .filter(|(k, _)| **k != id)
-                .map(|(_, p)| p.pose.pos)
+                .map(|(_, p)| SolidDisc {
+                    centre: p.state.camera.pos,
+                    radius: PLAYER_RADIUS,
+                })
                 .collect();
-            let next = step_pose(map, me.pose, me.held, dt, &others);
-            if let Some(me) = self.players.get_mut(&id) {
-                if next != me.pose {
-                    me.pose = next;
-                    self.changed = true;
-                }
-            }
+            let Some(p) = self.players.get_mut(&id) else {
+                continue;
+            };
+            let input = Input {
+                held: p.held,
+                commands: std::mem::take(&mut p.commands),
+            };
+            let before = p.state.camera.pos;
+            std::mem::swap(&mut p.state.doors, &mut self.doors);
+            step_shared(&mut p.state, &input, dt, &bodies);
+            std::mem::swap(&mut p.state.doors, &mut self.doors);
+            p.state.time = self.time;
+            p.walking = p.state.camera.pos != before;
         }
-        std::mem::take(&mut self.changed)
     }
 
     /// The current state as sessions see it; bumps the version.
@@ -156,17 +203,61 @@ impl Players {
         self.version += 1;
         Snapshot {
             version: self.version,
+            doors: self.doors.clone(),
             players: self
                 .players
                 .iter()
                 .map(|(&id, p)| PlayerView {
                     id,
                     name: p.name.clone(),
-                    pose: p.pose,
                     color: p.color,
+                    state: p.state.clone(),
+                    walking: p.walking,
                 })
                 .collect(),
         }
+    }
+
+    /// Whether a player could stand at `p`: clear of walls, shut doors and solid sprites.
+    fn free(&self, p: Vec2) -> bool {
+        let obstacles = Obstacles {
+            map: &self.world.map,
+            doors: Some(&self.doors),
+            discs: &self.solids,
+        };
+        !overlaps_wall(&obstacles, p, PLAYER_RADIUS)
+            && self
+                .solids
+                .iter()
+                .all(|d| (p - d.centre).length() >= d.radius + PLAYER_RADIUS)
+    }
+
+    /// A free place to appear: the map start if nobody is near it, else the nearest free floor
+    /// cell centre (by rings around the start), else the start anyway (players may then walk
+    /// apart: moving away from an overlap is always allowed).
+    fn spawn_point(&self, taken: &[Vec2]) -> Vec2 {
+        let map = &self.world.map;
+        let start = map.start.pos();
+        let free = |p: Vec2| self.free(p) && taken.iter().all(|&o| (p - o).length() >= 0.9);
+        if free(start) {
+            return start;
+        }
+        let (si, sj) = (map.start.cell.0 as i64, map.start.cell.1 as i64);
+        let reach = map.width.max(map.height) as i64;
+        for ring in 1..=reach {
+            for j in (sj - ring)..=(sj + ring) {
+                for i in (si - ring)..=(si + ring) {
+                    if (i - si).abs() != ring && (j - sj).abs() != ring {
+                        continue;
+                    }
+                    let p = Vec2::new(i as f64 + 0.5, j as f64 + 0.5);
+                    if free(p) {
+                        return p;
+                    }
+                }
+            }
+        }
+        start
     }
 }
 
@@ -176,33 +267,113 @@ pub type SharedSnapshot = Arc<Snapshot>;
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::world::World;
+    use crate::game::Action;
+
+    fn players() -> Players {
+        Players::new(Arc::new(World::default_world()))
+    }
+
+    fn hold(ps: &mut Players, id: PlayerId, actions: &[Action]) {
+        ps.input(id, Input::holding(actions), 80);
+    }
 
     #[test]
     fn join_move_leave() {
-        let world = World::default_world();
-        let map = &world.map;
-        let mut ps = Players::new();
-        ps.join(map, 1, "ann");
-        ps.join(map, 2, "bob");
-        assert!(ps.tick(map, 0.1), "joins are changes");
+        let mut ps = players();
+        ps.join(1, "ann");
+        ps.join(2, "bob");
         let s = ps.snapshot();
         assert_eq!(s.players.len(), 2);
-        assert_ne!(s.players[0].pose.pos, s.players[1].pose.pos);
-        assert!(!ps.tick(map, 0.1), "idle players change nothing");
-        ps.set_held(
-            1,
-            Held {
-                turn_left: true,
-                ..Held::default()
-            },
-        );
-        assert!(ps.tick(map, 0.1));
+        let (a, b) = (&s.players[0].state.camera, &s.players[1].state.camera);
+        assert!((a.pos - b.pos).length() >= 0.9);
+        hold(&mut ps, 1, &[Action::TurnLeft]);
+        ps.tick(0.1);
         ps.leave(2);
-        assert!(ps.tick(map, 0.0));
         let s2 = ps.snapshot();
         assert_eq!(s2.players.len(), 1);
         assert!(s2.version > s.version);
-        assert!((s2.players[0].pose.angle_deg - s.players[0].pose.angle_deg).abs() > 1.0);
+        let turned = s2.players[0].state.camera.angle_deg() - a.angle_deg();
+        assert!(turned.abs() > 1.0, "{turned}");
+        assert!(!s2.players[0].walking, "turning on the spot is not walking");
+    }
+
+    #[test]
+    fn players_block_each_other_like_solid_sprites() {
+        let mut ps = players();
+        ps.join(1, "ann");
+        ps.join(2, "bob");
+        let s = ps.snapshot();
+        let (a, b) = (s.players[0].state.camera.pos, s.players[1].state.camera.pos);
+        // Turn ann towards bob, then walk into him for two seconds.
+        let to = b - a;
+        let angle = (-to.y).atan2(to.x).to_degrees();
+        let p = ps.players.get_mut(&1).expect("ann");
+        p.state.camera = Camera::from_angle(a, angle, DEFAULT_FOV_DEG);
+        hold(&mut ps, 1, &[Action::Forward]);
+        for _ in 0..60 {
+            ps.tick(1.0 / 30.0);
+        }
+        let s = ps.snapshot();
+        let gap = (s.players[0].state.camera.pos - b).length();
+        assert!(gap >= 2.0 * PLAYER_RADIUS - 1e-9, "walked into bob: {gap}");
+        assert!(gap < 0.9, "ann did walk up to bob: {gap}");
+    }
+
+    #[test]
+    fn doors_are_shared_one_player_opens_for_everyone() {
+        let mut ps = players();
+        ps.join(1, "ann");
+        ps.join(2, "bob");
+        // Put ann in front of the default map's door at (11,5), facing west.
+        let p = ps.players.get_mut(&1).expect("ann");
+        p.state.camera = Camera::from_angle(Vec2::new(12.5, 5.5), 180.0, DEFAULT_FOV_DEG);
+        ps.input(
+            1,
+            Input {
+                held: Held::default(),
+                commands: vec![Command::UseDoor],
+            },
+            80,
+        );
+        for _ in 0..45 {
+            ps.tick(1.0 / 30.0);
+        }
+        let s = ps.snapshot();
+        assert!(s.doors.open_amount((11, 5)) > 0.9);
+        // Doors slide once per tick, not once per player.
+        let mut half = players();
+        half.join(1, "ann");
+        half.join(2, "bob");
+        half.join(3, "cat");
+        let p = half.players.get_mut(&1).expect("ann");
+        p.state.camera = Camera::from_angle(Vec2::new(12.5, 5.5), 180.0, DEFAULT_FOV_DEG);
+        half.input(
+            1,
+            Input {
+                held: Held::default(),
+                commands: vec![Command::UseDoor],
+            },
+            80,
+        );
+        for _ in 0..10 {
+            half.tick(1.0 / 30.0);
+        }
+        let open = half.snapshot().doors.open_amount((11, 5));
+        assert!((open - 10.0 / 30.0).abs() < 0.05, "{open}");
+    }
+
+    #[test]
+    fn spawn_points_avoid_taken_places_and_solids() {
+        let mut ps = players();
+        for id in 0..12 {
+            ps.join(id, "x");
+        }
+        let s = ps.snapshot();
+        for (i, a) in s.players.iter().enumerate() {
+            assert!(ps.free(a.state.camera.pos));
+            for b in &s.players[i + 1..] {
+                assert!((a.state.camera.pos - b.state.camera.pos).length() >= 0.9);
+            }
+        }
     }
 }

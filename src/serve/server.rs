@@ -13,6 +13,7 @@ use tokio::net::TcpListener;
 use tokio::sync::watch;
 use tokio::task::JoinHandle;
 
+use super::avatars::with_avatar_sheet;
 use super::config::ServeConfig;
 use super::handler::{ConnHandler, Shared};
 use super::hostkey;
@@ -96,12 +97,14 @@ pub async fn start(config: ServeConfig, world: World) -> Result<RunningServer, S
         },
         ..Config::default()
     });
+    let (world, avatar_sheet) = with_avatar_sheet(world);
     let world = Arc::new(world);
     let (shutdown_tx, shutdown_rx) = watch::channel(false);
     let stats = Arc::new(ServeStats::default());
     let shared = Arc::new(Shared {
         world: spawn_world(Arc::clone(&world), config.tick_hz),
         world_data: world,
+        avatar_sheet,
         stats: Arc::clone(&stats),
         log,
         shutdown: shutdown_rx.clone(),

@@ -1,6 +1,10 @@
 //! One connected terminal: reads its keys, follows the world's snapshots, and sends it frames at
 //! its own size and pace.
 //!
+//! Keys go through the local TUI's key map (`tui::keys::Controls`) into the same `game::Input`
+//! the local game steps with; the world task applies it. Frames are the TUI's panes
+//! ([`super::screen`]).
+//!
 //! Output is bounded: the task renders only when it is ready to send, and waits for each frame to
 //! be taken by the SSH layer (which itself stops taking when the client's window is full). While
 //! it waits, frame ticks pass and are skipped, so a slow client gets fewer, newer frames — the
@@ -15,18 +19,18 @@ use russh::ChannelId;
 use tokio::sync::{mpsc, watch};
 use tokio::time::MissedTickBehavior;
 
-use super::color_level::{self, ColorLevel};
 use super::config::clamp_size;
-use super::controls::{Action, HeldKeys};
-use super::frame::FrameEncoder;
 use super::input::{InputEvent, InputParser};
+use super::keys::{route, Routed, COLOUR_KEY};
 use super::log::Log;
-use super::player::Held;
 use super::players::{PlayerId, Snapshot};
+use super::screen::{panes_for, view_rect, SessionScreen};
 use super::stats::ServeStats;
-use super::view::{render_view, status_line};
 use super::world_task::{WorldHandle, WorldMsg};
-use crate::framebuffer::Framebuffer;
+use crate::encode::ColorLevel;
+use crate::game::Held;
+use crate::tui::keys::{Controls, InputMode, UiCommand};
+use crate::tui::layout::Toggles;
 use crate::world::World;
 
 /// Alternate screen, hidden cursor, cleared; kitty keyboard flags pushed (disambiguate, event
@@ -51,8 +55,11 @@ pub struct SessionParams {
     pub handle: Handle,
     pub channel: ChannelId,
     pub world: WorldHandle,
+    /// The served world (with the avatar sheet at `avatar_sheet`).
     pub world_data: Arc<World>,
+    pub avatar_sheet: usize,
     pub fps: u32,
+    /// Players with no keystroke for this long are closed; spectators never are.
     pub idle_timeout: Duration,
     pub stats: Arc<ServeStats>,
     pub log: Log,
@@ -125,7 +132,7 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) {
             changed = inputs.size.changed() => {
                 if changed.is_err() { break End::ClientGone }
                 let (c, r) = *inputs.size.borrow_and_update();
-                s.resize(clamp_size(c, r));
+                s.size = clamp_size(c, r);
             }
             at = tick.tick() => {
                 if let Some(prev) = last_tick {
@@ -142,14 +149,12 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) {
                         break end;
                     }
                 }
-                if now.duration_since(s.last_input) >= p.idle_timeout {
+                if !p.spectator && now.duration_since(s.last_input) >= p.idle_timeout {
                     break End::Idle;
                 }
                 if !p.spectator {
-                    let held = s.held.held(now);
-                    if held != s.sent_held {
-                        s.sent_held = held;
-                        p.world.send(WorldMsg::Held { id: p.id, held }).await;
+                    if let Some(msg) = s.world_input(p.id, now) {
+                        p.world.send(msg).await;
                     }
                 }
                 let snap = snaps.borrow_and_update().clone();
@@ -203,57 +208,43 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) {
     );
 }
 
-/// (snapshot version, size, colour level, eye): everything a frame is drawn from.
-type Shown = (u64, (u16, u16), ColorLevel, Option<PlayerId>);
+/// (snapshot version, size, colour level, eye, panes): everything a frame is drawn from.
+type Shown = (u64, (u16, u16), ColorLevel, Option<PlayerId>, Toggles);
 
 /// What is on the client's screen and what it asked for; everything the frame depends on.
 struct State {
-    world: Arc<World>,
     spectator: bool,
     me: PlayerId,
+    name: String,
     size: (u16, u16),
-    level: ColorLevel,
     following: Option<PlayerId>,
     parser: InputParser,
     pending_since: Option<Instant>,
-    held: HeldKeys,
-    sent_held: Held,
+    controls: Controls,
+    /// What the world was last told: held keys and view width.
+    sent: (Held, usize),
     last_input: Instant,
-    encoder: FrameEncoder,
-    fb: Framebuffer,
+    screen: SessionScreen,
     /// What the frame on screen was drawn from, to skip identical frames.
     shown: Option<Shown>,
-    status: String,
-    clear: bool,
 }
 
 impl State {
     fn new(p: &SessionParams, size: (u32, u32)) -> Self {
-        let level = color_level::from_term(&p.term, p.colorterm.as_deref());
+        let level = level_for_term(&p.term, p.colorterm.as_deref());
         Self {
-            world: Arc::clone(&p.world_data),
             spectator: p.spectator,
             me: p.id,
+            name: p.name.clone(),
             size: clamp_size(size.0, size.1),
-            level,
             following: None,
             parser: InputParser::new(),
             pending_since: None,
-            held: HeldKeys::default(),
-            sent_held: Held::default(),
+            controls: Controls::new(InputMode::Emulated),
+            sent: (Held::default(), usize::MAX),
             last_input: Instant::now(),
-            encoder: FrameEncoder::new(level),
-            fb: Framebuffer::new(0, 0),
+            screen: SessionScreen::new(&p.world_data, p.avatar_sheet, level),
             shown: None,
-            status: String::new(),
-            clear: false,
-        }
-    }
-
-    fn resize(&mut self, size: (u16, u16)) {
-        if size != self.size {
-            self.size = size;
-            self.clear = true;
         }
     }
 
@@ -262,20 +253,50 @@ impl State {
         let now = Instant::now();
         for ev in events {
             match *ev {
-                InputEvent::KittyFlags(_) => self.held.releases = true,
-                InputEvent::Key(k) => match self.held.on_event(k, now) {
-                    Action::Quit => return Some(End::Quit),
-                    Action::CycleColour => {
-                        self.level = self.level.next();
-                        self.clear = true;
+                InputEvent::KittyFlags(_) => {
+                    if self.controls.mode() != InputMode::Kitty {
+                        self.controls = Controls::new(InputMode::Kitty);
                     }
-                    Action::NextTarget => self.following = cycle(snap, self.following, true),
-                    Action::PrevTarget => self.following = cycle(snap, self.following, false),
-                    Action::Move(_) | Action::Nothing => {}
+                }
+                InputEvent::Key(k) => match route(k) {
+                    Routed::CycleColour => {
+                        let next = self.screen.level().lower().unwrap_or(ColorLevel::TrueColor);
+                        self.screen.set_level(next);
+                    }
+                    Routed::NextTarget => self.following = cycle(snap, self.following, true),
+                    Routed::PrevTarget => self.following = cycle(snap, self.following, false),
+                    Routed::Tui(ev) => self.controls.handle(&ev, now),
+                    Routed::Nothing => {}
                 },
             }
         }
+        let toggles = &mut self.screen.toggles;
+        for ui in self.controls.take_ui() {
+            match ui {
+                UiCommand::Quit => return Some(End::Quit),
+                UiCommand::Back if toggles.help => toggles.help = false,
+                UiCommand::Back => return Some(End::Quit),
+                UiCommand::ToggleMinimap => toggles.minimap = !toggles.minimap,
+                UiCommand::ToggleDebug => toggles.debug = !toggles.debug,
+                UiCommand::ToggleHelp => toggles.help = !toggles.help,
+            }
+        }
         None
+    }
+
+    /// The message for the world at `now`, when the player's input changed since the last one.
+    fn world_input(&mut self, id: PlayerId, now: Instant) -> Option<WorldMsg> {
+        let input = self.controls.take_input(now);
+        let width = usize::from(view_rect(&panes_for(self.size, self.screen.toggles)).width);
+        if input.commands.is_empty() && (input.held, width) == self.sent {
+            return None;
+        }
+        self.sent = (input.held, width);
+        Some(WorldMsg::Input {
+            id,
+            input,
+            view_width: width,
+        })
     }
 
     /// Whose eyes this session looks through now.
@@ -289,42 +310,65 @@ impl State {
         self.following
     }
 
+    /// The header: who you are or whom you watch, who is here, the colour level, server keys.
+    /// ASCII only, so it reads the same at every colour level (mono turns other glyphs to `#`).
+    fn header(&self, snap: &Snapshot, eye: Option<PlayerId>) -> String {
+        let names: Vec<&str> = snap.players.iter().map(|p| p.name.as_str()).collect();
+        let who = match (eye.and_then(|e| snap.player(e)), self.spectator) {
+            (Some(p), true) => format!("watching {} (Tab: next)", p.name),
+            (None, true) => "waiting for players (Tab: next)".to_string(),
+            (Some(_), false) => format!("you are {}", self.name),
+            (None, false) => "joining...".to_string(),
+        };
+        let line = format!(
+            " halfcast | {who} | {} here: {} | {} | {COLOUR_KEY} colours",
+            names.len(),
+            names.join(", "),
+            self.screen.level().name(),
+        );
+        line.chars().take(usize::from(self.size.0)).collect()
+    }
+
     /// Appends the bytes of the next frame to `out` (nothing if the screen would not change).
     fn compose(&mut self, snap: &Snapshot, out: &mut Vec<u8>) {
         let eye = self.eye(snap);
-        let key = (snap.version, self.size, self.level, eye);
-        if self.shown == Some(key) && !self.clear {
+        let key = (
+            snap.version,
+            self.size,
+            self.screen.level(),
+            eye,
+            self.screen.toggles,
+        );
+        if self.shown == Some(key) {
             return;
         }
         self.shown = Some(key);
-        let (cols, rows) = self.size;
-        let view_rows = if rows >= 2 { rows - 1 } else { rows };
-        if self.clear {
-            out.extend_from_slice(b"\x1b[0m\x1b[2J");
-            self.encoder.invalidate(self.level);
-            self.status.clear();
-            self.clear = false;
-        }
-        self.fb
-            .resize(usize::from(cols), usize::from(view_rows) * 2);
-        let drawn = eye.is_some_and(|e| render_view(&self.world, snap, e, &mut self.fb));
-        if !drawn {
-            for y in 0..self.fb.height() {
-                self.fb.row_mut(y).fill(crate::color::Rgb::default());
-            }
-        }
-        self.encoder.encode(&self.fb, (0, 0), out);
-        if rows >= 2 {
-            let line = status_line(snap, eye, self.spectator, self.level.name(), cols);
-            if line != self.status {
-                let pad = usize::from(cols).saturating_sub(line.chars().count());
-                out.extend_from_slice(
-                    format!("\x1b[{rows};1H\x1b[0;7m{line}{:pad$}\x1b[0m", "").as_bytes(),
-                );
-                self.status = line;
-            }
-        }
+        let header = self.header(snap, eye);
+        let mode = self.controls.mode();
+        out.extend_from_slice(self.screen.frame(snap, eye, &header, self.size, mode));
     }
+}
+
+/// The colour level for a client's `TERM` (and `COLORTERM`, when its client sends it): the
+/// encoder's own guess, plus terminals known to show 24-bit colour whatever their `TERM` says.
+fn level_for_term(term: &str, colorterm: Option<&str>) -> ColorLevel {
+    const TRUECOLOR_TERMS: [&str; 9] = [
+        "truecolor",
+        "24bit",
+        "kitty",
+        "alacritty",
+        "wezterm",
+        "foot",
+        "ghostty",
+        "iterm",
+        "contour",
+    ];
+    let lower = term.to_ascii_lowercase();
+    if TRUECOLOR_TERMS.iter().any(|t| lower.contains(t)) {
+        return ColorLevel::TrueColor;
+    }
+    let term = if term.is_empty() { "dumb" } else { term };
+    ColorLevel::detect(colorterm, Some(term), None)
 }
 
 /// The next (or previous) player after `current` in join order, wrapping; `None` if nobody.
@@ -350,10 +394,9 @@ mod tests {
 
     #[test]
     fn tab_cycles_through_players_both_ways() {
-        let world = World::default_world();
-        let mut ps = Players::new();
+        let mut ps = Players::new(Arc::new(World::default_world()));
         for (id, n) in [(5, "a"), (7, "b"), (9, "c")] {
-            ps.join(&world.map, id, n);
+            ps.join(id, n);
         }
         let snap = ps.snapshot();
         assert_eq!(cycle(&snap, None, true), Some(5));
@@ -361,5 +404,19 @@ mod tests {
         assert_eq!(cycle(&snap, Some(9), true), Some(5));
         assert_eq!(cycle(&snap, Some(5), false), Some(9));
         assert_eq!(cycle(&Snapshot::default(), Some(5), true), None);
+    }
+
+    #[test]
+    fn term_names_map_to_levels() {
+        assert_eq!(level_for_term("xterm-kitty", None), ColorLevel::TrueColor);
+        assert_eq!(level_for_term("xterm-direct", None), ColorLevel::TrueColor);
+        assert_eq!(level_for_term("xterm-256color", None), ColorLevel::Ansi256);
+        assert_eq!(
+            level_for_term("xterm-256color", Some("truecolor")),
+            ColorLevel::TrueColor
+        );
+        assert_eq!(level_for_term("xterm", None), ColorLevel::Ansi16);
+        assert_eq!(level_for_term("", None), ColorLevel::Mono);
+        assert_eq!(level_for_term("dumb", None), ColorLevel::Mono);
     }
 }

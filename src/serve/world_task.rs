@@ -9,16 +9,27 @@ use std::time::Duration;
 use tokio::sync::{mpsc, watch};
 use tokio::time::MissedTickBehavior;
 
-use super::player::Held;
 use super::players::{PlayerId, Players, SharedSnapshot, Snapshot};
+use crate::game::Input;
 use crate::world::World;
 
 /// What a session tells the world.
 #[derive(Debug, Clone)]
 pub enum WorldMsg {
-    Join { id: PlayerId, name: String },
-    Leave { id: PlayerId },
-    Held { id: PlayerId, held: Held },
+    Join {
+        id: PlayerId,
+        name: String,
+    },
+    Leave {
+        id: PlayerId,
+    },
+    /// The keys held now and the commands since the last message (the same `game::Input` the
+    /// local TUI steps with), and the player's view width in columns.
+    Input {
+        id: PlayerId,
+        input: Input,
+        view_width: usize,
+    },
 }
 
 /// A session's line to the world task; cheap to clone.
@@ -56,21 +67,34 @@ pub fn spawn_world(world: Arc<World>, tick_hz: u32) -> WorldHandle {
     let tick_hz = tick_hz.clamp(1, 1000);
     let dt = 1.0 / f64::from(tick_hz);
     tokio::spawn(async move {
-        let mut players = Players::new();
+        let mut players = Players::new(world);
         let mut tick = tokio::time::interval(Duration::from_secs_f64(dt));
         tick.set_missed_tick_behavior(MissedTickBehavior::Skip);
         loop {
             tick.tick().await;
+            let mut joined_or_left = false;
             loop {
                 match rx.try_recv() {
-                    Ok(WorldMsg::Join { id, name }) => players.join(&world.map, id, &name),
-                    Ok(WorldMsg::Leave { id }) => players.leave(id),
-                    Ok(WorldMsg::Held { id, held }) => players.set_held(id, held),
+                    Ok(WorldMsg::Join { id, name }) => {
+                        players.join(id, &name);
+                        joined_or_left = true;
+                    }
+                    Ok(WorldMsg::Leave { id }) => {
+                        players.leave(id);
+                        joined_or_left = true;
+                    }
+                    Ok(WorldMsg::Input {
+                        id,
+                        input,
+                        view_width,
+                    }) => players.input(id, input, view_width),
                     Err(mpsc::error::TryRecvError::Empty) => break,
                     Err(mpsc::error::TryRecvError::Disconnected) => return,
                 }
             }
-            if players.tick(&world.map, dt) {
+            players.tick(dt);
+            // The world moves every tick (doors, animations); an empty one has nothing to show.
+            if joined_or_left || !players.is_empty() {
                 let _ = snap_tx.send(Arc::new(players.snapshot()));
             }
         }

@@ -1,12 +1,15 @@
-//! Helpers for the `serve` integration tests: an in-process server on a free loopback port and
-//! a real russh client whose output goes through a vt100 terminal model.
+//! Helpers for the `serve` integration tests and the `serve_bench` load test (which includes
+//! this file with `#[path]`): an in-process server on a free loopback port, and a real russh
+//! client whose output goes through a vt100 terminal model.
 #![allow(dead_code)]
 
 use std::sync::Arc;
 use std::time::Duration;
 
 use halfcast::serve::{start, RunningServer, ServeConfig};
+use halfcast::tui::layout::Toggles;
 use halfcast::World;
+use ratatui::layout::Rect;
 use russh::client;
 use russh::keys::PublicKeyOrCertificate;
 use russh::{ChannelMsg, Preferred};
@@ -155,18 +158,28 @@ pub fn row_text(s: &vt100::Screen, r: u16) -> String {
     s.contents_between(r, 0, r, cols)
 }
 
-/// Whether the bottom row (the status line) contains `needle`.
+/// Whether the bottom row (the TUI's status line) contains `needle`.
 pub fn status_has(s: &vt100::Screen, needle: &str) -> bool {
     let (rows, _) = s.size();
     row_text(s, rows - 1).contains(needle)
 }
 
-/// Counts view cells drawn as half-blocks (or one-colour cells) in 24-bit colour.
-pub fn half_block_cells(s: &vt100::Screen) -> usize {
-    let (rows, cols) = s.size();
+/// Whether the top row (the server's header: who, who else, colour level) contains `needle`.
+pub fn header_has(s: &vt100::Screen, needle: &str) -> bool {
+    row_text(s, 0).contains(needle)
+}
+
+/// Where the 3D view is on a `cols` × `rows` client with the default panes.
+pub fn view_rect(cols: u16, rows: u16) -> Rect {
+    let panes = halfcast::serve::screen::panes_for((cols, rows), Toggles::default());
+    halfcast::serve::screen::view_rect(&panes)
+}
+
+/// Counts the cells of `view` drawn as half-blocks (or one-colour cells) in 24-bit colour.
+pub fn half_block_cells(s: &vt100::Screen, view: Rect) -> usize {
     let mut n = 0;
-    for r in 0..rows.saturating_sub(1) {
-        for c in 0..cols {
+    for r in view.top()..view.bottom() {
+        for c in view.left()..view.right() {
             if let Some(cell) = s.cell(r, c) {
                 // The encoder draws a cell as ▀ or ▄ (two colours), or as a space / █ (one).
                 let rgb = |c: vt100::Color| matches!(c, vt100::Color::Rgb(..));
@@ -183,6 +196,12 @@ pub fn half_block_cells(s: &vt100::Screen) -> usize {
         }
     }
     n
+}
+
+/// Whether the whole view of a `cols` × `rows` client is drawn in 24-bit half-blocks.
+pub fn full_view(s: &vt100::Screen, cols: u16, rows: u16) -> bool {
+    let v = view_rect(cols, rows);
+    v.area() > 0 && half_block_cells(s, v) == usize::from(v.width) * usize::from(v.height)
 }
 
 /// All 24-bit colours on the screen (fg and bg).
@@ -247,15 +266,21 @@ impl tokio::io::AsyncWrite for Counting {
     }
 }
 
-/// Like [`Client::connect_with`], over a stream that counts wire bytes received.
-pub async fn connect_counting(
+/// Opens a pty shell as `user` over a stream that counts wire bytes received (after SSH
+/// compression and encryption), offering only `compression`; the load test reads the channel
+/// itself.
+pub async fn open_counting(
     addr: std::net::SocketAddr,
     user: &str,
     cols: u16,
     rows: u16,
     term: &str,
     compression: russh::compression::Name,
-) -> (Client, Arc<std::sync::atomic::AtomicU64>) {
+) -> (
+    client::Handle<Trusting>,
+    russh::Channel<client::Msg>,
+    Arc<std::sync::atomic::AtomicU64>,
+) {
     let read = Arc::new(std::sync::atomic::AtomicU64::new(0));
     let stream = Counting {
         inner: tokio::net::TcpStream::connect(addr).await.expect("tcp"),
@@ -282,6 +307,19 @@ pub async fn connect_counting(
         .await
         .expect("pty");
     channel.request_shell(true).await.expect("shell");
+    (handle, channel, read)
+}
+
+/// Like [`Client::connect_with`], over a stream that counts wire bytes received.
+pub async fn connect_counting(
+    addr: std::net::SocketAddr,
+    user: &str,
+    cols: u16,
+    rows: u16,
+    term: &str,
+    compression: russh::compression::Name,
+) -> (Client, Arc<std::sync::atomic::AtomicU64>) {
+    let (handle, channel, read) = open_counting(addr, user, cols, rows, term, compression).await;
     let c = Client {
         handle,
         channel,

@@ -1,0 +1,286 @@
+//! One session's screen: a header row (who you are, who is here), then exactly the local TUI's
+//! panes — the 3D view, minimap, ray debugger pane and status line — drawn by `tui::screen`
+//! and put on the wire by the same `Presenter` (ratatui's diff for the panes, the byte-lean
+//! encoder for the view).
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::text::Line;
+use ratatui::widgets::{Block, Paragraph, Widget, Wrap};
+
+use super::avatars;
+use super::players::{PlayerId, Snapshot};
+use crate::encode::{ColorLevel, EncodeOptions};
+use crate::framebuffer::Framebuffer;
+use crate::present::Presenter;
+use crate::tui::keys::InputMode;
+use crate::tui::layout::{Panes, Toggles};
+use crate::tui::render::render_view;
+use crate::tui::screen::{draw, Screen};
+use crate::tui::stats::FrameStats;
+use crate::tui::status::BAR;
+use crate::world::World;
+
+/// Rows above the TUI's panes: the header.
+pub const HEADER_ROWS: u16 = 1;
+
+/// Everything one session keeps between frames to draw its screen.
+#[derive(Debug)]
+pub struct SessionScreen {
+    /// This session's copy of the served world; its sprites after `base_sprites` are the
+    /// other players, replaced every frame.
+    world: Arc<World>,
+    base_sprites: usize,
+    avatar_sheet: usize,
+    presenter: Presenter,
+    fb: Framebuffer,
+    stats: FrameStats,
+    /// Which panes this client shows (M, I and ? toggle them, as in the local TUI).
+    pub toggles: Toggles,
+}
+
+/// Where a terminal of `size` puts the 3D view, below the header.
+#[must_use]
+pub fn panes_for(size: (u16, u16), toggles: Toggles) -> Panes {
+    let (cols, rows) = size;
+    let body = Rect::new(
+        0,
+        HEADER_ROWS.min(rows),
+        cols,
+        rows.saturating_sub(HEADER_ROWS),
+    );
+    Panes::compute(body, toggles)
+}
+
+/// The 3D view's rectangle for `panes` (empty when the terminal is too small).
+#[must_use]
+pub fn view_rect(panes: &Panes) -> Rect {
+    match *panes {
+        Panes::Game { view, .. } => view,
+        Panes::TooSmall(_) => Rect::default(),
+    }
+}
+
+impl SessionScreen {
+    /// A screen over `world` (the served world, with the avatar sheet at `avatar_sheet`).
+    #[must_use]
+    pub fn new(world: &World, avatar_sheet: usize, level: ColorLevel) -> Self {
+        let mut stats = FrameStats::default();
+        stats.level = Some(level);
+        Self {
+            base_sprites: world.sprites.len(),
+            world: Arc::new(world.clone()),
+            avatar_sheet,
+            presenter: Presenter::new(EncodeOptions::new(level)),
+            fb: Framebuffer::new(0, 0),
+            stats,
+            toggles: Toggles::default(),
+        }
+    }
+
+    /// The colour level frames are sent at.
+    #[must_use]
+    pub fn level(&self) -> ColorLevel {
+        self.presenter.level()
+    }
+
+    /// Switches colour level; the next frame redraws everything.
+    pub fn set_level(&mut self, level: ColorLevel) {
+        self.presenter.set_level(level);
+        self.stats.level = Some(level);
+    }
+
+    /// The bytes that bring the client's screen (`size` columns × rows) to this frame: the
+    /// world through `eye`'s eyes (or a waiting message when nobody is there to follow).
+    pub fn frame(
+        &mut self,
+        snap: &Snapshot,
+        eye: Option<PlayerId>,
+        header: &str,
+        size: (u16, u16),
+        mode: InputMode,
+    ) -> &[u8] {
+        let area = Rect::new(0, 0, size.0, size.1);
+        let mut buf = Buffer::empty(area);
+        let panes = panes_for(size, self.toggles);
+        let body = Rect::new(
+            0,
+            HEADER_ROWS.min(size.1),
+            size.0,
+            size.1.saturating_sub(HEADER_ROWS),
+        );
+        let mut view = view_rect(&panes);
+        let started = Instant::now();
+        let mut render_time = std::time::Duration::ZERO;
+        match eye.and_then(|id| snap.player(id).map(|p| (id, p))) {
+            Some((id, p)) => {
+                if let Some(world) = Arc::get_mut(&mut self.world) {
+                    avatars::place(world, self.base_sprites, self.avatar_sheet, snap, id);
+                }
+                let mut state = p.state.clone();
+                state.world = Arc::clone(&self.world);
+                state.doors = snap.doors.clone();
+                state.view_width = usize::from(view.width);
+                self.fb
+                    .resize(usize::from(view.width), usize::from(view.height) * 2);
+                let cast = render_view(&state, &mut self.fb);
+                render_time = started.elapsed();
+                let screen = Screen {
+                    state: &state,
+                    view: &self.fb,
+                    cast: &cast,
+                    stats: &self.stats,
+                    toggles: self.toggles,
+                    input_mode: mode,
+                };
+                draw(&screen, &panes, body, &mut buf);
+                if let Panes::Game {
+                    minimap: Some(r), ..
+                } = panes
+                {
+                    let inner = Block::bordered().inner(r);
+                    avatars::label_minimap(&mut buf, inner, &state, &cast, snap, id);
+                }
+            }
+            None => {
+                view = Rect::default();
+                let y = body.y + body.height / 2;
+                let msg = Rect::new(body.x, y, body.width, body.bottom().saturating_sub(y));
+                Paragraph::new("nobody is playing yet: waiting for players (Tab: next)")
+                    .wrap(Wrap { trim: true })
+                    .centered()
+                    .render(msg, &mut buf);
+            }
+        }
+        if size.1 > HEADER_ROWS {
+            let row = Rect::new(0, 0, size.0, HEADER_ROWS);
+            buf.set_style(row, BAR);
+            Paragraph::new(Line::raw(header)).render(row, &mut buf);
+        }
+        let bytes = self.presenter.frame(&buf, &self.fb, view);
+        self.stats.record_bytes(bytes.len());
+        self.stats
+            .record(Instant::now(), render_time, started.elapsed() - render_time);
+        bytes
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::serve::players::Players;
+    use crate::termframe::from_screen;
+
+    fn served() -> (World, usize) {
+        avatars::with_avatar_sheet(World::default_world())
+    }
+
+    fn show(bytes: &[u8], size: (u16, u16)) -> vt100::Parser {
+        let mut p = vt100::Parser::new(size.1, size.0, 0);
+        p.process(bytes);
+        p
+    }
+
+    #[test]
+    fn a_wide_screen_has_the_header_view_minimap_debug_pane_and_status() {
+        let (world, sheet) = served();
+        let mut ps = Players::new(Arc::new(world.clone()));
+        ps.join(1, "ann");
+        ps.join(2, "bob");
+        let snap = ps.snapshot();
+        let mut s = SessionScreen::new(&world, sheet, ColorLevel::TrueColor);
+        let size = (140, 40);
+        let bytes = s
+            .frame(&snap, Some(1), " you are ann", size, InputMode::Emulated)
+            .to_vec();
+        let p = show(&bytes, size);
+        let text = p.screen().contents();
+        assert!(text.starts_with(" you are ann"), "{text}");
+        assert!(text.contains(" map ") && text.contains(" ray "), "{text}");
+        // Bob's name is on ann's minimap; the status line is the TUI's.
+        assert!(text.contains("bob"), "{text}");
+        assert!(text.contains("help"), "{text}");
+        let Panes::Game { view, .. } = panes_for(size, Toggles::default()) else {
+            panic!("too small")
+        };
+        let frame = from_screen(p.screen(), usize::from(size.0), usize::from(size.1));
+        let cell = frame.cell(usize::from(view.x) + 3, usize::from(view.y) + 3);
+        assert!(matches!(cell.glyph, '▀' | '▄' | ' ' | '█'), "{cell:?}");
+    }
+
+    #[test]
+    fn the_other_player_changes_the_pixels_where_they_stand() {
+        let (world, sheet) = served();
+        let mut ps = Players::new(Arc::new(world.clone()));
+        ps.join(1, "ann");
+        ps.join(2, "bob");
+        let snap = ps.snapshot();
+        let ann = &snap.player(1).expect("ann").state;
+        // Ann looks straight at bob.
+        let to = snap.player(2).expect("bob").state.camera.pos - ann.camera.pos;
+        let mut looking = snap.clone();
+        looking.players[0].state.camera = crate::Camera::from_angle(
+            ann.camera.pos,
+            (-to.y).atan2(to.x).to_degrees(),
+            crate::camera::DEFAULT_FOV_DEG,
+        );
+        let mut alone = looking.clone();
+        alone.players.retain(|p| p.id == 1);
+        let mut a = SessionScreen::new(&world, sheet, ColorLevel::TrueColor);
+        let mut b = SessionScreen::new(&world, sheet, ColorLevel::TrueColor);
+        let size = (80, 30);
+        let with = show(
+            a.frame(&looking, Some(1), "", size, InputMode::Emulated),
+            size,
+        );
+        let without = show(
+            b.frame(&alone, Some(1), "", size, InputMode::Emulated),
+            size,
+        );
+        let Panes::Game { view, .. } = panes_for(size, Toggles::default()) else {
+            panic!("too small")
+        };
+        // The centre column of the view, where bob stands, differs; the view's edges do not.
+        let col = |p: &vt100::Parser, x: u16| -> Vec<String> {
+            (view.y..view.bottom())
+                .map(|y| {
+                    format!(
+                        "{:?}",
+                        p.screen().cell(y, x).map(|c| (c.fgcolor(), c.bgcolor()))
+                    )
+                })
+                .collect()
+        };
+        let mid = view.x + view.width / 2;
+        assert_ne!(col(&with, mid), col(&without, mid), "bob is drawn");
+        assert_eq!(col(&with, view.x), col(&without, view.x));
+    }
+
+    #[test]
+    fn nobody_to_follow_shows_a_message_and_tiny_sizes_do_not_panic() {
+        let (world, sheet) = served();
+        let mut s = SessionScreen::new(&world, sheet, ColorLevel::Ansi16);
+        let bytes = s
+            .frame(
+                &Snapshot::default(),
+                None,
+                "hdr",
+                (60, 12),
+                InputMode::Kitty,
+            )
+            .to_vec();
+        assert!(show(&bytes, (60, 12))
+            .screen()
+            .contents()
+            .contains("waiting"));
+        let mut ps = Players::new(Arc::new(world.clone()));
+        ps.join(1, "ann");
+        let snap = ps.snapshot();
+        for size in [(1, 1), (2, 1), (20, 9), (19, 30), (500, 200)] {
+            let _ = s.frame(&snap, Some(1), "hdr", size, InputMode::Kitty);
+        }
+    }
+}
