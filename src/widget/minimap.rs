@@ -374,7 +374,21 @@ impl Palette {
                 c.scaled(110)
             })
             .collect();
-        let sprites = world.sheets.iter().map(sheet_average).collect();
+        // Only the sheets sprites use, and only their first picture: cheap enough per frame.
+        let mut sprites = vec![Rgb::default(); world.sheets.len()];
+        let mut done = vec![false; world.sheets.len()];
+        for s in &world.sprites {
+            if let (Some(sheet), Some(false)) = (world.sheets.get(s.sheet), done.get(s.sheet)) {
+                let views = usize::from(s.def.views.max(1));
+                let frames = usize::from(s.def.frames.max(1));
+                let size = (
+                    (sheet.width() / views).max(1),
+                    (sheet.height() / frames).max(1),
+                );
+                sprites[s.sheet] = picture_average(sheet, size);
+                done[s.sheet] = true;
+            }
+        }
         Self {
             walls,
             floors,
@@ -420,12 +434,14 @@ fn texture_average(t: &Texture) -> Rgb {
     Rgb::new((r / n) as u8, (g / n) as u8, (b / n) as u8)
 }
 
-/// The mean colour of a sheet's opaque texels, brightened a little so small discs stand out.
-fn sheet_average(sheet: &SpriteSheet) -> Rgb {
+/// The mean colour of the opaque texels in a sheet's top-left `size` picture, brightened a little
+/// so small discs stand out.
+fn picture_average(sheet: &SpriteSheet, size: (usize, usize)) -> Rgb {
     let (mut r, mut g, mut b, mut n) = (0u64, 0u64, 0u64, 0u64);
-    for x in 0..sheet.width() {
+    for x in 0..size.0.min(sheet.width()) {
         let (texels, alpha) = sheet.column(x);
-        for (c, &a) in texels.iter().zip(alpha) {
+        let h = size.1.min(texels.len());
+        for (c, &a) in texels[..h].iter().zip(&alpha[..h]) {
             if a >= 128 {
                 r += u64::from(c.r);
                 g += u64::from(c.g);
