@@ -23,6 +23,20 @@ impl Rgb {
         Self::new(s(self.r), s(self.g), s(self.b))
     }
 
+    /// The mean of some colours per channel (black for none): one colour standing for a surface.
+    #[must_use]
+    pub fn mean(colours: impl IntoIterator<Item = Rgb>) -> Rgb {
+        let (mut r, mut g, mut b, mut n) = (0u64, 0u64, 0u64, 0u64);
+        for c in colours {
+            r += u64::from(c.r);
+            g += u64::from(c.g);
+            b += u64::from(c.b);
+            n += 1;
+        }
+        let n = n.max(1);
+        Rgb::new((r / n) as u8, (g / n) as u8, (b / n) as u8)
+    }
+
     /// Relative luminance in 0..=255 (Rec. 709 weights), for ASCII shade ramps.
     #[must_use]
     pub fn luma(self) -> u8 {

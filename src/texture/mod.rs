@@ -13,6 +13,8 @@ pub struct Texture {
     width: usize,
     height: usize,
     texels: Vec<Rgb>,
+    /// Mean colour, kept for overviews (the minimap) that paint a whole surface in one colour.
+    mean: Rgb,
 }
 
 impl Texture {
@@ -25,11 +27,19 @@ impl Texture {
                 texels.push(f(x, y));
             }
         }
+        let mean = Rgb::mean(texels.iter().copied());
         Self {
             width,
             height,
             texels,
+            mean,
         }
+    }
+
+    /// The mean colour of all texels.
+    #[must_use]
+    pub fn mean(&self) -> Rgb {
+        self.mean
     }
 
     /// Decodes any image format the `image` crate was built with (PNG here).

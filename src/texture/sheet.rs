@@ -14,6 +14,8 @@ pub struct SpriteSheet {
     texels: Vec<Rgb>,
     /// 0 = see-through, 255 = opaque; same layout as `texels`.
     alpha: Vec<u8>,
+    /// Mean colour of the mostly opaque texels, for overviews (the minimap).
+    mean: Rgb,
 }
 
 impl SpriteSheet {
@@ -33,12 +35,21 @@ impl SpriteSheet {
                 alpha.push(a);
             }
         }
+        let opaque = texels.iter().zip(&alpha).filter(|&(_, &a)| a >= 128);
+        let mean = Rgb::mean(opaque.map(|(&c, _)| c));
         Self {
             width,
             height,
             texels,
             alpha,
+            mean,
         }
+    }
+
+    /// The mean colour of the texels that are at least half opaque.
+    #[must_use]
+    pub fn mean(&self) -> Rgb {
+        self.mean
     }
 
     /// Decodes an image; without an alpha channel `key` (black under [`ColourKey::Auto`]) is clear.

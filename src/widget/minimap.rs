@@ -16,8 +16,6 @@ use crate::door::DoorState;
 use crate::framebuffer::Framebuffer;
 use crate::map::{Cell, DoorPlane, Map};
 use crate::sprite::Sprite;
-use crate::texture::sheet::SpriteSheet;
-use crate::texture::Texture;
 use crate::vec2::Vec2;
 use crate::world::{Paint, World};
 
@@ -361,7 +359,7 @@ impl Palette {
     fn new(world: &World) -> Self {
         let mut walls = [Rgb::default(); 10];
         for (d, w) in walls.iter_mut().enumerate() {
-            let avg = texture_average(world.wall_texture(Cell::Wall(d as u8), 0));
+            let avg = world.wall_texture(Cell::Wall(d as u8), 0).mean();
             *w = mix(avg, Rgb::new(255, 255, 255), 60);
         }
         let zones = world.map.zones.len() + 1;
@@ -369,26 +367,13 @@ impl Palette {
             .map(|z| {
                 let c = match world.floor_paint(z as u8) {
                     Paint::Colour(c) => c,
-                    Paint::Texture(i) => texture_average(&world.textures[i]),
+                    Paint::Texture(i) => world.textures[i].mean(),
                 };
                 c.scaled(110)
             })
             .collect();
-        // Only the sheets sprites use, and only their first picture: cheap enough per frame.
-        let mut sprites = vec![Rgb::default(); world.sheets.len()];
-        let mut done = vec![false; world.sheets.len()];
-        for s in &world.sprites {
-            if let (Some(sheet), Some(false)) = (world.sheets.get(s.sheet), done.get(s.sheet)) {
-                let views = usize::from(s.def.views.max(1));
-                let frames = usize::from(s.def.frames.max(1));
-                let size = (
-                    (sheet.width() / views).max(1),
-                    (sheet.height() / frames).max(1),
-                );
-                sprites[s.sheet] = picture_average(sheet, size);
-                done[s.sheet] = true;
-            }
-        }
+        let brighten = |c: Rgb| mix(c, Rgb::new(255, 255, 255), 40);
+        let sprites = world.sheets.iter().map(|s| brighten(s.mean())).collect();
         Self {
             walls,
             floors,
@@ -419,43 +404,6 @@ impl Palette {
             }
         }
     }
-}
-
-/// The mean colour of a texture.
-fn texture_average(t: &Texture) -> Rgb {
-    let (mut r, mut g, mut b, mut n) = (0u64, 0u64, 0u64, 0u64);
-    for c in (0..t.width()).flat_map(|x| t.column(x)) {
-        r += u64::from(c.r);
-        g += u64::from(c.g);
-        b += u64::from(c.b);
-        n += 1;
-    }
-    let n = n.max(1);
-    Rgb::new((r / n) as u8, (g / n) as u8, (b / n) as u8)
-}
-
-/// The mean colour of the opaque texels in a sheet's top-left `size` picture, brightened a little
-/// so small discs stand out.
-fn picture_average(sheet: &SpriteSheet, size: (usize, usize)) -> Rgb {
-    let (mut r, mut g, mut b, mut n) = (0u64, 0u64, 0u64, 0u64);
-    for x in 0..size.0.min(sheet.width()) {
-        let (texels, alpha) = sheet.column(x);
-        let h = size.1.min(texels.len());
-        for (c, &a) in texels[..h].iter().zip(&alpha[..h]) {
-            if a >= 128 {
-                r += u64::from(c.r);
-                g += u64::from(c.g);
-                b += u64::from(c.b);
-                n += 1;
-            }
-        }
-    }
-    let n = n.max(1);
-    mix(
-        Rgb::new((r / n) as u8, (g / n) as u8, (b / n) as u8),
-        Rgb::new(255, 255, 255),
-        40,
-    )
 }
 
 impl Widget for Minimap<'_> {
