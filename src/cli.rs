@@ -98,6 +98,9 @@ struct ReplayArgs {
     /// Colour level of `ansi`, `cast` and on-screen output (default truecolor, the same anywhere).
     #[arg(long, value_parser = parse_level, default_value = "truecolor")]
     colors: ColorLevel,
+    /// Play only frames 0..=N (on screen or as `cast`): the run ends showing frame N.
+    #[arg(long, value_name = "N")]
+    until_frame: Option<usize>,
 }
 
 #[derive(Args, Debug)]
@@ -536,9 +539,11 @@ fn terminal_failure(e: TerminalError) -> Failure {
 fn ending_result(ending: Ending) -> Result<(), Failure> {
     match ending {
         Ending::Quit => Ok(()),
+        // Silent, like a shell's own signal exits: the terminal may be one nobody reads, and
+        // a message on it could block forever. The exit code (128 + n) says what happened.
         Ending::Signal(sig) => Err(Failure {
             code: 128u8.saturating_add(u8::try_from(sig).unwrap_or(0)),
-            message: format!("stopped by signal {sig}"),
+            message: String::new(),
         }),
     }
 }
@@ -591,7 +596,10 @@ fn replay(args: &ReplayArgs) -> Result<(), Failure> {
         code: f.code,
         message: f.message,
     };
-    let replay = read_replay(&args.file).map_err(failure)?;
+    let mut replay = read_replay(&args.file).map_err(failure)?;
+    if let Some(n) = args.until_frame {
+        crate::replay_cli::cut_after(&mut replay, n).map_err(failure)?;
+    }
     let world = replay_world(&replay, &args.file).map_err(failure)?;
     match (args.format, &args.frames) {
         (Some(ReplayFormat::Cast), _) => write_output(

@@ -2,6 +2,27 @@
 //!
 //! The pipeline, one module per stage: [`map`] → [`camera`] → [`cast`] (pure DDA) →
 //! [`raster`] into a [`framebuffer::Framebuffer`] → [`output`] writers (PNG, ANSI, text, JSON).
+//!
+//! A [`Scene`] (a world, a camera and options) is one frame's whole input; it renders to every
+//! form a test or tool needs, and [`snapshot`] pins what it shows:
+//!
+//! ```
+//! use halfcast::{Camera, Scene, World};
+//!
+//! let world = World::default_world();
+//! let start = world.map.start;
+//! let scene = Scene::new(&world, Camera::from_angle(start.pos(), start.angle_deg(), 66.0));
+//! let fb = scene.render(80, 24); // Framebuffer: 80 × 48 pixels
+//! let buf = scene.to_buffer(80, 24); // ratatui Buffer of `▀` cells
+//! let ansi = scene.to_ansi(80, 24); // the bytes a truecolor terminal receives
+//! let png = scene.to_png(80, 24).unwrap(); // PNG file contents
+//! let text = scene.to_cells_text(80, 24); // colour-aware text for insta snapshots
+//! assert_eq!(halfcast::snapshot::cells_text(&buf), text);
+//! assert_eq!(fb, halfcast::Framebuffer::from_image_bytes(&png).unwrap());
+//! // The terminal shows what the framebuffer holds (compared by appearance: `▀` a/b = `▄` b/a).
+//! let shown = halfcast::termframe::from_ansi(ansi.as_bytes());
+//! assert!(halfcast::termframe::diff(&shown, &(&fb).into()).is_equal());
+//! ```
 
 pub mod bench;
 // World features: sprites, doors, light, vertical view.
@@ -32,6 +53,11 @@ pub mod tui;
 pub mod vec2;
 pub mod widget;
 pub mod world;
+
+/// The README's Rust examples, compiled and run as doc-tests so they keep working.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeExamples;
 
 pub use camera::Camera;
 pub use color::Rgb;

@@ -58,6 +58,26 @@ pub fn read_replay(path: &Path) -> Result<Replay, ReplayFailure> {
     Replay::parse(&path.display().to_string(), &text).map_err(input)
 }
 
+/// Drops the frames after frame `last`, so a run ends showing it (`--until-frame`).
+///
+/// # Errors
+/// `last` is past the end of the replay (exit 2).
+pub fn cut_after(replay: &mut Replay, last: usize) -> Result<(), ReplayFailure> {
+    if last >= replay.frames.len() {
+        return Err(past_the_end(last, replay));
+    }
+    replay.frames.truncate(last + 1);
+    Ok(())
+}
+
+fn past_the_end(frame: usize, replay: &Replay) -> ReplayFailure {
+    input(format!(
+        "frame {frame} is past the end (the replay has {} frames, 0 to {})",
+        replay.frames.len(),
+        replay.frames.len().saturating_sub(1)
+    ))
+}
+
 /// Loads the world a replay was recorded in: the embedded map, or its map file (as recorded,
 /// else beside the replay file).
 ///
@@ -166,11 +186,7 @@ pub fn write_frames(
         .last()
         .expect("parse_frames never returns an empty list");
     if last >= replay.frames.len() {
-        return Err(input(format!(
-            "frame {last} is past the end (the replay has {} frames, 0 to {})",
-            replay.frames.len(),
-            replay.frames.len().saturating_sub(1)
-        )));
+        return Err(past_the_end(last, replay));
     }
     std::fs::create_dir_all(dir)
         .map_err(|e| io(format!("cannot create {}: {e}", dir.display())))?;

@@ -1,5 +1,27 @@
 //! What one frame shows: a loaded world seen through a camera, with the frame's view, light,
-//! door positions and time.
+//! door positions and time — and the one call per output form a test or tool needs.
+//!
+//! ```
+//! use halfcast::{Camera, Scene, World};
+//!
+//! let world = World::default_world();
+//! let start = world.map.start;
+//! let scene = Scene::new(&world, Camera::from_angle(start.pos(), start.angle_deg(), 66.0));
+//!
+//! let fb = scene.render(40, 12); // pixels: 40 × 24 (two per cell)
+//! assert_eq!((fb.width(), fb.height()), (40, 24));
+//! let buf = scene.to_buffer(40, 12); // ratatui cells: `▀`, fg = upper pixel, bg = lower
+//! assert_eq!(buf[(0, 0)].symbol(), "▀");
+//! let ansi = scene.to_ansi(40, 12); // what a truecolor terminal receives (full redraw)
+//! assert!(ansi.contains("\x1b[38;2;"));
+//! let png = scene.to_png(40, 12).unwrap(); // `render --format png`
+//! assert!(png.starts_with(b"\x89PNG"));
+//! let text = scene.to_cells_text(40, 12); // colour-aware text that snapshots pin
+//! assert!(text.starts_with("halfcast-cells v1 40x12\n"));
+//! // Every form shows the same frame.
+//! assert_eq!(text, halfcast::snapshot::cells_text(&buf));
+//! assert_eq!(text, halfcast::snapshot::cells_text(&fb));
+//! ```
 
 use crate::billboard::SpriteOutcome;
 use crate::camera::Camera;
@@ -10,6 +32,7 @@ use crate::light::Lighting;
 use crate::lightmap::LightMap;
 use crate::raster::rasterize_frame;
 use crate::view::View;
+use crate::widget::HalfBlockView;
 use crate::world::World;
 
 /// The whole input of one frame (pure, no terminal, no clock): the same scene gives the same pixels.
@@ -105,5 +128,38 @@ impl<'a> Scene<'a> {
         let mut fb = Framebuffer::for_cells(cols, rows);
         self.render_into(&mut fb, None);
         fb
+    }
+
+    /// The frame as ratatui cells (`▀`, fg = upper pixel, bg = lower), as the TUI's view pane
+    /// draws it: for tests of widgets and screens built around the view.
+    #[must_use]
+    pub fn to_buffer(&self, cols: u16, rows: u16) -> ratatui::buffer::Buffer {
+        use ratatui::widgets::Widget;
+        let area = ratatui::layout::Rect::new(0, 0, cols, rows);
+        let mut buf = ratatui::buffer::Buffer::empty(area);
+        HalfBlockView::new(&self.render(cols, rows)).render(area, &mut buf);
+        buf
+    }
+
+    /// The bytes a truecolor terminal receives to show the frame in one full redraw (the same as
+    /// `halfcast render --format ansi --colors truecolor`).
+    #[must_use]
+    pub fn to_ansi(&self, cols: u16, rows: u16) -> String {
+        crate::output::ansi::to_ansi_truecolor(&self.render(cols, rows))
+    }
+
+    /// The frame as a PNG of `cols` × 2·`rows` pixels (`halfcast render --format png`).
+    ///
+    /// # Errors
+    /// The PNG encoder's message (it does not fail for in-memory frames in practice).
+    pub fn to_png(&self, cols: u16, rows: u16) -> Result<Vec<u8>, String> {
+        self.render(cols, rows).to_png()
+    }
+
+    /// The frame in the colour-aware text form snapshots pin (`halfcast-cells v1`, see
+    /// [`crate::snapshot::cells_text`]), so a test can `insta::assert_snapshot!` it.
+    #[must_use]
+    pub fn to_cells_text(&self, cols: u16, rows: u16) -> String {
+        crate::snapshot::cells_text(&self.render(cols, rows))
     }
 }

@@ -1,8 +1,53 @@
-//! Pinning frames in tests: compare a framebuffer with a golden PNG, within a tolerance.
+//! Pinning frames in tests, two ways for two kinds of frame:
+//!
+//! - **Text** ([`cells_text`]): any frame — a [`Framebuffer`], a ratatui `Buffer` (widgets, the
+//!   whole TUI screen), a `vt100` screen (the real binary in a pseudo-terminal) — as colour-aware
+//!   text, one line per row, every cell's glyph, foreground and background. Pin it with
+//!   `insta::assert_snapshot!`; a changed frame shows as a readable diff in review.
+//! - **Pixels** ([`assert_png_golden`]): a framebuffer against a golden PNG, within a
+//!   [`Tolerance`], for frames too large to review as text.
+//!
+//! Pinning a small frame inline (the test fails if one cell changes colour):
+//!
+//! ```
+//! use halfcast::{Camera, Scene, Vec2, World};
+//!
+//! let world = World::default_world();
+//! let scene = Scene::new(&world, Camera::from_angle(Vec2::new(8.5, 5.5), 30.0, 66.0));
+//! insta::assert_snapshot!(scene.to_cells_text(6, 3), @r"
+//! halfcast-cells v1 6x3
+//! ▀5f5e58/7c7872 ▀84827a/5a5854 ▀7f7d75/797670 ▀797871/7e7b75 ▀87847c/5a5854 ▀5f5e58/77746e
+//! ▀4e2726/5d2d26 ▀6a4b34/573e2c ▀573e2a/654730 ▀63452e/5e422c ▀63442d/62442d ▀515762/4c525d
+//! ▀4c443e/252424 ▀252323/514a42 ▀4f4740/4e4840 ▀5c534b/62594f ▀252323/696055 ▀61584f/252424
+//! ");
+//! ```
+//!
+//! A golden PNG (rewritten instead of compared when `HALFCAST_UPDATE_GOLDEN` is set; on a
+//! mismatch the actual frame is saved beside it as `<name>.actual.png`):
+//!
+//! ```
+//! use halfcast::snapshot::{assert_png_golden, Tolerance};
+//! use halfcast::{Camera, Scene, World};
+//!
+//! let world = World::default_world();
+//! let start = world.map.start;
+//! let fb = Scene::new(&world, Camera::from_angle(start.pos(), start.angle_deg(), 66.0))
+//!     .render(120, 40);
+//! let golden = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/images/core/default_start.png");
+//! assert_png_golden(&fb, golden, Tolerance::default());
+//! ```
 
 use std::path::Path;
 
 use crate::framebuffer::Framebuffer;
+use crate::termframe::{to_cells_text, TermFrame};
+
+/// The text form snapshots pin (`halfcast-cells v1`: a size header, then one line per row of
+/// `GLYPH` + fg hex + `/` + bg hex cells, `~~~~~~` = default colour), of anything shown as cells.
+#[must_use]
+pub fn cells_text(frame: impl Into<TermFrame>) -> String {
+    to_cells_text(&frame.into())
+}
 
 /// Set this environment variable (to anything) to rewrite golden files instead of comparing.
 pub const UPDATE_ENV: &str = "HALFCAST_UPDATE_GOLDEN";

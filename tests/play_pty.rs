@@ -2,140 +2,39 @@
 //! Start at 160×48, check the first screen, walk forward, quit, check the terminal is restored.
 #![cfg(unix)]
 
-use std::io::{Read, Write};
-use std::sync::{Arc, Mutex};
+mod pty_support;
+
 use std::thread;
 use std::time::{Duration, Instant};
 
-use portable_pty::{native_pty_system, Child, CommandBuilder, MasterPty, PtySize};
+use pty_support::{contains, last_index, PtyRun, KITTY, PATIENCE};
 
-const COLS: u16 = 160;
-const ROWS: u16 = 48;
+const SIZE: (u16, u16) = (160, 48);
 
-/// A hang guard only (the test never asserts on speed): generous for a loaded CI machine.
-const PATIENCE: Duration = Duration::from_secs(60);
-
-/// Probe answer of a terminal without the kitty keyboard protocol.
-const NO_KITTY: &[u8] = b"\x1b[?62;22c";
-
-/// Probe answer of a terminal with it (current flags 0, then device attributes).
-const KITTY: &[u8] = b"\x1b[?0u\x1b[?62;22c";
-
-struct Session {
-    master: Box<dyn MasterPty + Send>,
-    writer: Box<dyn Write + Send>,
-    child: Box<dyn Child + Send + Sync>,
-    out: Arc<Mutex<Vec<u8>>>,
-    answered_da1: bool,
-    parser: vt100::Parser,
-    parsed: usize,
-    /// What the "terminal" answers to the keyboard probe.
-    probe_answer: &'static [u8],
-    /// The line discipline before the game started (to compare after it exits).
-    cooked: nix::sys::termios::Termios,
+/// The game in a 160×48 pseudo-terminal, and the line discipline before it started.
+fn spawn_with(args: &[&str], env: &[(&str, &str)]) -> (PtyRun, nix::sys::termios::Termios) {
+    let run = PtyRun::spawn_with(args, SIZE, env);
+    let cooked = run.master.get_termios().expect("termios");
+    (run, cooked)
 }
 
-impl Session {
-    fn spawn(args: &[&str]) -> Self {
-        Self::spawn_with(args, &[])
-    }
-
-    fn spawn_with(args: &[&str], env: &[(&str, &str)]) -> Self {
-        let pty = native_pty_system();
-        let pair = pty
-            .openpty(PtySize {
-                rows: ROWS,
-                cols: COLS,
-                pixel_width: 0,
-                pixel_height: 0,
-            })
-            .expect("openpty");
-        let cooked = pair.master.get_termios().expect("termios");
-        let mut cmd = CommandBuilder::new(env!("CARGO_BIN_EXE_halfcast"));
-        cmd.args(args);
-        cmd.env("TERM", "xterm-256color");
-        cmd.env("COLORTERM", "truecolor");
-        for (k, v) in env {
-            cmd.env(k, v);
-        }
-        let child = pair.slave.spawn_command(cmd).expect("spawn halfcast");
-        drop(pair.slave);
-        let mut reader = pair.master.try_clone_reader().expect("reader");
-        let writer = pair.master.take_writer().expect("writer");
-        let out = Arc::new(Mutex::new(Vec::new()));
-        let sink = Arc::clone(&out);
-        thread::spawn(move || {
-            let mut buf = [0u8; 65536];
-            while let Ok(n) = reader.read(&mut buf) {
-                if n == 0 {
-                    break;
-                }
-                sink.lock().unwrap().extend_from_slice(&buf[..n]);
-            }
-        });
-        Self {
-            master: pair.master,
-            writer,
-            child,
-            out,
-            answered_da1: false,
-            parser: vt100::Parser::new(ROWS, COLS, 0),
-            parsed: 0,
-            probe_answer: NO_KITTY,
-            cooked,
-        }
-    }
-
-    fn bytes(&self) -> Vec<u8> {
-        self.out.lock().unwrap().clone()
-    }
-
-    /// The screen so far (only new output is parsed each time).
-    fn screen(&mut self) -> &vt100::Parser {
-        let new = self.out.lock().unwrap()[self.parsed..].to_vec();
-        self.parsed += new.len();
-        self.parser.process(&new);
-        &self.parser
-    }
-
-    /// Answers the start-up keyboard probe (by default like a terminal without the kitty
-    /// protocol: primary device attributes only), so it does not wait for its timeout.
-    fn answer_probe(&mut self) {
-        if !self.answered_da1 && contains(&self.bytes(), b"\x1b[c") {
-            self.writer.write_all(self.probe_answer).unwrap();
-            self.writer.flush().unwrap();
-            self.answered_da1 = true;
-        }
-    }
-
-    fn wait_for(&mut self, what: &str, ok: impl Fn(&vt100::Screen) -> bool) {
-        let start = Instant::now();
-        loop {
-            self.answer_probe();
-            if ok(self.screen().screen()) {
-                return;
-            }
-            let contents = self.screen().screen().contents();
-            assert!(
-                start.elapsed() < PATIENCE,
-                "gave up waiting for {what}; screen:\n{contents}"
-            );
-            thread::sleep(Duration::from_millis(50));
-        }
-    }
-
-    fn send(&mut self, keys: &[u8]) {
-        self.writer.write_all(keys).unwrap();
-        self.writer.flush().unwrap();
-    }
+fn spawn(args: &[&str]) -> (PtyRun, nix::sys::termios::Termios) {
+    spawn_with(args, &[])
 }
 
-fn contains(hay: &[u8], needle: &[u8]) -> bool {
-    hay.windows(needle.len()).any(|w| w == needle)
-}
-
-fn last_index(hay: &[u8], needle: &[u8]) -> Option<usize> {
-    hay.windows(needle.len()).rposition(|w| w == needle)
+/// Waits for the child to exit (it must within the patience).
+fn exit_status(s: &mut PtyRun, what: &str) -> portable_pty::ExitStatus {
+    let start = Instant::now();
+    loop {
+        s.answer_probe();
+        if let Some(st) = s.try_wait() {
+            // Let the reader drain what the child wrote last.
+            thread::sleep(Duration::from_millis(200));
+            return st;
+        }
+        assert!(start.elapsed() < PATIENCE, "{what}");
+        thread::sleep(Duration::from_millis(20));
+    }
 }
 
 /// The colours of every cell in the top-left view region.
@@ -156,18 +55,16 @@ fn status_line(s: &vt100::Screen) -> String {
 
 #[test]
 fn play_start_walk_quit_restores_the_terminal() {
-    let mut s = Session::spawn(&["play", "--fps", "30"]);
-    let before = s.cooked.clone();
-
-    s.wait_for("the first whole frame", |sc| {
+    let (mut s, before) = spawn(&["play", "--fps", "30"]);
+    s.wait_for_screen("the first whole frame", |sc| {
         let text = sc.contents();
         text.contains("(15,4)")
             && text.contains("sideDistX")
             && text.contains(" map ")
             && status_line(sc).contains("q quit")
     });
-    let sc = s.screen();
-    let sc = sc.screen();
+    let sc = s.screen().clone();
+    let sc = &sc;
     // The view: half blocks in 24-bit colour.
     // (The encoder may draw a cell of one colour as a space with that background.)
     let cell = sc.cell(10, 10).unwrap();
@@ -220,22 +117,13 @@ fn play_start_walk_quit_restores_the_terminal() {
         s.send(b"w");
         thread::sleep(Duration::from_millis(60));
     }
-    s.wait_for("the view to change after walking", |sc| {
+    s.wait_for_screen("the view to change after walking", |sc| {
         view_colours(sc) != first_view && !status_line(sc).contains("pos 15.50,5.50")
     });
 
     s.send(b"q");
-    let start = Instant::now();
-    let status = loop {
-        if let Some(st) = s.child.try_wait().unwrap() {
-            break st;
-        }
-        assert!(start.elapsed() < PATIENCE, "halfcast did not exit after q");
-        thread::sleep(Duration::from_millis(20));
-    };
+    let status = exit_status(&mut s, "halfcast did not exit after q");
     assert!(status.success(), "exit status {status:?}");
-    // Let the reader drain what the child wrote last.
-    thread::sleep(Duration::from_millis(200));
     let out = s.bytes();
     let entered = last_index(&out, b"\x1b[?1049h").expect("entered the alternate screen");
     let left = last_index(&out, b"\x1b[?1049l").expect("left the alternate screen");
@@ -266,25 +154,15 @@ fn not_a_terminal_is_a_clear_error_with_exit_code_2() {
 
 #[test]
 fn sigterm_restores_the_terminal_and_exits() {
-    let mut s = Session::spawn(&["play"]);
-    let before = s.cooked.clone();
-    s.wait_for("the first frame", |sc| sc.contents().contains("sideDistX"));
-    let pid = s.child.process_id().expect("pid") as i32;
+    let (mut s, before) = spawn(&["play"]);
+    s.wait_for_screen("the first frame", |sc| sc.contents().contains("sideDistX"));
     nix::sys::signal::kill(
-        nix::unistd::Pid::from_raw(pid),
+        nix::unistd::Pid::from_raw(s.pid()),
         nix::sys::signal::Signal::SIGTERM,
     )
     .unwrap();
-    let start = Instant::now();
-    let status = loop {
-        if let Some(st) = s.child.try_wait().unwrap() {
-            break st;
-        }
-        assert!(start.elapsed() < PATIENCE, "halfcast ignored SIGTERM");
-        thread::sleep(Duration::from_millis(20));
-    };
+    let status = exit_status(&mut s, "halfcast ignored SIGTERM");
     assert_eq!(status.exit_code(), 128 + 15);
-    thread::sleep(Duration::from_millis(200));
     let out = s.bytes();
     assert!(last_index(&out, b"\x1b[?1049l") > last_index(&out, b"\x1b[?1049h"));
     let after = s.master.get_termios().expect("termios");
@@ -302,28 +180,28 @@ fn pos_of(sc: &vt100::Screen) -> String {
 
 #[test]
 fn kitty_keyboard_protocol_holds_until_release() {
-    let mut s = Session::spawn(&["play"]);
+    let (mut s, _) = spawn(&["play"]);
     s.probe_answer = KITTY;
-    s.wait_for("the first frame in kitty mode", |sc| {
+    s.wait_for_screen("the first frame in kitty mode", |sc| {
         status_line(sc).contains("kitty keys") && status_line(sc).contains("q quit")
     });
     // The game asked for press/repeat/release events with all keys as escape codes.
     let out = s.bytes();
     // 15 = disambiguate | event types | alternate keys | all keys as escape codes.
     assert!(contains(&out, b"\x1b[>15u"), "kitty flags not pushed");
-    let start_pos = pos_of(s.screen().screen());
+    let start_pos = pos_of(s.screen());
     // Press w (no repeats are sent): the player keeps walking while it is held...
     s.send(b"\x1b[119;1:1u");
-    s.wait_for("walking", |sc| pos_of(sc) != start_pos);
-    let walking = pos_of(s.screen().screen());
-    s.wait_for("still walking", |sc| pos_of(sc) != walking);
+    s.wait_for_screen("walking", |sc| pos_of(sc) != start_pos);
+    let walking = pos_of(s.screen());
+    s.wait_for_screen("still walking", |sc| pos_of(sc) != walking);
     // ...and stops at the release.
     s.send(b"\x1b[119;1:3u");
     let start = Instant::now();
     loop {
-        let a = pos_of(s.screen().screen());
+        let a = pos_of(s.screen());
         thread::sleep(Duration::from_millis(300));
-        if pos_of(s.screen().screen()) == a {
+        if pos_of(s.screen()) == a {
             break;
         }
         assert!(
@@ -332,16 +210,8 @@ fn kitty_keyboard_protocol_holds_until_release() {
         );
     }
     s.send(b"\x1b[113;1:1u");
-    let start = Instant::now();
-    let status = loop {
-        if let Some(st) = s.child.try_wait().unwrap() {
-            break st;
-        }
-        assert!(start.elapsed() < PATIENCE, "q (kitty-encoded) did not quit");
-        thread::sleep(Duration::from_millis(20));
-    };
+    let status = exit_status(&mut s, "q (kitty-encoded) did not quit");
     assert!(status.success());
-    thread::sleep(Duration::from_millis(200));
     // The keyboard mode was popped before leaving.
     assert!(contains(&s.bytes(), b"\x1b[<1u"));
 }
@@ -350,19 +220,9 @@ fn kitty_keyboard_protocol_holds_until_release() {
 #[cfg(debug_assertions)]
 #[test]
 fn a_panic_restores_the_terminal_before_the_message() {
-    let mut s = Session::spawn_with(&["play"], &[("HALFCAST_TEST_PANIC", "1")]);
-    let before = s.cooked.clone();
-    let start = Instant::now();
-    let status = loop {
-        s.answer_probe();
-        if let Some(st) = s.child.try_wait().unwrap() {
-            break st;
-        }
-        assert!(start.elapsed() < PATIENCE, "no panic exit");
-        thread::sleep(Duration::from_millis(20));
-    };
+    let (mut s, before) = spawn_with(&["play"], &[("HALFCAST_TEST_PANIC", "1")]);
+    let status = exit_status(&mut s, "no panic exit");
     assert!(!status.success());
-    thread::sleep(Duration::from_millis(200));
     let out = s.bytes();
     let left = last_index(&out, b"\x1b[?1049l").expect("left the alternate screen");
     let message = last_index(&out, b"HALFCAST_TEST_PANIC is set").expect("panic message shown");

@@ -1,8 +1,10 @@
-//! `halfcast render --format json` agrees with an independent DDA on random closed maps and poses.
+//! `halfcast render --format json` agrees with the independent DDA walk (`tests/oracle`) on random closed maps and poses.
 
 mod common;
+mod oracle;
 
 use common::halfcast;
+use oracle::{close, close_fraction, walk};
 use proptest::prelude::*;
 use serde_json::Value;
 
@@ -34,44 +36,6 @@ fn arb_case() -> impl Strategy<Value = (Vec<Vec<u8>>, (f64, f64))> {
                 (grid, (pi as f64 + fx, pj as f64 + fy))
             })
     })
-}
-
-/// Crossing-time traversal written independently of the library: (cell, axis, t_x, t_y) per step.
-fn walk(
-    grid: &[Vec<u8>],
-    pos: (f64, f64),
-    ray: (f64, f64),
-) -> Vec<((i64, i64), &'static str, f64, f64)> {
-    let mut cell = (pos.0.floor() as i64, pos.1.floor() as i64);
-    let axis = |p: f64, d: f64, c: i64| {
-        if d > 0.0 {
-            ((c as f64 + 1.0 - p) / d, 1.0 / d, 1)
-        } else {
-            ((p - c as f64) / -d, -1.0 / d, -1)
-        }
-    };
-    let (mut tx, dx, sx) = axis(pos.0, ray.0, cell.0);
-    let (mut ty, dy, sy) = axis(pos.1, ray.1, cell.1);
-    let mut out = Vec::new();
-    loop {
-        let side = if tx < ty {
-            tx += dx;
-            cell.0 += sx;
-            "x"
-        } else {
-            ty += dy;
-            cell.1 += sy;
-            "y"
-        };
-        out.push((cell, side, tx, ty));
-        if grid[cell.1 as usize][cell.0 as usize] == b'1' {
-            return out;
-        }
-    }
-}
-
-fn close(a: f64, b: f64) -> bool {
-    (a - b).abs() <= 1e-9 * (1.0 + a.abs().max(b.abs()))
 }
 
 fn f(v: &Value) -> f64 {
@@ -108,27 +72,21 @@ proptest! {
             (d.0 + plane.0 * cx, d.1 + plane.1 * cx)
         };
         for (x, col) in columns.iter().enumerate() {
-            let r = ray(x);
-            let steps = walk(&grid, pos, r);
-            let &(cell, side, tx, ty) = steps.last().unwrap();
-            let perp = if side == "x" { tx - 1.0 / r.0.abs() } else { ty - 1.0 / r.1.abs() };
-            let along = if side == "x" { pos.1 + perp * r.1 } else { pos.0 + perp * r.0 };
-            prop_assert_eq!(col["cell"][0].as_i64(), Some(cell.0));
-            prop_assert_eq!(col["cell"][1].as_i64(), Some(cell.1));
-            prop_assert_eq!(col["side"].as_str(), Some(side));
-            prop_assert!(close(f(&col["perp_dist"]), perp), "column {}", x);
-            // wall_x is a fraction: compare on the circle so 0.9999999999 and 0.0 count as equal.
-            let gap = (f(&col["wall_x"]) - (along - along.floor())).abs();
-            prop_assert!(gap.min(1.0 - gap) < 1e-9, "column {} wall_x", x);
+            let hit = walk(&grid, pos, ray(x), true).hit;
+            prop_assert_eq!(col["cell"][0].as_i64(), Some(hit.cell.0));
+            prop_assert_eq!(col["cell"][1].as_i64(), Some(hit.cell.1));
+            prop_assert_eq!(col["side"].as_str(), Some(hit.side));
+            prop_assert!(close(f(&col["perp_dist"]), hit.perp), "column {}", x);
+            prop_assert!(close_fraction(f(&col["wall_x"]), hit.wall_x), "column {} wall_x", x);
         }
         let trace = v["centre_trace"].as_array().unwrap();
-        let expect = walk(&grid, pos, ray(cols / 2));
+        let expect = walk(&grid, pos, ray(cols / 2), true).steps;
         prop_assert_eq!(trace.len(), expect.len());
-        for (s, (cell, side, tx, ty)) in trace.iter().zip(expect) {
-            prop_assert_eq!(s["cell"][0].as_i64(), Some(cell.0));
-            prop_assert_eq!(s["cell"][1].as_i64(), Some(cell.1));
-            prop_assert_eq!(s["side"].as_str(), Some(side));
-            prop_assert!(close(f(&s["side_dist"][0]), tx) && close(f(&s["side_dist"][1]), ty));
+        for (s, step) in trace.iter().zip(expect) {
+            prop_assert_eq!(s["cell"][0].as_i64(), Some(step.cell.0));
+            prop_assert_eq!(s["cell"][1].as_i64(), Some(step.cell.1));
+            prop_assert_eq!(s["side"].as_str(), Some(step.side));
+            prop_assert!(close(f(&s["side_dist"][0]), step.side_dist.0) && close(f(&s["side_dist"][1]), step.side_dist.1));
         }
     }
 }

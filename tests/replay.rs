@@ -195,3 +195,32 @@ fn corrupt_future_and_short_replays_are_clear_errors() {
     assert!(String::from_utf8_lossy(&o.stderr)
         .contains("frame 99 is past the end (the replay has 32 frames, 0 to 31)"));
 }
+
+#[test]
+fn until_frame_ends_the_run_on_that_frame() {
+    let dir = tempfile::tempdir().unwrap();
+    let cast = dir.path().join("short.cast");
+    let o = halfcast(&[
+        "replay",
+        FIXTURE,
+        "--until-frame",
+        "10",
+        "--format",
+        "cast",
+        "--out",
+        cast.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let text = std::fs::read_to_string(&cast).unwrap();
+    // The header, the cursor hide, then frames 0..=10.
+    assert_eq!(text.lines().count(), 1 + 1 + 11);
+    let o = halfcast(&["replay", FIXTURE, "--until-frame", "32", "--format", "cast"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr)
+        .contains("frame 32 is past the end (the replay has 32 frames, 0 to 31)"));
+}

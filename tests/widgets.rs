@@ -1,8 +1,9 @@
-//! Snapshots of the widgets on small frames, in a colour-aware text form (glyph + fg + bg).
+//! Snapshots of the widgets on small frames, in the colour-aware text form every text snapshot
+//! of the project uses (`snapshot::cells_text`: glyph + fg + bg per cell).
 
 use halfcast::camera::Camera;
 use halfcast::cast::{cast, trace_column};
-use halfcast::widget::colour_text::to_colour_text;
+use halfcast::snapshot::cells_text;
 use halfcast::widget::{DebugPane, HalfBlockView, Minimap, RevealedTrace};
 use halfcast::{Framebuffer, Scene, Vec2, World};
 use ratatui::buffer::Buffer;
@@ -17,11 +18,11 @@ fn pose() -> Camera {
 #[test]
 fn view_40x12_of_the_default_map() {
     let world = World::default_world();
-    let area = Rect::new(0, 0, 40, 12);
-    let fb = Scene::new(&world, pose()).render(area.width, area.height);
-    let mut buf = Buffer::empty(area);
-    HalfBlockView::new(&fb).render(area, &mut buf);
-    insta::assert_snapshot!(to_colour_text(&buf));
+    let scene = Scene::new(&world, pose());
+    let text = cells_text(&scene.to_buffer(40, 12));
+    // The view widget's cells and the framebuffer's half blocks are the same frame.
+    assert_eq!(text, scene.to_cells_text(40, 12));
+    insta::assert_snapshot!(text);
 }
 
 #[test]
@@ -35,7 +36,7 @@ fn minimap_30x12_with_a_half_stepped_ray() {
     Minimap::new(&world, &cam, &rays)
         .debug_ray(RevealedTrace::partial(&trace, 3))
         .render(area, &mut buf);
-    insta::assert_snapshot!(to_colour_text(&buf));
+    insta::assert_snapshot!(cells_text(&buf));
 }
 
 #[test]
@@ -47,15 +48,7 @@ fn debug_pane_44x16_highlights_the_current_step() {
     let mut buf = Buffer::empty(area);
     DebugPane::new(RevealedTrace::partial(&trace, 2), &world, &cam, (40, 12))
         .render(area, &mut buf);
-    let text: String = (0..area.height)
-        .map(|y| {
-            let row: String = (0..area.width)
-                .map(|x| buf[(x, y)].symbol().to_owned())
-                .collect();
-            row.trim_end().to_owned() + "\n"
-        })
-        .collect();
-    insta::assert_snapshot!(text);
+    insta::assert_snapshot!(cells_text(&buf));
     // Row of step 2 (the current one) has the highlight background; step 1 does not.
     let row_of = |needle: &str| {
         (0..area.height)

@@ -1,11 +1,13 @@
 //! Doors: parsing, the inset panel seen by the caster (checked against an independent walk),
 //! and the movement queries.
 
+mod oracle;
 mod world_common;
 
 use halfcast::door::DoorState;
 use halfcast::map::{parse_map, Cell, DoorPlane};
 use halfcast::Vec2;
+use oracle::{close, close_fraction, walk};
 use proptest::prelude::*;
 use serde_json::Value;
 use world_common::{halfcast, map_file, world, HEADER};
@@ -131,68 +133,6 @@ fn arb_door_case() -> impl Strategy<Value = (Vec<Vec<u8>>, (f64, f64))> {
     })
 }
 
-/// An independent walk that treats a shut door as a panel across the middle of its cell.
-fn walk(
-    grid: &[Vec<u8>],
-    pos: (f64, f64),
-    ray: (f64, f64),
-    open: bool,
-) -> ((i64, i64), &'static str, f64, f64) {
-    let mut cell = (pos.0.floor() as i64, pos.1.floor() as i64);
-    let axis = |p: f64, d: f64, c: i64| {
-        if d > 0.0 {
-            ((c as f64 + 1.0 - p) / d, 1.0 / d, 1)
-        } else {
-            ((p - c as f64) / -d, -1.0 / d, -1)
-        }
-    };
-    let (mut tx, dx, sx) = axis(pos.0, ray.0, cell.0);
-    let (mut ty, dy, sy) = axis(pos.1, ray.1, cell.1);
-    loop {
-        let (side, t_in) = if tx < ty {
-            cell.0 += sx;
-            tx += dx;
-            ("x", tx - dx)
-        } else {
-            cell.1 += sy;
-            ty += dy;
-            ("y", ty - dy)
-        };
-        let at = |i: i64, j: i64| grid[j as usize][i as usize];
-        match at(cell.0, cell.1) {
-            b'1' => {
-                let along = if side == "x" {
-                    pos.1 + t_in * ray.1
-                } else {
-                    pos.0 + t_in * ray.0
-                };
-                return (cell, side, t_in, along - along.floor());
-            }
-            b'D' if !open => {
-                let horizontal = at(cell.0 - 1, cell.1) == b'1' && at(cell.0 + 1, cell.1) == b'1';
-                let (t, side) = if horizontal {
-                    ((cell.1 as f64 + 0.5 - pos.1) / ray.1, "y")
-                } else {
-                    ((cell.0 as f64 + 0.5 - pos.0) / ray.0, "x")
-                };
-                if t.is_finite() && t >= t_in && t < tx.min(ty) {
-                    let along = if side == "x" {
-                        pos.1 + t * ray.1 - cell.1 as f64
-                    } else {
-                        pos.0 + t * ray.0 - cell.0 as f64
-                    };
-                    return (cell, side, t, along);
-                }
-            }
-            _ => {}
-        }
-    }
-}
-
-fn close(a: f64, b: f64) -> bool {
-    (a - b).abs() <= 1e-9 * (1.0 + a.abs().max(b.abs()))
-}
-
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(24))]
 
@@ -215,13 +155,12 @@ proptest! {
         for (x, col) in v["columns"].as_array().unwrap().iter().enumerate() {
             let cx = 2.0 * x as f64 / cols as f64 - 1.0;
             let r = (d.0 + plane.0 * cx, d.1 + plane.1 * cx);
-            let (cell, side, perp, wall_x) = walk(&grid, pos, r, open);
-            prop_assert_eq!(col["cell"][0].as_i64(), Some(cell.0), "column {}", x);
-            prop_assert_eq!(col["cell"][1].as_i64(), Some(cell.1), "column {}", x);
-            prop_assert_eq!(col["side"].as_str(), Some(side), "column {}", x);
-            prop_assert!(close(col["perp_dist"].as_f64().unwrap(), perp), "column {} perp", x);
-            let gap = (col["wall_x"].as_f64().unwrap() - wall_x).abs();
-            prop_assert!(gap.min(1.0 - gap) < 1e-9, "column {} wall_x", x);
+            let hit = walk(&grid, pos, r, open).hit;
+            prop_assert_eq!(col["cell"][0].as_i64(), Some(hit.cell.0), "column {}", x);
+            prop_assert_eq!(col["cell"][1].as_i64(), Some(hit.cell.1), "column {}", x);
+            prop_assert_eq!(col["side"].as_str(), Some(hit.side), "column {}", x);
+            prop_assert!(close(col["perp_dist"].as_f64().unwrap(), hit.perp), "column {} perp", x);
+            prop_assert!(close_fraction(col["wall_x"].as_f64().unwrap(), hit.wall_x), "column {} wall_x", x);
         }
     }
 }

@@ -18,9 +18,7 @@ fn east_from(x: f64, y: f64) -> Camera {
 }
 
 fn render(scene: &Scene) -> Framebuffer {
-    let mut fb = Framebuffer::for_cells(COLS, ROWS);
-    scene.render_into(&mut fb, None);
-    fb
+    scene.render(COLS, ROWS)
 }
 
 #[test]

@@ -101,6 +101,28 @@ impl TermFrame {
     }
 }
 
+impl From<&Framebuffer> for TermFrame {
+    /// [`TermFrame::from_framebuffer`]: half blocks.
+    fn from(fb: &Framebuffer) -> Self {
+        Self::from_framebuffer(fb)
+    }
+}
+
+impl From<&ratatui::buffer::Buffer> for TermFrame {
+    /// [`TermFrame::from_buffer`]: the cells as drawn.
+    fn from(buf: &ratatui::buffer::Buffer) -> Self {
+        Self::from_buffer(buf)
+    }
+}
+
+impl From<&vt100::Screen> for TermFrame {
+    /// The whole screen of a terminal model ([`from_screen`] at its size).
+    fn from(screen: &vt100::Screen) -> Self {
+        let (rows, cols) = screen.size();
+        from_screen(screen, usize::from(cols), usize::from(rows))
+    }
+}
+
 /// The RGB a ratatui colour shows as (`None` = the terminal's default).
 #[must_use]
 pub fn ratatui_rgb(c: ratatui::style::Color) -> Option<Rgb> {

@@ -189,7 +189,14 @@ pub fn run_loop(
         let mut buf = Buffer::empty(area);
         draw(&screen, &panes, area, &mut buf);
         let bytes = app.presenter.frame(&buf, &app.fb, view);
-        session.write_frame(bytes)?;
+        if let Err(e) = session.write_frame(bytes) {
+            // A full terminal gave way to a signal: end like any signalled frame.
+            let sig = signal.load(Ordering::SeqCst);
+            if sig != 0 {
+                return Ok((Ending::Signal(sig as i32), app.stats, app.recording));
+            }
+            return Err(e);
+        }
         let sent = bytes.len();
         let draw_time = t.elapsed();
         app.stats.record_bytes(sent);

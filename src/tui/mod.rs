@@ -15,6 +15,7 @@ pub mod screen;
 pub mod stats;
 pub mod status;
 pub mod terminal;
+pub mod tty_out;
 
 use std::sync::atomic::AtomicUsize;
 use std::sync::Arc;
@@ -60,7 +61,7 @@ pub fn play(
 ) -> Result<(Ending, FrameStats, Option<Recording>), TerminalError> {
     terminal::require_tty()?;
     let signal = watch_signals()?;
-    let mut session = terminal::Session::start(options.mouse)?;
+    let mut session = terminal::Session::start(options.mouse, &signal)?;
     let state = crate::game::GameState::new(world, camera, 0);
     let result = app::run_loop(&mut session, state, options.looping, &signal);
     drop(session);
@@ -79,7 +80,7 @@ pub fn watch(
 ) -> Result<Ending, TerminalError> {
     terminal::require_tty()?;
     let signal = watch_signals()?;
-    let mut session = terminal::Session::start(false)?;
+    let mut session = terminal::Session::start(false, &signal)?;
     let result = playback::run(&mut session, world, replay, encode, &signal);
     drop(session);
     Ok(result?)

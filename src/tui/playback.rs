@@ -55,7 +55,14 @@ pub fn run(
         let Some(frame) = player.play(input) else {
             break;
         };
-        session.write_frame(presenter.frame(&frame.screen, &frame.view, frame.view_area))?;
+        let bytes = presenter.frame(&frame.screen, &frame.view, frame.view_area);
+        if let Err(e) = session.write_frame(bytes) {
+            let sig = signal.load(Ordering::SeqCst);
+            if sig != 0 {
+                return Ok(Ending::Signal(sig as i32));
+            }
+            return Err(e);
+        }
     }
     Ok(Ending::Quit)
 }

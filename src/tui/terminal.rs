@@ -1,9 +1,10 @@
 //! The terminal session: raw mode, alternate screen, hidden cursor, kitty keys, mouse — and
 //! putting all of it back on every way out (normal return, error, panic, signal).
 
-use std::io::{self, BufWriter, IsTerminal, Stdout, Write};
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Once;
+use std::io::{self, IsTerminal};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Arc, Once};
+use std::time::Duration;
 
 use crossterm::event::{
     DisableFocusChange, DisableMouseCapture, EnableFocusChange, EnableMouseCapture,
@@ -16,6 +17,10 @@ use crossterm::terminal::{
 use crossterm::{cursor, execute, queue, style};
 
 use super::keys::InputMode;
+use super::tty_out::{write_within, TtyOut};
+
+/// How long restoring the terminal may wait for a terminal that does not take bytes.
+const RESTORE_PATIENCE: Duration = Duration::from_millis(300);
 
 /// Whether the terminal is currently in game mode (and frames may be written).
 static ACTIVE: AtomicBool = AtomicBool::new(false);
@@ -45,45 +50,25 @@ pub fn require_tty() -> Result<(), TerminalError> {
     Ok(())
 }
 
-/// Stdout that drops writes once the session is restored, so a frame still buffered when a
-/// panic unwinds is not spilled onto the user's shell.
-#[derive(Debug)]
-pub struct GatedStdout(Stdout);
-
-impl Write for GatedStdout {
-    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
-        if ACTIVE.load(Ordering::SeqCst) {
-            self.0.write(buf)
-        } else {
-            Ok(buf.len())
-        }
-    }
-
-    fn flush(&mut self) -> io::Result<()> {
-        if ACTIVE.load(Ordering::SeqCst) {
-            self.0.flush()
-        } else {
-            Ok(())
-        }
-    }
-}
-
 /// An active game-mode terminal; dropping it restores the user's terminal.
 pub struct Session {
-    out: BufWriter<GatedStdout>,
+    out: TtyOut,
+    /// The caught signal's number (0 = none): a frame write waiting on a full terminal stops.
+    stop: Arc<AtomicUsize>,
     mode: InputMode,
 }
 
 impl Session {
     /// Enters game mode: raw, probe kitty keys (before any frame), alternate screen, no cursor.
+    /// Frame writes give up once `stop` holds a signal number.
     ///
     /// # Errors
     /// Any I/O error setting the modes (the terminal is restored before returning it).
-    pub fn start(mouse: bool) -> Result<Self, TerminalError> {
+    pub fn start(mouse: bool, stop: &Arc<AtomicUsize>) -> Result<Self, TerminalError> {
         install_panic_hook();
         enable_raw_mode()?;
         ACTIVE.store(true, Ordering::SeqCst);
-        match Self::enter(mouse) {
+        match Self::enter(mouse, Arc::clone(stop)) {
             Ok(s) => Ok(s),
             Err(e) => {
                 restore();
@@ -92,7 +77,7 @@ impl Session {
         }
     }
 
-    fn enter(mouse: bool) -> io::Result<Self> {
+    fn enter(mouse: bool, stop: Arc<AtomicUsize>) -> io::Result<Self> {
         // The probe may wait up to 2 s on a terminal that never answers; it runs once, before
         // the alternate screen and outside any synchronized update (some terminals ignore
         // queries inside one).
@@ -124,9 +109,9 @@ impl Session {
                 )
             )?;
         }
-        let out = BufWriter::with_capacity(1 << 18, GatedStdout(io::stdout()));
         Ok(Self {
-            out,
+            out: TtyOut::open(),
+            stop,
             mode: if kitty {
                 InputMode::Kitty
             } else {
@@ -150,13 +135,18 @@ impl Session {
         Ok(ratatui::layout::Size { width, height })
     }
 
-    /// Writes one frame's bytes (from [`crate::present::Presenter`]) in one write and flush.
+    /// Writes one frame's bytes (from [`crate::present::Presenter`]), unbuffered. While the
+    /// terminal is full it waits, but never past a caught signal.
     ///
     /// # Errors
-    /// Writing to the terminal failed (e.g. it went away).
+    /// [`io::ErrorKind::Interrupted`] when a signal arrived first; the terminal's write error
+    /// (e.g. it went away).
     pub fn write_frame(&mut self, bytes: &[u8]) -> io::Result<()> {
-        self.out.write_all(bytes)?;
-        self.out.flush()
+        // After a restore (a panic unwinding mid-frame), nothing more reaches the user's shell.
+        if !ACTIVE.load(Ordering::SeqCst) {
+            return Ok(());
+        }
+        self.out.write_all(bytes, &self.stop, None)
     }
 }
 
@@ -167,11 +157,13 @@ impl Drop for Session {
 }
 
 /// Puts the terminal back (keys, mouse, cursor, main screen, cooked mode); safe to call twice.
+/// The escape sequences get a bounded time (a terminal nobody reads cannot take them); the
+/// line discipline is restored in any case.
 pub fn restore() {
     if !ACTIVE.swap(false, Ordering::SeqCst) {
         return;
     }
-    let mut out = io::stdout();
+    let mut out = Vec::new();
     if KITTY.swap(false, Ordering::SeqCst) {
         let _ = queue!(out, PopKeyboardEnhancementFlags);
     }
@@ -186,7 +178,7 @@ pub fn restore() {
         LeaveAlternateScreen,
         cursor::Show
     );
-    let _ = out.flush();
+    write_within(&out, RESTORE_PATIENCE);
     let _ = disable_raw_mode();
 }
 

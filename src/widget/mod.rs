@@ -3,7 +3,6 @@
 //! Each widget only reads its inputs and draws into the area it is given; they hold no state
 //! and know nothing of the terminal, so any ratatui app (or a test buffer) can use them.
 
-pub mod colour_text;
 pub mod debug_pane;
 pub mod half_block;
 pub mod minimap;
