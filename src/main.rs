@@ -2,7 +2,6 @@
 
 mod bench_cli;
 mod cli;
-mod replay_cli;
 
 fn main() -> std::process::ExitCode {
     cli::run()

@@ -1,0 +1,157 @@
+//! Command-line interface: parses flags, loads the world, dispatches to a command (one file per
+//! command; shared option groups in `options`).
+
+mod bench;
+mod diff;
+mod options;
+mod play;
+mod render;
+mod replay;
+mod replay_frames;
+mod serve;
+
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+use halfcast::camera::Camera;
+use halfcast::encode::ColorLevel;
+use halfcast::world::World;
+
+use bench::BenchArgs;
+use diff::DiffArgs;
+use options::{MapArgs, PoseArgs};
+use play::{PlayArgs, RecordArgs};
+use render::RenderArgs;
+use replay::ReplayArgs;
+use serve::ServeArgs;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "halfcast",
+    version,
+    about = "A raycasting 3D engine that lives in the terminal"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Render one frame headlessly (PNG, ANSI, text or ray JSON).
+    #[command(args_override_self = true)]
+    Render(RenderArgs),
+    /// Play in this terminal (the default when no command is given).
+    Play(PlayArgs),
+    /// Measure the terminal encoder: bytes per frame and encode time vs stock ratatui.
+    Bench(BenchArgs),
+    /// Play and record the input into a `.hcr` file (fixed timestep, replayable exactly).
+    Record(RecordArgs),
+    /// Play back a `.hcr` recording: write chosen frames, or an asciicast of the whole run.
+    Replay(ReplayArgs),
+    /// Run an SSH server where everyone connected plays in one world (`ssh -p 2222 host`).
+    Serve(ServeArgs),
+    /// Compare two frames (PNG, ANSI, cells text or plain text): exit 0 equal, 1 different, 2 error.
+    Diff(DiffArgs),
+}
+
+pub(crate) fn parse_level(s: &str) -> Result<ColorLevel, String> {
+    s.parse()
+}
+
+/// The colour level the environment asks for (`COLORTERM`, `TERM`, `NO_COLOR`).
+pub(crate) fn detect_level() -> ColorLevel {
+    let var = |k: &str| std::env::var(k).ok();
+    ColorLevel::detect(
+        var("COLORTERM").as_deref(),
+        var("TERM").as_deref(),
+        var("NO_COLOR").as_deref(),
+    )
+}
+
+/// An error that ends the program with a message and an exit code.
+pub(crate) struct Failure {
+    pub(crate) code: u8,
+    pub(crate) message: String,
+}
+
+impl Failure {
+    pub(crate) fn input(e: impl std::fmt::Display) -> Self {
+        Self {
+            code: 2,
+            message: e.to_string(),
+        }
+    }
+
+    pub(crate) fn io(e: impl std::fmt::Display) -> Self {
+        Self {
+            code: 1,
+            message: e.to_string(),
+        }
+    }
+}
+
+/// Parses the command line and runs; the process exit code comes from here.
+pub fn run() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Some(Command::Render(args)) => render::render(&args),
+        Some(Command::Diff(args)) => diff::diff(&args),
+        Some(Command::Replay(args)) => replay::replay(&args),
+        Some(Command::Play(args)) => play::play(&args, None),
+        Some(Command::Record(args)) => play::play(&args.play, Some(&args.output)),
+        Some(Command::Bench(args)) => bench::bench(&args),
+        Some(Command::Serve(args)) => serve::serve(args),
+        None => play::play(&PlayArgs::defaults(), None),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(f) => {
+            if !f.message.is_empty() {
+                eprintln!("error: {}", f.message);
+            }
+            ExitCode::from(f.code)
+        }
+    }
+}
+
+pub(crate) fn load_world(args: &MapArgs) -> Result<World, Failure> {
+    match &args.map {
+        None => Ok(World::default_world()),
+        Some(path) => {
+            let (world, warnings) = World::from_file(path, args.strict).map_err(Failure::input)?;
+            for w in warnings {
+                eprintln!("{w}");
+            }
+            Ok(world)
+        }
+    }
+}
+
+pub(crate) fn camera_for(world: &World, pose: &PoseArgs) -> Camera {
+    let start = world.map.start;
+    let pos = pose.pos.unwrap_or_else(|| start.pos());
+    let angle = pose.angle.unwrap_or_else(|| start.angle_deg());
+    Camera::from_angle(pos, angle, pose.fov)
+}
+
+pub(crate) fn write_output(path: Option<&PathBuf>, bytes: &[u8]) -> Result<(), Failure> {
+    match path {
+        Some(p) => std::fs::write(p, bytes)
+            .map_err(|e| Failure::io(format!("cannot write {}: {e}", p.display()))),
+        None => {
+            let mut out = std::io::stdout().lock();
+            out.write_all(bytes)
+                .and_then(|()| out.flush())
+                .or_else(|e| {
+                    if e.kind() == std::io::ErrorKind::BrokenPipe {
+                        Ok(())
+                    } else {
+                        Err(Failure::io(e))
+                    }
+                })
+        }
+    }
+}

@@ -1,0 +1,154 @@
+//! `halfcast play` and `halfcast record`: the interactive game, optionally recording its input.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use clap::Args;
+use halfcast::camera::DEFAULT_FOV_DEG;
+use halfcast::encode::{ColorLevel, EncodeOptions};
+use halfcast::tui::{self, Ending, LoopOptions, PlayOptions, TerminalError};
+
+use super::options::{MapArgs, PoseArgs};
+use super::{camera_for, detect_level, load_world, parse_level, write_output, Failure};
+
+#[derive(Args, Debug)]
+pub(crate) struct PlayArgs {
+    #[command(flatten)]
+    pub(crate) map: MapArgs,
+    #[command(flatten)]
+    pub(crate) pose: PoseArgs,
+    /// Target frames per second (1 to 1000).
+    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(1..=1000))]
+    pub(crate) fps: u32,
+    /// Do not capture the mouse (keeps the terminal's own text selection working).
+    #[arg(long)]
+    pub(crate) no_mouse: bool,
+    /// Print frame-time statistics (fps, render and draw ms) to stderr on exit.
+    #[arg(long)]
+    pub(crate) frame_stats: bool,
+    /// Colour level (default: detected from COLORTERM, TERM, NO_COLOR).
+    #[arg(long, value_parser = parse_level)]
+    pub(crate) colors: Option<ColorLevel>,
+    /// Ordered dithering at 256 and 16 colours, so walls don't band.
+    #[arg(long)]
+    pub(crate) dither: bool,
+    /// Lossy: don't resend a cell whose colours moved less than N (0-255) since it was sent.
+    #[arg(long, value_name = "N")]
+    pub(crate) delta: Option<u8>,
+    /// Cap the output rate (e.g. 2mbit, 500kbit, 1MB): the frame rate drops to fit.
+    #[arg(long, value_name = "RATE", value_parser = halfcast::encode::parse_rate)]
+    pub(crate) max_bandwidth: Option<u64>,
+    /// With --max-bandwidth: also step down the colour level when the cap allows under 12 fps.
+    #[arg(long, requires = "max_bandwidth")]
+    pub(crate) adapt_colors: bool,
+}
+
+#[derive(Args, Debug)]
+pub(crate) struct RecordArgs {
+    #[command(flatten)]
+    pub(crate) play: PlayArgs,
+    /// Where to write the recording (.hcr).
+    #[arg(short, long)]
+    pub(crate) output: PathBuf,
+}
+
+impl PlayArgs {
+    /// `halfcast` with no command: the embedded map, default pose and pacing.
+    pub(crate) fn defaults() -> Self {
+        Self {
+            map: MapArgs {
+                map: None,
+                strict: false,
+            },
+            pose: PoseArgs {
+                pos: None,
+                angle: None,
+                fov: DEFAULT_FOV_DEG,
+            },
+            fps: 60,
+            no_mouse: false,
+            frame_stats: false,
+            colors: None,
+            dither: false,
+            delta: None,
+            max_bandwidth: None,
+            adapt_colors: false,
+        }
+    }
+}
+
+pub(crate) fn play(args: &PlayArgs, record: Option<&PathBuf>) -> Result<(), Failure> {
+    let world = load_world(&args.map)?;
+    let camera = camera_for(&world, &args.pose);
+    if !world.map.is_walkable(camera.pos) {
+        return Err(Failure::input(format!(
+            "--pos {},{} is not on a floor cell of {}",
+            camera.pos.x, camera.pos.y, world.map.name
+        )));
+    }
+    let mut encode = EncodeOptions::new(args.colors.unwrap_or_else(detect_level));
+    encode.dither = args.dither;
+    encode.delta = args.delta;
+    let options = PlayOptions {
+        looping: LoopOptions {
+            fps: args.fps,
+            encode,
+            max_bandwidth: args.max_bandwidth,
+            adapt_colours: args.adapt_colors,
+            record: record.is_some(),
+        },
+        mouse: !args.no_mouse,
+    };
+    let (ending, stats, recording) =
+        tui::play(Arc::new(world), camera, options).map_err(terminal_failure)?;
+    if args.frame_stats {
+        eprintln!("halfcast: {}", stats.summary());
+    }
+    if let (Some(path), Some(rec)) = (record, recording) {
+        let header = halfcast::replay::Header {
+            map: args
+                .map
+                .map
+                .as_ref()
+                .map_or(halfcast::replay::MapSource::Embedded, |p| {
+                    halfcast::replay::MapSource::File(p.display().to_string())
+                }),
+            pos: camera.pos,
+            angle_deg: camera.angle_deg(),
+            fov_deg: camera.fov_deg(),
+            size: rec.size,
+            fps: args.fps,
+            seed: 0,
+        };
+        let replay = halfcast::replay::Replay {
+            header,
+            frames: rec.frames,
+        };
+        write_output(Some(path), replay.to_jsonl().as_bytes())?;
+        eprintln!(
+            "halfcast: recorded {} frames into {}",
+            replay.frames.len(),
+            path.display()
+        );
+    }
+    ending_result(ending)
+}
+
+pub(crate) fn terminal_failure(e: TerminalError) -> Failure {
+    match e {
+        TerminalError::NotATerminal(_) => Failure::input(e),
+        TerminalError::Io(_) => Failure::io(e),
+    }
+}
+
+pub(crate) fn ending_result(ending: Ending) -> Result<(), Failure> {
+    match ending {
+        Ending::Quit => Ok(()),
+        // Silent, like a shell's own signal exits: the terminal may be one nobody reads, and
+        // a message on it could block forever. The exit code (128 + n) says what happened.
+        Ending::Signal(sig) => Err(Failure {
+            code: 128u8.saturating_add(u8::try_from(sig).unwrap_or(0)),
+            message: String::new(),
+        }),
+    }
+}

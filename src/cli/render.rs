@@ -1,0 +1,116 @@
+//! `halfcast render`: one frame, headless, as PNG, ANSI, text, cells text or ray JSON.
+
+use std::path::PathBuf;
+
+use clap::{Args, ValueEnum};
+use halfcast::door::DoorState;
+use halfcast::encode::{full_frame, ColorLevel, EncodeOptions};
+use halfcast::output::{json::RayReport, text};
+use halfcast::termframe;
+use halfcast::{Framebuffer, Scene};
+
+use super::options::{MapArgs, PoseArgs, WorldArgs};
+use super::{camera_for, detect_level, load_world, parse_level, write_output, Failure};
+
+/// Largest view `render` accepts, in cells (columns × rows).
+const MAX_RENDER: (u16, u16) = (4000, 2000);
+
+#[derive(Args, Debug)]
+pub(crate) struct RenderArgs {
+    #[command(flatten)]
+    pub(crate) map: MapArgs,
+    #[command(flatten)]
+    pub(crate) pose: PoseArgs,
+    /// View size in terminal cells, COLSxROWS (the PNG is COLS × 2·ROWS pixels).
+    #[arg(long, default_value = "120x40", value_parser = parse_size)]
+    pub(crate) size: (u16, u16),
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Png)]
+    pub(crate) format: Format,
+    /// Write here instead of standard output.
+    #[arg(short, long)]
+    pub(crate) output: Option<PathBuf>,
+    /// Colour level for `--format ansi` (default: detected from COLORTERM, TERM, NO_COLOR).
+    #[arg(long, value_parser = parse_level)]
+    pub(crate) colors: Option<ColorLevel>,
+    /// Ordered dithering at 256 and 16 colours (`--format ansi`).
+    #[arg(long)]
+    pub(crate) dither: bool,
+    #[command(flatten)]
+    pub(crate) world: WorldArgs,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Format {
+    /// The framebuffer, COLS × 2·ROWS pixels.
+    Png,
+    /// The half-block frame as the terminal receives it (full redraw).
+    Ansi,
+    /// Plain ASCII shade ramp, one character per cell.
+    Txt,
+    /// Colour-aware text for code review: every cell's glyph, fg and bg, one line per row.
+    Cells,
+    /// The ray data: camera, per-column hits, the centre ray's DDA trace.
+    Json,
+}
+
+fn parse_size(s: &str) -> Result<(u16, u16), String> {
+    let (c, r) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("'{s}' is not COLSxROWS"))?;
+    let num = |t: &str| {
+        t.trim()
+            .parse::<u16>()
+            .map_err(|_| format!("'{s}' is not COLSxROWS"))
+    };
+    let (c, r) = (num(c)?, num(r)?);
+    if c == 0 || r == 0 || c > MAX_RENDER.0 || r > MAX_RENDER.1 {
+        return Err(format!(
+            "size {c}x{r} is out of range (1x1 to {}x{})",
+            MAX_RENDER.0, MAX_RENDER.1
+        ));
+    }
+    Ok((c, r))
+}
+
+pub(crate) fn render(args: &RenderArgs) -> Result<(), Failure> {
+    let world = load_world(&args.map)?;
+    let camera = camera_for(&world, &args.pose);
+    let (cols, rows) = args.size;
+    let mut fb = Framebuffer::for_cells(cols, rows);
+    let opts = &args.world;
+    let mut doors = DoorState::new(&world.map);
+    for cell in doors.cells().to_vec() {
+        doors.set_open(cell, opts.door_open);
+    }
+    let mut scene = Scene::new(&world, camera)
+        .with_view(halfcast::View::new(opts.pitch, opts.z))
+        .with_doors(&doors)
+        .at_time(opts.time);
+    if let Some(fog) = opts.fog {
+        scene.light.fog = Some(fog);
+    }
+    scene.light.night |= opts.night;
+    let frame = scene.render_frame(&mut fb, Some(usize::from(cols) / 2));
+    let cast = frame.cast;
+    let bytes = match args.format {
+        Format::Png => fb.to_png().map_err(Failure::io)?,
+        Format::Ansi => {
+            let mut opts = EncodeOptions::new(args.colors.unwrap_or_else(detect_level));
+            opts.dither = args.dither;
+            full_frame(&fb, &opts)
+        }
+        Format::Txt => text::to_text(&fb).into_bytes(),
+        Format::Cells => {
+            termframe::to_cells_text(&termframe::TermFrame::from_framebuffer(&fb)).into_bytes()
+        }
+        Format::Json => {
+            let mut s = RayReport::new(&camera, &cast, usize::from(rows))
+                .with_sprites(&world, &camera, &frame.sprites)
+                .to_json();
+            s.push('\n');
+            s.into_bytes()
+        }
+    };
+    write_output(args.output.as_ref(), &bytes)
+}
