@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{halfcast, root};
+use common::{halfcast, replay_cast, root};
 use halfcast::termframe::{self, from_screen};
 
 const FIXTURE: &str = "tests/fixtures/walk_turn_debug.hcr";
@@ -113,23 +113,7 @@ fn changing_one_key_in_the_replay_changes_the_frames() {
 
 #[test]
 fn the_asciicast_is_valid_v2_and_ends_on_the_last_frame() {
-    let dir = tempfile::tempdir().unwrap();
-    let cast = dir.path().join("run.cast");
-    let o = halfcast(&[
-        "replay",
-        FIXTURE,
-        "--format",
-        "cast",
-        "--out",
-        cast.to_str().unwrap(),
-    ]);
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    let text = std::fs::read_to_string(&cast).unwrap();
+    let text = replay_cast(FIXTURE, &[]);
     let mut lines = text.lines();
     let header: serde_json::Value = serde_json::from_str(lines.next().unwrap()).unwrap();
     assert_eq!(header["version"], 2);
@@ -156,6 +140,7 @@ fn the_asciicast_is_valid_v2_and_ends_on_the_last_frame() {
         "one event to hide the cursor, then one per frame"
     );
     assert!((last_t - 31.0 / 30.0).abs() < 1e-9);
+    let dir = tempfile::tempdir().unwrap();
     replay_frames(FIXTURE, "31", "cells", dir.path());
     let (want, _) = termframe::load(&dir.path().join("frame-00031.cells.txt")).unwrap();
     let seen = from_screen(term.screen(), usize::from(w), usize::from(h));
@@ -198,25 +183,7 @@ fn corrupt_future_and_short_replays_are_clear_errors() {
 
 #[test]
 fn until_frame_ends_the_run_on_that_frame() {
-    let dir = tempfile::tempdir().unwrap();
-    let cast = dir.path().join("short.cast");
-    let o = halfcast(&[
-        "replay",
-        FIXTURE,
-        "--until-frame",
-        "10",
-        "--format",
-        "cast",
-        "--out",
-        cast.to_str().unwrap(),
-    ]);
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    let text = std::fs::read_to_string(&cast).unwrap();
+    let text = replay_cast(FIXTURE, &["--until-frame", "10"]);
     // The header, the cursor hide, then frames 0..=10.
     assert_eq!(text.lines().count(), 1 + 1 + 11);
     let o = halfcast(&["replay", FIXTURE, "--until-frame", "32", "--format", "cast"]);

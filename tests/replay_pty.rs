@@ -120,23 +120,7 @@ fn the_live_screen_is_the_headless_frame() {
 /// `--format cast` played through a terminal model ends on the live run's final screen.
 #[test]
 fn the_asciicast_ends_on_the_live_screen() {
-    let dir = tempfile::tempdir().unwrap();
-    let cast = dir.path().join("run.cast");
-    let out = common::halfcast(&[
-        "replay",
-        FIXTURE,
-        "--format",
-        "cast",
-        "--out",
-        cast.to_str().unwrap(),
-    ]);
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = std::fs::read_to_string(&cast).unwrap();
+    let text = common::replay_cast(FIXTURE, &[]);
     let mut lines = text.lines();
     let header: serde_json::Value = serde_json::from_str(lines.next().unwrap()).unwrap();
     let size = replay_size(&common::root().join(FIXTURE));

@@ -30,3 +30,26 @@ pub fn shared_dir(what: &str) -> Option<PathBuf> {
         None
     }
 }
+
+/// Runs `halfcast replay FIXTURE --format cast [extra…]` into a temporary file and returns the
+/// asciicast text (panics with stderr if the command fails).
+pub fn replay_cast(fixture: &str, extra: &[&str]) -> String {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let cast = dir.path().join("run.cast");
+    let mut args = vec!["replay", fixture];
+    args.extend_from_slice(extra);
+    args.extend([
+        "--format",
+        "cast",
+        "--out",
+        cast.to_str().expect("utf-8 path"),
+    ]);
+    let out = halfcast(&args);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    std::fs::read_to_string(&cast).expect("read the cast")
+}
