@@ -93,10 +93,11 @@ pub fn label_minimap(
     let canvas = (usize::from(inner.width), usize::from(inner.height) * 2);
     let pos = eye.camera.pos;
     let map = &eye.world.map;
-    let view = match (&cast.trace, eye.debugger.paused) {
-        (Some(t), true) => MapView::around(pos, pos + t.ray_dir * t.hit.perp_dist, canvas),
-        _ => MapView::new((map.width, map.height), canvas, pos),
+    let focus = match (&cast.trace, eye.debugger.paused) {
+        (Some(t), true) => Some(pos + t.ray_dir * t.hit.perp_dist),
+        _ => None,
     };
+    let view = MapView::for_pane((map.width, map.height), canvas, pos, focus);
     for p in snap.players.iter().filter(|p| p.id != eye_id) {
         let (px, py) = view.to_px(p.state.camera.pos);
         if !(px >= 0.0 && py >= 0.0 && px < canvas.0 as f64 && py < canvas.1 as f64) {

@@ -106,6 +106,21 @@ impl MapView {
         }
     }
 
+    /// What the minimap pane shows: zoomed on the ray from `pos` to `focus` (the debugged ray's
+    /// hit, while the debugger is paused), else the map around `pos`. Overlays use it to line up.
+    #[must_use]
+    pub fn for_pane(
+        map_size: (usize, usize),
+        canvas: (usize, usize),
+        pos: Vec2,
+        focus: Option<Vec2>,
+    ) -> Self {
+        match focus {
+            Some(hit) => Self::around(pos, hit, canvas),
+            None => Self::new(map_size, canvas, pos),
+        }
+    }
+
     /// A map point in canvas pixels.
     #[must_use]
     pub fn to_px(&self, p: Vec2) -> (f64, f64) {
@@ -185,13 +200,11 @@ impl<'a> Minimap<'a> {
     pub fn map_view(&self, canvas: (usize, usize)) -> MapView {
         let map = &self.world.map;
         let pos = self.camera.pos;
-        match &self.debug {
-            Some(d) if self.focus => {
-                let hit = pos + d.trace.ray_dir * d.trace.hit.perp_dist;
-                MapView::around(pos, hit, canvas)
-            }
-            _ => MapView::new((map.width, map.height), canvas, pos),
-        }
+        let focus = match &self.debug {
+            Some(d) if self.focus => Some(pos + d.trace.ray_dir * d.trace.hit.perp_dist),
+            _ => None,
+        };
+        MapView::for_pane((map.width, map.height), canvas, pos, focus)
     }
 
     /// Paints into a pixel canvas (two pixels per terminal row); also used for PNG screenshots.
