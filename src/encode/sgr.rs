@@ -52,6 +52,22 @@ pub(crate) fn param_len(level: ColorLevel, code: Code, bg: bool) -> u32 {
     }
 }
 
+/// Bytes of a colour's whole SGR alone (`ESC[`, the parameter, `m`) as (fg, bg), for the planner.
+#[inline]
+pub(crate) fn alone_lens(level: ColorLevel, code: Code) -> (u32, u32) {
+    match level {
+        ColorLevel::TrueColor if code != DEFAULT => {
+            let n = 10 + d8(code >> 16) + d8(code >> 8) + d8(code);
+            (n, n)
+        }
+        ColorLevel::Ansi256 if code != DEFAULT => (8 + d8(code), 8 + d8(code)),
+        _ => (
+            3 + param_len(level, code, false),
+            3 + param_len(level, code, true),
+        ),
+    }
+}
+
 /// A small stack buffer: a whole SGR sequence is assembled here and appended in one copy.
 struct Buf {
     bytes: [u8; 48],
@@ -169,6 +185,21 @@ mod tests {
         write(&mut v, level, from, to);
         assert_eq!(String::from_utf8(v.clone()).unwrap(), want);
         assert_eq!(cost(level, from, to) as usize, v.len(), "{want:?}");
+    }
+
+    #[test]
+    fn alone_lengths_match_the_written_sequences() {
+        use ColorLevel::*;
+        for level in [TrueColor, Ansi256, Ansi16] {
+            for code in [
+                0, 7, 9, 15, 16, 99, 100, 231, 255, 0x0A_FF_00, 0xFF_FF_FF, DEFAULT,
+            ] {
+                let (f, b) = alone_lens(level, code);
+                let other = if code == 1 { 2 } else { 1 };
+                assert_eq!(f, cost(level, (other, 3), (code, 3)), "{level} {code}");
+                assert_eq!(b, cost(level, (3, other), (3, code)), "{level} {code}");
+            }
+        }
     }
 
     #[test]
