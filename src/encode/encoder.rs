@@ -218,7 +218,10 @@ impl Encoder {
                 let next = span.choice.colours(cell, colours);
                 sgr::write(&mut self.out, level, colours, next);
                 if span.choice == Choice::Space {
-                    self.out.resize(self.out.len() + len, b' ');
+                    // Runs are short: pushing beats a `memset` call.
+                    for _ in 0..len {
+                        self.out.push(b' ');
+                    }
                 } else {
                     let g = glyph3(span.choice);
                     for _ in 0..len {

@@ -32,9 +32,31 @@ const DECIMAL: [([u8; 3], u8); 256] = {
     t
 };
 
+/// Each byte value in decimal followed by `;` (left-aligned) and how many bytes that is.
+const DECIMAL_SEMI: [([u8; 4], u8); 256] = {
+    let mut t = [([0u8; 4], 0u8); 256];
+    let mut i = 0;
+    while i < 256 {
+        let (d, n) = DECIMAL[i];
+        let n = n as usize;
+        let mut b = [d[0], d[1], d[2], 0];
+        b[n] = b';';
+        t[i] = (b, n as u8 + 1);
+        i += 1;
+    }
+    t
+};
+
 #[inline]
 fn d8(v: u32) -> u32 {
     u32::from(DIGITS[(v & 0xFF) as usize])
+}
+
+/// Decimal digits of a byte value without a table (branch-free, for the planner's hot loop).
+#[inline]
+fn digits8(v: u32) -> u32 {
+    let v = v & 0xFF;
+    1 + u32::from(v >= 10) + u32::from(v >= 100)
 }
 
 /// Bytes of one colour parameter (`38;2;r;g;b`, `38;5;n`, `31`, `101`, `39` …).
@@ -57,10 +79,10 @@ pub(crate) fn param_len(level: ColorLevel, code: Code, bg: bool) -> u32 {
 pub(crate) fn alone_lens(level: ColorLevel, code: Code) -> (u32, u32) {
     match level {
         ColorLevel::TrueColor if code != DEFAULT => {
-            let n = 10 + d8(code >> 16) + d8(code >> 8) + d8(code);
+            let n = 10 + digits8(code >> 16) + digits8(code >> 8) + digits8(code);
             (n, n)
         }
-        ColorLevel::Ansi256 if code != DEFAULT => (8 + d8(code), 8 + d8(code)),
+        ColorLevel::Ansi256 if code != DEFAULT => (8 + digits8(code), 8 + digits8(code)),
         _ => (
             3 + param_len(level, code, false),
             3 + param_len(level, code, true),
@@ -87,6 +109,18 @@ impl Buf {
         self.len += s.len();
     }
 
+    /// `r;g;b` of a packed colour: two 4-byte and one 3-byte fixed-size copies.
+    #[inline]
+    fn rgb(&mut self, code: u32) {
+        let (r, n) = DECIMAL_SEMI[((code >> 16) & 0xFF) as usize];
+        self.bytes[self.len..self.len + 4].copy_from_slice(&r);
+        self.len += usize::from(n);
+        let (g, n) = DECIMAL_SEMI[((code >> 8) & 0xFF) as usize];
+        self.bytes[self.len..self.len + 4].copy_from_slice(&g);
+        self.len += usize::from(n);
+        self.num(code);
+    }
+
     /// A byte value in decimal, no leading zeros (one table lookup, one 3-byte copy).
     #[inline]
     fn num(&mut self, v: u32) {
@@ -97,7 +131,7 @@ impl Buf {
 }
 
 /// Writes one colour parameter.
-#[inline]
+#[inline(always)]
 fn push_param(out: &mut Buf, level: ColorLevel, code: Code, bg: bool) {
     if code == DEFAULT {
         out.extend(if bg { b"49" } else { b"39" });
@@ -106,11 +140,7 @@ fn push_param(out: &mut Buf, level: ColorLevel, code: Code, bg: bool) {
     match level {
         ColorLevel::TrueColor => {
             out.extend(if bg { b"48;2;" } else { b"38;2;" });
-            out.num(code >> 16);
-            out.push(b';');
-            out.num(code >> 8);
-            out.push(b';');
-            out.num(code);
+            out.rgb(code);
         }
         ColorLevel::Ansi256 => {
             out.extend(if bg { b"48;5;" } else { b"38;5;" });
