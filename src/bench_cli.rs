@@ -14,7 +14,7 @@ use halfcast::world::World;
 use halfcast::{Framebuffer, Scene};
 
 /// How often each sequence is re-encoded for timing (the minimum per frame is kept).
-const TIMING_REPEATS: usize = 3;
+const TIMING_REPEATS: usize = 10;
 
 /// View sizes the default bench replays, in cells.
 pub const SIZES: [(u16, u16); 2] = [(240, 68), (160, 48)];

@@ -204,25 +204,36 @@ impl Encoder {
                 origin_col: self.origin.0,
                 row,
             };
-            let choices = self
+            let spans = self
                 .planner
                 .plan(&start, intent, &self.skippable, self.opts.beam);
-            for (x, &choice) in choices.iter().enumerate() {
-                if choice == Choice::Skip {
+            for span in spans {
+                if span.choice == Choice::Skip {
                     continue;
                 }
-                let col = self.origin.0 + x as u16;
+                let (x, len) = (usize::from(span.x), usize::from(span.len));
+                let col = self.origin.0 + span.x;
                 write_move(&mut self.out, cursor, col, row);
                 let cell = intent[x];
-                let next = choice.colours(cell, colours);
+                let next = span.choice.colours(cell, colours);
                 sgr::write(&mut self.out, level, colours, next);
-                match choice {
-                    Choice::Space => self.out.push(b' '),
-                    _ => self.out.extend_from_slice(&glyph3(choice)),
+                if span.choice == Choice::Space {
+                    // Runs are short: pushing beats a `memset` call.
+                    for _ in 0..len {
+                        self.out.push(b' ');
+                    }
+                } else {
+                    let g = glyph3(span.choice);
+                    for _ in 0..len {
+                        self.out.extend_from_slice(&g);
+                    }
                 }
                 colours = next;
-                cursor = Cursor::At { col: col + 1, row };
-                self.shown[y * w + x] = cell;
+                cursor = Cursor::At {
+                    col: col + span.len,
+                    row,
+                };
+                self.shown[y * w + x..y * w + x + len].fill(cell);
                 drew = true;
             }
         }

@@ -39,15 +39,13 @@ pub fn full_frame(fb: &Framebuffer, opts: &EncodeOptions) -> Vec<u8> {
             row: 0,
         };
         let mut colours = start.colours;
-        for (x, &choice) in planner
-            .plan(&start, row, &must, opts.beam)
-            .iter()
-            .enumerate()
-        {
-            debug_assert_ne!(choice, Choice::Skip);
-            let next = choice.colours(row[x], colours);
+        for span in planner.plan(&start, row, &must, opts.beam) {
+            debug_assert_ne!(span.choice, Choice::Skip);
+            let next = span.choice.colours(row[usize::from(span.x)], colours);
             sgr::write(&mut out, opts.level, colours, next);
-            out.extend_from_slice(choice.glyph());
+            for _ in 0..span.len {
+                out.extend_from_slice(span.choice.glyph());
+            }
             colours = next;
         }
         sgr::write(&mut out, opts.level, colours, (DEFAULT, DEFAULT));

@@ -1,16 +1,18 @@
 //! Plans one row of cells: which to skip, which glyph to draw each with, so the row costs the fewest bytes.
 //!
-//! A small beam search (Viterbi with the best few states kept per cell): the state after a cell is the
-//! terminal's (fg, bg) and where the cursor is. Each cell can be drawn as `▀` (fg = top, bg = bottom),
-//! `▄` (swapped), or — when both halves match — a space (bg only) or `█` (fg only); a cell the terminal
-//! already shows may be skipped, paying a cursor move before the next drawn cell.
+//! A small beam search (Viterbi with the best few states kept per run of identical cells): the state
+//! after a run is the terminal's (fg, bg) and where the cursor is. A run can be drawn as `▀`
+//! (fg = top, bg = bottom), `▄` (swapped), or — when both halves match — spaces (bg only) or `█`
+//! (fg only); a run the terminal already shows may be skipped, paying a cursor move before the next
+//! drawn cell. For a row with nothing to skip and no uniform cells, two states per run (the last run
+//! drawn `▀` or `▄`) are all there are, so a beam of two is exact there.
 
 use super::cursor::{forward_cost, move_cost, Cursor};
 use super::level::ColorLevel;
 use super::palette::Code;
 use super::sgr;
 
-/// States kept per cell: 1 is greedy; 4 finds nearly all the savings at a modest cost.
+/// Most states kept per run: 1 is greedy; 4 finds nearly all the savings at a modest cost.
 pub(crate) const BEAM: usize = 4;
 
 /// The beam the encoder uses unless told otherwise (2 keeps nearly all the savings of 4 at half the work).
@@ -22,7 +24,7 @@ const NOWHERE: u16 = u16::MAX;
 /// How a lagging cursor ranks in the beam: less than a real move (3 bytes), so trailing skips survive.
 const LAG_PENALTY: u32 = 1;
 
-/// How one cell is sent.
+/// How one run of cells is sent.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Choice {
     /// Not sent: the terminal already shows it.
@@ -62,18 +64,37 @@ impl Choice {
     }
 }
 
+/// A run of identical cells (same colours, same skippability) and how it is sent.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Span {
+    /// First view column of the run.
+    pub x: u16,
+    pub len: u16,
+    pub choice: Choice,
+}
+
 #[derive(Debug, Clone, Copy)]
 struct Node {
     fg: Code,
     bg: Code,
-    /// View column the cursor sits at, or [`NOWHERE`].
-    cursor: u16,
     cost: u32,
     /// `cost` plus an estimate of a pending cursor move: what the beam ranks by.
     key: u32,
+    /// View column the cursor sits at, or [`NOWHERE`].
+    cursor: u16,
     prev: u8,
     choice: Choice,
 }
+
+const BLANK: Node = Node {
+    fg: 0,
+    bg: 0,
+    cost: 0,
+    key: 0,
+    cursor: NOWHERE,
+    prev: 0,
+    choice: Choice::Skip,
+};
 
 /// Where the row sits and what the terminal looks like before it.
 #[derive(Debug, Clone, Copy)]
@@ -91,15 +112,23 @@ pub(crate) struct RowStart {
 /// Reusable scratch space for planning rows (no allocation per frame once warm).
 #[derive(Debug, Default)]
 pub(crate) struct RowPlanner {
-    nodes: Vec<Node>,
+    /// The beam after each run (`nodes[0]` is the row's start); the first `counts[i]` are valid.
+    nodes: Vec<[Node; BEAM]>,
     counts: Vec<u8>,
-    choices: Vec<Choice>,
-    /// (first column, length) of each run of identical cells.
-    runs: Vec<(u16, u16)>,
+    spans: Vec<Span>,
+}
+
+/// Bytes of the SGR that sets fg `f` and bg `g` from `p`; `lf`/`lg` are each one's cost alone
+/// (`ESC[`…`m` included); both together share one `ESC[`…`m` (branch-free).
+#[inline]
+fn change(p: &Node, f: Code, g: Code, lf: u32, lg: u32) -> u32 {
+    let (cf, cg) = (u32::from(f != p.fg), u32::from(g != p.bg));
+    cf * lf + cg * lg - 2 * (cf & cg)
 }
 
 impl RowPlanner {
-    /// Plans the row; returns the choice per cell (all `Skip` when nothing needs sending).
+    /// Plans the row: its runs of identical cells, each with how it is sent (empty when nothing
+    /// needs sending).
     ///
     /// `skippable[x]` says the terminal already shows cell x acceptably.
     pub(crate) fn plan(
@@ -108,140 +137,148 @@ impl RowPlanner {
         cells: &[[Code; 2]],
         skippable: &[bool],
         beam: usize,
-    ) -> &[Choice] {
-        let w = cells.len();
+    ) -> &[Span] {
+        let w = cells.len().min(skippable.len());
         let beam = beam.clamp(1, BEAM);
-        self.choices.clear();
-        self.choices.resize(w, Choice::Skip);
-        if skippable.iter().all(|&s| s) {
-            return &self.choices;
+        self.spans.clear();
+        if skippable[..w].iter().all(|&s| s) {
+            return &self.spans;
         }
-        let blank = Node {
-            fg: start.colours.0,
-            bg: start.colours.1,
-            cursor: NOWHERE,
-            cost: 0,
-            key: 0,
-            prev: 0,
-            choice: Choice::Skip,
-        };
-        // Runs of identical cells (same colours, same skippability) are one step: after the first
-        // cell of a run the terminal's colours already fit, so the rest cost their glyphs only.
-        self.runs.clear();
         let mut x0 = 0;
         for x in 1..=w {
             if x == w || cells[x] != cells[x0] || skippable[x] != skippable[x0] {
-                self.runs.push((x0 as u16, (x - x0) as u16));
+                self.spans.push(Span {
+                    x: x0 as u16,
+                    len: (x - x0) as u16,
+                    choice: Choice::Skip,
+                });
                 x0 = x;
             }
         }
-        let steps = self.runs.len();
-        // Only the first `counts[step]` nodes of a step are ever read, so stale ones can stay.
-        if self.nodes.len() < (steps + 1) * BEAM {
-            self.nodes.resize((steps + 1) * BEAM, blank);
-        }
-        self.nodes[0] = blank;
-        self.counts.clear();
-        self.counts.resize(steps + 1, 0);
-        self.counts[0] = 1;
-        let entry = |x: usize| move_cost(start.cursor, start.origin_col + x as u16, start.row);
         let level = start.level;
-        for (step, &(x0, len)) in self.runs.iter().enumerate() {
-            let (x, end) = (usize::from(x0), usize::from(x0 + len));
-            let cell = cells[x];
-            let skip_ok = skippable[x];
-            let uniform = cell[0] == cell[1];
-            let options: [Choice; 2] = if uniform {
-                [Choice::Space, Choice::Full]
-            } else {
-                [Choice::Upper, Choice::Lower]
-            };
-            // Parameter bytes of this cell's colours as fg and as bg, computed once per run.
-            let fg_len = [
-                sgr::param_len(level, cell[0], false),
-                sgr::param_len(level, cell[1], false),
-            ];
-            let bg_len = [
-                sgr::param_len(level, cell[0], true),
-                sgr::param_len(level, cell[1], true),
-            ];
-            let len_of = |code: Code, lens: &[u32; 2]| lens[usize::from(code != cell[0])];
-            let base = step * BEAM;
-            let out = (step + 1) * BEAM;
-            let next_entry = if skip_ok { entry(end) } else { 0 };
-            let mut kept = 0usize;
-            for i in 0..usize::from(self.counts[step]) {
-                let p = self.nodes[base + i];
-                let mv = if p.cursor == x as u16 {
+        let entry = |x: u16| move_cost(start.cursor, start.origin_col + x, start.row);
+        let steps = self.spans.len();
+        if self.nodes.len() < steps + 1 {
+            self.nodes.resize(steps + 1, [BLANK; BEAM]);
+            self.counts.resize(steps + 1, 0);
+        }
+        self.nodes[0][0] = Node {
+            fg: start.colours.0,
+            bg: start.colours.1,
+            ..BLANK
+        };
+        self.counts[0] = 1;
+        for (step, span) in self.spans.iter().enumerate() {
+            let (x, end) = (span.x, span.x + span.len);
+            let n = u32::from(span.len);
+            let cell = cells[usize::from(x)];
+            let (t, b) = (cell[0], cell[1]);
+            let skip_ok = skippable[usize::from(x)];
+            let (done, next) = self.nodes.split_at_mut(step + 1);
+            let prev = &done[step][..usize::from(self.counts[step])];
+            let top = &mut next[0];
+            let mut kept = 0;
+            // Each colour's SGR alone (`ESC[`, the parameter, `m`), as fg and as bg.
+            let (ft, bt) = sgr::alone_lens(level, t);
+            let mv = |p: &Node| {
+                if p.cursor == x {
                     0
                 } else if p.cursor == NOWHERE {
                     entry(x)
                 } else {
                     // Same row, moving right: `ESC[nC` (the emitted move is never longer).
-                    forward_cost(x as u16 - p.cursor)
-                };
-                // A choice that needs no colour change dominates (switching later costs about
-                // the same as switching now), which keeps the beam small and the loop fast.
-                let mut drawn = [(Choice::Skip, 0u32, 0u32, 0u32); 2];
-                for (slot, choice) in drawn.iter_mut().zip(options) {
-                    let (fg, bg) = choice.colours(cell, (p.fg, p.bg));
-                    // Branch-free: one parameter costs `ESC[`…`m` plus itself; two share them.
-                    let (cf, cb) = (u32::from(fg != p.fg), u32::from(bg != p.bg));
-                    let colour = cf * (3 + len_of(fg, &fg_len)) + cb * (3 + len_of(bg, &bg_len))
-                        - 2 * (cf & cb);
-                    *slot = (choice, fg, bg, colour);
+                    forward_cost(x - p.cursor)
                 }
-                let free = drawn.iter().position(|d| d.3 == 0);
-                for (k, &(choice, fg, bg, colour)) in drawn.iter().enumerate() {
-                    if free.is_some_and(|f| f != k) {
-                        continue;
+            };
+            if t != b && !skip_ok && beam >= 2 {
+                // The common case, exactly: the run ends in one of two states (drawn `▀` or `▄`),
+                // each reached best from one of the previous states.
+                let (fb, bb) = sgr::alone_lens(level, b);
+                let mut upper = Node {
+                    fg: t,
+                    bg: b,
+                    cost: u32::MAX,
+                    cursor: end,
+                    choice: Choice::Upper,
+                    ..BLANK
+                };
+                let mut lower = Node {
+                    fg: b,
+                    bg: t,
+                    choice: Choice::Lower,
+                    ..upper
+                };
+                for (i, p) in prev.iter().enumerate() {
+                    let base = p.cost + mv(p) + 3 * n;
+                    let (u, l) = (
+                        base + change(p, t, b, ft, bb),
+                        base + change(p, b, t, fb, bt),
+                    );
+                    if u < upper.cost {
+                        (upper.cost, upper.prev) = (u, i as u8);
                     }
-                    let cost = p.cost + mv + colour + choice.glyph().len() as u32 * u32::from(len);
-                    let node = Node {
-                        fg,
-                        bg,
-                        cursor: end as u16,
-                        cost,
-                        key: cost,
-                        prev: i as u8,
-                        choice,
-                    };
-                    kept = keep(&mut self.nodes[out..out + beam], kept, node);
+                    if l < lower.cost {
+                        (lower.cost, lower.prev) = (l, i as u8);
+                    }
+                }
+                (upper.key, lower.key) = (upper.cost, lower.cost);
+                if lower.cost < upper.cost {
+                    (top[0], top[1]) = (lower, upper);
+                } else {
+                    (top[0], top[1]) = (upper, lower);
+                }
+                self.counts[step + 1] = 2;
+                continue;
+            }
+            for (i, p) in prev.iter().enumerate() {
+                let base = p.cost + mv(p);
+                let node = |fg, bg, cost, choice| Node {
+                    fg,
+                    bg,
+                    cost,
+                    key: cost,
+                    cursor: end,
+                    prev: i as u8,
+                    choice,
+                };
+                if t == b {
+                    let space = base + u32::from(t != p.bg) * bt + n;
+                    let full = base + u32::from(t != p.fg) * ft + 3 * n;
+                    kept = keep(&mut top[..beam], kept, node(p.fg, t, space, Choice::Space));
+                    kept = keep(&mut top[..beam], kept, node(t, p.bg, full, Choice::Full));
+                } else {
+                    let (fb, bb) = sgr::alone_lens(level, b);
+                    let upper = base + change(p, t, b, ft, bb) + 3 * n;
+                    let lower = base + change(p, b, t, fb, bt) + 3 * n;
+                    kept = keep(&mut top[..beam], kept, node(t, b, upper, Choice::Upper));
+                    kept = keep(&mut top[..beam], kept, node(b, t, lower, Choice::Lower));
                 }
                 if skip_ok {
                     let pending = if p.cursor == NOWHERE {
-                        next_entry
+                        entry(end)
                     } else {
                         LAG_PENALTY
                     };
-                    let node = Node {
+                    let skip = Node {
                         key: p.cost + pending,
                         prev: i as u8,
                         choice: Choice::Skip,
-                        ..p
+                        ..*p
                     };
-                    kept = keep(&mut self.nodes[out..out + beam], kept, node);
+                    kept = keep(&mut top[..beam], kept, skip);
                 }
             }
             self.counts[step + 1] = kept as u8;
         }
         // Best final state: no pending move matters at the row's end.
-        let last = steps * BEAM;
-        let mut best = 0;
-        for i in 1..usize::from(self.counts[steps]) {
-            if self.nodes[last + i].cost < self.nodes[last + best].cost {
-                best = i;
-            }
-        }
-        let mut i = best;
+        let last = &self.nodes[steps][..usize::from(self.counts[steps])];
+        let mut i = (0..last.len()).min_by_key(|&k| last[k].cost).unwrap_or(0);
         for step in (0..steps).rev() {
-            let node = self.nodes[(step + 1) * BEAM + i];
-            let (x0, len) = self.runs[step];
-            let (x0, len) = (usize::from(x0), usize::from(len));
-            self.choices[x0..x0 + len].fill(node.choice);
+            let node = self.nodes[step + 1][i];
+            self.spans[step].choice = node.choice;
             i = usize::from(node.prev);
         }
-        &self.choices
+        &self.spans
     }
 }
 
@@ -275,27 +312,104 @@ mod tests {
         RowStart {
             level: ColorLevel::Ansi256,
             colours: (UNKNOWN, UNKNOWN),
-            cursor: Cursor::Unknown,
+            cursor: Cursor::At { col: 0, row: 0 },
             origin_col: 0,
             row: 0,
         }
     }
 
+    /// Bytes of a row drawn in full with `choices` (one per cell): SGRs plus glyphs.
+    fn bytes(cells: &[[Code; 2]], choices: &[Choice]) -> u32 {
+        let mut colours = start().colours;
+        let mut total = 0;
+        for (&cell, &choice) in cells.iter().zip(choices) {
+            let next = choice.colours(cell, colours);
+            total += sgr::cost(ColorLevel::Ansi256, colours, next) + choice.glyph().len() as u32;
+            colours = next;
+        }
+        total
+    }
+
+    fn per_cell(spans: &[Span]) -> Vec<Choice> {
+        spans
+            .iter()
+            .flat_map(|s| std::iter::repeat_n(s.choice, usize::from(s.len)))
+            .collect()
+    }
+
+    /// The cheapest full redraw of `cells`, by trying every glyph choice.
+    fn brute_force(cells: &[[Code; 2]]) -> u32 {
+        let mut best = u32::MAX;
+        for mask in 0..1u32 << cells.len() {
+            let choices: Vec<Choice> = cells
+                .iter()
+                .enumerate()
+                .map(|(i, c)| match (c[0] == c[1], mask >> i & 1) {
+                    (true, 0) => Choice::Space,
+                    (true, _) => Choice::Full,
+                    (false, 0) => Choice::Upper,
+                    (false, _) => Choice::Lower,
+                })
+                .collect();
+            best = best.min(bytes(cells, &choices));
+        }
+        best
+    }
+
     #[test]
     fn glyph_choice_keeps_the_shared_colour_in_place() {
         let mut p = RowPlanner::default();
-        // (A over B) then (B over C): ▀ then ▄ keeps B as bg.
+        // (A over B) then (B over C): ▀ then ▄ (or ▄ then ▀) keeps B in place: one change after the first.
         let cells = [[20, 30], [30, 40]];
-        let c = p.plan(&start(), &cells, &[false, false], BEAM);
-        assert_eq!(c, [Choice::Upper, Choice::Lower]);
+        let c = per_cell(p.plan(&start(), &cells, &[false, false], BEAM));
+        let first = c[0].colours(cells[0], start().colours);
+        let second = c[1].colours(cells[1], first);
+        assert!(first.0 == second.0 || first.1 == second.1, "{c:?}");
     }
 
     #[test]
     fn uniform_cells_use_space_or_full_block_without_a_colour_change() {
         let mut p = RowPlanner::default();
         let cells = [[20, 30], [30, 30], [20, 20]];
-        let c = p.plan(&start(), &cells, &[false; 3], BEAM);
-        assert_eq!(c, [Choice::Upper, Choice::Space, Choice::Full]);
+        let c = per_cell(p.plan(&start(), &cells, &[false; 3], BEAM));
+        assert_eq!(bytes(&cells, &c), bytes(&cells[..1], &c[..1]) + 4, "{c:?}");
+    }
+
+    #[test]
+    fn rows_without_uniform_cells_are_planned_optimally_and_uniform_ones_nearly() {
+        let mut p = RowPlanner::default();
+        let mut seed = 0x2545_f491_u32;
+        let mut next = |n: u32| {
+            seed ^= seed << 13;
+            seed ^= seed >> 17;
+            seed ^= seed << 5;
+            seed % n
+        };
+        for round in 0..400 {
+            let len = 1 + round % 9;
+            let cells: Vec<[Code; 2]> = (0..len)
+                .map(|_| {
+                    let t = 16 + next(5) * 40;
+                    let b = 16 + next(5) * 40;
+                    [t, if round % 2 == 0 && t == b { t + 1 } else { b }]
+                })
+                .collect();
+            let best = brute_force(&cells);
+            for beam in [2, BEAM] {
+                let got = bytes(
+                    &cells,
+                    &per_cell(p.plan(&start(), &cells, &vec![false; cells.len()], beam)),
+                );
+                if round % 2 == 0 {
+                    assert_eq!(got, best, "{cells:?} beam {beam}");
+                } else {
+                    assert!(
+                        got <= best + best / 10,
+                        "{cells:?} beam {beam}: {got} vs {best}"
+                    );
+                }
+            }
+        }
     }
 
     #[test]
@@ -303,9 +417,8 @@ mod tests {
         let mut p = RowPlanner::default();
         let cells = [[20, 30], [50, 60], [70, 80], [90, 100], [20, 30]];
         let skip = [false, true, true, true, false];
-        let c = p.plan(&start(), &cells, &skip, BEAM);
+        let c = per_cell(p.plan(&start(), &cells, &skip, BEAM));
         assert_eq!(c[1..4], [Choice::Skip; 3]);
-        let none = p.plan(&start(), &cells, &[true; 5], BEAM);
-        assert!(none.iter().all(|&c| c == Choice::Skip));
+        assert!(p.plan(&start(), &cells, &[true; 5], BEAM).is_empty());
     }
 }

@@ -32,9 +32,31 @@ const DECIMAL: [([u8; 3], u8); 256] = {
     t
 };
 
+/// Each byte value in decimal followed by `;` (left-aligned) and how many bytes that is.
+const DECIMAL_SEMI: [([u8; 4], u8); 256] = {
+    let mut t = [([0u8; 4], 0u8); 256];
+    let mut i = 0;
+    while i < 256 {
+        let (d, n) = DECIMAL[i];
+        let n = n as usize;
+        let mut b = [d[0], d[1], d[2], 0];
+        b[n] = b';';
+        t[i] = (b, n as u8 + 1);
+        i += 1;
+    }
+    t
+};
+
 #[inline]
 fn d8(v: u32) -> u32 {
     u32::from(DIGITS[(v & 0xFF) as usize])
+}
+
+/// Decimal digits of a byte value without a table (branch-free, for the planner's hot loop).
+#[inline]
+fn digits8(v: u32) -> u32 {
+    let v = v & 0xFF;
+    1 + u32::from(v >= 10) + u32::from(v >= 100)
 }
 
 /// Bytes of one colour parameter (`38;2;r;g;b`, `38;5;n`, `31`, `101`, `39` …).
@@ -49,6 +71,22 @@ pub(crate) fn param_len(level: ColorLevel, code: Code, bg: bool) -> u32 {
         // 30–37 / 90–97 are two bytes; 40–47 two, 100–107 three.
         ColorLevel::Ansi16 => 2 + u32::from(bg && code >= 8),
         ColorLevel::Mono => 0,
+    }
+}
+
+/// Bytes of a colour's whole SGR alone (`ESC[`, the parameter, `m`) as (fg, bg), for the planner.
+#[inline]
+pub(crate) fn alone_lens(level: ColorLevel, code: Code) -> (u32, u32) {
+    match level {
+        ColorLevel::TrueColor if code != DEFAULT => {
+            let n = 10 + digits8(code >> 16) + digits8(code >> 8) + digits8(code);
+            (n, n)
+        }
+        ColorLevel::Ansi256 if code != DEFAULT => (8 + digits8(code), 8 + digits8(code)),
+        _ => (
+            3 + param_len(level, code, false),
+            3 + param_len(level, code, true),
+        ),
     }
 }
 
@@ -71,6 +109,18 @@ impl Buf {
         self.len += s.len();
     }
 
+    /// `r;g;b` of a packed colour: two 4-byte and one 3-byte fixed-size copies.
+    #[inline]
+    fn rgb(&mut self, code: u32) {
+        let (r, n) = DECIMAL_SEMI[((code >> 16) & 0xFF) as usize];
+        self.bytes[self.len..self.len + 4].copy_from_slice(&r);
+        self.len += usize::from(n);
+        let (g, n) = DECIMAL_SEMI[((code >> 8) & 0xFF) as usize];
+        self.bytes[self.len..self.len + 4].copy_from_slice(&g);
+        self.len += usize::from(n);
+        self.num(code);
+    }
+
     /// A byte value in decimal, no leading zeros (one table lookup, one 3-byte copy).
     #[inline]
     fn num(&mut self, v: u32) {
@@ -81,7 +131,7 @@ impl Buf {
 }
 
 /// Writes one colour parameter.
-#[inline]
+#[inline(always)]
 fn push_param(out: &mut Buf, level: ColorLevel, code: Code, bg: bool) {
     if code == DEFAULT {
         out.extend(if bg { b"49" } else { b"39" });
@@ -90,11 +140,7 @@ fn push_param(out: &mut Buf, level: ColorLevel, code: Code, bg: bool) {
     match level {
         ColorLevel::TrueColor => {
             out.extend(if bg { b"48;2;" } else { b"38;2;" });
-            out.num(code >> 16);
-            out.push(b';');
-            out.num(code >> 8);
-            out.push(b';');
-            out.num(code);
+            out.rgb(code);
         }
         ColorLevel::Ansi256 => {
             out.extend(if bg { b"48;5;" } else { b"38;5;" });
@@ -169,6 +215,21 @@ mod tests {
         write(&mut v, level, from, to);
         assert_eq!(String::from_utf8(v.clone()).unwrap(), want);
         assert_eq!(cost(level, from, to) as usize, v.len(), "{want:?}");
+    }
+
+    #[test]
+    fn alone_lengths_match_the_written_sequences() {
+        use ColorLevel::*;
+        for level in [TrueColor, Ansi256, Ansi16] {
+            for code in [
+                0, 7, 9, 15, 16, 99, 100, 231, 255, 0x0A_FF_00, 0xFF_FF_FF, DEFAULT,
+            ] {
+                let (f, b) = alone_lens(level, code);
+                let other = if code == 1 { 2 } else { 1 };
+                assert_eq!(f, cost(level, (other, 3), (code, 3)), "{level} {code}");
+                assert_eq!(b, cost(level, (3, other), (3, code)), "{level} {code}");
+            }
+        }
     }
 
     #[test]
