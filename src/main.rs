@@ -1,6 +1,5 @@
 //! The `halfcast` binary: argument parsing and exit codes at the edge; the work is in the library.
 
-mod bench_cli;
 mod cli;
 
 fn main() -> std::process::ExitCode {

@@ -36,7 +36,7 @@ pub(crate) struct BenchArgs {
 }
 
 pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
-    use crate::bench_cli::{run_default, run_frames, table, BenchPlan};
+    use super::bench_run::{run_default, run_frames, table, BenchPlan};
     let plan = BenchPlan {
         frames: usize::from(args.frame_count),
         levels: args.colors.into_iter().collect(),

@@ -2,6 +2,7 @@
 //! command; shared option groups in `options`).
 
 mod bench;
+mod bench_run;
 mod diff;
 mod options;
 mod play;

@@ -1,5 +1,7 @@
 //! Colour codes per level: exact 24-bit, or the nearest xterm-256 / ANSI-16 colour from a lookup table.
 
+use std::sync::{Arc, OnceLock};
+
 use super::dither::bayer_offset;
 use super::level::ColorLevel;
 use crate::color::Rgb;
@@ -60,13 +62,14 @@ pub fn xterm_rgb(i: u8) -> Rgb {
     }
 }
 
-/// Maps pixels to codes for one level; built once per encoder (the table costs a few ms).
+/// Maps pixels to codes for one level. The lookup tables (a few ms each to build) are built once
+/// per process and shared, so every encoder and SSH session reuses them.
 #[derive(Debug, Clone)]
 pub struct Palette {
     level: ColorLevel,
     dither: bool,
     /// Nearest palette index per 5-bit-per-channel bin (empty at truecolor and mono).
-    lut: Vec<u8>,
+    lut: Arc<[u8]>,
     /// Amplitude of the ordered-dither offset, in 8-bit channel units.
     amplitude: i16,
     /// Channel value → lookup-table bin (rounded, so 0 and 255 sit on bin centres).
@@ -77,15 +80,20 @@ impl Palette {
     /// Builds the lookup table for `level` (perceptual nearest match in OKLab).
     #[must_use]
     pub fn new(level: ColorLevel, dither: bool) -> Self {
-        let (candidates, amplitude): (Vec<u8>, i16) = match level {
-            ColorLevel::Ansi256 => ((16..=255).collect(), 40),
-            ColorLevel::Ansi16 => ((0..16).collect(), 96),
-            ColorLevel::TrueColor | ColorLevel::Mono => (Vec::new(), 0),
-        };
-        let lut = if candidates.is_empty() {
-            Vec::new()
-        } else {
-            build_lut(&candidates)
+        static LUT_256: OnceLock<Arc<[u8]>> = OnceLock::new();
+        static LUT_16: OnceLock<Arc<[u8]>> = OnceLock::new();
+        let (lut, amplitude): (Arc<[u8]>, i16) = match level {
+            ColorLevel::Ansi256 => (
+                Arc::clone(
+                    LUT_256.get_or_init(|| build_lut(&(16..=255).collect::<Vec<u8>>()).into()),
+                ),
+                40,
+            ),
+            ColorLevel::Ansi16 => (
+                Arc::clone(LUT_16.get_or_init(|| build_lut(&(0..16).collect::<Vec<u8>>()).into())),
+                96,
+            ),
+            ColorLevel::TrueColor | ColorLevel::Mono => (Arc::from(Vec::new()), 0),
         };
         let mut bin = [0u8; 256];
         for (v, b) in bin.iter_mut().enumerate() {
