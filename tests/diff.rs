@@ -2,19 +2,13 @@
 
 mod common;
 
-use common::halfcast;
+use common::{halfcast, halfcast_ok};
 
 fn render(dir: &std::path::Path, name: &str, extra: &[&str]) -> String {
     let path = dir.join(name).to_str().unwrap().to_owned();
     let mut args = vec!["render", "--size", "30x9", "-o", &path];
     args.extend_from_slice(extra);
-    let out = halfcast(&args);
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    halfcast_ok(&args);
     path
 }
 

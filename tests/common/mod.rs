@@ -20,6 +20,18 @@ pub fn halfcast(args: &[&str]) -> Output {
         .expect("run halfcast")
 }
 
+/// [`halfcast`], asserting it succeeded (the failure message shows its stderr).
+pub fn halfcast_ok(args: &[&str]) -> Output {
+    let out = halfcast(args);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "halfcast {args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
+
 /// `../shared` beside the project, or `None` after printing a skip notice.
 pub fn shared_dir(what: &str) -> Option<PathBuf> {
     let dir = root().join("../shared");
