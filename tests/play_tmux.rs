@@ -137,3 +137,52 @@ fn under_tmux_the_first_screen_walks_and_quits_cleanly() {
     ]);
     assert_eq!(state.trim(), "0 1");
 }
+
+/// Closing the window (tmux kills the session: the terminal hangs up) ends the game promptly,
+/// even though the terminal library's reader would spin on the dead terminal forever.
+#[test]
+fn a_closed_terminal_ends_the_game() {
+    if Command::new("tmux").arg("-V").output().is_err() {
+        eprintln!("skipping: tmux is not installed");
+        return;
+    }
+    let tmux = Tmux {
+        socket: format!("halfcast-hangup-{}", std::process::id()),
+    };
+    let bin = env!("CARGO_BIN_EXE_halfcast");
+    // Two arguments: tmux runs the game directly, so the pane's process is the game.
+    let started = tmux.run(&[
+        "new-session",
+        "-d",
+        "-s",
+        "t",
+        "-x",
+        "100",
+        "-y",
+        "30",
+        bin,
+        "play",
+    ]);
+    assert!(started.status.success(), "{started:?}");
+    tmux.wait_for("the first frame", |s| status(s).contains("q quit"));
+    let pid = tmux.text(&["display-message", "-p", "-t", "t", "#{pane_pid}"]);
+    let pid = pid.trim().to_owned();
+    assert!(!pid.is_empty());
+    tmux.run(&["kill-session", "-t", "t"]);
+    let alive = || {
+        std::fs::read_to_string(format!("/proc/{pid}/stat"))
+            .is_ok_and(|s| s.split_whitespace().nth(2).is_none_or(|st| st != "Z"))
+    };
+    let start = Instant::now();
+    while alive() && start.elapsed() < Duration::from_secs(10) {
+        thread::sleep(Duration::from_millis(50));
+    }
+    let still = alive();
+    if still {
+        let _ = Command::new("kill").args(["-9", &pid]).status();
+    }
+    assert!(
+        !still,
+        "the game (pid {pid}) kept running after its terminal closed"
+    );
+}

@@ -7,6 +7,23 @@ pub mod sprite_art;
 
 use crate::color::Rgb;
 
+/// Levels kept per colour channel of a wall, floor or ceiling texel: 128 (7 bits), so a texel is
+/// never more than one unit off its source — invisible. Procedural and photographic textures are
+/// full of neighbours that differ by a single unit; merging them lets neighbouring terminal cells
+/// share exact colours more often, which cuts the 24-bit stream by about 3 % of stock ratatui's
+/// size (76.0 % → 73.6 % in `halfcast bench`). Coarser steps save far more truecolor bytes (16
+/// levels: 59 %) at up to 8 units of error per channel; the 256-colour stream does not shrink.
+pub const TEXEL_LEVELS: u16 = 128;
+
+/// `v` rounded to the nearest of [`TEXEL_LEVELS`] evenly spaced levels (0 and 255 stay).
+#[must_use]
+#[inline]
+pub fn posterize(v: u8) -> u8 {
+    let steps = TEXEL_LEVELS - 1;
+    let level = (u16::from(v) * steps + 127) / 255;
+    (level * 255 / steps) as u8
+}
+
 /// A decoded image stored column by column (x-major), the order wall stripes read it.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Texture {
@@ -18,13 +35,15 @@ pub struct Texture {
 }
 
 impl Texture {
-    /// Builds a texture from a function of (x, y); generators and tests use it.
+    /// Builds a texture from a function of (x, y), posterized to [`TEXEL_LEVELS`] per channel;
+    /// generators, the decoder and tests all come through here.
     #[must_use]
     pub fn from_fn(width: usize, height: usize, mut f: impl FnMut(usize, usize) -> Rgb) -> Self {
         let mut texels = Vec::with_capacity(width * height);
         for x in 0..width {
             for y in 0..height {
-                texels.push(f(x, y));
+                let c = f(x, y);
+                texels.push(Rgb::new(posterize(c.r), posterize(c.g), posterize(c.b)));
             }
         }
         let mean = Rgb::mean(texels.iter().copied());
@@ -124,8 +143,12 @@ mod tests {
 
     #[test]
     fn columns_are_contiguous_top_to_bottom() {
-        let t = Texture::from_fn(3, 4, |x, y| Rgb::new(x as u8, y as u8, 0));
-        assert_eq!(t.column(2), &[0, 1, 2, 3].map(|y| Rgb::new(2, y, 0)));
+        let t = Texture::from_fn(3, 4, |x, y| Rgb::new(x as u8 * 17, y as u8 * 17, 0));
+        let p = posterize;
+        assert_eq!(
+            t.column(2),
+            &[0, 17, 34, 51].map(|y| Rgb::new(p(34), p(y), 0))
+        );
     }
 
     #[test]
@@ -136,8 +159,31 @@ mod tests {
 
     #[test]
     fn wrapped_sampling_repeats() {
-        let t = Texture::from_fn(4, 4, |x, y| Rgb::new(x as u8, y as u8, 0));
-        assert_eq!(t.sample_wrapped(1.26, -0.74), Rgb::new(1, 1, 0));
+        let t = Texture::from_fn(4, 4, |x, y| Rgb::new(x as u8 * 17, y as u8 * 17, 0));
+        let p = posterize(17);
+        assert_eq!(t.sample_wrapped(1.26, -0.74), Rgb::new(p, p, 0));
+    }
+
+    #[test]
+    fn texels_keep_their_levels_per_channel_with_black_and_white_exact() {
+        let levels: std::collections::BTreeSet<u8> = (0..=255u8).map(posterize).collect();
+        assert_eq!(levels.len(), usize::from(TEXEL_LEVELS));
+        assert_eq!((posterize(0), posterize(255)), (0, 255));
+        let half_step = 255.0 / f64::from(TEXEL_LEVELS - 1) / 2.0;
+        for v in 0..=255u8 {
+            // The nearest level: never more than half a step away (one unit at 128 levels).
+            let err = f64::from(posterize(v).abs_diff(v));
+            assert!(err <= half_step.ceil(), "{v} -> {}", posterize(v));
+            assert_eq!(
+                posterize(posterize(v)),
+                posterize(v),
+                "levels are fixed points"
+            );
+        }
+        let t = Texture::from_fn(1, 1, |_, _| Rgb::new(100, 7, 250));
+        let c = t.texel(0, 0);
+        assert!(c.r.abs_diff(100) <= 1 && c.g.abs_diff(7) <= 1 && c.b.abs_diff(250) <= 1);
+        assert_eq!(c, Rgb::new(posterize(100), posterize(7), posterize(250)));
     }
 
     #[test]

@@ -5,10 +5,10 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use crossterm::event;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 
+use super::events::Events;
 use super::keys::{Controls, UiCommand};
 use super::layout::{Panes, Toggles};
 use super::render::render_view;
@@ -93,6 +93,7 @@ pub fn run_loop(
     };
     app.stats.level = Some(options.encode.level);
     let period = Duration::from_secs_f64(1.0 / fps);
+    let events = Events::spawn()?;
     let mut last = Instant::now();
     let mut next = last;
     loop {
@@ -102,8 +103,7 @@ pub fn run_loop(
             if now >= next {
                 break;
             }
-            if event::poll(next - now)? {
-                let ev = event::read()?;
+            if let Some(ev) = events.next_within(next - now)? {
                 app.controls.handle(&ev, Instant::now());
             }
             if signal.load(Ordering::SeqCst) != 0 {

@@ -5,9 +5,10 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use crossterm::event::{self, Event, KeyCode, KeyEventKind, KeyModifiers};
+use crossterm::event::{Event, KeyCode, KeyEventKind, KeyModifiers};
 
 use super::app::Ending;
+use super::events::Events;
 use super::terminal::Session;
 use crate::encode::EncodeOptions;
 use crate::present::Presenter;
@@ -36,6 +37,7 @@ pub fn run(
     let mut player = Player::new(world, &replay.header);
     let mut presenter = Presenter::new(encode);
     let period = Duration::from_secs_f64(1.0 / f64::from(replay.header.fps));
+    let events = Events::spawn()?;
     let mut next = Instant::now();
     for input in &replay.frames {
         loop {
@@ -43,7 +45,7 @@ pub fn run(
             if now >= next {
                 break;
             }
-            if event::poll(next - now)? && stops(&event::read()?) {
+            if events.next_within(next - now)?.is_some_and(|ev| stops(&ev)) {
                 return Ok(Ending::Quit);
             }
             let sig = signal.load(Ordering::SeqCst);
