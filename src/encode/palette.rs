@@ -210,16 +210,6 @@ pub fn distance(a: Rgb, b: Rgb) -> u32 {
 
 #[cfg(test)]
 mod tests {
-
-    #[test]
-    fn xterm_palette_corners() {
-        assert_eq!(xterm_rgb(16), Rgb::new(0, 0, 0));
-        assert_eq!(xterm_rgb(231), Rgb::new(255, 255, 255));
-        assert_eq!(xterm_rgb(196), Rgb::new(255, 0, 0));
-        assert_eq!(xterm_rgb(232), Rgb::new(8, 8, 8));
-        assert_eq!(xterm_rgb(255), Rgb::new(238, 238, 238));
-    }
-
     use super::*;
 
     #[test]
