@@ -292,6 +292,16 @@ impl World {
 }
 
 /// Loads textures once each, remembering warnings.
+/// The index of `t` in `items`, added at the end if no equal one is there (one decoded copy per
+/// image, however many map lines name it).
+fn intern<T: PartialEq>(items: &mut Vec<T>, t: T) -> usize {
+    if let Some(i) = items.iter().position(|e| *e == t) {
+        return i;
+    }
+    items.push(t);
+    items.len() - 1
+}
+
 struct Loader<'a> {
     map_file: &'a str,
     source: &'a TextureSource,
@@ -304,11 +314,7 @@ struct Loader<'a> {
 
 impl Loader<'_> {
     fn push(&mut self, t: Texture) -> usize {
-        if let Some(i) = self.textures.iter().position(|e| *e == t) {
-            return i;
-        }
-        self.textures.push(t);
-        self.textures.len() - 1
+        intern(&mut self.textures, t)
     }
 
     fn builtin(&mut self, stem: &str) -> usize {
@@ -317,11 +323,7 @@ impl Loader<'_> {
     }
 
     fn push_sheet(&mut self, t: SpriteSheet) -> usize {
-        if let Some(i) = self.sheets.iter().position(|e| *e == t) {
-            return i;
-        }
-        self.sheets.push(t);
-        self.sheets.len() - 1
+        intern(&mut self.sheets, t)
     }
 
     fn builtin_sheet(&mut self, stem: &str) -> usize {
