@@ -4,7 +4,7 @@ mod common;
 mod oracle;
 
 use common::halfcast;
-use oracle::{close, close_fraction, walk};
+use oracle::{close, close_fraction, walk, walled_grid};
 use proptest::prelude::*;
 use serde_json::Value;
 
@@ -17,22 +17,7 @@ fn arb_case() -> impl Strategy<Value = (Vec<Vec<u8>>, (f64, f64))> {
             (0.01f64..0.99, 0.01f64..0.99),
         )
             .prop_map(move |(walls, (pi, pj), (fx, fy))| {
-                let grid = (0..h)
-                    .map(|j| {
-                        (0..w)
-                            .map(|i| {
-                                let border = i == 0 || j == 0 || i == w - 1 || j == h - 1;
-                                if (i, j) == (pi, pj) {
-                                    b'S'
-                                } else if border || walls[j * w + i] {
-                                    b'1'
-                                } else {
-                                    b'0'
-                                }
-                            })
-                            .collect()
-                    })
-                    .collect();
+                let grid = walled_grid(w, h, &walls, (pi, pj), b'S');
                 (grid, (pi as f64 + fx, pj as f64 + fy))
             })
     })

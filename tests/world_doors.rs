@@ -7,7 +7,7 @@ mod world_common;
 use halfcast::door::DoorState;
 use halfcast::map::{parse_map, Cell, DoorPlane};
 use halfcast::Vec2;
-use oracle::{close, close_fraction, walk};
+use oracle::{close, close_fraction, walk, walled_grid};
 use proptest::prelude::*;
 use serde_json::Value;
 use world_common::{halfcast, map_file, world, HEADER};
@@ -103,22 +103,7 @@ fn arb_door_case() -> impl Strategy<Value = (Vec<Vec<u8>>, (f64, f64))> {
             (0.01f64..0.99, 0.01f64..0.99),
         )
             .prop_map(move |(walls, doors, (pi, pj), (fx, fy))| {
-                let mut g: Vec<Vec<u8>> = (0..h)
-                    .map(|j| {
-                        (0..w)
-                            .map(|i| {
-                                let border = i == 0 || j == 0 || i == w - 1 || j == h - 1;
-                                if (i, j) == (pi, pj) {
-                                    b'E'
-                                } else if border || walls[j * w + i] {
-                                    b'1'
-                                } else {
-                                    b'0'
-                                }
-                            })
-                            .collect()
-                    })
-                    .collect();
+                let mut g = walled_grid(w, h, &walls, (pi, pj), b'E');
                 for j in 1..h - 1 {
                     for i in 1..w - 1 {
                         let framed = (g[j][i - 1] == b'1' && g[j][i + 1] == b'1')

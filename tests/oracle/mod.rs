@@ -110,3 +110,30 @@ pub fn close_fraction(a: f64, b: f64) -> bool {
     let gap = (a - b).abs();
     gap.min(1.0 - gap) < 1e-9
 }
+
+/// A closed map grid of `w` × `h` cells for property tests: walls on the border and where
+/// `walls[j * w + i]` holds, floor elsewhere, and the player's `letter` at `start`.
+pub fn walled_grid(
+    w: usize,
+    h: usize,
+    walls: &[bool],
+    start: (usize, usize),
+    letter: u8,
+) -> Vec<Vec<u8>> {
+    (0..h)
+        .map(|j| {
+            (0..w)
+                .map(|i| {
+                    let border = i == 0 || j == 0 || i == w - 1 || j == h - 1;
+                    if (i, j) == start {
+                        letter
+                    } else if border || walls[j * w + i] {
+                        b'1'
+                    } else {
+                        b'0'
+                    }
+                })
+                .collect()
+        })
+        .collect()
+}
