@@ -40,8 +40,6 @@ const ENTER: &[u8] = b"\x1b[?1049h\x1b[?25l\x1b[0m\x1b[2J\x1b[>11u\x1b[?u";
 pub const LEAVE: &[u8] = b"\x1b[<u\x1b[0m\x1b[?25h\x1b[?1049l";
 /// How long an unfinished escape sequence may wait before a lone ESC counts as the Esc key.
 const ESC_WAIT: Duration = Duration::from_millis(50);
-/// A client that takes no frame for this long is dropped (its link is dead or it never reads).
-const WRITE_STALL: Duration = Duration::from_secs(30);
 
 /// What the session needs from the server; built by the connection handler at `shell`.
 pub struct SessionParams {
@@ -61,6 +59,9 @@ pub struct SessionParams {
     pub fps: u32,
     /// Players with no keystroke for this long are closed; spectators never are.
     pub idle_timeout: Duration,
+    /// A client that takes no frame for this long is dropped (its link is dead or it never
+    /// reads); the connection is then closed too.
+    pub stall_timeout: Duration,
     pub stats: Arc<ServeStats>,
     pub log: Log,
     pub shutdown: watch::Receiver<bool>,
@@ -72,9 +73,9 @@ pub struct SessionInputs {
     pub size: watch::Receiver<(u32, u32)>,
 }
 
-/// Why a session ended (for the log).
+/// Why a session ended (for the log, and for how the connection is closed).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum End {
+pub enum End {
     Quit,
     ClientGone,
     Idle,
@@ -90,8 +91,9 @@ struct Tally {
     dropped: u64,
 }
 
-/// Runs a session until the client quits or leaves, the idle timeout, or server shutdown.
-pub async fn run(p: SessionParams, mut inputs: SessionInputs) {
+/// Runs a session until the client quits or leaves, stops reading, the idle timeout, or server
+/// shutdown; says which.
+pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
     let mut s = State::new(&p, *inputs.size.borrow());
     let mut shutdown = p.shutdown.clone();
     if !p.spectator {
@@ -164,7 +166,7 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) {
                 }
                 let n = out.len() as u64;
                 let bytes = std::mem::take(&mut out);
-                match tokio::time::timeout(WRITE_STALL, p.handle.data(p.channel, bytes)).await {
+                match tokio::time::timeout(p.stall_timeout, p.handle.data(p.channel, bytes)).await {
                     Err(_) => break End::Stalled,
                     Ok(Err(_)) => break End::ClientGone,
                     Ok(Ok(())) => {
@@ -178,7 +180,7 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) {
     if !p.spectator {
         p.world.send(WorldMsg::Leave { id: p.id }).await;
     }
-    if end != End::ClientGone {
+    if !matches!(end, End::ClientGone | End::Stalled) {
         let mut bye = LEAVE.to_vec();
         bye.extend_from_slice(match end {
             End::Idle => b"halfcast: closed after being idle too long.\r\n".as_slice(),
@@ -206,6 +208,7 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) {
             tally.frames, tally.bytes, tally.dropped
         ),
     );
+    end
 }
 
 /// (snapshot version, size, colour level, eye, panes): everything a frame is drawn from.

@@ -329,3 +329,68 @@ pub async fn connect_counting(
     };
     (c, read)
 }
+
+/// Tries once to get a playing session as `user` (no auth, `cols`×`rows` xterm pty, shell);
+/// the error says which step failed (refused connections are normal under the abuse tests).
+pub async fn try_connect(
+    addr: std::net::SocketAddr,
+    user: &str,
+    cols: u16,
+    rows: u16,
+) -> Result<Client, String> {
+    let mut handle = connect_raw(addr, None)
+        .await
+        .map_err(|e| format!("connect: {e}"))?;
+    let auth = handle
+        .authenticate_none(user)
+        .await
+        .map_err(|e| format!("auth: {e}"))?;
+    if !auth.success() {
+        return Err("auth refused".into());
+    }
+    let channel = handle
+        .channel_open_session()
+        .await
+        .map_err(|e| format!("session: {e}"))?;
+    channel
+        .request_pty(true, "xterm", u32::from(cols), u32::from(rows), 0, 0, &[])
+        .await
+        .map_err(|e| format!("pty: {e}"))?;
+    channel
+        .request_shell(true)
+        .await
+        .map_err(|e| format!("shell: {e}"))?;
+    Ok(Client {
+        handle,
+        channel,
+        screen: vt100::Parser::new(rows, cols, 0),
+        bytes: 0,
+        closed: false,
+    })
+}
+
+/// Opens a TCP connection to `addr` from the loopback address `from` (any of 127.0.0.0/8), so
+/// one test can play several source addresses.
+pub async fn tcp_from(
+    from: std::net::Ipv4Addr,
+    addr: std::net::SocketAddr,
+) -> std::io::Result<tokio::net::TcpStream> {
+    let sock = tokio::net::TcpSocket::new_v4()?;
+    sock.bind(std::net::SocketAddr::new(from.into(), 0))?;
+    sock.connect(addr).await
+}
+
+/// Whether the server has closed `s` (a read sees end of file or an error) within `d`; any
+/// bytes it sent first (its version line, a refusal) are appended to `got`.
+pub async fn closed_within(s: &mut tokio::net::TcpStream, d: Duration, got: &mut Vec<u8>) -> bool {
+    use tokio::io::AsyncReadExt;
+    let end = tokio::time::Instant::now() + d;
+    let mut buf = [0u8; 4096];
+    loop {
+        match tokio::time::timeout_at(end, s.read(&mut buf)).await {
+            Err(_) => return false,
+            Ok(Ok(0) | Err(_)) => return true,
+            Ok(Ok(n)) => got.extend_from_slice(&buf[..n]),
+        }
+    }
+}
