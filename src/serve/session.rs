@@ -10,6 +10,7 @@
 //! it waits, frame ticks pass and are skipped, so a slow client gets fewer, newer frames — the
 //! latest frame wins — and nothing queues without bound.
 
+use std::fmt::Write as _;
 use std::net::SocketAddr;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -134,7 +135,7 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
             changed = inputs.size.changed() => {
                 if changed.is_err() { break End::ClientGone }
                 let (c, r) = *inputs.size.borrow_and_update();
-                s.size = clamp_size(c, r);
+                s.resize(c, r);
             }
             at = tick.tick() => {
                 if let Some(prev) = last_tick {
@@ -220,6 +221,8 @@ struct State {
     me: PlayerId,
     name: String,
     size: (u16, u16),
+    /// Whether the client claimed a bigger terminal than we draw (the header says so).
+    clamped: bool,
     following: Option<PlayerId>,
     parser: InputParser,
     pending_since: Option<Instant>,
@@ -240,6 +243,7 @@ impl State {
             me: p.id,
             name: p.name.clone(),
             size: clamp_size(size.0, size.1),
+            clamped: is_clamped(size),
             following: None,
             parser: InputParser::new(),
             pending_since: None,
@@ -249,6 +253,12 @@ impl State {
             screen: SessionScreen::new(&p.world_data, p.avatar_sheet, level),
             shown: None,
         }
+    }
+
+    /// Follows the client's claimed terminal size, within the bounds.
+    fn resize(&mut self, cols: u32, rows: u32) {
+        self.size = clamp_size(cols, rows);
+        self.clamped = is_clamped((cols, rows));
     }
 
     /// Acts on parsed keys; returns an end if one of them quits.
@@ -323,12 +333,15 @@ impl State {
             (Some(_), false) => format!("you are {}", self.name),
             (None, false) => "joining...".to_string(),
         };
-        let line = format!(
+        let mut line = format!(
             " halfcast | {who} | {} here: {} | {} | {COLOUR_KEY} colours",
             names.len(),
             names.join(", "),
             self.screen.level().name(),
         );
+        if self.clamped {
+            let _ = write!(line, " | clamped to {}x{}", self.size.0, self.size.1);
+        }
         line.chars().take(usize::from(self.size.0)).collect()
     }
 
@@ -350,6 +363,12 @@ impl State {
         let mode = self.controls.mode();
         out.extend_from_slice(self.screen.frame(snap, eye, &header, self.size, mode));
     }
+}
+
+/// Whether a claimed size is outside what we draw (beyond the bounds, or zero).
+fn is_clamped((cols, rows): (u32, u32)) -> bool {
+    let (c, r) = clamp_size(cols, rows);
+    (u32::from(c), u32::from(r)) != (cols, rows)
 }
 
 /// The colour level for a client's `TERM` (and `COLORTERM`, when its client sends it): the
