@@ -204,3 +204,40 @@ async fn a_drip_fed_handshake_is_cut_at_the_grace_time() {
     }
     srv.shutdown().await;
 }
+
+/// A client that logs in but never asks for a shell (it holds a logging-in place past the key
+/// exchange and authentication) is disconnected at the grace time, and its place is free again.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_client_that_logs_in_but_never_plays_is_cut_at_the_grace_time() {
+    let (srv, _dir) = server(|c| {
+        c.login_grace = GRACE;
+        c.max_startups = "1".parse().expect("startups");
+    })
+    .await;
+    let addr = srv.local_addr();
+    let start = Instant::now();
+    let mut h = serve_support::connect_raw(addr, None)
+        .await
+        .expect("connect");
+    assert!(h.authenticate_none("lurker").await.expect("auth").success());
+    let _ch = h.channel_open_session().await.expect("session");
+    // The one logging-in place is taken: a newcomer is refused meanwhile.
+    assert!(try_connect(addr, "ann", 40, 12).await.is_err());
+    while !h.is_closed() && start.elapsed() < GRACE * 3 {
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    }
+    let cut = start.elapsed();
+    eprintln!(
+        "logged in, never played: closed after {:.2} s",
+        cut.as_secs_f64()
+    );
+    assert!(h.is_closed(), "closed by the server");
+    assert!(
+        cut >= GRACE - Duration::from_millis(200) && cut < GRACE + Duration::from_secs(2),
+        "{cut:?}"
+    );
+    let (player, took, attempts, last_err) = player_gets_in(addr, GRACE).await;
+    let mut player = player.unwrap_or_else(|| panic!("{took:?} {attempts} {last_err}"));
+    assert!(player.until(|s| header_has(s, "you are ann")).await);
+    srv.shutdown().await;
+}
