@@ -559,3 +559,15 @@ pub fn process_usage() -> Option<(usize, usize, u64)> {
         field("VmRSS:")?,
     ))
 }
+
+/// Whether this machine routes all of 127.0.0.0/8 to loopback (Linux does; macOS only has
+/// 127.0.0.1 unless aliases are added). Tests playing several source addresses skip otherwise.
+pub fn many_loopback_addresses() -> bool {
+    let ok = std::net::TcpListener::bind("127.0.0.2:0").is_ok();
+    if !ok {
+        eprintln!(
+            "skip: 127.0.0.2 is not a loopback address here (several source addresses needed)"
+        );
+    }
+    ok
+}
