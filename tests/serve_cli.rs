@@ -34,6 +34,16 @@ fn free_port() -> u16 {
 
 /// Starts the server and returns it with its stderr lines (as they come).
 fn spawn(port: u16, host_key: &std::path::Path) -> (Guard, mpsc::Receiver<String>) {
+    spawn_with(port, host_key, &[], &[])
+}
+
+/// [`spawn`] with more flags and environment variables.
+fn spawn_with(
+    port: u16,
+    host_key: &std::path::Path,
+    extra: &[&str],
+    env: &[(&str, &str)],
+) -> (Guard, mpsc::Receiver<String>) {
     let mut child = halfcast()
         .args([
             "serve",
@@ -42,6 +52,9 @@ fn spawn(port: u16, host_key: &std::path::Path) -> (Guard, mpsc::Receiver<String
             "--host-key",
         ])
         .arg(host_key)
+        .args(extra)
+        .env_remove("HALFCAST_PASSWORD")
+        .envs(env.iter().copied())
         .stdin(Stdio::null())
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
@@ -82,6 +95,25 @@ fn bad_serve_flags_exit_2_with_a_message() {
     let dir = tempfile::tempdir().expect("tempdir");
     let garbage_key = dir.path().join("garbage");
     std::fs::write(&garbage_key, "not a key").expect("write");
+    let open_key = dir.path().join("open_key");
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        let private = std::fs::Permissions::from_mode(0o600);
+        std::fs::set_permissions(&garbage_key, private).expect("chmod");
+        // A real key, but readable by everyone: sshd refuses such a key, and so do we.
+        std::fs::write(
+            &open_key,
+            russh::keys::PrivateKey::from(
+                russh::keys::ssh_key::private::Ed25519Keypair::from_seed(&[3; 32]),
+            )
+            .to_openssh(russh::keys::ssh_key::LineEnding::LF)
+            .expect("encode")
+            .as_bytes(),
+        )
+        .expect("write key");
+        std::fs::set_permissions(&open_key, std::fs::Permissions::from_mode(0o644)).expect("chmod");
+    }
     let cases: Vec<(Vec<String>, &str)> = vec![
         (
             vec!["--password".into(), String::new()],
@@ -96,6 +128,15 @@ fn bad_serve_flags_exit_2_with_a_message() {
             "not an OpenSSH private key",
         ),
         (vec!["--max-sessions".into(), "0".into()], "max-sessions"),
+        (
+            vec!["--max-startups".into(), "60:30:10".into()],
+            "--max-startups \"60:30:10\": full must not be below start",
+        ),
+        (vec!["--login-grace".into(), "0".into()], "login-grace"),
+        (
+            vec!["--password-file".into(), "/no/such/pw".into()],
+            "password file /no/such/pw",
+        ),
         (vec!["--listen".into(), "nowhere".into()], "listen"),
         (
             vec![
@@ -107,6 +148,15 @@ fn bad_serve_flags_exit_2_with_a_message() {
             "cannot be used with",
         ),
     ];
+    #[cfg(unix)]
+    let cases = {
+        let mut cases = cases;
+        cases.push((
+            vec!["--host-key".into(), open_key.display().to_string()],
+            "is readable by others (mode 644); run chmod 600",
+        ));
+        cases
+    };
     for (args, msg) in cases {
         let mut cmd = halfcast();
         cmd.arg("serve");
@@ -185,4 +235,70 @@ fn serves_a_frame_keeps_its_host_key_and_stops_on_sigterm() {
         let mode = std::fs::metadata(&key).expect("key").permissions().mode() & 0o777;
         assert_eq!(mode, 0o600);
     }
+}
+
+/// Waits for the server to listen.
+fn listening(rx: &mpsc::Receiver<String>) {
+    let mut seen = Vec::new();
+    assert!(wait_line(rx, "listening on", &mut seen), "{seen:?}");
+}
+
+/// Logs in with `password` (true if accepted).
+fn password_accepted(port: u16, password: &str) -> bool {
+    let rt = tokio::runtime::Runtime::new().expect("runtime");
+    rt.block_on(async {
+        let addr = format!("127.0.0.1:{port}").parse().expect("addr");
+        let mut h = serve_support::connect_raw(addr, None)
+            .await
+            .expect("connect");
+        h.authenticate_password("ann", password)
+            .await
+            .expect("auth")
+            .success()
+    })
+}
+
+#[test]
+fn the_password_comes_from_a_file_or_the_environment_and_the_command_line_warns() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let key = dir.path().join("hk");
+    let pw = dir.path().join("pw");
+    std::fs::write(&pw, "from-file\n").expect("write");
+    let pw_arg = pw.display().to_string();
+
+    let port = free_port();
+    let (_child, rx) = spawn_with(port, &key, &["--password-file", &pw_arg], &[]);
+    listening(&rx);
+    assert!(password_accepted(port, "from-file"));
+    assert!(!password_accepted(port, "from-file\n"));
+
+    let port = free_port();
+    let (_child, rx) = spawn_with(port, &key, &[], &[("HALFCAST_PASSWORD", "from-env")]);
+    listening(&rx);
+    assert!(password_accepted(port, "from-env"));
+    assert!(!password_accepted(port, "from-file"));
+
+    let port = free_port();
+    let (_child, rx) = spawn_with(port, &key, &["--password", "on-the-line"], &[]);
+    let mut seen = Vec::new();
+    assert!(
+        wait_line(
+            &rx,
+            "warning: --password is visible to every local user",
+            &mut seen
+        ),
+        "{seen:?}"
+    );
+    listening(&rx);
+    assert!(password_accepted(port, "on-the-line"));
+
+    let out = halfcast()
+        .args(["serve", "--listen", "127.0.0.1:0", "--host-key"])
+        .arg(&key)
+        .args(["--authorized-keys", "/no/such/keys"])
+        .env("HALFCAST_PASSWORD", "x")
+        .output()
+        .expect("run");
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("choose one way to log in"));
 }

@@ -5,7 +5,11 @@ mod serve_support;
 
 use halfcast::serve::auth::AuthMode;
 use russh::ChannelMsg;
-use serve_support::{connect_raw, header_has, server, Client, PATIENCE};
+use std::net::Ipv4Addr;
+
+use serve_support::{
+    closed_within, connect_raw, header_has, server, tcp_from, try_connect, Client, PATIENCE,
+};
 
 /// Waits for the reply to a want-reply channel request: true = success.
 async fn reply(ch: &mut russh::Channel<russh::client::Msg>) -> Option<bool> {
@@ -64,26 +68,38 @@ async fn exec_subsystem_and_forwarding_are_refused() {
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn max_sessions_and_per_address_limits_refuse_extra_connections() {
+async fn max_sessions_counts_players_and_the_per_address_limit_says_why() {
     let (srv, _dir) = server(|c| {
         c.max_sessions = 2;
-        c.max_per_ip = 2;
+        c.max_per_ip = 3;
     })
     .await;
     let addr = srv.local_addr();
     let mut a = Client::connect(addr, "a", 40, 10, "xterm").await;
     let _b = Client::connect(addr, "b", 40, 10, "xterm").await;
     assert!(a.until(|s| header_has(s, "2 here")).await);
+    // A third player logs in but is told the server is full (an SSH disconnect message).
     assert!(
-        connect_raw(addr, None).await.is_err(),
-        "a third connection is refused"
+        try_connect(addr, "c", 40, 10).await.is_err(),
+        "a third session is refused"
     );
     assert_eq!(srv.stats().refused, 1);
+    // Two playing and one logging in from this address: a fourth connection hears why not.
+    let _pending = tcp_from(Ipv4Addr::LOCALHOST, addr).await.expect("tcp");
+    tokio::time::sleep(std::time::Duration::from_millis(100)).await;
+    let mut fourth = tcp_from(Ipv4Addr::LOCALHOST, addr).await.expect("tcp");
+    let mut got = Vec::new();
+    assert!(closed_within(&mut fourth, PATIENCE, &mut got).await);
+    assert_eq!(
+        String::from_utf8_lossy(&got),
+        "halfcast: too many connections from your address\r\n"
+    );
+    drop(_pending);
     drop(a);
     // The freed place is usable again (the server notices the drop first).
     let mut ok = false;
     for _ in 0..100 {
-        if connect_raw(addr, None).await.is_ok() {
+        if try_connect(addr, "d", 40, 10).await.is_ok() {
             ok = true;
             break;
         }

@@ -7,6 +7,9 @@ use clap::Args;
 use super::options::MapArgs;
 use super::{load_world, Failure};
 
+/// The environment variable a password may come from (kept out of the process list).
+pub(crate) const PASSWORD_ENV: &str = "HALFCAST_PASSWORD";
+
 #[derive(Args, Debug)]
 pub(crate) struct ServeArgs {
     #[command(flatten)]
@@ -17,18 +20,41 @@ pub(crate) struct ServeArgs {
     /// Ed25519 host key: read if it exists, else generated there with mode 0600.
     #[arg(long, default_value = "halfcast_host_ed25519")]
     pub(crate) host_key: PathBuf,
-    /// Require this password (default: no authentication).
-    #[arg(long, conflicts_with = "authorized_keys")]
+    /// Use a host key file that others may read (refused by default, as sshd does).
+    #[arg(long)]
+    pub(crate) insecure_host_key: bool,
+    /// Require this password; every local user can read it in the process list, so prefer
+    /// --password-file or the HALFCAST_PASSWORD environment variable.
+    #[arg(long, conflicts_with_all = ["authorized_keys", "password_file"])]
     pub(crate) password: Option<String>,
+    /// Require the password on this file's first line.
+    #[arg(long, conflicts_with = "authorized_keys")]
+    pub(crate) password_file: Option<PathBuf>,
     /// Accept only the public keys in this OpenSSH authorized_keys file.
     #[arg(long)]
     pub(crate) authorized_keys: Option<PathBuf>,
-    /// Most concurrent connections.
+    /// Most sessions playing or watching at once (connections still logging in don't count).
     #[arg(long, default_value_t = 32, value_parser = clap::value_parser!(u32).range(1..=10_000))]
     pub(crate) max_sessions: u32,
-    /// Most concurrent connections from one IP address.
+    /// Most connections (logging in or playing) from one IP address.
     #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u32).range(1..=10_000))]
     pub(crate) max_per_ip: u32,
+    /// Connections still logging in, as OpenSSH's MaxStartups: beyond START of them refuse
+    /// RATE % of newcomers, rising to all at FULL (or N: refuse beyond N).
+    #[arg(long, default_value = "10:30:60", value_name = "START:RATE:FULL")]
+    pub(crate) max_startups: String,
+    /// Most connections still logging in from one IP address.
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=10_000))]
+    pub(crate) max_startups_per_ip: u32,
+    /// Seconds from TCP connect to a playing session before the connection is closed.
+    #[arg(long, default_value_t = 20, value_parser = clap::value_parser!(u64).range(1..=3_600))]
+    pub(crate) login_grace: u64,
+    /// Seconds a client may take no output (it stopped reading) before it is disconnected.
+    #[arg(long, default_value_t = 30, value_parser = clap::value_parser!(u64).range(1..=3_600))]
+    pub(crate) stall_timeout: u64,
+    /// Failed authentication requests allowed on one connection.
+    #[arg(long, default_value_t = 6, value_parser = clap::value_parser!(u32).range(1..=100))]
+    pub(crate) max_auth_tries: u32,
     /// Close a connection after this many seconds without a keystroke.
     #[arg(long, default_value_t = 600, value_parser = clap::value_parser!(u64).range(1..=86_400))]
     pub(crate) idle_timeout: u64,
@@ -40,21 +66,61 @@ pub(crate) struct ServeArgs {
     pub(crate) quiet: bool,
 }
 
-pub(crate) fn serve(args: ServeArgs) -> Result<(), Failure> {
-    use halfcast::serve::{auth::AuthMode, run_until_signal, ServeConfig};
-    let world = load_world(&args.map)?;
-    let auth = match (args.password, &args.authorized_keys) {
-        (Some(p), _) if p.is_empty() => return Err(Failure::input("--password must not be empty")),
-        (Some(p), _) => AuthMode::Password(p),
-        (None, Some(path)) => AuthMode::from_authorized_keys(path).map_err(Failure::input)?,
-        (None, None) => AuthMode::None,
+/// The authentication mode from the flags and the environment; warns about `--password`.
+fn auth_mode(args: &ServeArgs) -> Result<halfcast::serve::auth::AuthMode, Failure> {
+    use halfcast::serve::auth::{password_from_file, AuthMode};
+    let env = std::env::var(PASSWORD_ENV).ok().filter(|p| !p.is_empty());
+    let password = if let Some(p) = &args.password {
+        if p.is_empty() {
+            return Err(Failure::input("--password must not be empty"));
+        }
+        eprintln!(
+            "halfcast serve: warning: --password is visible to every local user in the process \
+             list; use --password-file or {PASSWORD_ENV}"
+        );
+        Some(p.clone())
+    } else if let Some(path) = &args.password_file {
+        Some(password_from_file(path).map_err(Failure::input)?)
+    } else {
+        env
     };
+    match (password, &args.authorized_keys) {
+        (Some(_), Some(_)) => Err(Failure::input(format!(
+            "{PASSWORD_ENV} is set and --authorized-keys given: choose one way to log in"
+        ))),
+        (Some(p), None) => Ok(AuthMode::Password(p)),
+        (None, Some(path)) => AuthMode::from_authorized_keys(path).map_err(Failure::input),
+        (None, None) => Ok(AuthMode::None),
+    }
+}
+
+pub(crate) fn serve(args: ServeArgs) -> Result<(), Failure> {
+    use halfcast::serve::limits::Startups;
+    use halfcast::serve::{run_until_signal, ServeConfig};
+    use std::time::Duration;
+    let startups: Startups = args
+        .max_startups
+        .parse()
+        .map_err(|e| Failure::input(format!("--max-startups {e}")))?;
+    let auth = auth_mode(&args)?;
+    let world = load_world(&args.map)?;
     let mut config = ServeConfig::local(args.listen, args.host_key);
     config.auth = auth;
+    config.insecure_host_key = args.insecure_host_key;
     config.max_sessions = args.max_sessions as usize;
     config.max_per_ip = args.max_per_ip as usize;
-    config.idle_timeout = std::time::Duration::from_secs(args.idle_timeout);
+    config.max_startups = startups;
+    config.max_startups_per_ip = args.max_startups_per_ip as usize;
+    config.login_grace = Duration::from_secs(args.login_grace);
+    config.stall_timeout = Duration::from_secs(args.stall_timeout);
+    config.max_auth_tries = args.max_auth_tries as usize;
+    config.idle_timeout = Duration::from_secs(args.idle_timeout);
     config.fps = args.fps;
     config.quiet = args.quiet;
+    let mut seed = [0u8; 8];
+    // Unpredictable refusals where the OS has randomness; the fixed seed otherwise.
+    if getrandom::fill(&mut seed).is_ok() {
+        config.seed = u64::from_ne_bytes(seed);
+    }
     run_until_signal(config, world).map_err(Failure::input)
 }

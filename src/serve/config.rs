@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use std::time::Duration;
 
 use super::auth::AuthMode;
+use super::limits::Startups;
 
 /// Widest terminal a client may claim, in columns (larger claims are clamped, never trusted).
 pub const MAX_COLS: u16 = 500;
@@ -12,6 +13,14 @@ pub const MAX_COLS: u16 = 500;
 pub const MAX_ROWS: u16 = 200;
 /// The size used when a client opens a shell without asking for a pty first.
 pub const DEFAULT_SIZE: (u16, u16) = (80, 24);
+
+/// `--max-startups` by default: OpenSSH's `10:30:100` with the all-refused point lower, since a
+/// game server has fewer people logging in at once than a shell server.
+pub const DEFAULT_STARTUPS: Startups = Startups {
+    start: 10,
+    rate: 30,
+    full: 60,
+};
 
 /// Everything `serve` needs besides the world; built by the CLI, or by tests with `ServeConfig::local`.
 #[derive(Debug, Clone)]
@@ -22,10 +31,25 @@ pub struct ServeConfig {
     pub host_key: PathBuf,
     /// How clients prove who they are (nothing, by default).
     pub auth: AuthMode,
-    /// Concurrent connections beyond this are refused at accept.
+    /// Sessions that play or watch at once; one more is told "server full".
     pub max_sessions: usize,
-    /// Concurrent connections from one IP address beyond this are refused at accept.
+    /// Connections (logging in or playing) from one IP address; more are refused at accept.
     pub max_per_ip: usize,
+    /// Connections still logging in (accept until the shell starts), as OpenSSH's
+    /// `MaxStartups start:rate:full`.
+    pub max_startups: Startups,
+    /// Connections still logging in from one IP address.
+    pub max_startups_per_ip: usize,
+    /// From TCP accept to a playing session at most this long (OpenSSH's `LoginGraceTime`).
+    pub login_grace: Duration,
+    /// A client that takes no output for this long is disconnected (it stopped reading).
+    pub stall_timeout: Duration,
+    /// Failed authentications allowed on one connection (OpenSSH's `MaxAuthTries`).
+    pub max_auth_tries: usize,
+    /// Use a host key file others may read (sshd refuses such a key; so do we, by default).
+    pub insecure_host_key: bool,
+    /// Seed for the random early refusal of logging-in connections.
+    pub seed: u64,
     /// A connection with no keystroke for this long is closed.
     pub idle_timeout: Duration,
     /// World ticks per second (movement, collisions, snapshots).
@@ -46,6 +70,13 @@ impl ServeConfig {
             auth: AuthMode::None,
             max_sessions: 32,
             max_per_ip: 8,
+            max_startups: DEFAULT_STARTUPS,
+            max_startups_per_ip: 3,
+            login_grace: Duration::from_secs(20),
+            stall_timeout: Duration::from_secs(30),
+            max_auth_tries: 6,
+            insecure_host_key: false,
+            seed: 0x5eed,
             idle_timeout: Duration::from_secs(600),
             tick_hz: 30,
             fps: 30,

@@ -3,15 +3,19 @@
 
 use std::net::SocketAddr;
 use std::sync::Arc;
+use std::time::{Duration, Instant};
 
 use russh::keys::PublicKey;
 use russh::server::{Auth, ChannelOpenHandle, Msg, Session};
 use russh::{Channel, ChannelId, Pty};
 use tokio::sync::{mpsc, watch};
 
+use super::auth::Backoff;
 use super::config::{ServeConfig, DEFAULT_SIZE};
+use super::lifecycle::Lifeline;
+use super::limits::{Limiter, Pending, Playing};
 use super::log::Log;
-use super::session::{self, SessionInputs, SessionParams};
+use super::session::{self, End, SessionInputs, SessionParams};
 use super::stats::ServeStats;
 use super::world_task::WorldHandle;
 use crate::world::World;
@@ -33,7 +37,15 @@ pub struct Shared {
     pub stats: Arc<ServeStats>,
     pub log: Log,
     pub shutdown: watch::Receiver<bool>,
+    /// Who is logging in and who plays, against the caps.
+    pub limiter: Limiter,
+    /// Failed password logins per source address.
+    pub backoff: Backoff,
 }
+
+/// How long a connection whose game ended may linger before it is closed (the client normally
+/// closes it first, on the channel's close).
+const AFTER_GAME: Duration = Duration::from_secs(1);
 
 /// The per-connection russh handler.
 pub struct ConnHandler {
@@ -47,12 +59,23 @@ pub struct ConnHandler {
     size: watch::Sender<(u32, u32)>,
     data: Option<mpsc::Sender<Vec<u8>>>,
     started: bool,
+    /// The logging-in place, until the shell starts.
+    pending: Option<Pending>,
+    /// The playing place, from the shell start to the connection's end.
+    playing: Option<Playing>,
+    life: Arc<Lifeline>,
 }
 
 impl ConnHandler {
-    /// A handler for connection `id` from `peer`.
+    /// A handler for connection `id` from `peer`, admitted as `pending`, ended through `life`.
     #[must_use]
-    pub fn new(id: u64, peer: SocketAddr, shared: Arc<Shared>) -> Self {
+    pub fn new(
+        id: u64,
+        peer: SocketAddr,
+        shared: Arc<Shared>,
+        pending: Pending,
+        life: Arc<Lifeline>,
+    ) -> Self {
         let (size, _) = watch::channel((u32::from(DEFAULT_SIZE.0), u32::from(DEFAULT_SIZE.1)));
         Self {
             id,
@@ -65,6 +88,9 @@ impl ConnHandler {
             size,
             data: None,
             started: false,
+            pending: Some(pending),
+            playing: None,
+            life,
         }
     }
 
@@ -81,6 +107,40 @@ impl ConnHandler {
         Auth::Reject {
             proceed_with_methods: Some(self.shared.config.auth.methods()),
             partial_success: false,
+        }
+    }
+
+    /// A wrong password: waits the source address's growing delay, then rejects.
+    async fn reject_guess(&self) -> Auth {
+        let wait = self.shared.backoff.failed(self.peer.ip(), Instant::now());
+        self.shared.log.session(
+            self.id,
+            self.peer,
+            format_args!("wrong password; next reply in {} ms", wait.as_millis()),
+        );
+        tokio::time::sleep(wait).await;
+        self.reject()
+    }
+
+    /// Turns the logging-in place into a playing one, or disconnects saying the server is full.
+    fn take_place(&mut self, session: &mut Session) -> Result<bool, russh::Error> {
+        let promoted = self.pending.as_ref().map(Pending::promote);
+        match promoted {
+            Some(Ok(place)) => {
+                self.playing = Some(place);
+                self.pending = None;
+                self.life.set_playing();
+                Ok(true)
+            }
+            Some(Err(why)) => {
+                self.shared
+                    .log
+                    .session(self.id, self.peer, format_args!("refused: {why}"));
+                ServeStats::add(&self.shared.stats.refused, 1);
+                session.disconnect(russh::Disconnect::TooManyConnections, &why.to_string(), "")?;
+                Ok(false)
+            }
+            None => Ok(false),
         }
     }
 }
@@ -113,9 +173,10 @@ impl russh::server::Handler for ConnHandler {
 
     async fn auth_password(&mut self, user: &str, password: &str) -> Result<Auth, Self::Error> {
         if self.shared.config.auth.allows_password(password) {
+            self.shared.backoff.succeeded(self.peer.ip());
             Ok(self.accept_user(user))
         } else {
-            Ok(self.reject())
+            Ok(self.reject_guess().await)
         }
     }
 
@@ -142,6 +203,18 @@ impl russh::server::Handler for ConnHandler {
         } else {
             Ok(self.reject())
         }
+    }
+
+    async fn auth_succeeded(&mut self, session: &mut Session) -> Result<(), Self::Error> {
+        // Say "server full" now rather than after the client asked for a pty and a shell.
+        if let Err(why) = self.shared.limiter.has_room() {
+            self.shared
+                .log
+                .session(self.id, self.peer, format_args!("refused: {why}"));
+            ServeStats::add(&self.shared.stats.refused, 1);
+            session.disconnect(russh::Disconnect::TooManyConnections, &why.to_string(), "")?;
+        }
+        Ok(())
     }
 
     async fn channel_open_session(
@@ -220,6 +293,9 @@ impl russh::server::Handler for ConnHandler {
         if !self.ours(channel) || self.started {
             return session.channel_failure(channel);
         }
+        if !self.take_place(session)? {
+            return Ok(());
+        }
         self.started = true;
         session.channel_success(channel)?;
         let (tx, rx) = mpsc::channel(INPUT_QUEUE);
@@ -240,6 +316,7 @@ impl russh::server::Handler for ConnHandler {
             avatar_sheet: sh.avatar_sheet,
             fps: sh.config.fps,
             idle_timeout: sh.config.idle_timeout,
+            stall_timeout: sh.config.stall_timeout,
             stats: Arc::clone(&sh.stats),
             log: sh.log,
             shutdown: sh.shutdown.clone(),
@@ -260,15 +337,26 @@ impl russh::server::Handler for ConnHandler {
         );
         let live = LiveSession::new(Arc::clone(&sh.stats));
         let (handle, log, id, peer) = (session.handle(), sh.log, self.id, self.peer);
+        let life = Arc::clone(&self.life);
         tokio::spawn(async move {
             // Held for the task's life, so the count drops even if the session panics.
             let _live = live;
-            if let Err(e) = tokio::spawn(session::run(params, inputs)).await {
-                // A bug in one session ends that session only: log it and hang up on its client.
-                log.session(id, peer, format_args!("session failed: {e}"));
-                let _ = handle.data(channel, session::LEAVE.to_vec()).await;
-                let _ = handle.close(channel).await;
+            match tokio::spawn(session::run(params, inputs)).await {
+                // A client that stopped reading can take no goodbye: cut the connection now.
+                Ok(End::Stalled) => {}
+                Ok(_) => tokio::time::sleep(AFTER_GAME).await,
+                Err(e) => {
+                    // A bug in one session ends that session only: log it and hang up on its client.
+                    log.session(id, peer, format_args!("session failed: {e}"));
+                    let _ = tokio::time::timeout(AFTER_GAME, async {
+                        let _ = handle.data(channel, session::LEAVE.to_vec()).await;
+                        let _ = handle.close(channel).await;
+                    })
+                    .await;
+                }
             }
+            // One game per connection: when it is over, so is the connection (and its place).
+            life.kill();
         });
         Ok(())
     }

@@ -12,13 +12,29 @@ use russh::keys::{HashAlg, PrivateKey};
 /// Reads the OpenSSH private key at `path`, or creates a new Ed25519 key there (mode 0600).
 ///
 /// Returns the key and notes for the log (generated, fingerprint, loose permissions).
+/// A key file that group or others may read is refused, as sshd does, unless `insecure`.
 ///
 /// # Errors
-/// A message naming the path when the file cannot be read, parsed or created, or is encrypted.
-pub fn load_or_generate(path: &Path) -> Result<(PrivateKey, Vec<String>), String> {
+/// A message naming the path when the file cannot be read, parsed or created, is encrypted, or
+/// is readable by others (without `insecure`).
+pub fn load_or_generate(path: &Path, insecure: bool) -> Result<(PrivateKey, Vec<String>), String> {
     let mut notes = Vec::new();
     let key = match fs::read_to_string(path) {
         Ok(text) => {
+            if let Some(mode) = loose_mode(path) {
+                if !insecure {
+                    return Err(format!(
+                        "host key {} is readable by others (mode {mode:03o}); run chmod 600 {0} \
+                         (or pass --insecure-host-key)",
+                        path.display()
+                    ));
+                }
+                notes.push(format!(
+                    "warning: host key {} is readable by others (mode {mode:03o}), used because of \
+                     --insecure-host-key",
+                    path.display()
+                ));
+            }
             let key = PrivateKey::from_openssh(text.as_bytes()).map_err(|e| {
                 format!(
                     "host key {}: not an OpenSSH private key ({e})",
@@ -28,12 +44,6 @@ pub fn load_or_generate(path: &Path) -> Result<(PrivateKey, Vec<String>), String
             if key.is_encrypted() {
                 return Err(format!(
                     "host key {}: encrypted keys are not supported",
-                    path.display()
-                ));
-            }
-            if let Some(mode) = loose_mode(path) {
-                notes.push(format!(
-                    "warning: host key {} is readable by others (mode {mode:o}); run chmod 600",
                     path.display()
                 ));
             }
@@ -104,9 +114,9 @@ mod tests {
     fn generated_once_then_reused_with_owner_only_permissions() {
         let dir = tempfile::tempdir().expect("tempdir");
         let path = dir.path().join("host_ed25519");
-        let (a, notes) = load_or_generate(&path).expect("generate");
+        let (a, notes) = load_or_generate(&path, false).expect("generate");
         assert!(notes.iter().any(|n| n.starts_with("generated")));
-        let (b, notes) = load_or_generate(&path).expect("load");
+        let (b, notes) = load_or_generate(&path, false).expect("load");
         assert!(!notes.iter().any(|n| n.starts_with("generated")));
         assert_eq!(a.public_key(), b.public_key());
         assert_eq!(a.algorithm(), russh::keys::Algorithm::Ed25519);
@@ -118,14 +128,40 @@ mod tests {
         }
     }
 
+    #[cfg(unix)]
+    #[test]
+    fn a_key_readable_by_others_is_refused_unless_insecure() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().expect("tempdir");
+        let path = dir.path().join("host_ed25519");
+        let (a, _) = load_or_generate(&path, false).expect("generate");
+        fs::set_permissions(&path, fs::Permissions::from_mode(0o644)).expect("chmod");
+        let err = load_or_generate(&path, false).expect_err("0644 is refused");
+        assert_eq!(
+            err,
+            format!(
+                "host key {0} is readable by others (mode 644); run chmod 600 {0} (or pass --insecure-host-key)",
+                path.display()
+            )
+        );
+        let (b, notes) = load_or_generate(&path, true).expect("insecure allows it");
+        assert_eq!(a.public_key(), b.public_key());
+        assert!(notes[0].starts_with("warning:"), "{notes:?}");
+    }
+
     #[test]
     fn garbage_key_file_is_a_clear_error() {
         let dir = tempfile::tempdir().expect("tempdir");
         let path = dir.path().join("bad");
         fs::write(&path, "hello").expect("write");
-        let err = load_or_generate(&path).expect_err("must fail");
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            fs::set_permissions(&path, fs::Permissions::from_mode(0o600)).expect("chmod");
+        }
+        let err = load_or_generate(&path, false).expect_err("must fail");
         assert!(err.contains("not an OpenSSH private key"), "{err}");
         let missing_dir = dir.path().join("no/such/dir/key");
-        assert!(load_or_generate(&missing_dir).is_err());
+        assert!(load_or_generate(&missing_dir, false).is_err());
     }
 }

@@ -2,7 +2,8 @@
 //!
 //! Layout, one concept per file:
 //! - [`config`]: operator settings and the client size bounds; [`auth`]: who may connect;
-//!   [`hostkey`]: the persisted Ed25519 identity; [`limits`]: admission at accept.
+//!   [`hostkey`]: the persisted Ed25519 identity; [`limits`]: admission (logging-in and playing
+//!   connections counted apart); [`lifecycle`]: one connection's kill switch and login clock.
 //! - [`server`]: the accept loop; [`handler`]: the SSH side of one connection (pty, resize,
 //!   refusals); [`session`]: one terminal's loop (keys in, frames out, bounded).
 //! - [`world_task`]: the fixed-tick task owning [`players::Players`] (one `game::GameState` per
@@ -19,6 +20,7 @@ pub mod handler;
 pub mod hostkey;
 pub mod input;
 pub mod keys;
+pub mod lifecycle;
 pub mod limits;
 pub mod log;
 pub mod players;

@@ -1,5 +1,10 @@
 //! The accept loop: admits connections within the limits, runs each in its own task (so no
-//! session's panic or error reaches the loop), logs connect and disconnect with the duration.
+//! session's panic or error reaches the loop) under the login grace deadline, logs connect and
+//! disconnect with the duration.
+//!
+//! A connection turned away at accept is told why in one text line before the SSH version line
+//! (RFC 4253 §4.2 allows such lines), then closed; one refused later (server full, login grace
+//! over) gets an SSH disconnect message, which OpenSSH prints.
 
 use std::io;
 use std::net::SocketAddr;
@@ -13,11 +18,13 @@ use tokio::net::TcpListener;
 use tokio::sync::watch;
 use tokio::task::JoinHandle;
 
+use super::auth::Backoff;
 use super::avatars::with_avatar_sheet;
 use super::config::ServeConfig;
 use super::handler::{ConnHandler, Shared};
 use super::hostkey;
-use super::limits::Limiter;
+use super::lifecycle::Lifeline;
+use super::limits::{Caps, Limiter, Refusal};
 use super::log::Log;
 use super::stats::{ServeStats, StatsSnapshot};
 use super::world_task::spawn_world;
@@ -71,7 +78,7 @@ impl RunningServer {
 /// A message when the address cannot be bound or the host key cannot be read or created.
 pub async fn start(config: ServeConfig, world: World) -> Result<RunningServer, String> {
     let log = Log::new(config.quiet);
-    let (key, notes) = hostkey::load_or_generate(&config.host_key)?;
+    let (key, notes) = hostkey::load_or_generate(&config.host_key, config.insecure_host_key)?;
     for n in notes {
         log.server(n);
     }
@@ -82,9 +89,12 @@ pub async fn start(config: ServeConfig, world: World) -> Result<RunningServer, S
     let ssh = Arc::new(Config {
         methods: config.auth.methods(),
         keys: vec![key],
+        // The least a rejection waits; the handler adds a delay growing per source address.
         auth_rejection_time: Duration::from_millis(300),
         auth_rejection_time_initial: Some(Duration::ZERO),
-        // Before a shell starts, a silent connection is dropped after the idle timeout too.
+        // russh counts every rejected request, the `none` probe included.
+        max_auth_attempts: config.max_auth_tries,
+        // Before a shell starts the login grace time applies (enforced by serve_connection).
         inactivity_timeout: Some(config.idle_timeout),
         keepalive_interval: Some(Duration::from_secs(30)),
         keepalive_max: 3,
@@ -97,6 +107,15 @@ pub async fn start(config: ServeConfig, world: World) -> Result<RunningServer, S
         },
         ..Config::default()
     });
+    let limiter = Limiter::new(
+        Caps {
+            max_sessions: config.max_sessions,
+            max_per_ip: config.max_per_ip,
+            startups: config.max_startups,
+            startups_per_ip: config.max_startups_per_ip,
+        },
+        config.seed,
+    );
     let (world, avatar_sheet) = with_avatar_sheet(world);
     let world = Arc::new(world);
     let (shutdown_tx, shutdown_rx) = watch::channel(false);
@@ -108,6 +127,8 @@ pub async fn start(config: ServeConfig, world: World) -> Result<RunningServer, S
         stats: Arc::clone(&stats),
         log,
         shutdown: shutdown_rx.clone(),
+        limiter,
+        backoff: Backoff::default(),
         config,
     });
     log.server(format_args!("listening on {addr}"));
@@ -120,14 +141,19 @@ pub async fn start(config: ServeConfig, world: World) -> Result<RunningServer, S
     })
 }
 
+/// Refused sockets at most lingering at once to deliver their reason (beyond, just closed).
+const MAX_LINGERING: usize = 64;
+/// How long a refused socket lingers so its reason line arrives before the close.
+const LINGER: Duration = Duration::from_millis(500);
+
 async fn accept_loop(
     listener: TcpListener,
     ssh: Arc<Config>,
     shared: Arc<Shared>,
     mut shutdown: watch::Receiver<bool>,
 ) {
-    let limiter = Limiter::new(shared.config.max_sessions, shared.config.max_per_ip);
     let next_id = AtomicU64::new(1);
+    let lingering = Arc::new(AtomicU64::new(0));
     loop {
         let (socket, peer) = tokio::select! {
             _ = shutdown.changed() => return,
@@ -141,15 +167,16 @@ async fn accept_loop(
                 }
             },
         };
-        let slot = match limiter.admit(peer.ip()) {
+        let accepted = Instant::now();
+        let pending = match shared.limiter.admit(peer.ip()) {
             Ok(s) => s,
             Err(why) => {
                 ServeStats::add(&shared.stats.refused, 1);
+                let (logging_in, playing) = shared.limiter.live();
                 shared.log.server(format_args!(
-                    "refused {peer}: {why:?} ({} live)",
-                    limiter.live()
+                    "refused {peer}: {why} ({logging_in} logging in, {playing} playing)"
                 ));
-                drop(socket);
+                refuse(socket, why, &lingering);
                 continue;
             }
         };
@@ -158,11 +185,21 @@ async fn accept_loop(
         let ssh = Arc::clone(&ssh);
         let shared = Arc::clone(&shared);
         tokio::spawn(async move {
-            let started = Instant::now();
             shared.log.session(id, peer, "connected");
-            let handler = ConnHandler::new(id, peer, Arc::clone(&shared));
-            let result = serve_connection(ssh, socket, handler, shared.shutdown.clone()).await;
-            let secs = started.elapsed().as_secs_f64();
+            let life = Arc::new(Lifeline::default());
+            let handler =
+                ConnHandler::new(id, peer, Arc::clone(&shared), pending, Arc::clone(&life));
+            let deadline = accepted + shared.config.login_grace;
+            let result = serve_connection(
+                ssh,
+                socket,
+                handler,
+                &life,
+                deadline,
+                shared.shutdown.clone(),
+            )
+            .await;
+            let secs = accepted.elapsed().as_secs_f64();
             match result {
                 Ok(()) => {
                     shared
@@ -175,29 +212,99 @@ async fn accept_loop(
                     format_args!("disconnected after {secs:.1} s: {e}"),
                 ),
             }
-            drop(slot);
         });
     }
 }
 
+/// Tells a refused client why in one line before any SSH version line, then closes; the socket
+/// lingers briefly (a bounded number at once) so the line is not lost to a reset.
+fn refuse(socket: tokio::net::TcpStream, why: Refusal, lingering: &Arc<AtomicU64>) {
+    let line = format!("halfcast: {why}\r\n");
+    // A fresh socket's send buffer is empty: this never blocks, and a short write is dropped.
+    let _ = socket.try_write(line.as_bytes());
+    if lingering.load(Ordering::Relaxed) >= MAX_LINGERING as u64 {
+        return;
+    }
+    lingering.fetch_add(1, Ordering::Relaxed);
+    let lingering = Arc::clone(lingering);
+    tokio::spawn(async move {
+        use tokio::io::{AsyncReadExt, AsyncWriteExt};
+        let mut socket = socket;
+        let _ = tokio::time::timeout(LINGER, async {
+            let _ = socket.shutdown().await;
+            // Read (and discard) what the client still sends until it closes too.
+            let mut buf = [0u8; 512];
+            while matches!(socket.read(&mut buf).await, Ok(n) if n > 0) {}
+        })
+        .await;
+        lingering.fetch_sub(1, Ordering::Relaxed);
+    });
+}
+
+/// Runs one connection until it ends, killing it when the login grace time passes before it
+/// plays, or when the server shuts down.
 async fn serve_connection(
     ssh: Arc<Config>,
     socket: tokio::net::TcpStream,
     handler: ConnHandler,
+    life: &Lifeline,
+    deadline: Instant,
     mut shutdown: watch::Receiver<bool>,
-) -> Result<(), russh::Error> {
-    let running = russh::server::run_stream(ssh, socket, handler).await?;
+) -> Result<(), String> {
+    let deadline = tokio::time::Instant::from_std(deadline);
+    let stream = life.wrap(socket);
+    // russh reads the client's version line before handing the connection to its own task.
+    let running =
+        match tokio::time::timeout_at(deadline, russh::server::run_stream(ssh, stream, handler))
+            .await
+        {
+            Err(_) => return Err("login grace time over before the version line".into()),
+            Ok(Err(e)) => return Err(e.to_string()),
+            Ok(Ok(r)) => r,
+        };
     let handle = running.handle();
-    tokio::select! {
-        r = running => r,
-        _ = shutdown.changed() => {
-            // Give sessions a moment to restore the client's terminal, then hang up.
-            tokio::time::sleep(Duration::from_millis(300)).await;
-            let _ = handle
-                .disconnect(russh::Disconnect::ByApplication, "server shutting down".into(), String::new())
-                .await;
-            Ok(())
+    tokio::pin!(running);
+    let mut playing = life.playing();
+    let mut grace_over = false;
+    let mut stopping = false;
+    loop {
+        let waiting = !*playing.borrow() && !grace_over;
+        tokio::select! {
+            r = &mut running => {
+                return match r {
+                    Ok(()) if grace_over => Err("login grace time over".into()),
+                    Ok(()) => Ok(()),
+                    Err(_) if grace_over => Err("login grace time over".into()),
+                    Err(_) if life.killed() => Err("closed by the server".into()),
+                    Err(e) => Err(e.to_string()),
+                }
+            }
+            _ = playing.changed(), if waiting => {}
+            () = tokio::time::sleep_until(deadline), if waiting => {
+                grace_over = true;
+                goodbye(&handle, russh::Disconnect::ByApplication, "login grace time over").await;
+                life.kill();
+            }
+            _ = shutdown.changed(), if !stopping => {
+                stopping = true;
+                // Give sessions a moment to restore the client's terminal, then hang up.
+                tokio::time::sleep(Duration::from_millis(300)).await;
+                goodbye(&handle, russh::Disconnect::ByApplication, "server shutting down").await;
+                life.kill();
+            }
         }
+    }
+}
+
+/// Sends a disconnect message if the connection takes it soon, and leaves it a moment to go out.
+async fn goodbye(handle: &russh::server::Handle, reason: russh::Disconnect, why: &str) {
+    let sent = tokio::time::timeout(
+        Duration::from_millis(200),
+        handle.disconnect(reason, why.into(), String::new()),
+    )
+    .await;
+    if matches!(sent, Ok(Ok(()))) {
+        tokio::time::sleep(Duration::from_millis(100)).await;
     }
 }
 

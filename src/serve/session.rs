@@ -10,6 +10,7 @@
 //! it waits, frame ticks pass and are skipped, so a slow client gets fewer, newer frames — the
 //! latest frame wins — and nothing queues without bound.
 
+use std::fmt::Write as _;
 use std::net::SocketAddr;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -40,8 +41,6 @@ const ENTER: &[u8] = b"\x1b[?1049h\x1b[?25l\x1b[0m\x1b[2J\x1b[>11u\x1b[?u";
 pub const LEAVE: &[u8] = b"\x1b[<u\x1b[0m\x1b[?25h\x1b[?1049l";
 /// How long an unfinished escape sequence may wait before a lone ESC counts as the Esc key.
 const ESC_WAIT: Duration = Duration::from_millis(50);
-/// A client that takes no frame for this long is dropped (its link is dead or it never reads).
-const WRITE_STALL: Duration = Duration::from_secs(30);
 
 /// What the session needs from the server; built by the connection handler at `shell`.
 pub struct SessionParams {
@@ -61,6 +60,9 @@ pub struct SessionParams {
     pub fps: u32,
     /// Players with no keystroke for this long are closed; spectators never are.
     pub idle_timeout: Duration,
+    /// A client that takes no frame for this long is dropped (its link is dead or it never
+    /// reads); the connection is then closed too.
+    pub stall_timeout: Duration,
     pub stats: Arc<ServeStats>,
     pub log: Log,
     pub shutdown: watch::Receiver<bool>,
@@ -72,9 +74,9 @@ pub struct SessionInputs {
     pub size: watch::Receiver<(u32, u32)>,
 }
 
-/// Why a session ended (for the log).
+/// Why a session ended (for the log, and for how the connection is closed).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum End {
+pub enum End {
     Quit,
     ClientGone,
     Idle,
@@ -90,8 +92,9 @@ struct Tally {
     dropped: u64,
 }
 
-/// Runs a session until the client quits or leaves, the idle timeout, or server shutdown.
-pub async fn run(p: SessionParams, mut inputs: SessionInputs) {
+/// Runs a session until the client quits or leaves, stops reading, the idle timeout, or server
+/// shutdown; says which.
+pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
     let mut s = State::new(&p, *inputs.size.borrow());
     let mut shutdown = p.shutdown.clone();
     if !p.spectator {
@@ -132,7 +135,7 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) {
             changed = inputs.size.changed() => {
                 if changed.is_err() { break End::ClientGone }
                 let (c, r) = *inputs.size.borrow_and_update();
-                s.size = clamp_size(c, r);
+                s.resize(c, r);
             }
             at = tick.tick() => {
                 if let Some(prev) = last_tick {
@@ -164,7 +167,7 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) {
                 }
                 let n = out.len() as u64;
                 let bytes = std::mem::take(&mut out);
-                match tokio::time::timeout(WRITE_STALL, p.handle.data(p.channel, bytes)).await {
+                match tokio::time::timeout(p.stall_timeout, p.handle.data(p.channel, bytes)).await {
                     Err(_) => break End::Stalled,
                     Ok(Err(_)) => break End::ClientGone,
                     Ok(Ok(())) => {
@@ -178,7 +181,7 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) {
     if !p.spectator {
         p.world.send(WorldMsg::Leave { id: p.id }).await;
     }
-    if end != End::ClientGone {
+    if !matches!(end, End::ClientGone | End::Stalled) {
         let mut bye = LEAVE.to_vec();
         bye.extend_from_slice(match end {
             End::Idle => b"halfcast: closed after being idle too long.\r\n".as_slice(),
@@ -206,6 +209,7 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) {
             tally.frames, tally.bytes, tally.dropped
         ),
     );
+    end
 }
 
 /// (snapshot version, size, colour level, eye, panes): everything a frame is drawn from.
@@ -217,6 +221,8 @@ struct State {
     me: PlayerId,
     name: String,
     size: (u16, u16),
+    /// Whether the client claimed a bigger terminal than we draw (the header says so).
+    clamped: bool,
     following: Option<PlayerId>,
     parser: InputParser,
     pending_since: Option<Instant>,
@@ -237,6 +243,7 @@ impl State {
             me: p.id,
             name: p.name.clone(),
             size: clamp_size(size.0, size.1),
+            clamped: is_clamped(size),
             following: None,
             parser: InputParser::new(),
             pending_since: None,
@@ -246,6 +253,12 @@ impl State {
             screen: SessionScreen::new(&p.world_data, p.avatar_sheet, level),
             shown: None,
         }
+    }
+
+    /// Follows the client's claimed terminal size, within the bounds.
+    fn resize(&mut self, cols: u32, rows: u32) {
+        self.size = clamp_size(cols, rows);
+        self.clamped = is_clamped((cols, rows));
     }
 
     /// Acts on parsed keys; returns an end if one of them quits.
@@ -320,12 +333,15 @@ impl State {
             (Some(_), false) => format!("you are {}", self.name),
             (None, false) => "joining...".to_string(),
         };
-        let line = format!(
+        let mut line = format!(
             " halfcast | {who} | {} here: {} | {} | {COLOUR_KEY} colours",
             names.len(),
             names.join(", "),
             self.screen.level().name(),
         );
+        if self.clamped {
+            let _ = write!(line, " | clamped to {}x{}", self.size.0, self.size.1);
+        }
         line.chars().take(usize::from(self.size.0)).collect()
     }
 
@@ -347,6 +363,12 @@ impl State {
         let mode = self.controls.mode();
         out.extend_from_slice(self.screen.frame(snap, eye, &header, self.size, mode));
     }
+}
+
+/// Whether a claimed size is outside what we draw (beyond the bounds, or zero).
+fn is_clamped((cols, rows): (u32, u32)) -> bool {
+    let (c, r) = clamp_size(cols, rows);
+    (u32::from(c), u32::from(r)) != (cols, rows)
 }
 
 /// The colour level for a client's `TERM` (and `COLORTERM`, when its client sends it): the

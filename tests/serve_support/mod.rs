@@ -329,3 +329,245 @@ pub async fn connect_counting(
     };
     (c, read)
 }
+
+/// Tries once to get a playing session as `user` (no auth, `cols`×`rows` xterm pty, shell);
+/// the error says which step failed (refused connections are normal under the abuse tests).
+pub async fn try_connect(
+    addr: std::net::SocketAddr,
+    user: &str,
+    cols: u16,
+    rows: u16,
+) -> Result<Client, String> {
+    let mut handle = connect_raw(addr, None)
+        .await
+        .map_err(|e| format!("connect: {e}"))?;
+    let auth = handle
+        .authenticate_none(user)
+        .await
+        .map_err(|e| format!("auth: {e}"))?;
+    if !auth.success() {
+        return Err("auth refused".into());
+    }
+    let channel = handle
+        .channel_open_session()
+        .await
+        .map_err(|e| format!("session: {e}"))?;
+    channel
+        .request_pty(true, "xterm", u32::from(cols), u32::from(rows), 0, 0, &[])
+        .await
+        .map_err(|e| format!("pty: {e}"))?;
+    channel
+        .request_shell(true)
+        .await
+        .map_err(|e| format!("shell: {e}"))?;
+    Ok(Client {
+        handle,
+        channel,
+        screen: vt100::Parser::new(rows, cols, 0),
+        bytes: 0,
+        closed: false,
+    })
+}
+
+/// Opens a TCP connection to `addr` from the loopback address `from` (any of 127.0.0.0/8), so
+/// one test can play several source addresses.
+pub async fn tcp_from(
+    from: std::net::Ipv4Addr,
+    addr: std::net::SocketAddr,
+) -> std::io::Result<tokio::net::TcpStream> {
+    let sock = tokio::net::TcpSocket::new_v4()?;
+    sock.bind(std::net::SocketAddr::new(from.into(), 0))?;
+    sock.connect(addr).await
+}
+
+/// Whether the server has closed `s` (a read sees end of file or an error) within `d`; any
+/// bytes it sent first (its version line, a refusal) are appended to `got`.
+pub async fn closed_within(s: &mut tokio::net::TcpStream, d: Duration, got: &mut Vec<u8>) -> bool {
+    use tokio::io::AsyncReadExt;
+    let end = tokio::time::Instant::now() + d;
+    let mut buf = [0u8; 4096];
+    loop {
+        match tokio::time::timeout_at(end, s.read(&mut buf)).await {
+            Err(_) => return false,
+            Ok(Ok(0) | Err(_)) => return true,
+            Ok(Ok(n)) => got.extend_from_slice(&buf[..n]),
+        }
+    }
+}
+
+/// What a [`Tap`] stream does now.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TapMode {
+    /// Passes everything through.
+    Open,
+    /// Stops reading (the client's TCP window fills up), still writes.
+    Stalled,
+    /// Fails every read and write: the client vanished mid-frame (its socket is dropped).
+    Cut,
+}
+
+/// A client-side TCP stream a test can stall or cut, to play a client that stops reading or
+/// dies mid-frame.
+pub struct Tap {
+    inner: tokio::net::TcpStream,
+    ctl: Arc<std::sync::Mutex<(TapMode, Option<std::task::Waker>)>>,
+}
+
+/// The test's end of a [`Tap`].
+#[derive(Clone)]
+pub struct TapControl(Arc<std::sync::Mutex<(TapMode, Option<std::task::Waker>)>>);
+
+impl TapControl {
+    /// Switches the stream's mode (waking a stalled read).
+    pub fn set(&self, mode: TapMode) {
+        let mut g = self.0.lock().expect("tap");
+        g.0 = mode;
+        if let Some(w) = g.1.take() {
+            w.wake();
+        }
+    }
+}
+
+impl Tap {
+    fn mode(&self) -> TapMode {
+        self.ctl.lock().expect("tap").0
+    }
+
+    fn cut_error() -> std::io::Error {
+        std::io::Error::new(std::io::ErrorKind::ConnectionReset, "cut by the test")
+    }
+}
+
+impl tokio::io::AsyncRead for Tap {
+    fn poll_read(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+        buf: &mut tokio::io::ReadBuf<'_>,
+    ) -> std::task::Poll<std::io::Result<()>> {
+        {
+            let mut g = self.ctl.lock().expect("tap");
+            match g.0 {
+                TapMode::Cut => return std::task::Poll::Ready(Err(Self::cut_error())),
+                TapMode::Stalled => {
+                    g.1 = Some(cx.waker().clone());
+                    return std::task::Poll::Pending;
+                }
+                TapMode::Open => {}
+            }
+        }
+        std::pin::Pin::new(&mut self.inner).poll_read(cx, buf)
+    }
+}
+
+impl tokio::io::AsyncWrite for Tap {
+    fn poll_write(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+        buf: &[u8],
+    ) -> std::task::Poll<std::io::Result<usize>> {
+        if self.mode() == TapMode::Cut {
+            return std::task::Poll::Ready(Err(Self::cut_error()));
+        }
+        std::pin::Pin::new(&mut self.inner).poll_write(cx, buf)
+    }
+
+    fn poll_flush(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+    ) -> std::task::Poll<std::io::Result<()>> {
+        std::pin::Pin::new(&mut self.inner).poll_flush(cx)
+    }
+
+    fn poll_shutdown(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+    ) -> std::task::Poll<std::io::Result<()>> {
+        std::pin::Pin::new(&mut self.inner).poll_shutdown(cx)
+    }
+}
+
+/// Like [`Client::connect`] (no auth, `cols`×`rows` xterm pty, shell), over a [`Tap`] stream.
+pub async fn connect_tapped(
+    addr: std::net::SocketAddr,
+    user: &str,
+    cols: u16,
+    rows: u16,
+) -> Result<(Client, TapControl), String> {
+    let ctl = Arc::new(std::sync::Mutex::new((TapMode::Open, None)));
+    let stream = Tap {
+        inner: tokio::net::TcpStream::connect(addr)
+            .await
+            .map_err(|e| format!("tcp: {e}"))?,
+        ctl: Arc::clone(&ctl),
+    };
+    let mut handle = client::connect_stream(Arc::new(client::Config::default()), stream, Trusting)
+        .await
+        .map_err(|e| format!("connect: {e}"))?;
+    let ok = handle
+        .authenticate_none(user)
+        .await
+        .map_err(|e| format!("auth: {e}"))?;
+    if !ok.success() {
+        return Err("auth refused".into());
+    }
+    let channel = handle
+        .channel_open_session()
+        .await
+        .map_err(|e| format!("session: {e}"))?;
+    channel
+        .request_pty(
+            true,
+            "xterm-256color",
+            u32::from(cols),
+            u32::from(rows),
+            0,
+            0,
+            &[],
+        )
+        .await
+        .map_err(|e| format!("pty: {e}"))?;
+    channel
+        .request_shell(true)
+        .await
+        .map_err(|e| format!("shell: {e}"))?;
+    let c = Client {
+        handle,
+        channel,
+        screen: vt100::Parser::new(rows, cols, 0),
+        bytes: 0,
+        closed: false,
+    };
+    Ok((c, TapControl(ctl)))
+}
+
+/// This process's open file descriptors, threads and resident memory (KiB), where /proc tells.
+pub fn process_usage() -> Option<(usize, usize, u64)> {
+    let fds = std::fs::read_dir("/proc/self/fd").ok()?.count();
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let field = |name: &str| -> Option<u64> {
+        status
+            .lines()
+            .find(|l| l.starts_with(name))?
+            .split_whitespace()
+            .nth(1)?
+            .parse()
+            .ok()
+    };
+    Some((
+        fds,
+        usize::try_from(field("Threads:")?).ok()?,
+        field("VmRSS:")?,
+    ))
+}
+
+/// Whether this machine routes all of 127.0.0.0/8 to loopback (Linux does; macOS only has
+/// 127.0.0.1 unless aliases are added). Tests playing several source addresses skip otherwise.
+pub fn many_loopback_addresses() -> bool {
+    let ok = std::net::TcpListener::bind("127.0.0.2:0").is_ok();
+    if !ok {
+        eprintln!(
+            "skip: 127.0.0.2 is not a loopback address here (several source addresses needed)"
+        );
+    }
+    ok
+}

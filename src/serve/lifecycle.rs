@@ -1,0 +1,164 @@
+//! One connection's life from TCP accept to close: the kill switch that ends it whatever state
+//! the SSH layer is in, and the flag saying it reached a playing session (which stops the login
+//! grace clock).
+//!
+//! russh runs each connection in a task of its own that only ends when its stream does, so the
+//! server wraps the socket in [`Killable`]: once [`Lifeline::kill`] is called every read and
+//! write on it fails, the SSH task ends, and the socket and its slot are freed — even for a
+//! client that stopped reading, to whom no goodbye can be delivered.
+
+use std::future::Future;
+use std::io;
+use std::pin::Pin;
+use std::task::{Context, Poll};
+
+use tokio::io::{AsyncRead, AsyncWrite, ReadBuf};
+use tokio::sync::watch;
+
+/// Shared by the accept task, the SSH handler and the session of one connection.
+#[derive(Debug)]
+pub struct Lifeline {
+    kill: watch::Sender<bool>,
+    playing: watch::Sender<bool>,
+}
+
+impl Default for Lifeline {
+    fn default() -> Self {
+        Self {
+            kill: watch::channel(false).0,
+            playing: watch::channel(false).0,
+        }
+    }
+}
+
+impl Lifeline {
+    /// Ends the connection: every later read or write on its [`Killable`] stream fails.
+    pub fn kill(&self) {
+        self.kill.send_replace(true);
+    }
+
+    /// Whether [`Lifeline::kill`] was called.
+    #[must_use]
+    pub fn killed(&self) -> bool {
+        *self.kill.borrow()
+    }
+
+    /// Marks the connection as playing (or watching): its login is over.
+    pub fn set_playing(&self) {
+        self.playing.send_replace(true);
+    }
+
+    /// Watches the playing flag.
+    #[must_use]
+    pub fn playing(&self) -> watch::Receiver<bool> {
+        self.playing.subscribe()
+    }
+
+    /// Wraps `inner` so that [`Lifeline::kill`] cuts it.
+    #[must_use]
+    pub fn wrap<S>(&self, inner: S) -> Killable<S> {
+        let mut rx = self.kill.subscribe();
+        Killable {
+            inner,
+            kill: Box::pin(async move {
+                // Err: the lifeline is gone, and nobody is left to keep the connection.
+                let _ = rx.wait_for(|k| *k).await;
+            }),
+            dead: false,
+        }
+    }
+}
+
+/// A stream that fails every read and write once its [`Lifeline`] is killed.
+pub struct Killable<S> {
+    inner: S,
+    kill: Pin<Box<dyn Future<Output = ()> + Send>>,
+    dead: bool,
+}
+
+impl<S> Killable<S> {
+    fn cut(&mut self, cx: &mut Context<'_>) -> Option<io::Error> {
+        if !self.dead && self.kill.as_mut().poll(cx).is_ready() {
+            self.dead = true;
+        }
+        self.dead
+            .then(|| io::Error::new(io::ErrorKind::ConnectionAborted, "closed by the server"))
+    }
+}
+
+impl<S: AsyncRead + Unpin> AsyncRead for Killable<S> {
+    fn poll_read(
+        mut self: Pin<&mut Self>,
+        cx: &mut Context<'_>,
+        buf: &mut ReadBuf<'_>,
+    ) -> Poll<io::Result<()>> {
+        if let Some(e) = self.cut(cx) {
+            return Poll::Ready(Err(e));
+        }
+        Pin::new(&mut self.inner).poll_read(cx, buf)
+    }
+}
+
+impl<S: AsyncWrite + Unpin> AsyncWrite for Killable<S> {
+    fn poll_write(
+        mut self: Pin<&mut Self>,
+        cx: &mut Context<'_>,
+        buf: &[u8],
+    ) -> Poll<io::Result<usize>> {
+        if let Some(e) = self.cut(cx) {
+            return Poll::Ready(Err(e));
+        }
+        Pin::new(&mut self.inner).poll_write(cx, buf)
+    }
+
+    fn poll_flush(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<io::Result<()>> {
+        if let Some(e) = self.cut(cx) {
+            return Poll::Ready(Err(e));
+        }
+        Pin::new(&mut self.inner).poll_flush(cx)
+    }
+
+    fn poll_shutdown(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<io::Result<()>> {
+        if let Some(e) = self.cut(cx) {
+            return Poll::Ready(Err(e));
+        }
+        Pin::new(&mut self.inner).poll_shutdown(cx)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tokio::io::{AsyncReadExt, AsyncWriteExt};
+
+    #[tokio::test]
+    async fn a_killed_stream_fails_pending_and_later_reads_and_writes() {
+        let life = Lifeline::default();
+        let (a, mut b) = tokio::io::duplex(64);
+        let mut s = life.wrap(a);
+        b.write_all(b"hi").await.expect("write");
+        let mut buf = [0u8; 2];
+        s.read_exact(&mut buf).await.expect("read before the kill");
+        assert_eq!(&buf, b"hi");
+        let reader = tokio::spawn(async move {
+            let mut one = [0u8; 1];
+            let r = s.read(&mut one).await;
+            (r.is_err(), s)
+        });
+        tokio::time::sleep(std::time::Duration::from_millis(20)).await;
+        assert!(!life.killed());
+        life.kill();
+        let (failed, mut s) = reader.await.expect("join");
+        assert!(failed, "a read waiting when the kill came fails");
+        assert!(s.write_all(b"x").await.is_err(), "so do later writes");
+    }
+
+    #[test]
+    fn playing_flag_is_watched() {
+        let life = Lifeline::default();
+        let rx = life.playing();
+        assert!(!*rx.borrow());
+        life.set_playing();
+        assert!(*rx.borrow());
+    }
+}
