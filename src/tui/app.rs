@@ -77,13 +77,17 @@ pub fn run_loop(
     session: &mut Session,
     state: GameState,
     options: LoopOptions,
+    setup: &super::Setup,
     signal: &Arc<AtomicUsize>,
 ) -> io::Result<(Ending, FrameStats, Option<Recording>)> {
     let fps = f64::from(options.fps.max(1));
+    let mut controls = Controls::new(session.input_mode());
+    controls.set_keymap(setup.keys.clone());
+    controls.set_speeds(state.speeds);
     let mut app = App {
         state,
-        controls: Controls::new(session.input_mode()),
-        toggles: Toggles::default(),
+        controls,
+        toggles: setup.toggles,
         stats: FrameStats::default(),
         fb: Framebuffer::new(0, 0),
         presenter: Presenter::new(options.encode),
@@ -168,6 +172,7 @@ pub fn run_loop(
         }
         app.last_size = Some((size.width, size.height));
         step(&mut app.state, &input, dt);
+        app.controls.set_paused(app.state.debugger.paused);
 
         // 3. Render the 3D view at exactly the pane's size.
         let t = Instant::now();
