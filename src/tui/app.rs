@@ -10,9 +10,9 @@ use ratatui::layout::Rect;
 
 use super::events::Events;
 use super::keys::{Controls, UiCommand};
-use super::layout::{Panes, Toggles};
+use super::layout::{Panes, Toggles, COMPACT_MIN_WIDTH};
 use super::render::render_view;
-use super::screen::{draw, Screen};
+use super::screen::{draw_notice, draw_with_keys, Screen};
 use super::stats::FrameStats;
 use super::terminal::Session;
 use crate::encode::{EncodeOptions, Pacer};
@@ -67,7 +67,15 @@ struct App {
     pacer: Option<Pacer>,
     recording: Option<Recording>,
     last_size: Option<(u16, u16)>,
+    keys: super::keymap::KeyMap,
+    /// A note for the status line and until when it shows (a pane hidden for lack of room).
+    notice: Option<(String, Instant)>,
+    /// The wanted panes that did not fit last frame, to notice a change.
+    hidden: Vec<&'static str>,
 }
+
+/// How long a note stays on the status line.
+const NOTICE_FOR: Duration = Duration::from_secs(4);
 
 /// Runs frames until quit or a signal; `signal` holds the number of a caught signal (0 = none).
 ///
@@ -94,6 +102,9 @@ pub fn run_loop(
         pacer: options.max_bandwidth.map(|bits| Pacer::new(bits, fps)),
         recording: options.record.then(Recording::default),
         last_size: None,
+        keys: setup.keys.clone(),
+        notice: None,
+        hidden: Vec::new(),
     };
     app.stats.level = Some(options.encode.level);
     let period = Duration::from_secs_f64(1.0 / fps);
@@ -143,6 +154,25 @@ pub fn run_loop(
         let size = session.size()?;
         let area = Rect::new(0, 0, size.width, size.height);
         let panes = Panes::compute(area, app.toggles);
+        let hidden = panes.hidden(app.toggles);
+        let asked = ui
+            .iter()
+            .any(|u| matches!(u, UiCommand::ToggleMinimap | UiCommand::ToggleDebug));
+        if (asked || hidden != app.hidden) && !hidden.is_empty() {
+            let need = if size.width < COMPACT_MIN_WIDTH {
+                format!("needs {COMPACT_MIN_WIDTH} columns")
+            } else {
+                "needs more rows".to_string()
+            };
+            let text = format!(
+                "{} hidden: no room at {}x{} ({need})",
+                hidden.join(" and "),
+                size.width,
+                size.height
+            );
+            app.notice = Some((text, now + NOTICE_FOR));
+        }
+        app.hidden = hidden;
         let view = match panes {
             Panes::Game { view, .. } => view,
             Panes::TooSmall(_) => Rect::default(),
@@ -192,7 +222,12 @@ pub fn run_loop(
             input_mode: app.controls.mode(),
         };
         let mut buf = Buffer::empty(area);
-        draw(&screen, &panes, area, &mut buf);
+        draw_with_keys(&screen, &panes, area, &mut buf, &app.keys);
+        if let (Some((text, until)), Panes::Game { status, .. }) = (&app.notice, panes) {
+            if now < *until {
+                draw_notice(text, status, &mut buf);
+            }
+        }
         let bytes = app.presenter.frame(&buf, &app.fb, view);
         if let Err(e) = session.write_frame(bytes) {
             // A full terminal gave way to a signal: end like any signalled frame.

@@ -49,7 +49,6 @@ pub struct Setup {
     pub toggles: layout::Toggles,
 }
 
-
 /// Registers the signals that end a session (SIGTERM, SIGINT; SIGHUP and SIGQUIT on unix)
 /// into one flag holding the signal's number.
 fn watch_signals() -> std::io::Result<Arc<AtomicUsize>> {
