@@ -67,7 +67,7 @@ fn turned(from: f64, to: f64) -> f64 {
 fn without_releases_a_tap_is_a_small_step_and_a_hold_moves_steadily() {
     let mut run = start((120, 30), &[]);
     let settle = Duration::from_millis(900);
-    let (x0, y0, a0) = pose(&mut run);
+    let (x0, y0, _) = pose(&mut run);
 
     // One tap of w: a short walk (the start faces open floor).
     let (x1, y1, a1) = after_keys(&mut run, b"w", settle);
