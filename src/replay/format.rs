@@ -470,6 +470,30 @@ mod tests {
     }
 
     #[test]
+    fn taps_re_centring_and_speeds_round_trip() {
+        let mut r = sample();
+        r.header.speeds = Speeds::new(2.0, 90.0).unwrap();
+        r.frames[5]
+            .input
+            .commands
+            .push(Command::Nudge(Action::TurnRight, 0.0625));
+        r.frames[5].input.commands.push(Command::CentrePitch);
+        let text = r.to_jsonl();
+        assert!(
+            text.contains("\"speeds\":{\"move\":2.0,\"turn\":90.0}"),
+            "{text}"
+        );
+        let back = Replay::parse("r.hcr", &text).unwrap();
+        assert!((back.header.speeds.turn_deg() - 90.0).abs() < 1e-9);
+        assert_eq!(back.frames, r.frames);
+        // Default speeds are not written, so older files and new ones read the same.
+        assert!(!sample().to_jsonl().contains("speeds"));
+        let bad = text.replace("\"seconds\":0.0625", "\"seconds\":-1");
+        let e = Replay::parse("r.hcr", &bad).unwrap_err();
+        assert!(e.message.contains("nudge needs a number"), "{e}");
+    }
+
+    #[test]
     fn held_actions_persist_until_changed() {
         let text = "{\"halfcast_replay\":1,\"map\":null,\"start\":{\"pos\":[1.5,1.5],\"angle\":0,\"fov\":66},\"size\":[80,24],\"fps\":10}\n{\"frame\":2,\"held\":[\"forward\"]}\n{\"frame\":5,\"held\":[]}\n{\"end\":7}\n";
         let r = Replay::parse("r.hcr", text).unwrap();

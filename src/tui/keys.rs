@@ -109,6 +109,10 @@ struct KeyRun {
     presses: u32,
     last: Instant,
     first_gap: Option<Duration>,
+    /// When the key went down, and whether a step has seen it held (kitty mode: a press and
+    /// release between two steps still moves, for exactly as long as the key was down).
+    pressed: Instant,
+    stepped: bool,
 }
 
 /// Collects events between frames and hands them to the game as one [`Input`].
@@ -194,6 +198,15 @@ impl Controls {
         // Shift may change between press and release ('W' then 'w'): keys compare caseless.
         let id = Key::of(key);
         if key.kind == KeyEventKind::Release {
+            let quick = self
+                .runs
+                .iter()
+                .find(|r| r.key.code == id.code && !r.stepped && r.until.is_some())
+                .map(|r| (r.action, now.saturating_duration_since(r.pressed)));
+            if let Some((action, down)) = quick.filter(|(a, _)| *a != Action::Crouch) {
+                self.commands
+                    .push(Command::Nudge(action, down.as_secs_f64()));
+            }
             self.runs.retain(|r| r.key.code != id.code);
             return;
         }
@@ -264,6 +277,8 @@ impl Controls {
             presses: 1,
             last: now,
             first_gap: None,
+            pressed: now,
+            stepped: false,
         });
         if emulated {
             let i = self.runs.len() - 1;
@@ -307,13 +322,17 @@ impl Controls {
             r.until.is_some_and(|u| u > now)
                 || now.saturating_duration_since(r.last) <= RepeatTiming::MAX_DELAY
         });
+        let mut held = Held::default();
+        for r in self
+            .runs
+            .iter_mut()
+            .filter(|r| r.until.is_some_and(|u| u > now))
+        {
+            r.stepped = true;
+            held.insert(r.action);
+        }
         Input {
-            held: self
-                .runs
-                .iter()
-                .filter(|r| r.until.is_some_and(|u| u > now))
-                .map(|r| r.action)
-                .collect::<Held>(),
+            held,
             commands: std::mem::take(&mut self.commands),
         }
     }
@@ -505,6 +524,22 @@ mod tests {
         // A lost release (tmux) still ends the hold eventually.
         c.handle(&press('d'), ms(t0, 2000));
         assert!(c.take_input(ms(t0, 2000) + KITTY_STALE).held.is_empty());
+    }
+
+    #[test]
+    fn kitty_press_and_release_between_steps_moves_for_as_long_as_the_key_was_down() {
+        let t0 = Instant::now();
+        let mut c = Controls::new(InputMode::Kitty);
+        c.handle(&press('d'), t0);
+        c.handle(&key(KeyCode::Char('d'), KeyEventKind::Release), ms(t0, 40));
+        let input = c.take_input(ms(t0, 50));
+        assert!(input.held.is_empty());
+        assert_eq!(nudges(&input), vec![(Action::TurnRight, 0.04)]);
+        // Held across a step: the step moved it, the release adds nothing.
+        c.handle(&press('w'), ms(t0, 100));
+        assert!(c.take_input(ms(t0, 116)).held.contains(Action::Forward));
+        c.handle(&key(KeyCode::Char('w'), KeyEventKind::Release), ms(t0, 120));
+        assert_eq!(c.take_input(ms(t0, 133)), Input::default());
     }
 
     #[test]
