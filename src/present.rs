@@ -1,5 +1,10 @@
 //! One way to put a frame on a terminal: ratatui's cell diff for the panes, halfcast's encoder
 //! for the 3D view, one synchronized update. The TUI, replays and the SSH server all use it.
+//!
+//! An overlay (the help box) drawn over the view must stay on top, but the encoder paints the
+//! whole view region. So while the screen buffer shows anything but the view inside the view's
+//! area, the view goes through the cell diff like the panes (around the overlay), and the
+//! encoder starts afresh once the overlay is gone.
 
 use ratatui::backend::{Backend, CrosstermBackend};
 use ratatui::buffer::{Buffer, CellDiffOption};
@@ -9,6 +14,7 @@ use ratatui::style::{Color, Modifier};
 use crate::encode::{ColorLevel, EncodeOptions, Encoder, Palette, SYNC_BEGIN, SYNC_END};
 use crate::framebuffer::Framebuffer;
 use crate::termframe::ratatui_rgb;
+use crate::widget::half_block::{to_color, UPPER_HALF};
 
 /// Turns whole screens into the bytes that update a terminal from the previous screen.
 #[derive(Debug)]
@@ -17,6 +23,8 @@ pub struct Presenter {
     palette: Palette,
     previous: Option<Buffer>,
     out: Vec<u8>,
+    /// Whether the last frame had an overlay over the view (drawn without the encoder).
+    overlaid: bool,
 }
 
 impl Presenter {
@@ -29,6 +37,7 @@ impl Presenter {
             palette: Palette::new(opts.level, false),
             previous: None,
             out: Vec::new(),
+            overlaid: false,
         }
     }
 
@@ -53,19 +62,38 @@ impl Presenter {
 
     /// The bytes for one frame: `screen` holds the panes (the view's cells are ignored),
     /// `view` the 3D view's pixels shown at `view_area` (empty area = no view).
+    /// Cells of the view area that show something else (an overlay) are drawn on top of it.
     pub fn frame(&mut self, screen: &Buffer, view: &Framebuffer, view_area: Rect) -> &[u8] {
         let area = screen.area;
         let mut next = screen.clone();
+        let level = self.level();
+        let view_area = view_area.intersection(area);
+        let usable = view_area.area() > 0 && view.width() == usize::from(view_area.width);
+        let overlaid = usable && covered(screen, view, view_area);
+        if overlaid != self.overlaid {
+            // The terminal holds the other path's drawing: start both afresh.
+            self.previous = None;
+            self.overlaid = overlaid;
+        }
         for y in view_area.top()..view_area.bottom() {
             for x in view_area.left()..view_area.right() {
-                if let Some(c) = next.cell_mut((x, y)) {
+                let (cx, cy) = (usize::from(x - view_area.x), usize::from(y - view_area.y));
+                let Some(c) = next.cell_mut((x, y)) else {
+                    continue;
+                };
+                if !overlaid {
                     c.set_diff_option(CellDiffOption::Skip);
+                } else if level == ColorLevel::Mono
+                    && c.symbol() == UPPER_HALF
+                    && cy < view.cell_rows()
+                {
+                    let (top, bottom) = view.cell(cx, cy);
+                    c.set_char(crate::encode::quantize::mono_char(top, bottom));
                 }
             }
         }
         self.adapt_colours(&mut next);
         self.out.clear();
-        let level = self.level();
         if level != ColorLevel::Mono {
             self.out.extend_from_slice(SYNC_BEGIN);
         }
@@ -91,7 +119,7 @@ impl Presenter {
         if level == ColorLevel::Mono {
             strip_sgr(&mut self.out);
         }
-        if view_area.area() > 0 && view.width() == usize::from(view_area.width) {
+        if usable && !overlaid {
             let bytes = self.encoder.encode(view, view_area.x, view_area.y);
             self.out.extend_from_slice(bytes);
         }
@@ -128,6 +156,13 @@ impl Presenter {
                         "─" | "━" | "═" => "-",
                         "╭" | "╮" | "╰" | "╯" | "┌" | "┐" | "└" | "┘" | "┼" | "├" | "┤" | "┬"
                         | "┴" => "+",
+                        "←" => "<",
+                        "→" => ">",
+                        "↑" => "^",
+                        "↓" => "v",
+                        "·" | "…" => ".",
+                        "×" => "x",
+                        "°" => "o",
                         _ => "#",
                     };
                     cell.set_symbol(ascii);
@@ -135,6 +170,22 @@ impl Presenter {
             }
         }
     }
+}
+
+/// Whether something is drawn over the view: a cell of the view area that is neither the
+/// view's own half-block nor left empty (callers may leave the view's cells blank).
+fn covered(screen: &Buffer, view: &Framebuffer, at: Rect) -> bool {
+    let rows = usize::from(at.height).min(view.cell_rows());
+    let blank = ratatui::buffer::Cell::default();
+    (0..rows).any(|cy| {
+        (0..usize::from(at.width)).any(|cx| {
+            let (top, bottom) = view.cell(cx, cy);
+            let c = &screen[(at.x + cx as u16, at.y + cy as u16)];
+            let is_view =
+                c.symbol() == UPPER_HALF && c.fg == to_color(top) && c.bg == to_color(bottom);
+            !is_view && *c != blank
+        })
+    })
 }
 
 /// Removes SGR sequences (`ESC [ … m`) so mono output carries only cursor moves and text.
@@ -164,6 +215,7 @@ mod tests {
     use crate::color::Rgb;
     use crate::termframe::{from_screen, TermFrame};
     use ratatui::style::Style;
+    use ratatui::widgets::Widget;
 
     fn screen(text: &str) -> Buffer {
         let mut b = Buffer::empty(Rect::new(0, 0, 20, 6));
@@ -225,6 +277,68 @@ mod tests {
                         seen.cell(x, y).appearance(),
                         want.cell(x, y).appearance(),
                         "frame {i} cell ({x},{y})"
+                    );
+                }
+            }
+        }
+    }
+
+    /// The panes of [`screen`] with the view's half-blocks drawn at `at`, as `draw` does.
+    fn with_view(text: &str, v: &Framebuffer, at: Rect) -> Buffer {
+        let mut b = screen(text);
+        crate::widget::HalfBlockView::new(v).render(at, &mut b);
+        b
+    }
+
+    #[test]
+    fn an_overlay_over_the_view_stays_visible_and_the_view_returns_after_it() {
+        for level in [ColorLevel::TrueColor, ColorLevel::Ansi256, ColorLevel::Mono] {
+            let mut p = Presenter::new(EncodeOptions::new(level));
+            let at = Rect::new(3, 1, 10, 4);
+            let mut term = vt100::Parser::new(6, 20, 0);
+            let v = view(40);
+            term.process(p.frame(&with_view("s", &v, at), &v, at));
+            for shade in [40u8, 80] {
+                let v = view(shade);
+                let mut b = with_view("s", &v, at);
+                b.set_string(5, 2, "HELP", Style::new());
+                term.process(p.frame(&b, &v, at));
+                let row: Vec<char> = (0..20)
+                    .map(|x| {
+                        term.screen()
+                            .cell(2, x)
+                            .map_or(' ', |c| c.contents().chars().next().unwrap_or(' '))
+                    })
+                    .collect();
+                assert_eq!(
+                    row[5..9].iter().collect::<String>(),
+                    "HELP",
+                    "{level:?} shade {shade}: {row:?}"
+                );
+            }
+            let v = view(120);
+            term.process(p.frame(&with_view("s", &v, at), &v, at));
+            let seen = from_screen(term.screen(), 20, 6);
+            let want = TermFrame::from_framebuffer(&v);
+            for x in 0..10 {
+                let cell = seen.cell(x + 3, 1);
+                if level == ColorLevel::Mono {
+                    let (t, b) = v.cell(x, 0);
+                    assert_eq!(
+                        cell.glyph,
+                        crate::encode::quantize::mono_char(t, b),
+                        "{level:?}"
+                    );
+                } else if level == ColorLevel::TrueColor {
+                    assert_eq!(
+                        cell.appearance(),
+                        want.cell(x, 0).appearance(),
+                        "{level:?} {x}"
+                    );
+                } else {
+                    assert!(
+                        matches!(cell.glyph, '▀' | '▄' | ' ' | '█'),
+                        "{level:?} {cell:?}"
                     );
                 }
             }

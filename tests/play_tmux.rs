@@ -186,3 +186,86 @@ fn a_closed_terminal_ends_the_game() {
         "the game (pid {pid}) kept running after its terminal closed"
     );
 }
+
+/// (x, y, angle) from the status line ("pos 15.50,5.50 │ angle 90.0°").
+fn pose(screen: &str) -> (f64, f64, f64) {
+    let line = status(screen);
+    let field = |key: &str| -> String {
+        let i = line.find(key).unwrap_or_else(|| panic!("no {key}: {line}"));
+        line[i + key.len()..]
+            .chars()
+            .take_while(|c| c.is_ascii_digit() || matches!(c, '.' | ','))
+            .collect()
+    };
+    let pos = field("pos ");
+    let (x, y) = pos.split_once(',').expect("x,y");
+    (
+        x.parse().unwrap(),
+        y.parse().unwrap(),
+        field("angle ").parse().unwrap(),
+    )
+}
+
+/// The setting: 80×24 in tmux with TERM=xterm-256color (tmux sends no key releases).
+/// Both panes show, a tap of d turns at most 10° and a tap of w walks at most 0.3 cells, and the
+/// help is on screen over the view.
+#[test]
+fn under_tmux_at_80x24_taps_are_small_steps_and_the_help_shows() {
+    if Command::new("tmux").arg("-V").output().is_err() {
+        eprintln!("skipping: tmux is not installed");
+        return;
+    }
+    let tmux = Tmux {
+        socket: format!("halfcast-80x24-{}", std::process::id()),
+    };
+    let bin = env!("CARGO_BIN_EXE_halfcast");
+    let config = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/no-such-dir");
+    let started = tmux.run(&[
+        "new-session",
+        "-d",
+        "-e",
+        "TERM=xterm-256color",
+        "-e",
+        &format!("XDG_CONFIG_HOME={config}"),
+        "-s",
+        "t",
+        "-x",
+        "80",
+        "-y",
+        "24",
+        bin,
+        "play",
+    ]);
+    assert!(started.status.success(), "{started:?}");
+    let first = tmux.wait_for("the first frame", |s| {
+        s.contains("sideDistX") && status(s).contains("q quit")
+    });
+    assert!(first.contains(" map ") && first.contains("ray"), "{first}");
+    let (x0, y0, a0) = pose(&first);
+
+    tmux.run(&["send-keys", "-t", "t", "d"]);
+    let turned = tmux.wait_for("a turn", |s| pose(s).2 != a0);
+    thread::sleep(Duration::from_millis(800));
+    let (_, _, a1) = pose(&tmux.capture(false));
+    let t = (a0 - a1 + 540.0).rem_euclid(360.0) - 180.0;
+    assert!(t > 0.0 && t <= 10.0, "one tap turned {t} deg:\n{turned}");
+
+    // Face the open floor again, then one tap of w.
+    tmux.run(&["send-keys", "-t", "t", "a"]);
+    thread::sleep(Duration::from_millis(800));
+    tmux.run(&["send-keys", "-t", "t", "w"]);
+    tmux.wait_for("a step", |s| pose(s).1 != y0);
+    thread::sleep(Duration::from_millis(800));
+    let (x2, y2, _) = pose(&tmux.capture(false));
+    let walked = (x2 - x0).hypot(y2 - y0);
+    assert!(walked > 0.0 && walked <= 0.3, "one tap walked {walked}");
+
+    tmux.run(&["send-keys", "-t", "t", "?"]);
+    let help = tmux.wait_for("the help", |s| s.contains("walk forward / back"));
+    thread::sleep(Duration::from_millis(300));
+    let help_again = tmux.capture(false);
+    for needle in ["look straight ahead again", "night mode on / off", "jump"] {
+        assert!(help_again.contains(needle), "{needle}:\n{help}");
+    }
+    tmux.run(&["send-keys", "-t", "t", "q"]);
+}

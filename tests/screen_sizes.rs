@@ -145,7 +145,15 @@ fn help_overlay_lists_the_keys() {
         false,
     );
     let t = text(&buf, area);
-    for needle in ["walk forward", "single-step the DDA", "quit", "auto-repeat"] {
+    for needle in [
+        "walk forward",
+        "single-step the DDA",
+        "quit",
+        "look straight ahead",
+        "jump",
+        "night mode",
+        "hold to keep moving",
+    ] {
         assert!(t.contains(needle), "{needle}: {t}");
     }
 }

@@ -6,7 +6,10 @@ use std::sync::Arc;
 use clap::Args;
 use halfcast::camera::DEFAULT_FOV_DEG;
 use halfcast::encode::{ColorLevel, EncodeOptions};
-use halfcast::tui::{self, Ending, LoopOptions, PlayOptions, TerminalError};
+use halfcast::game::Speeds;
+use halfcast::tui::config::Config;
+use halfcast::tui::layout::Toggles;
+use halfcast::tui::{self, Ending, LoopOptions, PlayOptions, Setup, TerminalError};
 
 use super::options::{MapArgs, PoseArgs};
 use super::{camera_for, detect_level, load_world, parse_level, write_output, Failure};
@@ -41,6 +44,18 @@ pub(crate) struct PlayArgs {
     /// With --max-bandwidth: also step down the colour level when the cap allows under 12 fps.
     #[arg(long, requires = "max_bandwidth")]
     pub(crate) adapt_colors: bool,
+    /// Turning speed in degrees per second (default 149; also `turn` in the config file).
+    #[arg(long, value_name = "DEG_PER_S")]
+    pub(crate) turn_speed: Option<f64>,
+    /// Walking speed in cells per second (default 3; also `move` in the config file).
+    #[arg(long, value_name = "CELLS_PER_S")]
+    pub(crate) move_speed: Option<f64>,
+    /// Config file (default: $XDG_CONFIG_HOME/halfcast/config.toml, if it exists).
+    #[arg(long, value_name = "FILE")]
+    pub(crate) config: Option<PathBuf>,
+    /// Print the default config file (keys, speeds, colours, panes) and exit.
+    #[arg(long)]
+    pub(crate) print_config: bool,
 }
 
 #[derive(Args, Debug)]
@@ -73,11 +88,39 @@ impl PlayArgs {
             delta: None,
             max_bandwidth: None,
             adapt_colors: false,
+            turn_speed: None,
+            move_speed: None,
+            config: None,
+            print_config: false,
         }
     }
 }
 
+/// The config file (`--config`, or the default path if that exists) with the flags applied.
+fn settings(args: &PlayArgs) -> Result<Config, Failure> {
+    let mut config = match (&args.config, Config::default_path()) {
+        (Some(path), _) => Config::load(path, true),
+        (None, Some(path)) => Config::load(&path, false),
+        (None, None) => Ok(Config::default()),
+    }
+    .map_err(Failure::input)?;
+    if let Some(walk) = args.move_speed {
+        config.speeds = Speeds::new(walk, config.speeds.turn_deg())
+            .map_err(|m| Failure::input(format!("--move-speed: {m}")))?;
+    }
+    if let Some(turn) = args.turn_speed {
+        config.speeds = Speeds::new(config.speeds.move_cells, turn)
+            .map_err(|m| Failure::input(format!("--turn-speed: {m}")))?;
+    }
+    Ok(config)
+}
+
 pub(crate) fn play(args: &PlayArgs, record: Option<&PathBuf>) -> Result<(), Failure> {
+    if args.print_config {
+        print!("{}", Config::default().to_toml());
+        return Ok(());
+    }
+    let config = settings(args)?;
     let world = load_world(&args.map)?;
     let camera = camera_for(&world, &args.pose);
     if !world.map.is_walkable(camera.pos) {
@@ -86,7 +129,7 @@ pub(crate) fn play(args: &PlayArgs, record: Option<&PathBuf>) -> Result<(), Fail
             camera.pos.x, camera.pos.y, world.map.name
         )));
     }
-    let mut encode = EncodeOptions::new(args.colors.unwrap_or_else(detect_level));
+    let mut encode = EncodeOptions::new(args.colors.or(config.colors).unwrap_or_else(detect_level));
     encode.dither = args.dither;
     encode.delta = args.delta;
     let options = PlayOptions {
@@ -98,6 +141,15 @@ pub(crate) fn play(args: &PlayArgs, record: Option<&PathBuf>) -> Result<(), Fail
             record: record.is_some(),
         },
         mouse: !args.no_mouse,
+        setup: Setup {
+            keys: config.keys.clone(),
+            speeds: config.speeds,
+            toggles: Toggles {
+                minimap: config.minimap,
+                debug: config.ray_pane,
+                help: false,
+            },
+        },
     };
     let (ending, stats, recording) =
         tui::play(Arc::new(world), camera, options).map_err(terminal_failure)?;
@@ -119,6 +171,7 @@ pub(crate) fn play(args: &PlayArgs, record: Option<&PathBuf>) -> Result<(), Fail
             size: rec.size,
             fps: args.fps,
             seed: 0,
+            speeds: config.speeds,
         };
         let replay = halfcast::replay::Replay {
             header,

@@ -102,6 +102,63 @@ pub enum Command {
     Jump,
     /// Switch night mode (dark, lit near the player) on or off.
     ToggleNight,
+    /// Act as if `Action` were held for this many seconds, at once (a key tap on a terminal
+    /// without key-release events; ignored while paused). Crouch is not nudged.
+    Nudge(Action, f64),
+    /// Level the view: pitch back to 0 (look straight ahead).
+    CentrePitch,
+}
+
+/// How fast the player walks and turns; set by `--move-speed`, `--turn-speed` or the config file.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Speeds {
+    /// Walking (and strafing) speed in cells per second.
+    pub move_cells: f64,
+    /// Turning speed in radians per second.
+    pub turn_radians: f64,
+}
+
+impl Default for Speeds {
+    fn default() -> Self {
+        Self {
+            move_cells: super::MOVE_SPEED,
+            turn_radians: super::TURN_SPEED,
+        }
+    }
+}
+
+impl Speeds {
+    /// Fastest speeds accepted (cells/s, degrees/s): beyond them one frame jumps through walls or spins.
+    pub const MAX: (f64, f64) = (50.0, 3600.0);
+
+    /// Speeds from cells per second and degrees per second, or why they are unusable.
+    ///
+    /// # Errors
+    /// A speed that is not a finite number in (0, [`Speeds::MAX`]].
+    pub fn new(move_cells: f64, turn_deg: f64) -> Result<Self, String> {
+        check_speed("move speed", move_cells, Self::MAX.0, "cells per second")?;
+        check_speed("turn speed", turn_deg, Self::MAX.1, "degrees per second")?;
+        Ok(Self {
+            move_cells,
+            turn_radians: turn_deg.to_radians(),
+        })
+    }
+
+    /// The turning speed in degrees per second.
+    #[must_use]
+    pub fn turn_deg(&self) -> f64 {
+        self.turn_radians.to_degrees()
+    }
+}
+
+fn check_speed(what: &str, v: f64, max: f64, unit: &str) -> Result<(), String> {
+    if v.is_finite() && v > 0.0 && v <= max {
+        Ok(())
+    } else {
+        Err(format!(
+            "{what} must be a number above 0 and at most {max} ({unit}), not {v}"
+        ))
+    }
 }
 
 /// Everything one step reads from the outside world.
@@ -142,5 +199,25 @@ mod tests {
         h.remove(Action::TurnRight);
         assert!(h.is_empty());
         assert_eq!(Action::ALL.len(), 9);
+    }
+
+    #[test]
+    fn speeds_are_checked_and_kept_in_radians() {
+        let s = Speeds::new(2.0, 90.0).unwrap();
+        assert!((s.turn_radians - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+        assert!((s.turn_deg() - 90.0).abs() < 1e-9);
+        for (m, t) in [
+            (0.0, 90.0),
+            (-1.0, 90.0),
+            (3.0, f64::NAN),
+            (51.0, 90.0),
+            (3.0, 4000.0),
+        ] {
+            assert!(Speeds::new(m, t).is_err(), "{m} {t}");
+        }
+        assert_eq!(
+            Speeds::new(0.0, 90.0).unwrap_err(),
+            "move speed must be a number above 0 and at most 50 (cells per second), not 0"
+        );
     }
 }

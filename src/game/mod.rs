@@ -16,7 +16,7 @@ use crate::view::{View, EYE_RANGE, MAX_PITCH_DEG, STANDING_EYE};
 use crate::world::{SolidDisc, World};
 
 pub use debugger::{Cursor, Debugger};
-pub use input::{Action, Command, Held, Input};
+pub use input::{Action, Command, Held, Input, Speeds};
 
 /// Walking speed in cells per second.
 pub const MOVE_SPEED: f64 = 3.0;
@@ -59,6 +59,8 @@ pub struct GameState {
     pub jump: (f64, f64),
     /// Night mode (dark, lit near the player).
     pub night: bool,
+    /// Walking and turning speeds.
+    pub speeds: Speeds,
     /// Game time in seconds (animations); advances with the steps, paused with the world.
     pub time: f64,
     solids: Vec<SolidDisc>,
@@ -81,6 +83,7 @@ impl GameState {
             base_eye: STANDING_EYE,
             jump: (0.0, 0.0),
             night: false,
+            speeds: Speeds::default(),
             time: 0.0,
             solids,
         }
@@ -135,6 +138,8 @@ fn advance(state: &mut GameState, input: &Input, dt: f64, owns_world: bool, bodi
         0.0
     };
     let mut turn = 0.0;
+    // Seconds of "as if held" per action from taps (Command::Nudge), in Action::ALL order.
+    let mut nudged = [0.0f64; 9];
     for &command in &input.commands {
         let d = &mut state.debugger;
         match command {
@@ -156,6 +161,10 @@ fn advance(state: &mut GameState, input: &Input, dt: f64, owns_world: bool, bodi
             }
             Command::Jump if !d.paused && state.jump == (0.0, 0.0) => state.jump.1 = JUMP_SPEED,
             Command::ToggleNight => state.night = !state.night,
+            Command::Nudge(a, secs) if !d.paused && secs.is_finite() => {
+                nudged[a as usize] += secs.clamp(0.0, MAX_DT);
+            }
+            Command::CentrePitch if !d.paused => state.view.pitch_deg = 0.0,
             _ => {}
         }
     }
@@ -167,8 +176,13 @@ fn advance(state: &mut GameState, input: &Input, dt: f64, owns_world: bool, bodi
         state.doors.update(dt);
     }
     let held = input.held;
-    vertical(state, held, dt);
-    turn += held.axis(Action::TurnLeft, Action::TurnRight) * TURN_SPEED * dt;
+    let nudge = |plus: Action, minus: Action| nudged[plus as usize] - nudged[minus as usize];
+    let look = nudge(Action::LookUp, Action::LookDown);
+    vertical(state, held, dt, look);
+    let speeds = state.speeds;
+    turn += (held.axis(Action::TurnLeft, Action::TurnRight) * dt
+        + nudge(Action::TurnLeft, Action::TurnRight))
+        * speeds.turn_radians;
     if turn != 0.0 {
         state.camera.rotate(turn);
     }
@@ -178,7 +192,13 @@ fn advance(state: &mut GameState, input: &Input, dt: f64, owns_world: bool, bodi
     let mut wish = cam.dir * forward + cam.dir.right_normal() * right;
     let len = wish.length();
     if len > 0.0 {
-        wish = wish * (MOVE_SPEED * dt / len);
+        wish = wish * (speeds.move_cells * dt / len);
+    }
+    wish = wish
+        + (cam.dir * nudge(Action::Forward, Action::Back)
+            + cam.dir.right_normal() * nudge(Action::StrafeRight, Action::StrafeLeft))
+            * speeds.move_cells;
+    if wish.length() > 0.0 {
         let mut discs = Vec::new();
         let mut obstacles = state.obstacles();
         if !bodies.is_empty() {
@@ -192,8 +212,8 @@ fn advance(state: &mut GameState, input: &Input, dt: f64, owns_world: bool, bodi
 }
 
 /// Looking up/down, crouching and jumping: the pitch and eye height of the view.
-fn vertical(state: &mut GameState, held: Held, dt: f64) {
-    let look = held.axis(Action::LookUp, Action::LookDown) * LOOK_SPEED * dt;
+fn vertical(state: &mut GameState, held: Held, dt: f64, nudged_look: f64) {
+    let look = (held.axis(Action::LookUp, Action::LookDown) * dt + nudged_look) * LOOK_SPEED;
     let pitch = (state.view.pitch_deg + look).clamp(-MAX_PITCH_DEG, MAX_PITCH_DEG);
     let target = if held.contains(Action::Crouch) {
         CROUCH_EYE
@@ -292,6 +312,41 @@ mod tests {
         assert_eq!(s.camera, pose);
         step(&mut s, &cmds(vec![Command::TogglePause]), 0.1);
         assert!(!s.debugger.paused && s.camera != pose);
+    }
+
+    #[test]
+    fn nudges_move_as_if_held_at_the_set_speeds_and_not_while_paused() {
+        let mut s = state();
+        s.speeds = Speeds::new(2.0, 100.0).unwrap();
+        let (pose, angle) = (s.camera.pos, s.camera.angle_deg());
+        let tap = |a| Input {
+            held: Held::default(),
+            commands: vec![Command::Nudge(a, 0.08)],
+        };
+        step(&mut s, &tap(Action::TurnLeft), 0.016);
+        assert!((s.camera.angle_deg() - angle - 8.0).abs() < 1e-9);
+        step(&mut s, &tap(Action::TurnRight), 0.016);
+        step(&mut s, &tap(Action::Forward), 0.016);
+        assert!(((s.camera.pos - pose).length() - 0.16).abs() < 1e-9);
+        step(&mut s, &tap(Action::LookUp), 0.016);
+        assert!((s.view.pitch_deg - LOOK_SPEED * 0.08).abs() < 1e-9);
+        let centre = Input {
+            held: Held::default(),
+            commands: vec![Command::CentrePitch],
+        };
+        step(&mut s, &centre, 0.016);
+        assert_eq!(s.view.pitch_deg, 0.0);
+        let before = s.camera;
+        let paused = Input {
+            held: Held::default(),
+            commands: vec![
+                Command::TogglePause,
+                Command::Nudge(Action::TurnLeft, 0.1),
+                Command::Nudge(Action::Forward, 0.1),
+            ],
+        };
+        step(&mut s, &paused, 0.016);
+        assert_eq!(s.camera, before);
     }
 
     #[test]

@@ -18,7 +18,7 @@ use std::fmt::Write;
 
 use serde_json::{json, Value};
 
-use crate::game::{Action, Command, Held, Input};
+use crate::game::{Action, Command, Held, Input, Speeds};
 use crate::tui::keys::UiCommand;
 use crate::vec2::Vec2;
 
@@ -51,6 +51,8 @@ pub struct Header {
     pub fps: u32,
     /// Reserved for randomness (the game has none yet); replays keep it so they stay exact.
     pub seed: u64,
+    /// Walking and turning speeds (written only when not the defaults).
+    pub speeds: Speeds,
 }
 
 /// What happens at the start of one frame.
@@ -127,6 +129,10 @@ fn command_json(frame: usize, c: &Command) -> Value {
         Command::UseDoor => json!({"frame": frame, "command": "use_door"}),
         Command::Jump => json!({"frame": frame, "command": "jump"}),
         Command::ToggleNight => json!({"frame": frame, "command": "toggle_night"}),
+        Command::Nudge(a, secs) => {
+            json!({"frame": frame, "command": "nudge", "action": action_name(a), "seconds": secs})
+        }
+        Command::CentrePitch => json!({"frame": frame, "command": "centre_pitch"}),
     }
 }
 
@@ -139,11 +145,14 @@ impl Replay {
             MapSource::Embedded => Value::Null,
             MapSource::File(p) => Value::String(p.clone()),
         };
-        let head = json!({
+        let mut head = json!({
             "halfcast_replay": VERSION, "map": map,
             "start": {"pos": [h.pos.x, h.pos.y], "angle": h.angle_deg, "fov": h.fov_deg},
             "size": [h.size.0, h.size.1], "fps": h.fps, "seed": h.seed,
         });
+        if h.speeds != Speeds::default() {
+            head["speeds"] = json!({"move": h.speeds.move_cells, "turn": h.speeds.turn_deg()});
+        }
         let mut out = format!("{head}\n");
         let mut held = Held::default();
         for (i, f) in self.frames.iter().enumerate() {
@@ -309,6 +318,13 @@ fn parse_header(v: &Value) -> Result<Header, String> {
         size: (dim(&size[0])?, dim(&size[1])?),
         fps: fps as u32,
         seed: v.get("seed").and_then(Value::as_u64).unwrap_or(0),
+        speeds: match v.get("speeds") {
+            None => Speeds::default(),
+            Some(sp) => Speeds::new(
+                num(sp.get("move"), "speeds.move")?,
+                num(sp.get("turn"), "speeds.turn")?,
+            )?,
+        },
     })
 }
 
@@ -334,6 +350,20 @@ fn parse_event(v: &Value, held: &mut Held, slot: &mut FrameInput) -> Result<(), 
             "use_door" => Command::UseDoor,
             "jump" => Command::Jump,
             "toggle_night" => Command::ToggleNight,
+            "centre_pitch" => Command::CentrePitch,
+            "nudge" => {
+                let name = v.get("action").and_then(Value::as_str).unwrap_or_default();
+                let (action, _) = ACTIONS
+                    .iter()
+                    .find(|(_, n)| *n == name)
+                    .ok_or("nudge needs a known \"action\"")?;
+                let secs = v
+                    .get("seconds")
+                    .and_then(Value::as_f64)
+                    .filter(|s| s.is_finite() && *s >= 0.0)
+                    .ok_or("nudge needs a number \"seconds\" (0 or more)")?;
+                Command::Nudge(*action, secs)
+            }
             "move_column" => Command::MoveColumn(
                 v.get("by")
                     .and_then(Value::as_i64)
@@ -387,6 +417,7 @@ mod tests {
             size: (80, 24),
             fps: 30,
             seed: 0,
+            speeds: Speeds::default(),
         };
         let mut frames = vec![FrameInput::default(); 6];
         frames[1].input.held = [Action::Forward].into_iter().collect();
@@ -436,6 +467,30 @@ mod tests {
             .message
             .starts_with("not a halfcast replay header"));
         assert!(Replay::parse("r.hcr", "").is_err());
+    }
+
+    #[test]
+    fn taps_re_centring_and_speeds_round_trip() {
+        let mut r = sample();
+        r.header.speeds = Speeds::new(2.0, 90.0).unwrap();
+        r.frames[5]
+            .input
+            .commands
+            .push(Command::Nudge(Action::TurnRight, 0.0625));
+        r.frames[5].input.commands.push(Command::CentrePitch);
+        let text = r.to_jsonl();
+        assert!(
+            text.contains("\"speeds\":{\"move\":2.0,\"turn\":90.0}"),
+            "{text}"
+        );
+        let back = Replay::parse("r.hcr", &text).unwrap();
+        assert!((back.header.speeds.turn_deg() - 90.0).abs() < 1e-9);
+        assert_eq!(back.frames, r.frames);
+        // Default speeds are not written, so older files and new ones read the same.
+        assert!(!sample().to_jsonl().contains("speeds"));
+        let bad = text.replace("\"seconds\":0.0625", "\"seconds\":-1");
+        let e = Replay::parse("r.hcr", &bad).unwrap_err();
+        assert!(e.message.contains("nudge needs a number"), "{e}");
     }
 
     #[test]

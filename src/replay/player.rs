@@ -49,8 +49,10 @@ impl Player {
         let camera = Camera::from_angle(header.pos, header.angle_deg, header.fov_deg);
         let mut stats = FrameStats::default();
         stats.fps = f64::from(header.fps);
+        let mut state = GameState::new(world, camera, 0);
+        state.speeds = header.speeds;
         Self {
-            state: GameState::new(world, camera, 0),
+            state,
             toggles: Toggles::default(),
             size: header.size,
             dt: 1.0 / f64::from(header.fps),

@@ -264,6 +264,10 @@ impl State {
     /// Acts on parsed keys; returns an end if one of them quits.
     fn on_keys(&mut self, events: &[InputEvent], snap: &Snapshot) -> Option<End> {
         let now = Instant::now();
+        if let Some(p) = snap.player(self.me) {
+            // Paused, the turn keys move the debugged column instead of turning.
+            self.controls.set_paused(p.state.debugger.paused);
+        }
         for ev in events {
             match *ev {
                 InputEvent::KittyFlags(_) => {

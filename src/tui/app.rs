@@ -10,9 +10,9 @@ use ratatui::layout::Rect;
 
 use super::events::Events;
 use super::keys::{Controls, UiCommand};
-use super::layout::{Panes, Toggles};
+use super::layout::{Panes, Toggles, COMPACT_MIN_WIDTH};
 use super::render::render_view;
-use super::screen::{draw, Screen};
+use super::screen::{draw_notice, draw_with_keys, Screen};
 use super::stats::FrameStats;
 use super::terminal::Session;
 use crate::encode::{EncodeOptions, Pacer};
@@ -67,7 +67,15 @@ struct App {
     pacer: Option<Pacer>,
     recording: Option<Recording>,
     last_size: Option<(u16, u16)>,
+    keys: super::keymap::KeyMap,
+    /// A note for the status line and until when it shows (a pane hidden for lack of room).
+    notice: Option<(String, Instant)>,
+    /// The wanted panes that did not fit last frame, to notice a change.
+    hidden: Vec<&'static str>,
 }
+
+/// How long a note stays on the status line.
+const NOTICE_FOR: Duration = Duration::from_secs(4);
 
 /// Runs frames until quit or a signal; `signal` holds the number of a caught signal (0 = none).
 ///
@@ -77,19 +85,26 @@ pub fn run_loop(
     session: &mut Session,
     state: GameState,
     options: LoopOptions,
+    setup: &super::Setup,
     signal: &Arc<AtomicUsize>,
 ) -> io::Result<(Ending, FrameStats, Option<Recording>)> {
     let fps = f64::from(options.fps.max(1));
+    let mut controls = Controls::new(session.input_mode());
+    controls.set_keymap(setup.keys.clone());
+    controls.set_speeds(state.speeds);
     let mut app = App {
         state,
-        controls: Controls::new(session.input_mode()),
-        toggles: Toggles::default(),
+        controls,
+        toggles: setup.toggles,
         stats: FrameStats::default(),
         fb: Framebuffer::new(0, 0),
         presenter: Presenter::new(options.encode),
         pacer: options.max_bandwidth.map(|bits| Pacer::new(bits, fps)),
         recording: options.record.then(Recording::default),
         last_size: None,
+        keys: setup.keys.clone(),
+        notice: None,
+        hidden: Vec::new(),
     };
     app.stats.level = Some(options.encode.level);
     let period = Duration::from_secs_f64(1.0 / fps);
@@ -139,6 +154,25 @@ pub fn run_loop(
         let size = session.size()?;
         let area = Rect::new(0, 0, size.width, size.height);
         let panes = Panes::compute(area, app.toggles);
+        let hidden = panes.hidden(app.toggles);
+        let asked = ui
+            .iter()
+            .any(|u| matches!(u, UiCommand::ToggleMinimap | UiCommand::ToggleDebug));
+        if (asked || hidden != app.hidden) && !hidden.is_empty() {
+            let need = if size.width < COMPACT_MIN_WIDTH {
+                format!("needs {COMPACT_MIN_WIDTH} columns")
+            } else {
+                "needs more rows".to_string()
+            };
+            let text = format!(
+                "{} hidden: no room at {}x{} ({need})",
+                hidden.join(" and "),
+                size.width,
+                size.height
+            );
+            app.notice = Some((text, now + NOTICE_FOR));
+        }
+        app.hidden = hidden;
         let view = match panes {
             Panes::Game { view, .. } => view,
             Panes::TooSmall(_) => Rect::default(),
@@ -168,6 +202,7 @@ pub fn run_loop(
         }
         app.last_size = Some((size.width, size.height));
         step(&mut app.state, &input, dt);
+        app.controls.set_paused(app.state.debugger.paused);
 
         // 3. Render the 3D view at exactly the pane's size.
         let t = Instant::now();
@@ -187,7 +222,12 @@ pub fn run_loop(
             input_mode: app.controls.mode(),
         };
         let mut buf = Buffer::empty(area);
-        draw(&screen, &panes, area, &mut buf);
+        draw_with_keys(&screen, &panes, area, &mut buf, &app.keys);
+        if let (Some((text, until)), Panes::Game { status, .. }) = (&app.notice, panes) {
+            if now < *until {
+                draw_notice(text, status, &mut buf);
+            }
+        }
         let bytes = app.presenter.frame(&buf, &app.fb, view);
         if let Err(e) = session.write_frame(bytes) {
             // A full terminal gave way to a signal: end like any signalled frame.

@@ -1,9 +1,11 @@
 //! Terminal events → game [`Input`] and UI commands, including held-key tracking.
 //!
-//! With the kitty keyboard protocol a key is held from its press to its release. Without
-//! it a terminal only sends presses (auto-repeat), so a key counts as held until its repeats
-//! stop: long enough after the first press to bridge the repeat delay, short after a repeat.
-//! The clock is passed in (`now`), so all of this is testable without a terminal.
+//! With the kitty keyboard protocol a key is held from its press to its release. Without it a
+//! terminal only sends presses: a first press is a *tap*, a short fixed step (a
+//! [`Command::Nudge`]: about 8° of turn or a quarter cell of walk), and a key only counts as held
+//! once its auto-repeat arrives (presses of the same key closer together than a tap can be),
+//! until the repeats stop. The clock is passed in (`now`), so all of this is testable without a
+//! terminal.
 
 use std::time::{Duration, Instant};
 
@@ -11,8 +13,9 @@ use crossterm::event::{
     Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,
 };
 
+use super::keymap::{Key, KeyAction, KeyMap};
 use super::repeat::RepeatTiming;
-use crate::game::{Action, Command, Held, Input};
+use crate::game::{Action, Command, Held, Input, Speeds, LOOK_SPEED};
 
 /// How key presses and releases reach us; shown in the status line and help.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -37,6 +40,15 @@ impl InputMode {
 /// Kitty mode: a key with no event for this long is let go (tmux and friends drop releases).
 pub const KITTY_STALE: Duration = Duration::from_millis(900);
 
+/// One tap's turn without release events, in degrees.
+pub const TAP_TURN_DEG: f64 = 8.0;
+
+/// One tap's walk (or strafe) without release events, in cells.
+pub const TAP_WALK_CELLS: f64 = 0.25;
+
+/// One tap's look up or down without release events, in degrees.
+pub const TAP_LOOK_DEG: f64 = 5.0;
+
 /// Things the TUI itself does (not the game).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum UiCommand {
@@ -48,84 +60,69 @@ pub enum UiCommand {
     ToggleHelp,
 }
 
-/// What one key means.
+/// What a key event turns into.
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Binding {
     Hold(Action),
-    /// Held action plus a command on every press/repeat (arrows: turn, or move the column when paused).
-    HoldAnd(Action, Command),
     Game(Command),
     /// Toggles fire on the first press only, not on repeats.
     Toggle(Command),
     Ui(UiCommand),
 }
 
-fn binding(key: &KeyEvent) -> Option<Binding> {
-    use Action::*;
-    use Binding::*;
+fn binding(map: &KeyMap, key: &KeyEvent, paused: bool) -> Option<Binding> {
+    if key.modifiers.contains(KeyModifiers::CONTROL) {
+        return matches!(key.code, KeyCode::Char('c' | 'C'))
+            .then_some(Binding::Ui(UiCommand::Quit));
+    }
     let shift = key.modifiers.contains(KeyModifiers::SHIFT);
-    let ctrl = key.modifiers.contains(KeyModifiers::CONTROL);
     let fast = if shift { 10 } else { 1 };
-    Some(match key.code {
-        KeyCode::Char('c' | 'C') if ctrl => Ui(UiCommand::Quit),
-        _ if ctrl => return None,
-        KeyCode::Up => Hold(Forward),
-        KeyCode::Down => Hold(Back),
-        KeyCode::Left => HoldAnd(TurnLeft, Command::MoveColumn(-fast)),
-        KeyCode::Right => HoldAnd(TurnRight, Command::MoveColumn(fast)),
-        KeyCode::Esc => Ui(UiCommand::Back),
-        KeyCode::F(1) => Ui(UiCommand::ToggleHelp),
-        KeyCode::Enter => Game(Command::RunToHit),
-        KeyCode::PageUp => Hold(LookUp),
-        KeyCode::PageDown => Hold(LookDown),
-        KeyCode::Char(c) => match c {
-            'w' | 'W' => Hold(Forward),
-            's' | 'S' => Hold(Back),
-            'a' | 'A' => Hold(TurnLeft),
-            'd' | 'D' => Hold(TurnRight),
-            'z' | 'Z' | ',' | '<' => Hold(StrafeLeft),
-            'x' | 'X' | '.' | '>' => Hold(StrafeRight),
-            '[' if !shift => Game(Command::MoveColumn(-1)),
-            ']' if !shift => Game(Command::MoveColumn(1)),
-            '{' | '[' => Game(Command::MoveColumn(-10)),
-            '}' | ']' => Game(Command::MoveColumn(10)),
-            'n' | 'N' => Game(Command::StepDda),
-            'e' | 'E' | 'f' | 'F' => Toggle(Command::UseDoor),
-            'j' | 'J' => Toggle(Command::Jump),
-            'c' | 'C' => Hold(Crouch),
-            'r' | 'R' => Hold(LookUp),
-            'v' | 'V' => Hold(LookDown),
-            'l' | 'L' => Toggle(Command::ToggleNight),
-            'g' | 'G' => Game(Command::RunToHit),
-            ' ' | 'p' | 'P' => Toggle(Command::TogglePause),
-            'q' | 'Q' => Ui(UiCommand::Quit),
-            'm' | 'M' => Ui(UiCommand::ToggleMinimap),
-            'i' | 'I' => Ui(UiCommand::ToggleDebug),
-            '?' | 'h' | 'H' => Ui(UiCommand::ToggleHelp),
-            '/' if shift => Ui(UiCommand::ToggleHelp),
-            _ => return None,
-        },
-        _ => return None,
+    Some(match map.lookup(key)? {
+        // Paused, the world does not turn: the turn keys move the debugged column instead.
+        KeyAction::Hold(Action::TurnLeft) if paused => Binding::Game(Command::MoveColumn(-fast)),
+        KeyAction::Hold(Action::TurnRight) if paused => Binding::Game(Command::MoveColumn(fast)),
+        KeyAction::Hold(a) => Binding::Hold(a),
+        KeyAction::UseDoor => Binding::Toggle(Command::UseDoor),
+        KeyAction::Jump => Binding::Toggle(Command::Jump),
+        KeyAction::Night => Binding::Toggle(Command::ToggleNight),
+        KeyAction::CentrePitch => Binding::Toggle(Command::CentrePitch),
+        KeyAction::Pause => Binding::Toggle(Command::TogglePause),
+        KeyAction::StepDda => Binding::Game(Command::StepDda),
+        KeyAction::RunToHit => Binding::Game(Command::RunToHit),
+        KeyAction::Column(by) => Binding::Game(Command::MoveColumn(by)),
+        KeyAction::Minimap => Binding::Ui(UiCommand::ToggleMinimap),
+        KeyAction::RayPane => Binding::Ui(UiCommand::ToggleDebug),
+        KeyAction::Help => Binding::Ui(UiCommand::ToggleHelp),
+        KeyAction::Quit if key.code == KeyCode::Esc => Binding::Ui(UiCommand::Back),
+        KeyAction::Quit => Binding::Ui(UiCommand::Quit),
     })
 }
 
-/// A key being held: which action, and (emulated mode, or as a safety net) until when.
+/// Presses of one key close together: a run of taps, or an auto-repeat (then it is held).
 #[derive(Debug, Clone, Copy)]
-struct HeldKey {
-    code: KeyCode,
+struct KeyRun {
+    key: Key,
     action: Action,
-    until: Instant,
-    /// Presses seen since the key went down (emulated mode), to learn the repeat timing.
+    /// Held until then (kitty: until the release; emulated: while repeats keep coming).
+    until: Option<Instant>,
+    /// Presses seen in this run (emulated mode), to learn the repeat timing.
     presses: u32,
     last: Instant,
     first_gap: Option<Duration>,
+    /// When the key went down, and whether a step has seen it held (kitty mode: a press and
+    /// release between two steps still moves, for exactly as long as the key was down).
+    pressed: Instant,
+    stepped: bool,
 }
 
 /// Collects events between frames and hands them to the game as one [`Input`].
 #[derive(Debug)]
 pub struct Controls {
     mode: InputMode,
-    held: Vec<HeldKey>,
+    keymap: KeyMap,
+    speeds: Speeds,
+    paused: bool,
+    runs: Vec<KeyRun>,
     commands: Vec<Command>,
     ui: Vec<UiCommand>,
     drag_column: Option<u16>,
@@ -135,18 +132,39 @@ pub struct Controls {
 }
 
 impl Controls {
-    /// Controls for an input mode found by the start-up probe.
+    /// Controls for an input mode found by the start-up probe, with the default keys and speeds.
     #[must_use]
     pub fn new(mode: InputMode) -> Self {
         Self {
             mode,
-            held: Vec::new(),
+            keymap: KeyMap::default(),
+            speeds: Speeds::default(),
+            paused: false,
+            runs: Vec::new(),
             commands: Vec::new(),
             ui: Vec::new(),
             drag_column: None,
             turn_per_column: 0.02,
             repeat: RepeatTiming::default(),
         }
+    }
+
+    /// Uses these key bindings (from the config file).
+    pub fn set_keymap(&mut self, keymap: KeyMap) {
+        self.keymap = keymap;
+    }
+
+    /// The speeds the game moves at, so a tap is the same angle and distance at any speed.
+    pub fn set_speeds(&mut self, speeds: Speeds) {
+        self.speeds = speeds;
+    }
+
+    /// Whether the world is paused: then the turn keys only move the debugged column.
+    pub fn set_paused(&mut self, paused: bool) {
+        if paused != self.paused {
+            self.runs.clear();
+        }
+        self.paused = paused;
     }
 
     /// The input mode in use.
@@ -168,69 +186,116 @@ impl Controls {
         match event {
             Event::Key(key) => self.key(key, now),
             Event::Mouse(m) => self.mouse(m),
-            Event::FocusLost => self.held.clear(),
+            Event::FocusLost => self.runs.clear(),
             _ => {}
         }
     }
 
     fn key(&mut self, key: &KeyEvent, now: Instant) {
-        let Some(b) = binding(key) else { return };
-        // Shift may change between press and release ('W' then 'w'): compare letters caseless.
-        let code = match key.code {
-            KeyCode::Char(c) => KeyCode::Char(c.to_ascii_lowercase()),
-            other => other,
+        let Some(b) = binding(&self.keymap, key, self.paused) else {
+            return;
         };
+        // Shift may change between press and release ('W' then 'w'): keys compare caseless.
+        let id = Key::of(key);
         if key.kind == KeyEventKind::Release {
-            self.held.retain(|h| h.code != code);
+            let quick = self
+                .runs
+                .iter()
+                .find(|r| r.key.code == id.code && !r.stepped && r.until.is_some())
+                .map(|r| (r.action, now.saturating_duration_since(r.pressed)));
+            if let Some((action, down)) = quick.filter(|(a, _)| *a != Action::Crouch) {
+                self.commands
+                    .push(Command::Nudge(action, down.as_secs_f64()));
+            }
+            self.runs.retain(|r| r.key.code != id.code);
             return;
         }
         let repeat = key.kind == KeyEventKind::Repeat;
         match b {
-            Binding::Hold(a) => self.hold(code, a, now),
-            Binding::HoldAnd(a, c) => {
-                self.hold(code, a, now);
+            Binding::Hold(a) => self.hold(id, a, now),
+            Binding::Game(c) => self.commands.push(c),
+            Binding::Toggle(c) if !repeat => {
+                if c == Command::TogglePause {
+                    // Nothing held before a pause or resume carries over to the other side.
+                    self.runs.clear();
+                }
                 self.commands.push(c);
             }
-            Binding::Game(c) => self.commands.push(c),
-            Binding::Toggle(c) if !repeat => self.commands.push(c),
             Binding::Ui(u) if !repeat => self.ui.push(u),
             Binding::Toggle(_) | Binding::Ui(_) => {}
         }
     }
 
-    fn hold(&mut self, code: KeyCode, action: Action, now: Instant) {
-        if let Some(h) = self.held.iter_mut().find(|h| h.code == code) {
-            let gap = now.saturating_duration_since(h.last);
-            h.presses += 1;
-            h.last = now;
-            match (h.presses, h.first_gap) {
-                (2, _) => h.first_gap = Some(gap),
-                (3, Some(delay)) => self.repeat.observe(delay, gap),
-                _ => {}
+    /// A tap's length in seconds of holding `action` at the current speeds.
+    fn tap_seconds(&self, action: Action) -> f64 {
+        match action {
+            Action::TurnLeft | Action::TurnRight => {
+                TAP_TURN_DEG.to_radians() / self.speeds.turn_radians
             }
-            h.until = now
-                + match self.mode {
-                    InputMode::Kitty => KITTY_STALE,
-                    InputMode::Emulated => self.repeat.repeat_hold(),
-                };
-            return;
+            Action::LookUp | Action::LookDown => TAP_LOOK_DEG / LOOK_SPEED,
+            _ => TAP_WALK_CELLS / self.speeds.move_cells,
         }
-        // Emulated mode never sees releases, so pressing the opposite key lets go.
+    }
+
+    fn hold(&mut self, key: Key, action: Action, now: Instant) {
+        let emulated = self.mode == InputMode::Emulated;
+        if let Some(i) = self.runs.iter().position(|r| r.key.code == key.code) {
+            let r = &mut self.runs[i];
+            let gap = now.saturating_duration_since(r.last);
+            if !emulated {
+                r.until = Some(now + KITTY_STALE);
+                return;
+            }
+            if gap <= RepeatTiming::MAX_DELAY {
+                r.presses += 1;
+                r.last = now;
+                match (r.presses, r.first_gap) {
+                    (2, _) => r.first_gap = Some(gap),
+                    (3, Some(delay)) => self.repeat.observe(delay, gap),
+                    _ => {}
+                }
+                let r = &mut self.runs[i];
+                let holding = r.until.is_some_and(|u| u > now);
+                if holding || self.repeat.is_repeat(gap) {
+                    // Auto-repeat: held from now on while the repeats keep coming.
+                    r.until = Some(now + self.repeat.repeat_hold());
+                } else {
+                    self.tap(action, now, i);
+                }
+                return;
+            }
+            self.runs.remove(i);
+        }
+        // Without releases, pressing the opposite key lets go.
         if let Some(opposite) = opposite(action) {
-            self.held.retain(|h| h.action != opposite);
+            self.runs.retain(|r| r.action != opposite);
         }
-        let hold = match self.mode {
-            InputMode::Kitty => KITTY_STALE,
-            InputMode::Emulated => self.repeat.first_hold(),
-        };
-        self.held.push(HeldKey {
-            code,
+        self.runs.push(KeyRun {
+            key,
             action,
-            until: now + hold,
+            until: (!emulated).then_some(now + KITTY_STALE),
             presses: 1,
             last: now,
             first_gap: None,
+            pressed: now,
+            stepped: false,
         });
+        if emulated {
+            let i = self.runs.len() - 1;
+            self.tap(action, now, i);
+        }
+    }
+
+    /// One tap of `action` (emulated mode): a fixed step; crouch, which has no step, is held
+    /// for as long as a key's repeat delay.
+    fn tap(&mut self, action: Action, now: Instant, run: usize) {
+        if action == Action::Crouch {
+            self.runs[run].until = Some(now + self.repeat.first_hold());
+        } else {
+            self.runs[run].until = None;
+            self.commands
+                .push(Command::Nudge(action, self.tap_seconds(action)));
+        }
     }
 
     fn mouse(&mut self, m: &MouseEvent) {
@@ -253,9 +318,21 @@ impl Controls {
 
     /// The game input for the step at `now`: keys still held, and the commands since last time.
     pub fn take_input(&mut self, now: Instant) -> Input {
-        self.held.retain(|h| h.until > now);
+        self.runs.retain(|r| {
+            r.until.is_some_and(|u| u > now)
+                || now.saturating_duration_since(r.last) <= RepeatTiming::MAX_DELAY
+        });
+        let mut held = Held::default();
+        for r in self
+            .runs
+            .iter_mut()
+            .filter(|r| r.until.is_some_and(|u| u > now))
+        {
+            r.stepped = true;
+            held.insert(r.action);
+        }
         Input {
-            held: self.held.iter().map(|h| h.action).collect::<Held>(),
+            held,
             commands: std::mem::take(&mut self.commands),
         }
     }
@@ -302,45 +379,134 @@ mod tests {
         t0 + Duration::from_millis(n)
     }
 
-    #[test]
-    fn emulated_hold_bridges_the_repeat_delay_then_expires() {
-        let t0 = Instant::now();
-        let mut c = Controls::new(InputMode::Emulated);
-        c.handle(&press('w'), t0);
-        assert!(c.take_input(ms(t0, 400)).held.contains(Action::Forward));
-        // Auto-repeat starts at 500 ms and runs every 33 ms.
-        for t in (500..900).step_by(33) {
-            c.handle(&press('w'), ms(t0, t));
-            assert!(c.take_input(ms(t0, t + 20)).held.contains(Action::Forward));
-        }
-        // The last repeat was at 896 ms; shortly after it stops (a few intervals), it is let go.
-        assert!(c.take_input(ms(t0, 960)).held.contains(Action::Forward));
-        assert!(c.take_input(ms(t0, 1100)).held.is_empty());
+    fn nudges(input: &Input) -> Vec<(Action, f64)> {
+        input
+            .commands
+            .iter()
+            .filter_map(|c| match *c {
+                Command::Nudge(a, s) => Some((a, s)),
+                _ => None,
+            })
+            .collect()
     }
 
     #[test]
-    fn emulated_learns_a_short_repeat_delay_so_taps_stop_sooner() {
+    fn emulated_tap_is_one_short_step_not_a_hold() {
         let t0 = Instant::now();
         let mut c = Controls::new(InputMode::Emulated);
-        // A held key on a fast keyboard: 250 ms delay, then every 30 ms.
-        for t in [0, 250, 280, 310] {
+        c.handle(&press('d'), t0);
+        let input = c.take_input(ms(t0, 16));
+        assert!(input.held.is_empty());
+        let n = nudges(&input);
+        assert_eq!(n.len(), 1);
+        let turned = n[0].1 * Speeds::default().turn_radians;
+        assert_eq!(n[0].0, Action::TurnRight);
+        assert!((turned.to_degrees() - TAP_TURN_DEG).abs() < 1e-9);
+        for t in (33..1500).step_by(17) {
+            assert!(c.take_input(ms(t0, t)) == Input::default(), "{t} ms");
+        }
+        // A tap's walk is a quarter cell whatever the speed.
+        c.set_speeds(Speeds::new(6.0, 90.0).unwrap());
+        c.handle(&press('w'), ms(t0, 2000));
+        let n = nudges(&c.take_input(ms(t0, 2001)));
+        assert!((n[0].1 * 6.0 - TAP_WALK_CELLS).abs() < 1e-12);
+    }
+
+    #[test]
+    fn emulated_taps_apart_are_each_one_step() {
+        let t0 = Instant::now();
+        let mut c = Controls::new(InputMode::Emulated);
+        let mut steps = 0;
+        for i in 0..5 {
+            c.handle(&press('d'), ms(t0, i * 600));
+            for t in (0..600).step_by(16) {
+                let input = c.take_input(ms(t0, i * 600 + t));
+                assert!(input.held.is_empty());
+                steps += nudges(&input).len();
+            }
+        }
+        assert_eq!(steps, 5);
+    }
+
+    #[test]
+    fn emulated_hold_moves_once_repeats_arrive_and_stops_soon_after_them() {
+        let t0 = Instant::now();
+        let mut c = Controls::new(InputMode::Emulated);
+        c.handle(&press('w'), t0);
+        assert_eq!(nudges(&c.take_input(ms(t0, 1))).len(), 1);
+        assert!(c.take_input(ms(t0, 400)).held.is_empty());
+        // Auto-repeat starts at 500 ms and runs every 33 ms: the first repeat is one more
+        // step (it cannot be told from a tap yet), the next ones hold the key.
+        c.handle(&press('w'), ms(t0, 500));
+        assert_eq!(nudges(&c.take_input(ms(t0, 501))).len(), 1);
+        for t in (533..1000).step_by(33) {
+            c.handle(&press('w'), ms(t0, t));
+            let input = c.take_input(ms(t0, t + 20));
+            assert!(input.held.contains(Action::Forward), "{t}");
+            assert!(nudges(&input).is_empty());
+        }
+        // The last repeat was at 995 ms; three of the learned 33 ms intervals later the key
+        // is let go.
+        assert!(c.take_input(ms(t0, 1080)).held.contains(Action::Forward));
+        assert!(c.take_input(ms(t0, 1200)).held.is_empty());
+    }
+
+    #[test]
+    fn emulated_learns_a_fast_keyboard() {
+        let t0 = Instant::now();
+        let mut c = Controls::new(InputMode::Emulated);
+        // A held key on a fast keyboard: 250 ms delay, then every 20 ms.
+        for t in [0, 250, 270, 290] {
             c.handle(&press('w'), ms(t0, t));
         }
-        assert!(c.take_input(ms(t0, 400)).held.is_empty());
-        // Now a single tap is held only about as long as that delay.
-        c.handle(&press('w'), ms(t0, 1000));
-        assert!(c.take_input(ms(t0, 1290)).held.contains(Action::Forward));
-        assert!(c.take_input(ms(t0, 1320)).held.is_empty());
+        assert!(c.take_input(ms(t0, 300)).held.contains(Action::Forward));
+        // Let go sooner: three of its intervals (clamped to at least 60 ms).
+        assert!(c.take_input(ms(t0, 360)).held.is_empty());
+    }
+
+    #[test]
+    fn paused_turn_keys_move_the_column_and_resuming_does_not_turn() {
+        let t0 = Instant::now();
+        for mode in [InputMode::Emulated, InputMode::Kitty] {
+            let mut c = Controls::new(mode);
+            c.handle(&key(KeyCode::Char(' '), KeyEventKind::Press), t0);
+            assert_eq!(c.take_input(t0).commands, vec![Command::TogglePause]);
+            c.set_paused(true);
+            c.handle(&key(KeyCode::Right, KeyEventKind::Press), ms(t0, 100));
+            c.handle(&key(KeyCode::Right, KeyEventKind::Repeat), ms(t0, 130));
+            c.handle(&press('a'), ms(t0, 140));
+            c.handle(&key(KeyCode::Char(' '), KeyEventKind::Press), ms(t0, 300));
+            let input = c.take_input(ms(t0, 310));
+            assert!(input.held.is_empty(), "{mode:?}");
+            assert_eq!(
+                input.commands,
+                vec![
+                    Command::MoveColumn(1),
+                    Command::MoveColumn(1),
+                    Command::MoveColumn(-1),
+                    Command::TogglePause
+                ],
+                "{mode:?}"
+            );
+            c.set_paused(false);
+            for t in (320..1500).step_by(16) {
+                assert!(c.take_input(ms(t0, t)) == Input::default(), "{mode:?} {t}");
+            }
+        }
     }
 
     #[test]
     fn emulated_opposite_key_lets_go_of_the_other() {
         let t0 = Instant::now();
         let mut c = Controls::new(InputMode::Emulated);
-        c.handle(&press('w'), t0);
-        c.handle(&press('s'), ms(t0, 50));
-        let held = c.take_input(ms(t0, 60)).held;
-        assert!(held.contains(Action::Back) && !held.contains(Action::Forward));
+        for t in [0, 500, 533] {
+            c.handle(&press('w'), ms(t0, t));
+        }
+        assert!(c.take_input(ms(t0, 540)).held.contains(Action::Forward));
+        c.handle(&press('s'), ms(t0, 550));
+        let input = c.take_input(ms(t0, 560));
+        assert!(input.held.is_empty());
+        assert_eq!(nudges(&input)[0].0, Action::Back);
     }
 
     #[test]
@@ -361,23 +527,38 @@ mod tests {
     }
 
     #[test]
-    fn arrows_turn_and_move_the_debug_column_toggles_ignore_repeats() {
+    fn kitty_press_and_release_between_steps_moves_for_as_long_as_the_key_was_down() {
+        let t0 = Instant::now();
+        let mut c = Controls::new(InputMode::Kitty);
+        c.handle(&press('d'), t0);
+        c.handle(&key(KeyCode::Char('d'), KeyEventKind::Release), ms(t0, 40));
+        let input = c.take_input(ms(t0, 50));
+        assert!(input.held.is_empty());
+        assert_eq!(nudges(&input), vec![(Action::TurnRight, 0.04)]);
+        // Held across a step: the step moved it, the release adds nothing.
+        c.handle(&press('w'), ms(t0, 100));
+        assert!(c.take_input(ms(t0, 116)).held.contains(Action::Forward));
+        c.handle(&key(KeyCode::Char('w'), KeyEventKind::Release), ms(t0, 120));
+        assert_eq!(c.take_input(ms(t0, 133)), Input::default());
+    }
+
+    #[test]
+    fn arrows_turn_toggles_ignore_repeats() {
         let t0 = Instant::now();
         let mut c = Controls::new(InputMode::Kitty);
         c.handle(&key(KeyCode::Left, KeyEventKind::Press), t0);
         c.handle(&key(KeyCode::Char(' '), KeyEventKind::Press), t0);
         c.handle(&key(KeyCode::Char(' '), KeyEventKind::Repeat), t0);
         c.handle(&key(KeyCode::Char('q'), KeyEventKind::Repeat), t0);
+        c.handle(&key(KeyCode::Left, KeyEventKind::Press), t0);
         let input = c.take_input(t0);
         assert!(input.held.contains(Action::TurnLeft));
-        assert_eq!(
-            input.commands,
-            vec![Command::MoveColumn(-1), Command::TogglePause]
-        );
+        assert_eq!(input.commands, vec![Command::TogglePause]);
         assert!(c.take_ui().is_empty());
         assert!(c.take_input(t0).commands.is_empty());
         c.handle(&press('q'), t0);
-        assert_eq!(c.take_ui(), vec![UiCommand::Quit]);
+        c.handle(&key(KeyCode::Esc, KeyEventKind::Press), t0);
+        assert_eq!(c.take_ui(), vec![UiCommand::Quit, UiCommand::Back]);
     }
 
     #[test]

@@ -14,6 +14,17 @@ const STACK_MIN_WIDTH: u16 = 60;
 /// Shortest terminal that gets the panes stacked under the view.
 const STACK_MIN_HEIGHT: u16 = 30;
 
+/// Narrowest terminal that gets the compact panes (a narrower view, a small minimap and the
+/// last few DDA rows) beside the view, as at 80×24.
+pub const COMPACT_MIN_WIDTH: u16 = 60;
+
+/// Shortest body (terminal minus the status line) with room for both compact panes; below it
+/// only one fits.
+const COMPACT_BOTH_MIN_HEIGHT: u16 = 12;
+
+/// Shortest body with room for one compact pane.
+const COMPACT_ONE_MIN_HEIGHT: u16 = 6;
+
 /// Which optional panes the player wants shown.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Toggles {
@@ -82,9 +93,26 @@ impl Panes {
                     strip,
                 ))),
             )
+        } else if body.width >= COMPACT_MIN_WIDTH && body.height >= COMPACT_ONE_MIN_HEIGHT {
+            let side_w = (body.width * 3 / 8).clamp(24, 34);
+            let view_w = body.width - side_w;
+            (
+                Rect::new(body.x, body.y, view_w, body.height),
+                Some(Side::Right(Rect::new(
+                    body.x + view_w,
+                    body.y,
+                    side_w,
+                    body.height,
+                ))),
+            )
         } else {
             (body, None)
         };
+        let mut toggles = toggles;
+        if toggles.minimap && toggles.debug && body.height < COMPACT_BOTH_MIN_HEIGHT {
+            // Room for one pane only: the minimap.
+            toggles.debug = false;
+        }
         let (minimap, debug) = match side {
             None => (None, None),
             Some(side) => side.split(toggles),
@@ -95,6 +123,25 @@ impl Panes {
             debug,
             status,
         }
+    }
+}
+
+impl Panes {
+    /// The panes the player wants that did not fit (named as in the help), to say so.
+    #[must_use]
+    pub fn hidden(&self, toggles: Toggles) -> Vec<&'static str> {
+        let (minimap, debug) = match self {
+            Panes::TooSmall(_) => (None, None),
+            Panes::Game { minimap, debug, .. } => (*minimap, *debug),
+        };
+        let mut out = Vec::new();
+        if toggles.minimap && minimap.is_none() {
+            out.push("minimap");
+        }
+        if toggles.debug && debug.is_none() {
+            out.push("ray pane");
+        }
+        out
     }
 }
 
@@ -113,7 +160,9 @@ impl Side {
         match (t.minimap, t.debug) {
             (true, true) if stacked_vertically => {
                 // A roughly square map on top, the (taller) step list below.
-                let map_h = (r.height * 9 / 20).clamp(8, r.width / 2 + 2).min(r.height);
+                let map_h = (r.height * 9 / 20)
+                    .clamp(6, (r.width / 2 + 2).max(6))
+                    .min(r.height - 5);
                 let (a, b) = split_v(r, map_h);
                 (Some(a), Some(b))
             }
@@ -206,6 +255,38 @@ mod tests {
     }
 
     #[test]
+    fn at_80x24_both_panes_fit_beside_a_narrower_view() {
+        let t = Toggles::default();
+        let panes = Panes::compute(Rect::new(0, 0, 80, 24), t);
+        let Panes::Game {
+            view,
+            minimap,
+            debug,
+            ..
+        } = panes
+        else {
+            panic!()
+        };
+        assert_eq!(view, Rect::new(0, 0, 50, 23));
+        let (m, d) = (minimap.unwrap(), debug.unwrap());
+        assert_eq!((m.x, m.width, d.x, d.width), (50, 30, 50, 30));
+        assert!(m.height >= 6 && d.height >= 5, "{m:?} {d:?}");
+        assert!(panes.hidden(t).is_empty());
+        // Too short for both: the minimap stays, the ray pane is named as hidden.
+        let short = Panes::compute(Rect::new(0, 0, 80, 10), t);
+        assert_eq!(short.hidden(t), vec!["ray pane"]);
+        let narrow = Panes::compute(Rect::new(0, 0, 59, 24), t);
+        assert_eq!(narrow.hidden(t), vec!["minimap", "ray pane"]);
+        let only_ray = Toggles {
+            minimap: false,
+            ..t
+        };
+        assert!(Panes::compute(Rect::new(0, 0, 80, 10), only_ray)
+            .hidden(only_ray)
+            .is_empty());
+    }
+
+    #[test]
     fn wide_terminals_put_the_panes_beside_the_view() {
         let Panes::Game {
             view,
@@ -237,11 +318,11 @@ mod tests {
             minimap,
             debug,
             ..
-        } = Panes::compute(Rect::new(0, 0, 80, 24), Toggles::default())
+        } = Panes::compute(Rect::new(0, 0, 40, 24), Toggles::default())
         else {
             panic!()
         };
-        assert_eq!(view, Rect::new(0, 0, 80, 23));
+        assert_eq!(view, Rect::new(0, 0, 40, 23));
         assert!(minimap.is_none() && debug.is_none());
         assert_eq!(
             Panes::compute(Rect::new(0, 0, 19, 30), Toggles::default()),

@@ -5,8 +5,10 @@
 //! every pane into a ratatui buffer. Only [`terminal`] and [`app`] touch the real terminal.
 
 pub mod app;
+pub mod config;
 pub mod events;
 pub mod help;
+pub mod keymap;
 pub mod keys;
 pub mod layout;
 pub mod playback;
@@ -29,12 +31,22 @@ pub use stats::FrameStats;
 pub use terminal::TerminalError;
 
 /// What `halfcast play` was asked for.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct PlayOptions {
     /// Pacing, encoding and recording.
     pub looping: LoopOptions,
     /// Capture the mouse so dragging turns the view.
     pub mouse: bool,
+    /// Key bindings, speeds and the panes shown at start (from the config file and flags).
+    pub setup: Setup,
+}
+
+/// The player's choices that the loop starts from.
+#[derive(Debug, Clone, Default)]
+pub struct Setup {
+    pub keys: keymap::KeyMap,
+    pub speeds: crate::game::Speeds,
+    pub toggles: layout::Toggles,
 }
 
 /// Registers the signals that end a session (SIGTERM, SIGINT; SIGHUP and SIGQUIT on unix)
@@ -63,8 +75,15 @@ pub fn play(
     terminal::require_tty()?;
     let signal = watch_signals()?;
     let mut session = terminal::Session::start(options.mouse, &signal)?;
-    let state = crate::game::GameState::new(world, camera, 0);
-    let result = app::run_loop(&mut session, state, options.looping, &signal);
+    let mut state = crate::game::GameState::new(world, camera, 0);
+    state.speeds = options.setup.speeds;
+    let result = app::run_loop(
+        &mut session,
+        state,
+        options.looping,
+        &options.setup,
+        &signal,
+    );
     drop(session);
     Ok(result?)
 }

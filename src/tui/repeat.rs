@@ -1,9 +1,10 @@
 //! The keyboard's auto-repeat timing, learned from the presses themselves.
 //!
 //! Without key-release events a held key looks like: press, a pause (the repeat delay), then
-//! presses every repeat interval. To hold a key smoothly we must wait out the delay after a
-//! first press — but no longer than needed, or a single tap walks too far. Defaults fit common
-//! settings (≈500 ms delay); after one real auto-repeat run we use the measured figures.
+//! presses every repeat interval. Presses closer together than a person taps are auto-repeat
+//! (the key is held), and a held key is let go a few intervals after its repeats stop. Defaults
+//! fit common settings (≈450 ms delay, 45 ms interval); after one real auto-repeat run we use
+//! the measured figures.
 
 use std::time::Duration;
 
@@ -23,11 +24,19 @@ impl Default for RepeatTiming {
     }
 }
 
-/// Longest repeat delay believed (a slower "repeat" is the player tapping).
-const MAX_DELAY: Duration = Duration::from_millis(1200);
-
 impl RepeatTiming {
-    /// How long a first press counts as held: the delay plus a margin for jitter.
+    /// Longest repeat delay believed (a slower "repeat" is the player tapping).
+    pub const MAX_DELAY: Duration = Duration::from_millis(1200);
+
+    /// Whether a press `gap` after the previous press of the same key is its auto-repeat
+    /// (closer together than a person taps), rather than another tap.
+    #[must_use]
+    pub fn is_repeat(&self, gap: Duration) -> bool {
+        gap <= self.repeat_hold()
+    }
+
+    /// How long a first press of a key with no tap step (crouch) counts as held: the delay plus
+    /// a margin for jitter.
     #[must_use]
     pub fn first_hold(&self) -> Duration {
         let d = self.delay + self.delay / 10 + Duration::from_millis(30);
@@ -43,7 +52,7 @@ impl RepeatTiming {
     /// Learns from one key's press → first repeat gap and first repeat → second repeat gap;
     /// ignored unless it looks like auto-repeat (steady repeats much faster than the delay).
     pub fn observe(&mut self, delay: Duration, interval: Duration) {
-        if delay <= MAX_DELAY && !interval.is_zero() && interval * 2 < delay {
+        if delay <= Self::MAX_DELAY && !interval.is_zero() && interval * 2 < delay {
             self.delay = delay;
             self.interval = interval;
         }

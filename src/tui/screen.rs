@@ -7,11 +7,13 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, BorderType, Clear, Paragraph, Widget, Wrap};
 
 use super::help::HelpOverlay;
+use super::keymap::KeyMap;
 use super::keys::InputMode;
 use super::layout::{Panes, Toggles, MIN_SIZE};
 use super::stats::FrameStats;
 use super::status::{status_line, BAR};
 use crate::cast::Cast;
+use crate::encode::ColorLevel;
 use crate::framebuffer::Framebuffer;
 use crate::game::{Cursor, GameState};
 use crate::widget::{DebugPane, HalfBlockView, Minimap, RevealedTrace};
@@ -40,8 +42,14 @@ pub fn draw_view(fb: &Framebuffer, area: Rect, buf: &mut Buffer) {
     HalfBlockView::new(fb).render(area, buf);
 }
 
-/// Draws a whole frame into `buf` within `area`, per `panes` (from [`Panes::compute`]).
+/// Draws a whole frame into `buf` within `area`, per `panes` (from [`Panes::compute`]), with
+/// the help listing the default keys.
 pub fn draw(screen: &Screen, panes: &Panes, area: Rect, buf: &mut Buffer) {
+    draw_with_keys(screen, panes, area, buf, &KeyMap::default());
+}
+
+/// [`draw`] with the help listing `keys` (the player's bindings).
+pub fn draw_with_keys(screen: &Screen, panes: &Panes, area: Rect, buf: &mut Buffer, keys: &KeyMap) {
     let area = area.intersection(buf.area);
     Clear.render(area, buf);
     match *panes {
@@ -87,6 +95,7 @@ pub fn draw(screen: &Screen, panes: &Panes, area: Rect, buf: &mut Buffer) {
             if screen.toggles.help {
                 HelpOverlay {
                     mode: screen.input_mode,
+                    keys,
                 }
                 .render(area, buf);
             }
@@ -107,6 +116,7 @@ fn draw_minimap(screen: &Screen, revealed: Option<RevealedTrace>, r: Rect, buf: 
     block.render(r, buf);
     let s = screen.state;
     let mut map = Minimap::new(&s.world, &s.camera, &screen.cast.columns)
+        .ascii(screen.stats.level == Some(ColorLevel::Mono))
         .focus_on_ray(s.debugger.paused)
         .doors(&s.doors);
     if let Some(t) = revealed {
@@ -126,13 +136,13 @@ fn draw_debug(
     let mut title = vec![Span::styled(" ray ", TITLE)];
     if let Some(t) = &revealed {
         title.push(Span::styled(
-            format!("· column {} ", t.trace.column),
+            format!("- column {} ", t.trace.column),
             BORDER,
         ));
     }
     if s.debugger.paused {
         title.push(Span::styled(
-            "· paused ",
+            "- paused ",
             Style::new().fg(Color::Rgb(255, 214, 64)),
         ));
     }
@@ -145,9 +155,24 @@ fn draw_debug(
     }
 }
 
+/// A note over the status line (replacing it while it shows), e.g. that a pane is hidden.
+pub fn draw_notice(text: &str, status: Rect, buf: &mut Buffer) {
+    let status = status.intersection(buf.area);
+    buf.set_style(status, BAR);
+    Clear.render(status, buf);
+    buf.set_style(status, BAR.add_modifier(Modifier::BOLD));
+    buf.set_stringn(
+        status.x + 1,
+        status.y,
+        text,
+        usize::from(status.width.saturating_sub(1)),
+        BAR.add_modifier(Modifier::BOLD),
+    );
+}
+
 fn too_small(r: Rect, buf: &mut Buffer) {
     let text = format!(
-        "terminal too small: {}×{} (need {}×{})",
+        "terminal too small: {}x{} (need {}x{})",
         r.width, r.height, MIN_SIZE.0, MIN_SIZE.1
     );
     let y = r.y + r.height.saturating_sub(2) / 2;

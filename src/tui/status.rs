@@ -111,14 +111,23 @@ pub fn status_line(
         6,
         vec![l("pos "), v(format!("{:.2},{:.2}", cam.pos.x, cam.pos.y))],
     ));
+    // Mono terminals get plain ASCII (the degree sign is not).
+    let deg = if stats.level == Some(crate::encode::ColorLevel::Mono) {
+        " deg"
+    } else {
+        "°"
+    };
     segs.push(seg(
         5,
         vec![
             l("angle "),
-            v(format!("{:.1}°", cam.angle_deg().rem_euclid(360.0))),
+            v(format!("{:.1}{deg}", cam.angle_deg().rem_euclid(360.0))),
         ],
     ));
-    segs.push(seg(1, vec![l("FOV "), v(format!("{:.0}°", cam.fov_deg()))]));
+    segs.push(seg(
+        1,
+        vec![l("FOV "), v(format!("{:.0}{deg}", cam.fov_deg()))],
+    ));
     segs.push(seg(2, vec![v(state.world.map.name.clone())]));
     segs.push(seg(0, vec![l(mode.label())]));
     segs.push(seg(

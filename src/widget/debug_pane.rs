@@ -31,11 +31,12 @@ const HIT: Style = Style::new()
     .fg(Color::Rgb(255, 96, 96))
     .add_modifier(Modifier::BOLD);
 
-/// A number with 4 decimals, or `∞` for the "never" deltaDist of an axis-parallel ray.
+/// A number with 4 decimals, or `inf` for the "never" deltaDist of an axis-parallel ray
+/// (ASCII, so it reads the same at every colour level).
 #[must_use]
 pub fn fmt_dist(v: f64) -> String {
     if v.abs() >= 1e9 {
-        "∞".to_owned()
+        "inf".to_owned()
     } else {
         format!("{v:.4}")
     }
@@ -146,7 +147,7 @@ impl<'a> DebugPane<'a> {
         rows.push(Line::styled(
             format!(
                 "{:>3} {hidden} more step{}",
-                "…",
+                "...",
                 if hidden == 1 { "" } else { "s" }
             ),
             LABEL,
@@ -295,7 +296,7 @@ mod tests {
 
     #[test]
     fn infinite_delta_is_shown_as_infinity() {
-        assert_eq!(fmt_dist(1e30), "∞");
+        assert_eq!(fmt_dist(1e30), "inf");
         assert_eq!(fmt_dist(1.23456), "1.2346");
     }
 }

@@ -149,6 +149,7 @@ pub struct Minimap<'a> {
     focus: bool,
     doors: Option<&'a DoorState>,
     markers: &'a [Marker<'a>],
+    ascii: bool,
 }
 
 impl<'a> Minimap<'a> {
@@ -163,6 +164,7 @@ impl<'a> Minimap<'a> {
             focus: false,
             doors: None,
             markers: &[],
+            ascii: false,
         }
     }
 
@@ -185,6 +187,15 @@ impl<'a> Minimap<'a> {
     #[must_use]
     pub fn focus_on_ray(mut self, on: bool) -> Self {
         self.focus = on;
+        self
+    }
+
+    /// Draws plain ASCII characters instead of coloured half-blocks (for `--colors mono`):
+    /// `#` wall, `.` floor, `+` shut door, `/` open door, `o` sprite, `@` player, `*` the ray,
+    /// `X` the cell it reached.
+    #[must_use]
+    pub fn ascii(mut self, on: bool) -> Self {
+        self.ascii = on;
         self
     }
 
@@ -419,10 +430,85 @@ impl Palette {
     }
 }
 
+impl Minimap<'_> {
+    /// The ASCII map: one map cell is two characters wide and one row tall (about square).
+    fn render_ascii(&self, area: Rect, buf: &mut Buffer) {
+        let map = &self.world.map;
+        let pos = self.camera.pos;
+        let (cols, rows) = (f64::from(area.width) / 2.0, f64::from(area.height));
+        let end = self.debug.as_ref().map(|d| d.end_point(pos));
+        let centre = match end {
+            Some(e) if self.focus => Vec2::new((pos.x + e.x) / 2.0, (pos.y + e.y) / 2.0),
+            _ => pos,
+        };
+        let axis = |len: usize, visible: f64, at: f64| {
+            let len = len as f64;
+            if len <= visible {
+                -(visible - len) / 2.0
+            } else {
+                (at - visible / 2.0).clamp(0.0, len - visible)
+            }
+        };
+        let origin = Vec2::new(
+            axis(map.width, cols, centre.x).floor(),
+            axis(map.height, rows, centre.y).floor(),
+        );
+        // Terminal cell of a map point, if on the pane.
+        let at = |p: Vec2| -> Option<(u16, u16)> {
+            let (x, y) = ((p.x - origin.x) * 2.0, p.y - origin.y);
+            (x >= 0.0 && y >= 0.0 && x < f64::from(area.width) && y < rows)
+                .then(|| (area.x + x as u16, area.y + y as u16))
+        };
+        let put = |p: Vec2, c: &str, buf: &mut Buffer| {
+            if let Some(xy) = at(p) {
+                buf[xy].set_symbol(c);
+            }
+        };
+        for cy in 0..area.height {
+            for cx in 0..area.width {
+                let i = (origin.x + f64::from(cx) / 2.0).floor() as i64;
+                let j = (origin.y + f64::from(cy)).floor() as i64;
+                let c = match map.cell(i, j) {
+                    Cell::Void => " ",
+                    Cell::Wall(_) => "#",
+                    Cell::Floor { .. } => ".",
+                    Cell::Door(_) => match self.doors {
+                        Some(d) if d.open_amount((i, j)) >= 0.5 => "/",
+                        _ => "+",
+                    },
+                };
+                buf[(area.x + cx, area.y + cy)].set_symbol(c);
+            }
+        }
+        for s in &self.world.sprites {
+            put(s.def.pos, "o", buf);
+        }
+        for m in self.markers {
+            put(m.pos, "&", buf);
+        }
+        if let (Some(d), Some(e)) = (&self.debug, end) {
+            let len = (e - pos).length();
+            let n = (len * 8.0).ceil().max(1.0) as usize;
+            for k in 1..=n {
+                put(pos + (e - pos) * (k as f64 / n as f64), "*", buf);
+            }
+            let (i, j) = d.current_cell();
+            let hit = Vec2::new(i as f64 + 0.25, j as f64 + 0.5);
+            put(hit, "X", buf);
+            put(hit + Vec2::new(0.5, 0.0), "X", buf);
+        }
+        put(pos, "@", buf);
+    }
+}
+
 impl Widget for Minimap<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let area = area.intersection(buf.area);
         if area.is_empty() {
+            return;
+        }
+        if self.ascii {
+            self.render_ascii(area, buf);
             return;
         }
         let mut fb = Framebuffer::for_cells(area.width, area.height);
