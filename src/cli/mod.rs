@@ -17,7 +17,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use halfcast::camera::Camera;
-use halfcast::encode::ColorLevel;
+use halfcast::encode::{ColorLevel, ColourChoice};
 use halfcast::world::World;
 
 use bench::BenchArgs;
@@ -64,8 +64,13 @@ pub(crate) fn parse_level(s: &str) -> Result<ColorLevel, String> {
 
 /// The colour level the environment asks for (`COLORTERM`, `TERM`, `NO_COLOR`).
 pub(crate) fn detect_level() -> ColorLevel {
+    detect_colours().level
+}
+
+/// The colour level the environment asks for, and which variable decided it.
+pub(crate) fn detect_colours() -> ColourChoice {
     let var = |k: &str| std::env::var(k).ok();
-    ColorLevel::detect(
+    ColourChoice::from_env(
         var("COLORTERM").as_deref(),
         var("TERM").as_deref(),
         var("NO_COLOR").as_deref(),

@@ -5,11 +5,11 @@ use std::sync::Arc;
 
 use clap::Args;
 use halfcast::camera::DEFAULT_FOV_DEG;
-use halfcast::encode::{ColorLevel, EncodeOptions};
+use halfcast::encode::{ColorLevel, ColourChoice, EncodeOptions};
 use halfcast::tui::{self, Ending, LoopOptions, PlayOptions, TerminalError};
 
 use super::options::{MapArgs, PoseArgs};
-use super::{camera_for, detect_level, load_world, parse_level, write_output, Failure};
+use super::{camera_for, detect_colours, load_world, parse_level, write_output, Failure};
 
 #[derive(Args, Debug)]
 pub(crate) struct PlayArgs {
@@ -86,7 +86,8 @@ pub(crate) fn play(args: &PlayArgs, record: Option<&PathBuf>) -> Result<(), Fail
             camera.pos.x, camera.pos.y, world.map.name
         )));
     }
-    let mut encode = EncodeOptions::new(args.colors.unwrap_or_else(detect_level));
+    let colour = args.colors.map_or_else(detect_colours, ColourChoice::flag);
+    let mut encode = EncodeOptions::new(colour.level);
     encode.dither = args.dither;
     encode.delta = args.delta;
     let options = PlayOptions {
@@ -96,8 +97,10 @@ pub(crate) fn play(args: &PlayArgs, record: Option<&PathBuf>) -> Result<(), Fail
             max_bandwidth: args.max_bandwidth,
             adapt_colours: args.adapt_colors,
             record: record.is_some(),
+            colour_reason: colour.reason,
         },
         mouse: !args.no_mouse,
+        colour,
     };
     let (ending, stats, recording) =
         tui::play(Arc::new(world), camera, options).map_err(terminal_failure)?;

@@ -114,6 +114,8 @@ pub enum ColourReason {
     Term,
     /// The player cycled it with the colour key.
     Key,
+    /// `--max-bandwidth --adapt-colors` stepped it down.
+    Bandwidth,
 }
 
 impl ColourReason {
@@ -127,6 +129,7 @@ impl ColourReason {
             ColourReason::TerminalSaid => "terminal said so",
             ColourReason::Term => "TERM",
             ColourReason::Key => "O key",
+            ColourReason::Bandwidth => "bandwidth cap",
         }
     }
 }

@@ -13,7 +13,7 @@ use ratatui::widgets::{Block, Paragraph, Widget, Wrap};
 
 use super::avatars;
 use super::players::{PlayerId, Snapshot};
-use crate::encode::{ColorLevel, EncodeOptions};
+use crate::encode::{ColorLevel, ColourChoice, ColourReason, EncodeOptions};
 use crate::framebuffer::Framebuffer;
 use crate::present::Presenter;
 use crate::tui::keys::InputMode;
@@ -69,7 +69,10 @@ impl SessionScreen {
     #[must_use]
     pub fn new(world: &World, avatar_sheet: usize, level: ColorLevel) -> Self {
         let mut stats = FrameStats::default();
-        stats.level = Some(level);
+        stats.level = Some(ColourChoice {
+            level,
+            reason: ColourReason::Term,
+        });
         Self {
             base_sprites: world.sprites.len(),
             world: Arc::new(world.clone()),
@@ -89,8 +92,25 @@ impl SessionScreen {
 
     /// Switches colour level; the next frame redraws everything.
     pub fn set_level(&mut self, level: ColorLevel) {
-        self.presenter.set_level(level);
-        self.stats.level = Some(level);
+        self.set_colour(ColourChoice {
+            level,
+            reason: ColourReason::Key,
+        });
+    }
+
+    /// Switches colour level, keeping why it was chosen (for the status line and header).
+    pub fn set_colour(&mut self, choice: ColourChoice) {
+        self.presenter.set_level(choice.level);
+        self.stats.level = Some(choice);
+    }
+
+    /// The colour level frames are sent at, and why.
+    #[must_use]
+    pub fn colour(&self) -> ColourChoice {
+        self.stats.level.unwrap_or(ColourChoice {
+            level: self.presenter.level(),
+            reason: ColourReason::Term,
+        })
     }
 
     /// The bytes that bring the client's screen (`size` columns × rows) to this frame: the

@@ -19,6 +19,7 @@ use russh::ChannelId;
 use tokio::sync::{mpsc, watch};
 use tokio::time::MissedTickBehavior;
 
+use super::ask_colour::{ask_truecolor, SSH_QUERY_PATIENCE};
 use super::config::clamp_size;
 use super::input::{InputEvent, InputParser};
 use super::keys::{route, Routed, COLOUR_KEY};
@@ -27,7 +28,7 @@ use super::players::{PlayerId, Snapshot};
 use super::screen::{panes_for, view_rect, SessionScreen};
 use super::stats::ServeStats;
 use super::world_task::{WorldHandle, WorldMsg};
-use crate::encode::ColorLevel;
+use crate::encode::{ColorLevel, ColourChoice, ColourReason};
 use crate::game::Held;
 use crate::tui::keys::{Controls, InputMode, UiCommand};
 use crate::tui::layout::Toggles;
@@ -102,6 +103,16 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) {
             })
             .await;
     }
+    // Before the first frame: a TERM guess is checked with the client's terminal itself.
+    let mut early_end = None;
+    if s.screen.colour().worth_asking() {
+        let (answer, typed) =
+            ask_truecolor(&p.handle, p.channel, &mut inputs.data, SSH_QUERY_PATIENCE).await;
+        s.screen.set_colour(s.screen.colour().with_answer(answer));
+        if !typed.is_empty() {
+            early_end = keys_early(&mut s, &typed);
+        }
+    }
     let mut snaps = p.world.snapshots();
     let fps = p.fps.clamp(1, 240);
     let period = Duration::from_secs_f64(1.0 / f64::from(fps));
@@ -114,6 +125,7 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) {
     let end = loop {
         tokio::select! {
             biased;
+            Some(end) = std::future::ready(early_end), if early_end.is_some() => break end,
             _ = shutdown.changed() => break End::Shutdown,
             data = inputs.data.recv() => {
                 let Some(bytes) = data else { break End::ClientGone };
@@ -208,8 +220,20 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) {
     );
 }
 
+/// Keys the player typed while the colour query ran: parsed now, acted on with the first
+/// snapshot's input (an unfinished escape waits for the usual flush). Returns an end if one
+/// of them quits.
+fn keys_early(s: &mut State, bytes: &[u8]) -> Option<End> {
+    let mut keys = Vec::new();
+    s.parser.feed(bytes, &mut keys);
+    if s.parser.has_pending() {
+        s.pending_since = Some(Instant::now());
+    }
+    s.on_keys(&keys, &Snapshot::default())
+}
+
 /// (snapshot version, size, colour level, eye, panes): everything a frame is drawn from.
-type Shown = (u64, (u16, u16), ColorLevel, Option<PlayerId>, Toggles);
+type Shown = (u64, (u16, u16), ColourChoice, Option<PlayerId>, Toggles);
 
 /// What is on the client's screen and what it asked for; everything the frame depends on.
 struct State {
@@ -231,7 +255,7 @@ struct State {
 
 impl State {
     fn new(p: &SessionParams, size: (u32, u32)) -> Self {
-        let level = level_for_term(&p.term, p.colorterm.as_deref());
+        let colour = level_for_term(&p.term, p.colorterm.as_deref());
         Self {
             spectator: p.spectator,
             me: p.id,
@@ -243,7 +267,11 @@ impl State {
             controls: Controls::new(InputMode::Emulated),
             sent: (Held::default(), usize::MAX),
             last_input: Instant::now(),
-            screen: SessionScreen::new(&p.world_data, p.avatar_sheet, level),
+            screen: {
+                let mut screen = SessionScreen::new(&p.world_data, p.avatar_sheet, colour.level);
+                screen.set_colour(colour);
+                screen
+            },
             shown: None,
         }
     }
@@ -260,8 +288,7 @@ impl State {
                 }
                 InputEvent::Key(k) => match route(k) {
                     Routed::CycleColour => {
-                        let next = self.screen.level().lower().unwrap_or(ColorLevel::TrueColor);
-                        self.screen.set_level(next);
+                        self.screen.set_colour(self.screen.colour().cycled());
                     }
                     Routed::NextTarget => self.following = cycle(snap, self.following, true),
                     Routed::PrevTarget => self.following = cycle(snap, self.following, false),
@@ -321,10 +348,11 @@ impl State {
             (None, false) => "joining...".to_string(),
         };
         let line = format!(
-            " halfcast | {who} | {} here: {} | {} | {COLOUR_KEY} colours",
+            " halfcast | {who} | {} here: {} | {} | {} colours",
             names.len(),
             names.join(", "),
-            self.screen.level().name(),
+            self.screen.colour(),
+            COLOUR_KEY.to_ascii_uppercase(),
         );
         line.chars().take(usize::from(self.size.0)).collect()
     }
@@ -335,7 +363,7 @@ impl State {
         let key = (
             snap.version,
             self.size,
-            self.screen.level(),
+            self.screen.colour(),
             eye,
             self.screen.toggles,
         );
@@ -349,9 +377,10 @@ impl State {
     }
 }
 
-/// The colour level for a client's `TERM` (and `COLORTERM`, when its client sends it): the
-/// encoder's own guess, plus terminals known to show 24-bit colour whatever their `TERM` says.
-fn level_for_term(term: &str, colorterm: Option<&str>) -> ColorLevel {
+/// The colour level for a client's `TERM` (and `COLORTERM`, when its client sends it as an env
+/// request): the encoder's own rule, plus terminals known to show 24-bit colour whatever their
+/// `TERM` says.
+fn level_for_term(term: &str, colorterm: Option<&str>) -> ColourChoice {
     const TRUECOLOR_TERMS: [&str; 9] = [
         "truecolor",
         "24bit",
@@ -364,11 +393,18 @@ fn level_for_term(term: &str, colorterm: Option<&str>) -> ColorLevel {
         "contour",
     ];
     let lower = term.to_ascii_lowercase();
+    let env = ColourChoice::from_env(colorterm, Some(term), None);
+    if env.reason == ColourReason::Colorterm {
+        return env;
+    }
     if TRUECOLOR_TERMS.iter().any(|t| lower.contains(t)) {
-        return ColorLevel::TrueColor;
+        return ColourChoice {
+            level: ColorLevel::TrueColor,
+            reason: ColourReason::Term,
+        };
     }
     let term = if term.is_empty() { "dumb" } else { term };
-    ColorLevel::detect(colorterm, Some(term), None)
+    ColourChoice::from_env(colorterm, Some(term), None)
 }
 
 /// The next (or previous) player after `current` in join order, wrapping; `None` if nobody.
@@ -408,15 +444,24 @@ mod tests {
 
     #[test]
     fn term_names_map_to_levels() {
-        assert_eq!(level_for_term("xterm-kitty", None), ColorLevel::TrueColor);
-        assert_eq!(level_for_term("xterm-direct", None), ColorLevel::TrueColor);
-        assert_eq!(level_for_term("xterm-256color", None), ColorLevel::Ansi256);
         assert_eq!(
-            level_for_term("xterm-256color", Some("truecolor")),
+            level_for_term("xterm-kitty", None).level,
             ColorLevel::TrueColor
         );
-        assert_eq!(level_for_term("xterm", None), ColorLevel::Ansi16);
-        assert_eq!(level_for_term("", None), ColorLevel::Mono);
-        assert_eq!(level_for_term("dumb", None), ColorLevel::Mono);
+        assert_eq!(
+            level_for_term("xterm-direct", None).level,
+            ColorLevel::TrueColor
+        );
+        assert_eq!(
+            level_for_term("xterm-256color", None).level,
+            ColorLevel::Ansi256
+        );
+        assert_eq!(
+            level_for_term("xterm-256color", Some("truecolor")).level,
+            ColorLevel::TrueColor
+        );
+        assert_eq!(level_for_term("xterm", None).level, ColorLevel::Ansi16);
+        assert_eq!(level_for_term("", None).level, ColorLevel::Mono);
+        assert_eq!(level_for_term("dumb", None).level, ColorLevel::Mono);
     }
 }

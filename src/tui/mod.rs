@@ -23,6 +23,7 @@ use std::sync::atomic::AtomicUsize;
 use std::sync::Arc;
 
 use crate::camera::Camera;
+use crate::encode::ColourChoice;
 use crate::world::World;
 
 pub use app::{Ending, LoopOptions, Recording};
@@ -36,6 +37,9 @@ pub struct PlayOptions {
     pub looping: LoopOptions,
     /// Capture the mouse so dragging turns the view.
     pub mouse: bool,
+    /// The colour level from the flag or the environment; a `TERM` guess is checked with the
+    /// terminal itself before the first frame.
+    pub colour: ColourChoice,
 }
 
 /// Registers the signals that end a session (SIGTERM, SIGINT; SIGHUP and SIGQUIT on unix)
@@ -65,7 +69,17 @@ pub fn play(
     let signal = watch_signals()?;
     let mut session = terminal::Session::start(options.mouse, &signal)?;
     let state = crate::game::GameState::new(world, camera, 0);
-    let result = app::run_loop(&mut session, state, options.looping, &signal);
+    let mut colour = options.colour;
+    let mut early_keys = Vec::new();
+    if colour.worth_asking() {
+        let (answer, keys) = session.ask_truecolor();
+        colour = colour.with_answer(answer);
+        early_keys = keys;
+    }
+    let mut looping = options.looping;
+    looping.encode.level = colour.level;
+    looping.colour_reason = colour.reason;
+    let result = app::run_loop(&mut session, state, looping, early_keys, &signal);
     drop(session);
     Ok(result?)
 }

@@ -29,7 +29,7 @@ fn v(s: String) -> Span<'static> {
     Span::styled(s, VALUE)
 }
 
-fn l(s: &'static str) -> Span<'static> {
+fn l(s: impl Into<std::borrow::Cow<'static, str>>) -> Span<'static> {
     Span::raw(s)
 }
 
@@ -94,17 +94,23 @@ pub fn status_line(
             ],
         ));
         if stats.bytes_per_frame > 0.0 {
-            let mut out = vec![
+            let out = vec![
                 v(format!("{:.1}", stats.bytes_per_frame / 1000.0)),
                 l(" kB/f "),
                 v(format!("{:.0}", stats.kbit_s)),
                 l(" kbit/s"),
             ];
-            if let Some(level) = stats.level {
-                out.push(l(" "));
-                out.push(v(level.name().to_owned()));
-            }
             segs.push(seg(4, out));
+        }
+        if let Some(choice) = stats.level {
+            segs.push(seg(
+                5,
+                vec![
+                    l("colour "),
+                    v(choice.level.name().to_owned()),
+                    l(format!(" ({})", choice.reason.label())),
+                ],
+            ));
         }
     }
     segs.push(seg(
