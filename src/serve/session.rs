@@ -239,7 +239,6 @@ type Shown = (u64, (u16, u16), ColourChoice, Option<PlayerId>, Toggles);
 struct State {
     spectator: bool,
     me: PlayerId,
-    name: String,
     size: (u16, u16),
     following: Option<PlayerId>,
     parser: InputParser,
@@ -259,7 +258,6 @@ impl State {
         Self {
             spectator: p.spectator,
             me: p.id,
-            name: p.name.clone(),
             size: clamp_size(size.0, size.1),
             following: None,
             parser: InputParser::new(),
@@ -344,7 +342,8 @@ impl State {
         let who = match (eye.and_then(|e| snap.player(e)), self.spectator) {
             (Some(p), true) => format!("watching {} (Tab: next)", p.name),
             (None, true) => "waiting for players (Tab: next)".to_string(),
-            (Some(_), false) => format!("you are {}", self.name),
+            // The world's name for us: unique among those here (`ada-2`).
+            (Some(p), false) => format!("you are {}", p.name),
             (None, false) => "joining...".to_string(),
         };
         let line = format!(
