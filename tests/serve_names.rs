@@ -85,6 +85,7 @@ fn the_shutdown_summary_counts_sessions_still_running() {
     if killed.is_err() {
         eprintln!("skip: no `kill` command to send SIGTERM");
         let _ = child.kill();
+        let _ = child.wait();
         return;
     }
     let summary = wait_for("served ", &mut seen);
