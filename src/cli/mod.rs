@@ -28,15 +28,36 @@ use render::RenderArgs;
 use replay::ReplayArgs;
 use serve::ServeArgs;
 
+/// `halfcast [MAP] [PLAY FLAGS]` plays (the default command); `halfcast COMMAND …` runs another.
 #[derive(Parser, Debug)]
 #[command(
     name = "halfcast",
     version,
-    about = "A raycasting 3D engine that lives in the terminal"
+    about = "A raycasting 3D engine that lives in the terminal",
+    override_usage = "halfcast [MAP.cub] [PLAY OPTIONS]   (play, the default)\n       halfcast <COMMAND> [ARGS]",
+    args_conflicts_with_subcommands = true,
+    subcommand_negates_reqs = true
 )]
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
+    /// With no command: `halfcast play`'s map and flags.
+    #[command(flatten)]
+    play: PlayArgs,
+}
+
+/// The keys, for `--help` (from the same table as the in-game `?` help).
+fn keys_help() -> String {
+    let mut out = String::from("Keys while playing:\n");
+    for &(keys, what) in halfcast::tui::help::KEYS {
+        if keys.is_empty() {
+            out.push_str(&format!("  {what}\n"));
+        } else {
+            out.push_str(&format!("    {keys:<16} {what}\n"));
+        }
+    }
+    out.push_str("\nExamples:\n    halfcast maps/x.cub --fps 60\n    halfcast render maps/x.cub -o frame.png\n    halfcast serve maps/x.cub   (then: ssh -p 2222 localhost)");
+    out
 }
 
 #[derive(Subcommand, Debug)]
@@ -101,7 +122,16 @@ impl Failure {
 
 /// Parses the command line and runs; the process exit code comes from here.
 pub fn run() -> ExitCode {
-    let cli = Cli::parse();
+    use clap::{CommandFactory, FromArgMatches};
+    let keys = keys_help();
+    let matches = Cli::command()
+        .after_help(keys.clone())
+        .mut_subcommand("play", |c| c.after_help(keys.clone()))
+        .get_matches();
+    let cli = match Cli::from_arg_matches(&matches) {
+        Ok(c) => c,
+        Err(e) => e.exit(),
+    };
     let result = match cli.command {
         Some(Command::Render(args)) => render::render(&args),
         Some(Command::Diff(args)) => diff::diff(&args),
@@ -110,7 +140,7 @@ pub fn run() -> ExitCode {
         Some(Command::Record(args)) => play::play(&args.play, Some(&args.output)),
         Some(Command::Bench(args)) => bench::bench(&args),
         Some(Command::Serve(args)) => serve::serve(args),
-        None => play::play(&PlayArgs::defaults(), None),
+        None => play::play(&cli.play, None),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -4,7 +4,6 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use clap::Args;
-use halfcast::camera::DEFAULT_FOV_DEG;
 use halfcast::encode::{ColorLevel, ColourChoice, EncodeOptions};
 use halfcast::tui::{self, Ending, LoopOptions, PlayOptions, TerminalError};
 
@@ -26,7 +25,7 @@ pub(crate) struct PlayArgs {
     /// Print frame-time statistics (fps, render and draw ms) to stderr on exit.
     #[arg(long)]
     pub(crate) frame_stats: bool,
-    /// Colour level (default: detected from COLORTERM, TERM, NO_COLOR).
+    /// Colour level (default: NO_COLOR, COLORTERM, else ask the terminal, else the TERM rule).
     #[arg(long, value_parser = parse_level)]
     pub(crate) colors: Option<ColorLevel>,
     /// Ordered dithering at 256 and 16 colours, so walls don't band.
@@ -50,31 +49,6 @@ pub(crate) struct RecordArgs {
     /// Where to write the recording (.hcr).
     #[arg(short, long)]
     pub(crate) output: PathBuf,
-}
-
-impl PlayArgs {
-    /// `halfcast` with no command: the embedded map, default pose and pacing.
-    pub(crate) fn defaults() -> Self {
-        Self {
-            map: MapArgs {
-                map: None,
-                strict: false,
-            },
-            pose: PoseArgs {
-                pos: None,
-                angle: None,
-                fov: DEFAULT_FOV_DEG,
-            },
-            fps: 60,
-            no_mouse: false,
-            frame_stats: false,
-            colors: None,
-            dither: false,
-            delta: None,
-            max_bandwidth: None,
-            adapt_colors: false,
-        }
-    }
 }
 
 pub(crate) fn play(args: &PlayArgs, record: Option<&PathBuf>) -> Result<(), Failure> {

@@ -24,6 +24,7 @@ pub const KEYS: &[(&str, &str)] = &[
     ("", "Screen"),
     ("M", "show / hide the minimap"),
     ("I", "show / hide the ray (DDA) pane"),
+    ("O", "colours: truecolor → 256 → 16 → mono"),
     ("?  H  F1", "this help"),
     ("Q  esc  ctrl+C", "quit"),
 ];

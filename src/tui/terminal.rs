@@ -273,3 +273,22 @@ fn install_panic_hook() {
         }));
     });
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crossterm::event::{Event, KeyCode};
+
+    #[test]
+    fn typed_bytes_become_key_events_in_order() {
+        let evs = keys_from_bytes(b"?w\x1b[A");
+        let codes: Vec<KeyCode> = evs
+            .iter()
+            .filter_map(|e| match e {
+                Event::Key(k) => Some(k.code),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(codes, [KeyCode::Char('?'), KeyCode::Char('w'), KeyCode::Up]);
+    }
+}
