@@ -115,3 +115,18 @@ async fn colorterm_from_the_env_request_wins_without_asking() {
     assert!(!queried, "no query when COLORTERM already said");
     assert!(h.contains("| truecolor (COLORTERM) |"), "{h}");
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn keys_typed_before_the_answer_are_kept() {
+    let (srv, _dir) = server(|_| {}).await;
+    // The player pressed M (hide the minimap) just before the terminal's DA1 reply.
+    let (mut c, queried) = connect_answering(srv.local_addr(), None, Some(b"m\x1b[?1;2c")).await;
+    assert!(queried);
+    assert!(
+        c.until(|s| s.contents().contains(" ray ") && !s.contents().contains(" map "))
+            .await,
+        "{}",
+        c.screen.screen().contents()
+    );
+    srv.shutdown().await;
+}

@@ -210,6 +210,23 @@ mod tests {
     }
 
     #[test]
+    fn the_colour_level_shows_with_its_reason() {
+        let world = Arc::new(World::default_world());
+        let cam = Camera::from_angle(world.map.start.pos(), 90.0, 66.0);
+        let state = GameState::new(world, cam, 80);
+        let mut stats = FrameStats::default();
+        stats.level = Some(crate::encode::ColourChoice::from_env(
+            None,
+            Some("xterm-256color"),
+            None,
+        ));
+        for width in [200, 100] {
+            let t = status_line(&state, &stats, InputMode::Emulated, None, width).to_string();
+            assert!(t.contains("colour 256 (TERM)"), "{width}: {t}");
+        }
+    }
+
+    #[test]
     fn narrow_rows_keep_fps_position_and_the_quit_hint() {
         let t = text(60, false);
         assert!(t.chars().count() <= 60, "{t}");
