@@ -39,7 +39,7 @@ fn quit(mut run: PtyRun) {
 fn a_terminal_answering_xtgettcap_gets_truecolor() {
     let mut run = queried(&[]);
     run.send(b"\x1bP0+r524742\x1b\\\x1bP1+r5463\x1b\\\x1b[?62;22c");
-    wait_status(&mut run, "colour truecolor (terminal said so)");
+    wait_status(&mut run, " truecolor (terminal said so)");
     quit(run);
 }
 
@@ -47,7 +47,7 @@ fn a_terminal_answering_xtgettcap_gets_truecolor() {
 fn a_terminal_reporting_the_24_bit_sgr_gets_truecolor() {
     let mut run = queried(&[]);
     run.send(b"\x1bP1$r0;48;2;1;2;3m\x1b\\\x1b[?62;22c");
-    wait_status(&mut run, "colour truecolor (terminal said so)");
+    wait_status(&mut run, " truecolor (terminal said so)");
     quit(run);
 }
 
@@ -57,7 +57,7 @@ fn a_terminal_answering_only_da1_keeps_the_term_rule_and_the_keys_typed_meanwhil
     // answer came: the key is not lost.
     let mut run = queried(&[]);
     run.send(b"m\x1b[?1;2c");
-    wait_status(&mut run, "colour 256 (TERM)");
+    wait_status(&mut run, " 256 (TERM)");
     run.wait_for_screen("the minimap M hid", |s| {
         s.contents().contains("╭ ray") && !s.contents().contains("╭ map")
     });
@@ -67,11 +67,11 @@ fn a_terminal_answering_only_da1_keeps_the_term_rule_and_the_keys_typed_meanwhil
 #[test]
 fn a_terminal_answering_nothing_gets_the_term_rule_after_the_timeout() {
     let mut run = queried(&[]);
-    wait_status(&mut run, "colour 256 (TERM)");
+    wait_status(&mut run, " 256 (TERM)");
     // The O key cycles from the detected level: 256 → 16 → mono → truecolor → 256.
     for next in ["16", "mono", "truecolor", "256"] {
         run.send(b"o");
-        wait_status(&mut run, &format!("colour {next} (O key)"));
+        wait_status(&mut run, &format!(" {next} (O key)"));
     }
     quit(run);
 }
@@ -86,7 +86,7 @@ fn a_quit_typed_during_the_query_quits() {
 #[test]
 fn colorterm_and_the_flag_are_not_second_guessed() {
     let mut run = PtyRun::spawn_with(&["--fps", "30"], SIZE, &[("COLORTERM", "truecolor")]);
-    wait_status(&mut run, "colour truecolor (COLORTERM)");
+    wait_status(&mut run, " truecolor (COLORTERM)");
     assert!(!contains(&run.bytes(), QUERY_START), "no query");
     quit(run);
     let mut run = PtyRun::spawn_with(
@@ -94,7 +94,7 @@ fn colorterm_and_the_flag_are_not_second_guessed() {
         SIZE,
         &[("COLORTERM", "")],
     );
-    wait_status(&mut run, "colour 16 (--colors)");
+    wait_status(&mut run, " 16 (--colors)");
     assert!(!contains(&run.bytes(), QUERY_START), "no query");
     quit(run);
 }

@@ -78,8 +78,8 @@ fn under_tmux_xterm_256color_gets_256_by_the_term_rule() {
         "30",
     ]);
     assert!(started.status.success(), "{started:?}");
-    tmux.wait_status("colour 256 (TERM)");
+    tmux.wait_status(" 256 (TERM)");
     let _ = tmux.run(&["send-keys", "-t", "t", "o"]);
-    tmux.wait_status("colour 16 (O key)");
+    tmux.wait_status(" 16 (O key)");
     let _ = tmux.run(&["send-keys", "-t", "t", "q"]);
 }

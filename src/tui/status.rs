@@ -94,23 +94,19 @@ pub fn status_line(
             ],
         ));
         if stats.bytes_per_frame > 0.0 {
-            let out = vec![
+            let mut out = vec![
                 v(format!("{:.1}", stats.bytes_per_frame / 1000.0)),
                 l(" kB/f "),
                 v(format!("{:.0}", stats.kbit_s)),
                 l(" kbit/s"),
             ];
+            // The colour level and how it was decided (`256 (TERM)`): O cycles it.
+            if let Some(choice) = stats.level {
+                out.push(l("  "));
+                out.push(v(choice.level.name().to_owned()));
+                out.push(l(format!(" ({})", choice.reason.label())));
+            }
             segs.push(seg(4, out));
-        }
-        if let Some(choice) = stats.level {
-            segs.push(seg(
-                5,
-                vec![
-                    l("colour "),
-                    v(choice.level.name().to_owned()),
-                    l(format!(" ({})", choice.reason.label())),
-                ],
-            ));
         }
     }
     segs.push(seg(
@@ -124,9 +120,10 @@ pub fn status_line(
             v(format!("{:.1}°", cam.angle_deg().rem_euclid(360.0))),
         ],
     ));
-    segs.push(seg(1, vec![l("FOV "), v(format!("{:.0}°", cam.fov_deg()))]));
+    segs.push(seg(0, vec![l("FOV "), v(format!("{:.0}°", cam.fov_deg()))]));
     segs.push(seg(2, vec![v(state.world.map.name.clone())]));
-    segs.push(seg(0, vec![l(mode.label())]));
+    // Above the FOV (which never changes in play): room for the colour level's reason.
+    segs.push(seg(1, vec![l(mode.label())]));
     segs.push(seg(
         10,
         vec![
@@ -215,6 +212,7 @@ mod tests {
         let cam = Camera::from_angle(world.map.start.pos(), 90.0, 66.0);
         let state = GameState::new(world, cam, 80);
         let mut stats = FrameStats::default();
+        stats.record_bytes(1000);
         stats.level = Some(crate::encode::ColourChoice::from_env(
             None,
             Some("xterm-256color"),
@@ -222,7 +220,7 @@ mod tests {
         ));
         for width in [200, 100] {
             let t = status_line(&state, &stats, InputMode::Emulated, None, width).to_string();
-            assert!(t.contains("colour 256 (TERM)"), "{width}: {t}");
+            assert!(t.contains("kbit/s  256 (TERM)"), "{width}: {t}");
         }
     }
 
