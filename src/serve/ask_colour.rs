@@ -10,7 +10,7 @@ use tokio::sync::mpsc;
 
 use crate::tui::colour_query::{ReplyScanner, QUERY, QUERY_PATIENCE};
 
-/// Sends the query and reads the client's input until the DA1 reply or `patience` (the round
+/// Sends `before` (the session's terminal set-up) and the query, and reads the client's input until the DA1 reply or `patience` (the round
 /// trip is longer than a local terminal's, so the caller may allow more).
 ///
 /// Returns the answer (`None`: the terminal said nothing about colour) and the bytes read that
@@ -18,10 +18,12 @@ use crate::tui::colour_query::{ReplyScanner, QUERY, QUERY_PATIENCE};
 pub async fn ask_truecolor(
     handle: &Handle,
     channel: ChannelId,
+    before: &[u8],
     data: &mut mpsc::Receiver<Vec<u8>>,
     patience: Duration,
 ) -> (Option<bool>, Vec<u8>) {
-    let sent = tokio::time::timeout(patience, handle.data(channel, QUERY.to_vec())).await;
+    let bytes = [before, QUERY].concat();
+    let sent = tokio::time::timeout(patience, handle.data(channel, bytes)).await;
     if !matches!(sent, Ok(Ok(()))) {
         return (None, Vec::new());
     }

@@ -105,9 +105,18 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) {
     }
     // Before the first frame: a TERM guess is checked with the client's terminal itself.
     let mut early_end = None;
+    let mut entered = false;
     if s.screen.colour().worth_asking() {
-        let (answer, typed) =
-            ask_truecolor(&p.handle, p.channel, &mut inputs.data, SSH_QUERY_PATIENCE).await;
+        // On the alternate screen, so a terminal that shows a query as text shows it there only.
+        entered = true;
+        let (answer, typed) = ask_truecolor(
+            &p.handle,
+            p.channel,
+            ENTER,
+            &mut inputs.data,
+            SSH_QUERY_PATIENCE,
+        )
+        .await;
         s.screen.set_colour(s.screen.colour().with_answer(answer));
         if !typed.is_empty() {
             early_end = keys_early(&mut s, &typed);
@@ -120,7 +129,7 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) {
     tick.set_missed_tick_behavior(MissedTickBehavior::Skip);
     let mut last_tick: Option<tokio::time::Instant> = None;
     let mut tally = Tally::default();
-    let mut out = ENTER.to_vec();
+    let mut out = if entered { Vec::new() } else { ENTER.to_vec() };
     let mut keys = Vec::new();
     let end = loop {
         tokio::select! {

@@ -226,6 +226,13 @@ mod tests {
     }
 
     #[test]
+    fn a_kitty_flags_reply_is_not_taken_for_da1() {
+        // Over SSH the session's kitty query goes out just before: its reply is input.
+        let r = scan_all(&[b"\x1b[?1u\x1bP1+r524742\x1b\\\x1b[?62;22c"]);
+        assert_eq!(r, (true, Some(true), b"\x1b[?1u".to_vec()));
+    }
+
+    #[test]
     fn replies_split_between_reads_are_joined() {
         let all: &[u8] = b"\x1bP1+r5463\x1b\\\x1b[?62;22c";
         for cut in 1..all.len() {
