@@ -262,10 +262,16 @@ async fn the_colour_key_cycles_levels_down_to_mono_and_back() {
     let (srv, _dir) = server(|_| {}).await;
     let mut c = Client::connect(srv.local_addr(), "ann", 100, 16, "xterm-direct").await;
     assert!(
-        c.until(|s| header_has(s, "| truecolor |") && half_block_cells(s, view_rect(100, 16)) > 0)
+        c.until(|s| header_has(s, "| truecolor (TERM) |")
+            && half_block_cells(s, view_rect(100, 16)) > 0)
             .await
     );
-    for level in ["| 256 |", "| 16 |", "| mono |", "| truecolor |"] {
+    for level in [
+        "| 256 (O key) |",
+        "| 16 (O key) |",
+        "| mono (O key) |",
+        "| truecolor (O key) |",
+    ] {
         c.keys(b"o").await;
         assert!(
             c.until(|s| header_has(s, level)).await,

@@ -17,7 +17,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use halfcast::camera::Camera;
-use halfcast::encode::ColorLevel;
+use halfcast::encode::{ColorLevel, ColourChoice};
 use halfcast::world::World;
 
 use bench::BenchArgs;
@@ -28,15 +28,47 @@ use render::RenderArgs;
 use replay::ReplayArgs;
 use serve::ServeArgs;
 
+/// `halfcast [MAP] [PLAY FLAGS]` plays (the default command); `halfcast COMMAND …` runs another.
 #[derive(Parser, Debug)]
 #[command(
     name = "halfcast",
     version,
-    about = "A raycasting 3D engine that lives in the terminal"
+    about = "A raycasting 3D engine that lives in the terminal",
+    override_usage = "halfcast [MAP.cub] [PLAY OPTIONS]   (play, the default)\n       halfcast <COMMAND> [ARGS]",
+    args_conflicts_with_subcommands = true,
+    subcommand_negates_reqs = true
 )]
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
+    /// With no command: `halfcast play`'s map and flags.
+    #[command(flatten)]
+    play: PlayArgs,
+}
+
+/// The keys, for `--help` (from the same table as the in-game `?` help).
+fn keys_help() -> String {
+    use halfcast::tui::help::HelpOverlay;
+    use halfcast::tui::keymap::KeyMap;
+    let keys = KeyMap::default();
+    let help = HelpOverlay {
+        mode: halfcast::tui::keys::InputMode::Emulated,
+        keys: &keys,
+    };
+    let mut out = String::from("Keys while playing (defaults; a config file can rebind them):\n");
+    let rows = help.rows();
+    let width = rows.iter().map(|(k, _)| k.len()).max().unwrap_or(0);
+    for (keys, what) in rows {
+        if what.is_empty() {
+            out.push('\n');
+        } else if keys.is_empty() {
+            out.push_str(&format!("  {what}\n"));
+        } else {
+            out.push_str(&format!("    {keys:<width$}  {what}\n"));
+        }
+    }
+    out.push_str("\nExamples:\n    halfcast maps/x.cub --fps 60\n    halfcast render maps/x.cub -o frame.png\n    halfcast serve maps/x.cub   (then: ssh -p 2222 localhost)");
+    out
 }
 
 #[derive(Subcommand, Debug)]
@@ -64,8 +96,13 @@ pub(crate) fn parse_level(s: &str) -> Result<ColorLevel, String> {
 
 /// The colour level the environment asks for (`COLORTERM`, `TERM`, `NO_COLOR`).
 pub(crate) fn detect_level() -> ColorLevel {
+    detect_colours().level
+}
+
+/// The colour level the environment asks for, and which variable decided it.
+pub(crate) fn detect_colours() -> ColourChoice {
     let var = |k: &str| std::env::var(k).ok();
-    ColorLevel::detect(
+    ColourChoice::from_env(
         var("COLORTERM").as_deref(),
         var("TERM").as_deref(),
         var("NO_COLOR").as_deref(),
@@ -96,7 +133,16 @@ impl Failure {
 
 /// Parses the command line and runs; the process exit code comes from here.
 pub fn run() -> ExitCode {
-    let cli = Cli::parse();
+    use clap::{CommandFactory, FromArgMatches};
+    let keys = keys_help();
+    let matches = Cli::command()
+        .after_help(keys.clone())
+        .mut_subcommand("play", |c| c.after_help(keys.clone()))
+        .get_matches();
+    let cli = match Cli::from_arg_matches(&matches) {
+        Ok(c) => c,
+        Err(e) => e.exit(),
+    };
     let result = match cli.command {
         Some(Command::Render(args)) => render::render(&args),
         Some(Command::Diff(args)) => diff::diff(&args),
@@ -105,7 +151,7 @@ pub fn run() -> ExitCode {
         Some(Command::Record(args)) => play::play(&args.play, Some(&args.output)),
         Some(Command::Bench(args)) => bench::bench(&args),
         Some(Command::Serve(args)) => serve::serve(args),
-        None => play::play(&PlayArgs::defaults(), None),
+        None => play::play(&cli.play, None),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -4,15 +4,14 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use clap::Args;
-use halfcast::camera::DEFAULT_FOV_DEG;
-use halfcast::encode::{ColorLevel, EncodeOptions};
+use halfcast::encode::{ColorLevel, ColourChoice, EncodeOptions};
 use halfcast::game::Speeds;
 use halfcast::tui::config::Config;
 use halfcast::tui::layout::Toggles;
 use halfcast::tui::{self, Ending, LoopOptions, PlayOptions, Setup, TerminalError};
 
 use super::options::{MapArgs, PoseArgs};
-use super::{camera_for, detect_level, load_world, parse_level, write_output, Failure};
+use super::{camera_for, detect_colours, load_world, parse_level, write_output, Failure};
 
 #[derive(Args, Debug)]
 pub(crate) struct PlayArgs {
@@ -29,7 +28,7 @@ pub(crate) struct PlayArgs {
     /// Print frame-time statistics (fps, render and draw ms) to stderr on exit.
     #[arg(long)]
     pub(crate) frame_stats: bool,
-    /// Colour level (default: detected from COLORTERM, TERM, NO_COLOR).
+    /// Colour level (default: NO_COLOR, COLORTERM, else ask the terminal, else the TERM rule).
     #[arg(long, value_parser = parse_level)]
     pub(crate) colors: Option<ColorLevel>,
     /// Ordered dithering at 256 and 16 colours, so walls don't band.
@@ -67,35 +66,6 @@ pub(crate) struct RecordArgs {
     pub(crate) output: PathBuf,
 }
 
-impl PlayArgs {
-    /// `halfcast` with no command: the embedded map, default pose and pacing.
-    pub(crate) fn defaults() -> Self {
-        Self {
-            map: MapArgs {
-                map: None,
-                strict: false,
-            },
-            pose: PoseArgs {
-                pos: None,
-                angle: None,
-                fov: DEFAULT_FOV_DEG,
-            },
-            fps: 60,
-            no_mouse: false,
-            frame_stats: false,
-            colors: None,
-            dither: false,
-            delta: None,
-            max_bandwidth: None,
-            adapt_colors: false,
-            turn_speed: None,
-            move_speed: None,
-            config: None,
-            print_config: false,
-        }
-    }
-}
-
 /// The config file (`--config`, or the default path if that exists) with the flags applied.
 fn settings(args: &PlayArgs) -> Result<Config, Failure> {
     let mut config = match (&args.config, Config::default_path()) {
@@ -129,7 +99,12 @@ pub(crate) fn play(args: &PlayArgs, record: Option<&PathBuf>) -> Result<(), Fail
             camera.pos.x, camera.pos.y, world.map.name
         )));
     }
-    let mut encode = EncodeOptions::new(args.colors.or(config.colors).unwrap_or_else(detect_level));
+    let colour = match (args.colors, config.colors) {
+        (Some(level), _) => ColourChoice::flag(level),
+        (None, Some(level)) => ColourChoice::config(level),
+        (None, None) => detect_colours(),
+    };
+    let mut encode = EncodeOptions::new(colour.level);
     encode.dither = args.dither;
     encode.delta = args.delta;
     let options = PlayOptions {
@@ -139,6 +114,7 @@ pub(crate) fn play(args: &PlayArgs, record: Option<&PathBuf>) -> Result<(), Fail
             max_bandwidth: args.max_bandwidth,
             adapt_colours: args.adapt_colors,
             record: record.is_some(),
+            colour_reason: colour.reason,
         },
         mouse: !args.no_mouse,
         setup: Setup {
@@ -150,6 +126,7 @@ pub(crate) fn play(args: &PlayArgs, record: Option<&PathBuf>) -> Result<(), Fail
                 help: false,
             },
         },
+        colour,
     };
     let (ending, stats, recording) =
         tui::play(Arc::new(world), camera, options).map_err(terminal_failure)?;

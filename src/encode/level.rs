@@ -47,6 +47,12 @@ impl ColorLevel {
         }
     }
 
+    /// The level after this one in the colour key's cycle: truecolor → 256 → 16 → mono → truecolor.
+    #[must_use]
+    pub fn cycled(self) -> Self {
+        self.lower().unwrap_or(ColorLevel::TrueColor)
+    }
+
     /// The next rung down the ladder (what a bandwidth cap falls back to), `None` at mono.
     #[must_use]
     pub fn lower(self) -> Option<Self> {
@@ -92,6 +98,125 @@ impl FromStr for ColorLevel {
     }
 }
 
+/// Why a colour level was chosen: shown next to it (`256 (TERM)`), so a player who sees the
+/// wrong colours knows what to change.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ColourReason {
+    /// `--colors` on the command line.
+    Flag,
+    /// `colors` in the config file.
+    Config,
+    /// `NO_COLOR` is set.
+    NoColor,
+    /// `COLORTERM` said 24-bit (locally, or sent by the SSH client as an env request).
+    Colorterm,
+    /// The terminal answered a query (XTGETTCAP `RGB`/`Tc`, or DECRQSS of a 24-bit SGR).
+    TerminalSaid,
+    /// The `TERM` name rule (nothing better was known).
+    Term,
+    /// The player cycled it with the colour key.
+    Key,
+    /// `--max-bandwidth --adapt-colors` stepped it down.
+    Bandwidth,
+}
+
+impl ColourReason {
+    /// The words shown in brackets after the level.
+    #[must_use]
+    pub fn label(self) -> &'static str {
+        match self {
+            ColourReason::Flag => "--colors",
+            ColourReason::Config => "config",
+            ColourReason::NoColor => "NO_COLOR",
+            ColourReason::Colorterm => "COLORTERM",
+            ColourReason::TerminalSaid => "terminal said so",
+            ColourReason::Term => "TERM",
+            ColourReason::Key => "O key",
+            ColourReason::Bandwidth => "bandwidth cap",
+        }
+    }
+}
+
+/// A colour level and how it was decided.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ColourChoice {
+    pub level: ColorLevel,
+    pub reason: ColourReason,
+}
+
+impl ColourChoice {
+    /// The choice the environment alone gives (same rule as [`ColorLevel::detect`]), with why.
+    #[must_use]
+    pub fn from_env(colorterm: Option<&str>, term: Option<&str>, no_color: Option<&str>) -> Self {
+        let level = ColorLevel::detect(colorterm, term, no_color);
+        let reason = if no_color.is_some_and(|v| !v.is_empty()) {
+            ColourReason::NoColor
+        } else if matches!(
+            colorterm.map(str::to_ascii_lowercase).as_deref(),
+            Some("truecolor" | "24bit")
+        ) {
+            ColourReason::Colorterm
+        } else {
+            ColourReason::Term
+        };
+        Self { level, reason }
+    }
+
+    /// A level fixed by `--colors`.
+    #[must_use]
+    pub fn flag(level: ColorLevel) -> Self {
+        Self {
+            level,
+            reason: ColourReason::Flag,
+        }
+    }
+
+    /// A level fixed by the config file's `colors`.
+    #[must_use]
+    pub fn config(level: ColorLevel) -> Self {
+        Self {
+            level,
+            reason: ColourReason::Config,
+        }
+    }
+
+    /// Whether asking the terminal could still change this choice: only a `TERM` guess below
+    /// 24-bit can (an explicit flag, `NO_COLOR` and `COLORTERM` are the user's word).
+    #[must_use]
+    pub fn worth_asking(self) -> bool {
+        self.reason == ColourReason::Term && self.level != ColorLevel::TrueColor
+    }
+
+    /// This choice after the terminal's answer: `Some(true)` (it shows 24-bit colour) upgrades a
+    /// `TERM` guess; no answer, or a negative one, leaves it as it was.
+    #[must_use]
+    pub fn with_answer(self, truecolor: Option<bool>) -> Self {
+        if self.worth_asking() && truecolor == Some(true) {
+            Self {
+                level: ColorLevel::TrueColor,
+                reason: ColourReason::TerminalSaid,
+            }
+        } else {
+            self
+        }
+    }
+
+    /// The next level in the colour key's cycle.
+    #[must_use]
+    pub fn cycled(self) -> Self {
+        Self {
+            level: self.level.cycled(),
+            reason: ColourReason::Key,
+        }
+    }
+}
+
+impl fmt::Display for ColourChoice {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} ({})", self.level.name(), self.reason.label())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -114,6 +239,47 @@ mod tests {
         assert_eq!(d(None, Some("dumb"), None), Mono);
         assert_eq!(d(Some("truecolor"), Some("xterm"), Some("1")), Mono);
         assert_eq!(d(Some("truecolor"), None, Some("")), TrueColor);
+    }
+
+    #[test]
+    fn choices_say_why() {
+        use ColorLevel::*;
+        let env = ColourChoice::from_env;
+        let c = env(None, Some("xterm-256color"), None);
+        assert_eq!(c.to_string(), "256 (TERM)");
+        assert!(c.worth_asking());
+        assert_eq!(
+            c.with_answer(Some(true)).to_string(),
+            "truecolor (terminal said so)"
+        );
+        assert_eq!(c.with_answer(Some(false)), c);
+        assert_eq!(c.with_answer(None), c);
+        let c = env(Some("truecolor"), Some("xterm-256color"), None);
+        assert_eq!(c.to_string(), "truecolor (COLORTERM)");
+        assert!(!c.worth_asking());
+        let c = env(Some("truecolor"), Some("xterm"), Some("1"));
+        assert_eq!(c.to_string(), "mono (NO_COLOR)");
+        assert_eq!(c.with_answer(Some(true)).level, Mono);
+        assert_eq!(
+            ColourChoice::flag(Ansi16)
+                .with_answer(Some(true))
+                .to_string(),
+            "16 (--colors)"
+        );
+        assert!(!env(None, Some("xterm-direct"), None).worth_asking());
+    }
+
+    #[test]
+    fn the_colour_key_cycles_from_the_detected_level() {
+        let mut c = ColourChoice::from_env(None, Some("xterm-256color"), None);
+        let mut seen = Vec::new();
+        for _ in 0..5 {
+            c = c.cycled();
+            seen.push(c.level);
+        }
+        use ColorLevel::*;
+        assert_eq!(seen, [Ansi16, Mono, TrueColor, Ansi256, Ansi16]);
+        assert_eq!(c.to_string(), "16 (O key)");
     }
 
     #[test]

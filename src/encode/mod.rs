@@ -20,6 +20,6 @@ mod sgr;
 
 pub use encoder::{EncodeOptions, Encoder, SYNC_BEGIN, SYNC_END};
 pub use inline::full_frame;
-pub use level::ColorLevel;
+pub use level::{ColorLevel, ColourChoice, ColourReason};
 pub use pacer::{parse_rate, Pacer};
 pub use palette::Palette;

@@ -92,12 +92,13 @@ const ACTIONS: [(Action, &str); 9] = [
     (Action::Crouch, "crouch"),
 ];
 
-const UI: [(UiCommand, &str); 5] = [
+const UI: [(UiCommand, &str); 6] = [
     (UiCommand::ToggleMinimap, "toggle_minimap"),
     (UiCommand::ToggleDebug, "toggle_debug"),
     (UiCommand::ToggleHelp, "toggle_help"),
     (UiCommand::Back, "back"),
     (UiCommand::Quit, "quit"),
+    (UiCommand::CycleColours, "cycle_colours"),
 ];
 
 fn action_name(a: Action) -> &'static str {

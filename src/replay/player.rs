@@ -88,6 +88,8 @@ impl Player {
                 UiCommand::ToggleMinimap => self.toggles.minimap = !self.toggles.minimap,
                 UiCommand::ToggleDebug => self.toggles.debug = !self.toggles.debug,
                 UiCommand::ToggleHelp => self.toggles.help = !self.toggles.help,
+                // Frames are written at the level the replay command asks for.
+                UiCommand::CycleColours => {}
             }
         }
         let area = Rect::new(0, 0, self.size.0, self.size.1);

@@ -1,6 +1,7 @@
 //! Other players as the world's own sprites: the 8-view walking creature, facing where its
-//! player looks and animated while it walks, drawn by the world's sprite renderer; and their
-//! names on the minimap.
+//! player looks and animated while it walks, drawn by the world's sprite renderer; a marker in
+//! their minimap colour over their heads (so they are not taken for the map's own creatures),
+//! their name above them when near, and their names on the minimap.
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -8,9 +9,12 @@ use ratatui::style::{Color, Modifier, Style};
 
 use super::players::{PlayerId, Snapshot};
 use crate::cast::Cast;
+use crate::color::Rgb;
+use crate::encode::{ColorLevel, Palette};
+use crate::framebuffer::Framebuffer;
 use crate::game::GameState;
 use crate::map::{Blend, ColourKey, SpriteDef, TextureRef};
-use crate::sprite::Sprite;
+use crate::sprite::{project, Sprite};
 use crate::texture::builtin;
 use crate::widget::minimap::MapView;
 use crate::world::World;
@@ -63,6 +67,133 @@ pub fn avatar(state: &GameState, walking: bool, sheet: usize) -> Sprite {
         at: (0, 0),
     };
     Sprite { def, sheet }
+}
+
+/// How near (in cells) another player must be for its name to show above it in the 3D view.
+pub const TAG_DISTANCE: f64 = 5.0;
+
+/// The dark half of a name tag's cells (the letters are drawn over it).
+const TAG_BG: Rgb = Rgb::new(14, 14, 18);
+
+/// A name tag in the 3D view, at view cell (`col`, `row`).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Tag {
+    pub col: u16,
+    pub row: u16,
+    pub name: String,
+    pub color: Rgb,
+}
+
+/// Marks every other player visible in `fb` (just rendered through `eye`'s camera; `cast` has
+/// the wall depth per column): a downward triangle in the player's minimap colour over its
+/// head, hidden where a wall is nearer. Returns the name tags of those within
+/// [`TAG_DISTANCE`] (their cells are painted in the player's colour over [`TAG_BG`], so the
+/// encoder sends them as a plain backing, and resends the scene once the tag moves on).
+pub fn mark_players(
+    fb: &mut Framebuffer,
+    eye: &GameState,
+    cast: &Cast,
+    snap: &Snapshot,
+    eye_id: PlayerId,
+) -> Vec<Tag> {
+    let (w, h) = (fb.width(), fb.height());
+    if w == 0 || h < 2 {
+        return Vec::new();
+    }
+    let mut seen: Vec<_> = snap
+        .players
+        .iter()
+        .filter(|p| p.id != eye_id)
+        .filter_map(|p| {
+            let lift = p.state.jump.0.max(0.0);
+            let pos = p.state.camera.pos;
+            project(
+                &eye.camera,
+                &eye.view,
+                pos,
+                (AVATAR_SCALE, AVATAR_SCALE),
+                lift,
+                w,
+                h,
+            )
+            .ok()
+            .map(|pr| (p, pr))
+        })
+        .collect();
+    // Far to near, so a nearer player's marks cover a farther one's.
+    seen.sort_by(|a, b| b.1.depth.total_cmp(&a.1.depth));
+    let mut tags = Vec::new();
+    for (p, pr) in seen {
+        let in_front = |x: i64| {
+            x >= 0
+                && (x as usize) < w
+                && cast
+                    .columns
+                    .get(x as usize)
+                    .is_none_or(|c| c.perp_dist > pr.depth)
+        };
+        if !(pr.cols.0..pr.cols.1).any(|x| in_front(x as i64)) {
+            continue;
+        }
+        let centre = ((pr.left + pr.right) / 2.0).floor() as i64;
+        let k = ((pr.right - pr.left) / 10.0).clamp(1.0, 4.0) as i64;
+        let base = pr.top.floor() as i64 - 1;
+        for i in 0..=k {
+            let y = base - k + i;
+            if y < 0 || y as usize >= h {
+                continue;
+            }
+            for x in (centre - (k - i))..=(centre + (k - i)) {
+                if in_front(x) {
+                    fb.set(x as usize, y as usize, p.color);
+                }
+            }
+        }
+        if pr.depth > TAG_DISTANCE {
+            continue;
+        }
+        let rows = (h / 2) as i64;
+        let row = ((base - k - 1).div_euclid(2) - 1).clamp(0, rows - 1);
+        let name: String = p.name.chars().take(w).collect();
+        let n = name.chars().count() as i64;
+        let col = (centre - n / 2).clamp(0, w as i64 - n);
+        for x in col..col + n {
+            fb.set(x as usize, 2 * row as usize, p.color);
+            fb.set(x as usize, 2 * row as usize + 1, TAG_BG);
+        }
+        tags.push(Tag {
+            col: col as u16,
+            row: row as u16,
+            name,
+            color: p.color,
+        });
+    }
+    tags
+}
+
+/// The bytes that write `tags` over a view whose top-left cell is `origin`, after the
+/// encoder's own bytes (ending with the default colours, as every frame does).
+#[must_use]
+pub fn tag_bytes(tags: &[Tag], origin: (u16, u16), level: ColorLevel) -> Vec<u8> {
+    let mut out = Vec::new();
+    let palette = Palette::new(level, false);
+    let sgr = |c: Rgb, ground: u8| -> String {
+        match level {
+            ColorLevel::TrueColor => format!("{ground}8;2;{};{};{}", c.r, c.g, c.b),
+            _ => format!("{ground}8;5;{}", palette.code(c, 0, 0)),
+        }
+    };
+    for t in tags {
+        let (x, y) = (origin.0 + t.col + 1, origin.1 + t.row + 1);
+        out.extend_from_slice(format!("\x1b[{y};{x}H").as_bytes());
+        if level != ColorLevel::Mono {
+            let colours = format!("\x1b[1;{};{}m", sgr(t.color, 3), sgr(TAG_BG, 4));
+            out.extend_from_slice(colours.as_bytes());
+        }
+        out.extend_from_slice(t.name.as_bytes());
+        out.extend_from_slice(b"\x1b[m");
+    }
+    out
 }
 
 /// Sets `world`'s sprites to its first `base` ones (the map's) plus every player but `eye`.

@@ -13,6 +13,7 @@
 //! - [`screen`]: the TUI's panes under a header, through the `Presenter`; [`avatars`]: other
 //!   players as the world's 8-view sprite, and their names on the minimap.
 
+pub mod ask_colour;
 pub mod auth;
 pub mod avatars;
 pub mod config;

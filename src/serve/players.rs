@@ -112,7 +112,7 @@ impl Players {
     }
 
     /// Adds a player at a free spawn point, facing the map's start direction (ignored if `id`
-    /// is already here).
+    /// is already here). A name someone here already wears gets a number (`ada`, `ada-2`, …).
     pub fn join(&mut self, id: PlayerId, name: &str) {
         if self.players.contains_key(&id) {
             return;
@@ -124,10 +124,11 @@ impl Players {
         state.time = self.time;
         let color = PALETTE[(self.joined % PALETTE.len() as u64) as usize];
         self.joined += 1;
+        let name = self.unique_name(name);
         self.players.insert(
             id,
             Player {
-                name: name.to_string(),
+                name,
                 color,
                 state,
                 held: Held::default(),
@@ -135,6 +136,18 @@ impl Players {
                 walking: false,
             },
         );
+    }
+
+    /// `name`, or `name-2`, `name-3`, … : the first nobody connected is using.
+    fn unique_name(&self, name: &str) -> String {
+        let taken = |n: &str| self.players.values().any(|p| p.name == n);
+        if !taken(name) {
+            return name.to_string();
+        }
+        (2..)
+            .map(|k| format!("{name}-{k}"))
+            .find(|n| !taken(n))
+            .expect("some number is free")
     }
 
     /// Removes a player (no-op if absent).
@@ -295,6 +308,23 @@ mod tests {
         let turned = s2.players[0].state.camera.angle_deg() - a.angle_deg();
         assert!(turned.abs() > 1.0, "{turned}");
         assert!(!s2.players[0].walking, "turning on the spot is not walking");
+    }
+
+    #[test]
+    fn names_are_unique_among_those_connected() {
+        let mut ps = players();
+        for id in 1..=3 {
+            ps.join(id, "ada");
+        }
+        ps.join(4, "ada-2");
+        let names = |ps: &mut Players| -> Vec<String> {
+            ps.snapshot().players.into_iter().map(|p| p.name).collect()
+        };
+        assert_eq!(names(&mut ps), ["ada", "ada-2", "ada-3", "ada-2-2"]);
+        // A freed name is given again.
+        ps.leave(2);
+        ps.join(5, "ada");
+        assert_eq!(names(&mut ps), ["ada", "ada-3", "ada-2-2", "ada-2"]);
     }
 
     #[test]

@@ -13,7 +13,7 @@ use ratatui::widgets::{Block, Paragraph, Widget, Wrap};
 
 use super::avatars;
 use super::players::{PlayerId, Snapshot};
-use crate::encode::{ColorLevel, EncodeOptions};
+use crate::encode::{ColorLevel, ColourChoice, ColourReason, EncodeOptions, SYNC_END};
 use crate::framebuffer::Framebuffer;
 use crate::present::Presenter;
 use crate::tui::keys::InputMode;
@@ -38,6 +38,8 @@ pub struct SessionScreen {
     presenter: Presenter,
     fb: Framebuffer,
     stats: FrameStats,
+    /// The frame's bytes: the presenter's, plus other players' name tags over the view.
+    out: Vec<u8>,
     /// Which panes this client shows (M, I and ? toggle them, as in the local TUI).
     pub toggles: Toggles,
 }
@@ -69,7 +71,10 @@ impl SessionScreen {
     #[must_use]
     pub fn new(world: &World, avatar_sheet: usize, level: ColorLevel) -> Self {
         let mut stats = FrameStats::default();
-        stats.level = Some(level);
+        stats.level = Some(ColourChoice {
+            level,
+            reason: ColourReason::Term,
+        });
         Self {
             base_sprites: world.sprites.len(),
             world: Arc::new(world.clone()),
@@ -77,6 +82,7 @@ impl SessionScreen {
             presenter: Presenter::new(EncodeOptions::new(level)),
             fb: Framebuffer::new(0, 0),
             stats,
+            out: Vec::new(),
             toggles: Toggles::default(),
         }
     }
@@ -89,8 +95,25 @@ impl SessionScreen {
 
     /// Switches colour level; the next frame redraws everything.
     pub fn set_level(&mut self, level: ColorLevel) {
-        self.presenter.set_level(level);
-        self.stats.level = Some(level);
+        self.set_colour(ColourChoice {
+            level,
+            reason: ColourReason::Key,
+        });
+    }
+
+    /// Switches colour level, keeping why it was chosen (for the status line and header).
+    pub fn set_colour(&mut self, choice: ColourChoice) {
+        self.presenter.set_level(choice.level);
+        self.stats.level = Some(choice);
+    }
+
+    /// The colour level frames are sent at, and why.
+    #[must_use]
+    pub fn colour(&self) -> ColourChoice {
+        self.stats.level.unwrap_or(ColourChoice {
+            level: self.presenter.level(),
+            reason: ColourReason::Term,
+        })
     }
 
     /// The bytes that bring the client's screen (`size` columns × rows) to this frame: the
@@ -115,6 +138,7 @@ impl SessionScreen {
         let mut view = view_rect(&panes);
         let started = Instant::now();
         let mut render_time = std::time::Duration::ZERO;
+        let mut tags = Vec::new();
         match eye.and_then(|id| snap.player(id).map(|p| (id, p))) {
             Some((id, p)) => {
                 if let Some(world) = Arc::get_mut(&mut self.world) {
@@ -127,6 +151,7 @@ impl SessionScreen {
                 self.fb
                     .resize(usize::from(view.width), usize::from(view.height) * 2);
                 let cast = render_view(&state, &mut self.fb);
+                tags = avatars::mark_players(&mut self.fb, &state, &cast, snap, id);
                 render_time = started.elapsed();
                 let screen = Screen {
                     state: &state,
@@ -160,11 +185,24 @@ impl SessionScreen {
             buf.set_style(row, BAR);
             Paragraph::new(Line::raw(header)).render(row, &mut buf);
         }
+        let level = self.presenter.level();
         let bytes = self.presenter.frame(&buf, &self.fb, view);
-        self.stats.record_bytes(bytes.len());
+        self.out.clear();
+        self.out.extend_from_slice(bytes);
+        if !tags.is_empty() {
+            // Inside the synchronized update, when there is one.
+            let at = if self.out.ends_with(SYNC_END) {
+                self.out.len() - SYNC_END.len()
+            } else {
+                self.out.len()
+            };
+            let overlay = avatars::tag_bytes(&tags, (view.x, view.y), level);
+            self.out.splice(at..at, overlay);
+        }
+        self.stats.record_bytes(self.out.len());
         self.stats
             .record(Instant::now(), render_time, started.elapsed() - render_time);
-        bytes
+        &self.out
     }
 }
 
@@ -281,6 +319,66 @@ mod tests {
         let snap = ps.snapshot();
         for size in [(1, 1), (2, 1), (20, 9), (19, 30), (500, 200)] {
             let _ = s.frame(&snap, Some(1), "hdr", size, InputMode::Kitty);
+        }
+    }
+
+    /// Ann looking straight at bob, with bob placed `dist` cells in front of her.
+    fn facing(dist: f64) -> (World, usize, Snapshot) {
+        let (world, sheet) = served();
+        let mut ps = Players::new(Arc::new(world.clone()));
+        ps.join(1, "ann");
+        ps.join(2, "bob");
+        let mut snap = ps.snapshot();
+        // The default map's row y = 5, clear from x = 12 to 26: ann looks east along it.
+        snap.players[0].state.camera =
+            crate::Camera::from_angle(crate::Vec2::new(16.5, 5.5), 0.0, 66.0);
+        snap.players[1].state.camera =
+            crate::Camera::from_angle(crate::Vec2::new(16.5 + dist, 5.5), 0.0, 66.0);
+        (world, sheet, snap)
+    }
+
+    fn view_text(p: &vt100::Parser, view: Rect) -> String {
+        (view.y..view.bottom())
+            .map(|y| p.screen().contents_between(y, view.x, y, view.right()))
+            .collect::<Vec<_>>()
+            .join("\n")
+    }
+
+    #[test]
+    fn a_near_player_wears_its_name_and_colour_and_the_tag_goes_when_it_walks_off() {
+        let size = (100, 30);
+        let Panes::Game { view, .. } = panes_for(size, Toggles::default()) else {
+            panic!("too small")
+        };
+        for level in [ColorLevel::TrueColor, ColorLevel::Ansi256, ColorLevel::Mono] {
+            let (world, sheet, near) = facing(2.5);
+            let bob = near.player(2).expect("bob").color;
+            let mut s = SessionScreen::new(&world, sheet, level);
+            let mut p = vt100::Parser::new(size.1, size.0, 0);
+            p.process(s.frame(&near, Some(1), "", size, InputMode::Emulated));
+            let text = view_text(&p, view);
+            assert!(text.contains("bob"), "{level}: {text}");
+            if level == ColorLevel::TrueColor {
+                // The marker over bob's head is in his minimap colour.
+                let colour = vt100::Color::Rgb(bob.r, bob.g, bob.b);
+                let marked = (view.y..view.bottom()).any(|y| {
+                    (view.x..view.right()).any(|x| {
+                        let c = p.screen().cell(y, x).expect("cell");
+                        !c.contents().chars().any(char::is_alphanumeric)
+                            && (c.fgcolor() == colour || c.bgcolor() == colour)
+                    })
+                });
+                assert!(marked, "no marker in bob's colour");
+            }
+            // Bob walks off down the corridor: his name leaves the view, no letter stays behind.
+            let (_, _, far) = facing(8.0);
+            p.process(s.frame(&far, Some(1), "", size, InputMode::Emulated));
+            let text = view_text(&p, view);
+            assert!(!text.contains("bob"), "{level}: {text}");
+            assert!(
+                !text.contains('b') && !text.contains('o'),
+                "{level}: {text}"
+            );
         }
     }
 }

@@ -59,8 +59,9 @@ impl RunningServer {
         self.stats.snapshot()
     }
 
-    /// Stops accepting, tells every session to end, and waits (up to a few seconds) for them.
-    pub async fn shutdown(self) {
+    /// Stops accepting, tells every session to end, and waits (up to a few seconds) for them;
+    /// returns the totals after that, so sessions that were still running count too.
+    pub async fn shutdown(self) -> StatsSnapshot {
         let _ = self.shutdown.send(true);
         let _ = self.accept.await;
         for _ in 0..50 {
@@ -69,6 +70,7 @@ impl RunningServer {
             }
             tokio::time::sleep(Duration::from_millis(40)).await;
         }
+        self.stats.snapshot()
     }
 }
 
@@ -322,8 +324,7 @@ pub fn run_until_signal(config: ServeConfig, world: World) -> Result<(), String>
         let server = start(config, world).await?;
         wait_for_signal().await.map_err(|e| e.to_string())?;
         log.server("shutting down");
-        let stats = server.stats();
-        server.shutdown().await;
+        let stats = server.shutdown().await;
         log.server(format_args!(
             "served {} connections ({} refused), {} frames, {} bytes",
             stats.connections, stats.refused, stats.frames_sent, stats.bytes_sent

@@ -20,6 +20,7 @@ use russh::ChannelId;
 use tokio::sync::{mpsc, watch};
 use tokio::time::MissedTickBehavior;
 
+use super::ask_colour::{ask_truecolor, SSH_QUERY_PATIENCE};
 use super::config::clamp_size;
 use super::input::{InputEvent, InputParser};
 use super::keys::{route, Routed, COLOUR_KEY};
@@ -28,7 +29,7 @@ use super::players::{PlayerId, Snapshot};
 use super::screen::{panes_for, view_rect, SessionScreen};
 use super::stats::ServeStats;
 use super::world_task::{WorldHandle, WorldMsg};
-use crate::encode::ColorLevel;
+use crate::encode::{ColorLevel, ColourChoice, ColourReason};
 use crate::game::Held;
 use crate::tui::keys::{Controls, InputMode, UiCommand};
 use crate::tui::layout::Toggles;
@@ -105,6 +106,25 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
             })
             .await;
     }
+    // Before the first frame: a TERM guess is checked with the client's terminal itself.
+    let mut early_end = None;
+    let mut entered = false;
+    if s.screen.colour().worth_asking() {
+        // On the alternate screen, so a terminal that shows a query as text shows it there only.
+        entered = true;
+        let (answer, typed) = ask_truecolor(
+            &p.handle,
+            p.channel,
+            ENTER,
+            &mut inputs.data,
+            SSH_QUERY_PATIENCE,
+        )
+        .await;
+        s.screen.set_colour(s.screen.colour().with_answer(answer));
+        if !typed.is_empty() {
+            early_end = keys_early(&mut s, &typed);
+        }
+    }
     let mut snaps = p.world.snapshots();
     let fps = p.fps.clamp(1, 240);
     let period = Duration::from_secs_f64(1.0 / f64::from(fps));
@@ -112,11 +132,12 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
     tick.set_missed_tick_behavior(MissedTickBehavior::Skip);
     let mut last_tick: Option<tokio::time::Instant> = None;
     let mut tally = Tally::default();
-    let mut out = ENTER.to_vec();
+    let mut out = if entered { Vec::new() } else { ENTER.to_vec() };
     let mut keys = Vec::new();
     let end = loop {
         tokio::select! {
             biased;
+            Some(end) = std::future::ready(early_end), if early_end.is_some() => break end,
             _ = shutdown.changed() => break End::Shutdown,
             data = inputs.data.recv() => {
                 let Some(bytes) = data else { break End::ClientGone };
@@ -212,14 +233,25 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
     end
 }
 
+/// Keys the player typed while the colour query ran: parsed now, acted on with the first
+/// snapshot's input (an unfinished escape waits for the usual flush). Returns an end if one
+/// of them quits.
+fn keys_early(s: &mut State, bytes: &[u8]) -> Option<End> {
+    let mut keys = Vec::new();
+    s.parser.feed(bytes, &mut keys);
+    if s.parser.has_pending() {
+        s.pending_since = Some(Instant::now());
+    }
+    s.on_keys(&keys, &Snapshot::default())
+}
+
 /// (snapshot version, size, colour level, eye, panes): everything a frame is drawn from.
-type Shown = (u64, (u16, u16), ColorLevel, Option<PlayerId>, Toggles);
+type Shown = (u64, (u16, u16), ColourChoice, Option<PlayerId>, Toggles);
 
 /// What is on the client's screen and what it asked for; everything the frame depends on.
 struct State {
     spectator: bool,
     me: PlayerId,
-    name: String,
     size: (u16, u16),
     /// Whether the client claimed a bigger terminal than we draw (the header says so).
     clamped: bool,
@@ -237,11 +269,10 @@ struct State {
 
 impl State {
     fn new(p: &SessionParams, size: (u32, u32)) -> Self {
-        let level = level_for_term(&p.term, p.colorterm.as_deref());
+        let colour = level_for_term(&p.term, p.colorterm.as_deref());
         Self {
             spectator: p.spectator,
             me: p.id,
-            name: p.name.clone(),
             size: clamp_size(size.0, size.1),
             clamped: is_clamped(size),
             following: None,
@@ -250,7 +281,11 @@ impl State {
             controls: Controls::new(InputMode::Emulated),
             sent: (Held::default(), usize::MAX),
             last_input: Instant::now(),
-            screen: SessionScreen::new(&p.world_data, p.avatar_sheet, level),
+            screen: {
+                let mut screen = SessionScreen::new(&p.world_data, p.avatar_sheet, colour.level);
+                screen.set_colour(colour);
+                screen
+            },
             shown: None,
         }
     }
@@ -277,8 +312,7 @@ impl State {
                 }
                 InputEvent::Key(k) => match route(k) {
                     Routed::CycleColour => {
-                        let next = self.screen.level().lower().unwrap_or(ColorLevel::TrueColor);
-                        self.screen.set_level(next);
+                        self.screen.set_colour(self.screen.colour().cycled());
                     }
                     Routed::NextTarget => self.following = cycle(snap, self.following, true),
                     Routed::PrevTarget => self.following = cycle(snap, self.following, false),
@@ -287,8 +321,8 @@ impl State {
                 },
             }
         }
-        let toggles = &mut self.screen.toggles;
         for ui in self.controls.take_ui() {
+            let toggles = &mut self.screen.toggles;
             match ui {
                 UiCommand::Quit => return Some(End::Quit),
                 UiCommand::Back if toggles.help => toggles.help = false,
@@ -296,6 +330,9 @@ impl State {
                 UiCommand::ToggleMinimap => toggles.minimap = !toggles.minimap,
                 UiCommand::ToggleDebug => toggles.debug = !toggles.debug,
                 UiCommand::ToggleHelp => toggles.help = !toggles.help,
+                // The colour key is routed before the key map (`Routed::CycleColour`); a
+                // rebinding cannot reach here, but the cycle is the same.
+                UiCommand::CycleColours => self.screen.set_colour(self.screen.colour().cycled()),
             }
         }
         None
@@ -334,14 +371,16 @@ impl State {
         let who = match (eye.and_then(|e| snap.player(e)), self.spectator) {
             (Some(p), true) => format!("watching {} (Tab: next)", p.name),
             (None, true) => "waiting for players (Tab: next)".to_string(),
-            (Some(_), false) => format!("you are {}", self.name),
+            // The world's name for us: unique among those here (`ada-2`).
+            (Some(p), false) => format!("you are {}", p.name),
             (None, false) => "joining...".to_string(),
         };
         let mut line = format!(
-            " halfcast | {who} | {} here: {} | {} | {COLOUR_KEY} colours",
+            " halfcast | {who} | {} here: {} | {} | {} colours",
             names.len(),
             names.join(", "),
-            self.screen.level().name(),
+            self.screen.colour(),
+            COLOUR_KEY.to_ascii_uppercase(),
         );
         if self.clamped {
             let _ = write!(line, " | clamped to {}x{}", self.size.0, self.size.1);
@@ -355,7 +394,7 @@ impl State {
         let key = (
             snap.version,
             self.size,
-            self.screen.level(),
+            self.screen.colour(),
             eye,
             self.screen.toggles,
         );
@@ -375,9 +414,10 @@ fn is_clamped((cols, rows): (u32, u32)) -> bool {
     (u32::from(c), u32::from(r)) != (cols, rows)
 }
 
-/// The colour level for a client's `TERM` (and `COLORTERM`, when its client sends it): the
-/// encoder's own guess, plus terminals known to show 24-bit colour whatever their `TERM` says.
-fn level_for_term(term: &str, colorterm: Option<&str>) -> ColorLevel {
+/// The colour level for a client's `TERM` (and `COLORTERM`, when its client sends it as an env
+/// request): the encoder's own rule, plus terminals known to show 24-bit colour whatever their
+/// `TERM` says.
+fn level_for_term(term: &str, colorterm: Option<&str>) -> ColourChoice {
     const TRUECOLOR_TERMS: [&str; 9] = [
         "truecolor",
         "24bit",
@@ -390,11 +430,18 @@ fn level_for_term(term: &str, colorterm: Option<&str>) -> ColorLevel {
         "contour",
     ];
     let lower = term.to_ascii_lowercase();
+    let env = ColourChoice::from_env(colorterm, Some(term), None);
+    if env.reason == ColourReason::Colorterm {
+        return env;
+    }
     if TRUECOLOR_TERMS.iter().any(|t| lower.contains(t)) {
-        return ColorLevel::TrueColor;
+        return ColourChoice {
+            level: ColorLevel::TrueColor,
+            reason: ColourReason::Term,
+        };
     }
     let term = if term.is_empty() { "dumb" } else { term };
-    ColorLevel::detect(colorterm, Some(term), None)
+    ColourChoice::from_env(colorterm, Some(term), None)
 }
 
 /// The next (or previous) player after `current` in join order, wrapping; `None` if nobody.
@@ -434,15 +481,24 @@ mod tests {
 
     #[test]
     fn term_names_map_to_levels() {
-        assert_eq!(level_for_term("xterm-kitty", None), ColorLevel::TrueColor);
-        assert_eq!(level_for_term("xterm-direct", None), ColorLevel::TrueColor);
-        assert_eq!(level_for_term("xterm-256color", None), ColorLevel::Ansi256);
         assert_eq!(
-            level_for_term("xterm-256color", Some("truecolor")),
+            level_for_term("xterm-kitty", None).level,
             ColorLevel::TrueColor
         );
-        assert_eq!(level_for_term("xterm", None), ColorLevel::Ansi16);
-        assert_eq!(level_for_term("", None), ColorLevel::Mono);
-        assert_eq!(level_for_term("dumb", None), ColorLevel::Mono);
+        assert_eq!(
+            level_for_term("xterm-direct", None).level,
+            ColorLevel::TrueColor
+        );
+        assert_eq!(
+            level_for_term("xterm-256color", None).level,
+            ColorLevel::Ansi256
+        );
+        assert_eq!(
+            level_for_term("xterm-256color", Some("truecolor")).level,
+            ColorLevel::TrueColor
+        );
+        assert_eq!(level_for_term("xterm", None).level, ColorLevel::Ansi16);
+        assert_eq!(level_for_term("", None).level, ColorLevel::Mono);
+        assert_eq!(level_for_term("dumb", None).level, ColorLevel::Mono);
     }
 }

@@ -15,7 +15,7 @@ use super::render::render_view;
 use super::screen::{draw_notice, draw_with_keys, Screen};
 use super::stats::FrameStats;
 use super::terminal::Session;
-use crate::encode::{EncodeOptions, Pacer};
+use crate::encode::{ColourChoice, ColourReason, EncodeOptions, Pacer};
 use crate::framebuffer::Framebuffer;
 use crate::game::{step, GameState};
 use crate::present::Presenter;
@@ -43,6 +43,8 @@ pub struct LoopOptions {
     pub adapt_colours: bool,
     /// Record each frame's input (then every step is exactly 1/fps seconds long).
     pub record: bool,
+    /// Why `encode.level` is what it is (shown in the status line).
+    pub colour_reason: ColourReason,
 }
 
 /// Frame-by-frame input captured while playing, for a `.hcr` replay.
@@ -86,6 +88,7 @@ pub fn run_loop(
     state: GameState,
     options: LoopOptions,
     setup: &super::Setup,
+    early_keys: Vec<crossterm::event::Event>,
     signal: &Arc<AtomicUsize>,
 ) -> io::Result<(Ending, FrameStats, Option<Recording>)> {
     let fps = f64::from(options.fps.max(1));
@@ -106,7 +109,15 @@ pub fn run_loop(
         notice: None,
         hidden: Vec::new(),
     };
-    app.stats.level = Some(options.encode.level);
+    app.stats.level = Some(ColourChoice {
+        level: options.encode.level,
+        reason: options.colour_reason,
+    });
+    // Keys typed while the start-up colour query ran come first.
+    let now = Instant::now();
+    for ev in &early_keys {
+        app.key(ev, now);
+    }
     let period = Duration::from_secs_f64(1.0 / fps);
     let events = Events::spawn()?;
     let mut last = Instant::now();
@@ -119,7 +130,7 @@ pub fn run_loop(
                 break;
             }
             if let Some(ev) = events.next_within(next - now)? {
-                app.controls.handle(&ev, Instant::now());
+                app.key(&ev, Instant::now());
             }
             if signal.load(Ordering::SeqCst) != 0 {
                 break;
@@ -246,7 +257,10 @@ pub fn run_loop(
             let lower = p.level_for(level, MIN_ADAPT_FPS);
             if options.adapt_colours && lower != level {
                 app.presenter.set_level(lower);
-                app.stats.level = Some(lower);
+                app.stats.level = Some(ColourChoice {
+                    level: lower,
+                    reason: ColourReason::Bandwidth,
+                });
                 *p = Pacer::new(options.max_bandwidth.unwrap_or(u64::MAX), fps);
             }
         }
@@ -260,6 +274,19 @@ pub fn run_loop(
 }
 
 impl App {
+    /// One terminal event, read through the key map.
+    fn key(&mut self, ev: &crossterm::event::Event, now: Instant) {
+        self.controls.handle(ev, now);
+    }
+
+    /// The level frames are sent at now, and why.
+    fn presenter_choice(&self) -> ColourChoice {
+        self.stats.level.unwrap_or(ColourChoice {
+            level: self.presenter.level(),
+            reason: ColourReason::Key,
+        })
+    }
+
     /// Applies UI commands; true when the player asked to quit.
     fn ui_commands(&mut self, ui: &[UiCommand]) -> bool {
         for &c in ui {
@@ -270,6 +297,11 @@ impl App {
                 UiCommand::ToggleMinimap => self.toggles.minimap = !self.toggles.minimap,
                 UiCommand::ToggleDebug => self.toggles.debug = !self.toggles.debug,
                 UiCommand::ToggleHelp => self.toggles.help = !self.toggles.help,
+                UiCommand::CycleColours => {
+                    let next = self.presenter_choice().cycled();
+                    self.presenter.set_level(next.level);
+                    self.stats.level = Some(next);
+                }
             }
         }
         false

@@ -22,8 +22,7 @@ pub const ROWS: &[(&[&str], &str)] = &[
     (&["strafe_left", "strafe_right"], "strafe left / right"),
     (&["look_up", "look_down"], "look up / down"),
     (&["centre_pitch"], "look straight ahead again"),
-    (&["jump"], "jump"),
-    (&["crouch"], "crouch (hold)"),
+    (&["jump", "crouch"], "jump / crouch (hold)"),
     (&["use_door"], "open / close the door ahead"),
     (&["night"], "night mode on / off"),
     (&[], "Ray debugger"),
@@ -40,6 +39,7 @@ pub const ROWS: &[(&[&str], &str)] = &[
         &["minimap", "ray_pane"],
         "show / hide the minimap / the ray pane",
     ),
+    (&["colours"], "colours: truecolor > 256 > 16 > mono"),
     (&["help"], "this help"),
     (&["quit"], "quit (esc closes this help; ctrl+c quits)"),
 ];

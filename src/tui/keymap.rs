@@ -21,6 +21,8 @@ pub enum KeyAction {
     Column(i32),
     Minimap,
     RayPane,
+    /// Cycle the colour level (truecolor → 256 → 16 → mono).
+    Colours,
     Help,
     /// Quit (Esc closes the help first).
     Quit,
@@ -149,6 +151,12 @@ pub const ACTIONS: &[(&str, KeyAction, &str, &[&str])] = &[
         KeyAction::RayPane,
         "show / hide the ray (DDA) pane",
         &["i"],
+    ),
+    (
+        "colours",
+        KeyAction::Colours,
+        "colour level: truecolor, 256, 16, mono",
+        &["o"],
     ),
     ("help", KeyAction::Help, "this help", &["?", "h", "f1"]),
     (

@@ -58,6 +58,8 @@ pub enum UiCommand {
     ToggleMinimap,
     ToggleDebug,
     ToggleHelp,
+    /// The colour key: the next colour level (truecolor → 256 → 16 → mono).
+    CycleColours,
 }
 
 /// What a key event turns into.
@@ -92,6 +94,7 @@ fn binding(map: &KeyMap, key: &KeyEvent, paused: bool) -> Option<Binding> {
         KeyAction::Column(by) => Binding::Game(Command::MoveColumn(by)),
         KeyAction::Minimap => Binding::Ui(UiCommand::ToggleMinimap),
         KeyAction::RayPane => Binding::Ui(UiCommand::ToggleDebug),
+        KeyAction::Colours => Binding::Ui(UiCommand::CycleColours),
         KeyAction::Help => Binding::Ui(UiCommand::ToggleHelp),
         KeyAction::Quit if key.code == KeyCode::Esc => Binding::Ui(UiCommand::Back),
         KeyAction::Quit => Binding::Ui(UiCommand::Quit),

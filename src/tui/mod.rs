@@ -5,6 +5,7 @@
 //! every pane into a ratatui buffer. Only [`terminal`] and [`app`] touch the real terminal.
 
 pub mod app;
+pub mod colour_query;
 pub mod config;
 pub mod events;
 pub mod help;
@@ -24,6 +25,7 @@ use std::sync::atomic::AtomicUsize;
 use std::sync::Arc;
 
 use crate::camera::Camera;
+use crate::encode::ColourChoice;
 use crate::world::World;
 
 pub use app::{Ending, LoopOptions, Recording};
@@ -37,6 +39,9 @@ pub struct PlayOptions {
     pub looping: LoopOptions,
     /// Capture the mouse so dragging turns the view.
     pub mouse: bool,
+    /// The colour level from the flag or the environment; a `TERM` guess is checked with the
+    /// terminal itself before the first frame.
+    pub colour: ColourChoice,
     /// Key bindings, speeds and the panes shown at start (from the config file and flags).
     pub setup: Setup,
 }
@@ -77,11 +82,22 @@ pub fn play(
     let mut session = terminal::Session::start(options.mouse, &signal)?;
     let mut state = crate::game::GameState::new(world, camera, 0);
     state.speeds = options.setup.speeds;
+    let mut colour = options.colour;
+    let mut early_keys = Vec::new();
+    if colour.worth_asking() {
+        let (answer, keys) = session.ask_truecolor();
+        colour = colour.with_answer(answer);
+        early_keys = keys;
+    }
+    let mut looping = options.looping;
+    looping.encode.level = colour.level;
+    looping.colour_reason = colour.reason;
     let result = app::run_loop(
         &mut session,
         state,
-        options.looping,
+        looping,
         &options.setup,
+        early_keys,
         &signal,
     );
     drop(session);

@@ -116,7 +116,7 @@ fn draw_minimap(screen: &Screen, revealed: Option<RevealedTrace>, r: Rect, buf: 
     block.render(r, buf);
     let s = screen.state;
     let mut map = Minimap::new(&s.world, &s.camera, &screen.cast.columns)
-        .ascii(screen.stats.level == Some(ColorLevel::Mono))
+        .ascii(screen.stats.level.map(|c| c.level) == Some(ColorLevel::Mono))
         .focus_on_ray(s.debugger.paused)
         .doors(&s.doors);
     if let Some(t) = revealed {

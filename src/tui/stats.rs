@@ -21,8 +21,8 @@ pub struct FrameStats {
     pub bytes_per_frame: f64,
     /// Output rate over the last window, in kbit/s.
     pub kbit_s: f64,
-    /// The colour level frames are sent at (shown in the status line).
-    pub level: Option<crate::encode::ColorLevel>,
+    /// The colour level frames are sent at and why (shown in the status line).
+    pub level: Option<crate::encode::ColourChoice>,
     window_bytes: u64,
     window_start: Option<Instant>,
     window_frames: u32,

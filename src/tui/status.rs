@@ -29,7 +29,7 @@ fn v(s: String) -> Span<'static> {
     Span::styled(s, VALUE)
 }
 
-fn l(s: &'static str) -> Span<'static> {
+fn l(s: impl Into<std::borrow::Cow<'static, str>>) -> Span<'static> {
     Span::raw(s)
 }
 
@@ -100,9 +100,11 @@ pub fn status_line(
                 v(format!("{:.0}", stats.kbit_s)),
                 l(" kbit/s"),
             ];
-            if let Some(level) = stats.level {
-                out.push(l(" "));
-                out.push(v(level.name().to_owned()));
+            // The colour level and how it was decided (`256 (TERM)`): O cycles it.
+            if let Some(choice) = stats.level {
+                out.push(l("  "));
+                out.push(v(choice.level.name().to_owned()));
+                out.push(l(format!(" ({})", choice.reason.label())));
             }
             segs.push(seg(4, out));
         }
@@ -112,7 +114,7 @@ pub fn status_line(
         vec![l("pos "), v(format!("{:.2},{:.2}", cam.pos.x, cam.pos.y))],
     ));
     // Mono terminals get plain ASCII (the degree sign is not).
-    let deg = if stats.level == Some(crate::encode::ColorLevel::Mono) {
+    let deg = if stats.level.map(|c| c.level) == Some(crate::encode::ColorLevel::Mono) {
         " deg"
     } else {
         "°"
@@ -125,11 +127,12 @@ pub fn status_line(
         ],
     ));
     segs.push(seg(
-        1,
+        0,
         vec![l("FOV "), v(format!("{:.0}{deg}", cam.fov_deg()))],
     ));
     segs.push(seg(2, vec![v(state.world.map.name.clone())]));
-    segs.push(seg(0, vec![l(mode.label())]));
+    // Above the FOV (which never changes in play): room for the colour level's reason.
+    segs.push(seg(1, vec![l(mode.label())]));
     segs.push(seg(
         10,
         vec![
@@ -209,6 +212,24 @@ mod tests {
             "q quit",
         ] {
             assert!(t.contains(part), "{part}: {t}");
+        }
+    }
+
+    #[test]
+    fn the_colour_level_shows_with_its_reason() {
+        let world = Arc::new(World::default_world());
+        let cam = Camera::from_angle(world.map.start.pos(), 90.0, 66.0);
+        let state = GameState::new(world, cam, 80);
+        let mut stats = FrameStats::default();
+        stats.record_bytes(1000);
+        stats.level = Some(crate::encode::ColourChoice::from_env(
+            None,
+            Some("xterm-256color"),
+            None,
+        ));
+        for width in [200, 100] {
+            let t = status_line(&state, &stats, InputMode::Emulated, None, width).to_string();
+            assert!(t.contains("kbit/s  256 (TERM)"), "{width}: {t}");
         }
     }
 

@@ -1,10 +1,10 @@
 //! The terminal session: raw mode, alternate screen, hidden cursor, kitty keys, mouse — and
 //! putting all of it back on every way out (normal return, error, panic, signal).
 
-use std::io::{self, IsTerminal};
+use std::io::{self, IsTerminal, Read};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Once};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use crossterm::event::{
     DisableFocusChange, DisableMouseCapture, EnableFocusChange, EnableMouseCapture,
@@ -16,6 +16,7 @@ use crossterm::terminal::{
 };
 use crossterm::{cursor, execute, queue, style};
 
+use super::colour_query::{ReplyScanner, QUERY, QUERY_PATIENCE};
 use super::keys::InputMode;
 use super::tty_out::{write_within, TtyOut};
 
@@ -126,6 +127,38 @@ impl Session {
         self.mode
     }
 
+    /// Asks the terminal whether it shows 24-bit colour ([`super::colour_query`]), before the
+    /// first frame. Waits for the DA1 reply that ends the answers, at most
+    /// [`QUERY_PATIENCE`]; keys typed meanwhile come back as events, in order, for the game.
+    ///
+    /// Returns `Some(true)`/`Some(false)` for an answer, `None` when the terminal said nothing
+    /// (tmux 3.3, a closed input, a terminal that ignores the queries).
+    pub fn ask_truecolor(&mut self) -> (Option<bool>, Vec<crossterm::event::Event>) {
+        let Some(mut input) = open_input_nonblocking() else {
+            return (None, Vec::new());
+        };
+        if self.write_frame(QUERY).is_err() {
+            return (None, Vec::new());
+        }
+        let deadline = Instant::now() + QUERY_PATIENCE;
+        let mut scanner = ReplyScanner::default();
+        let mut buf = [0u8; 256];
+        while !scanner.done() && Instant::now() < deadline {
+            match input.read(&mut buf) {
+                // End of input: nothing will ever answer.
+                Ok(0) => break,
+                Ok(n) => scanner.feed(&buf[..n]),
+                Err(e) if e.kind() == io::ErrorKind::WouldBlock => {
+                    std::thread::sleep(Duration::from_millis(2));
+                }
+                Err(e) if e.kind() == io::ErrorKind::Interrupted => {}
+                Err(_) => break,
+            }
+        }
+        let (answer, rest) = scanner.finish();
+        (answer, keys_from_bytes(&rest))
+    }
+
     /// The terminal size now, in cells.
     ///
     /// # Errors
@@ -182,6 +215,53 @@ pub fn restore() {
     let _ = disable_raw_mode();
 }
 
+/// Keys in raw terminal bytes, as the crossterm events the game's key map takes (the colour
+/// key included, as a plain `o` press).
+fn keys_from_bytes(bytes: &[u8]) -> Vec<crossterm::event::Event> {
+    use crate::serve::input::{InputEvent, InputParser};
+    use crate::serve::keys::{route, Routed, COLOUR_KEY};
+    use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
+    let mut parsed = Vec::new();
+    let mut parser = InputParser::new();
+    parser.feed(bytes, &mut parsed);
+    parser.flush(&mut parsed);
+    parsed
+        .into_iter()
+        .filter_map(|ev| match ev {
+            InputEvent::Key(k) => match route(k) {
+                Routed::Tui(ev) => Some(ev),
+                Routed::CycleColour => Some(Event::Key(KeyEvent::new(
+                    KeyCode::Char(COLOUR_KEY),
+                    KeyModifiers::NONE,
+                ))),
+                _ => None,
+            },
+            InputEvent::KittyFlags(_) => None,
+        })
+        .collect()
+}
+
+/// A second, non-blocking handle on the terminal behind stdin (stdin itself keeps blocking
+/// reads for the input thread that starts later).
+#[cfg(unix)]
+fn open_input_nonblocking() -> Option<std::fs::File> {
+    use std::os::unix::fs::OpenOptionsExt;
+    let path = std::fs::read_link("/proc/self/fd/0")
+        .ok()
+        .filter(|p| p.starts_with("/dev/"))
+        .unwrap_or_else(|| "/dev/tty".into());
+    std::fs::OpenOptions::new()
+        .read(true)
+        .custom_flags(libc::O_NONBLOCK | libc::O_NOCTTY)
+        .open(path)
+        .ok()
+}
+
+#[cfg(not(unix))]
+fn open_input_nonblocking() -> Option<std::fs::File> {
+    None
+}
+
 /// Restores the terminal before the default panic message, so the message is readable.
 fn install_panic_hook() {
     static ONCE: Once = Once::new();
@@ -192,4 +272,23 @@ fn install_panic_hook() {
             previous(info);
         }));
     });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crossterm::event::{Event, KeyCode};
+
+    #[test]
+    fn typed_bytes_become_key_events_in_order() {
+        let evs = keys_from_bytes(b"?w\x1b[A");
+        let codes: Vec<KeyCode> = evs
+            .iter()
+            .filter_map(|e| match e {
+                Event::Key(k) => Some(k.code),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(codes, [KeyCode::Char('?'), KeyCode::Char('w'), KeyCode::Up]);
+    }
 }
