@@ -94,19 +94,24 @@ pub fn status_line(
             ],
         ));
         if stats.bytes_per_frame > 0.0 {
-            let mut out = vec![
+            let out = vec![
                 v(format!("{:.1}", stats.bytes_per_frame / 1000.0)),
                 l(" kB/f "),
                 v(format!("{:.0}", stats.kbit_s)),
                 l(" kbit/s"),
             ];
-            // The colour level and how it was decided (`256 (TERM)`): O cycles it.
-            if let Some(choice) = stats.level {
-                out.push(l("  "));
-                out.push(v(choice.level.name().to_owned()));
-                out.push(l(format!(" ({})", choice.reason.label())));
-            }
             segs.push(seg(4, out));
+        }
+        // The colour level and how it was decided (`256 (TERM)`; O cycles it): kept at 80
+        // columns, since a player who sees grey should learn why at a glance.
+        if let Some(choice) = stats.level {
+            segs.push(seg(
+                7,
+                vec![
+                    v(choice.level.name().to_owned()),
+                    l(format!(" ({})", choice.reason.label())),
+                ],
+            ));
         }
     }
     segs.push(seg(
@@ -227,9 +232,15 @@ mod tests {
             Some("xterm-256color"),
             None,
         ));
-        for width in [200, 100] {
+        // Also at 80 columns, the size most people play at (the pane beside the view takes
+        // none of the status row).
+        for width in [200, 100, 80] {
             let t = status_line(&state, &stats, InputMode::Emulated, None, width).to_string();
-            assert!(t.contains("kbit/s  256 (TERM)"), "{width}: {t}");
+            assert!(t.contains("256 (TERM)"), "{width}: {t}");
+            assert!(
+                t.contains("pos 15.50,5.50") && t.contains("q quit"),
+                "{width}: {t}"
+            );
         }
     }
 
