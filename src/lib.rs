@@ -39,6 +39,7 @@ pub mod color;
 pub mod encode;
 pub mod framebuffer;
 pub mod game;
+pub mod input_file;
 pub mod map;
 pub mod output;
 pub mod present;

@@ -5,9 +5,11 @@ use std::path::{Path, PathBuf};
 
 use crate::color::Rgb;
 use crate::door::DoorState;
+use crate::input_file::read_regular_capped;
 use crate::lightmap::LightMap;
 use crate::map::{Cell, ColourKey, Map, SpriteDef, Surface, TextureRef};
 use crate::sprite::Sprite;
+use crate::texture::decode::MAX_IMAGE_FILE_BYTES;
 use crate::texture::sheet::SpriteSheet;
 use crate::texture::{builtin, Texture};
 use crate::vec2::Vec2;
@@ -401,11 +403,16 @@ fn read_texture(source: &TextureSource, path: &str) -> Result<Texture, String> {
             builtin::by_name(stem).ok_or_else(|| "no embedded texture of that name".to_owned())
         }
         TextureSource::Dir(dir) => {
-            let full = dir.join(path);
-            let bytes = std::fs::read(&full).map_err(|e| e.to_string())?;
+            let bytes = read_image_file(&dir.join(path))?;
             Texture::decode(&bytes)
         }
     }
+}
+
+/// An image file's bytes: only a regular file is opened (a FIFO would block the load, a device
+/// would read forever), and at most [`MAX_IMAGE_FILE_BYTES`] of it.
+fn read_image_file(path: &Path) -> Result<Vec<u8>, String> {
+    read_regular_capped(path, MAX_IMAGE_FILE_BYTES).map_err(|e| e.to_string())
 }
 
 fn read_sheet(source: &TextureSource, path: &str, key: ColourKey) -> Result<SpriteSheet, String> {
@@ -418,7 +425,7 @@ fn read_sheet(source: &TextureSource, path: &str, key: ColourKey) -> Result<Spri
             builtin::sheet_by_name(stem).ok_or_else(|| "no embedded sprite of that name".to_owned())
         }
         TextureSource::Dir(dir) => {
-            let bytes = std::fs::read(dir.join(path)).map_err(|e| e.to_string())?;
+            let bytes = read_image_file(&dir.join(path))?;
             SpriteSheet::decode(&bytes, key)
         }
     }
@@ -440,11 +447,7 @@ impl World {
     /// An unreadable file or a broken rule ([`LoadError::Map`]), or under `strict` a texture.
     pub fn from_file(path: &Path, strict: bool) -> Result<(Self, Warnings), LoadError> {
         let name = path.display().to_string();
-        let bytes = std::fs::read(path).map_err(|e| crate::map::MapError {
-            file: name.clone(),
-            at: None,
-            kind: crate::map::MapErrorKind::Io(e.to_string()),
-        })?;
+        let bytes = crate::map::read_map_file(path)?;
         let map = crate::map::parse_map(&name, &bytes)?;
         let dir = path
             .parent()
