@@ -38,6 +38,7 @@ pub mod cast;
 pub mod color;
 pub mod encode;
 pub mod framebuffer;
+pub mod fuzzing;
 pub mod game;
 pub mod input_file;
 pub mod map;

@@ -229,6 +229,27 @@ mod tests {
     }
 
     #[test]
+    fn a_cursor_far_away_is_refused_or_cut_to_the_limit() {
+        assert_eq!(
+            try_from_ansi(b"\x1b[65535;65535Hx").unwrap_err(),
+            "ANSI frame is 65535x65535 cells; the limit is 4000x2000"
+        );
+        let huge = b"\x1b[99999999999999999999999;18446744073709551615H\x1b[18446744073709551615Cx";
+        assert!(try_from_ansi(huge).is_err());
+        let cut = from_ansi(b"\x1b[3000;5Hx");
+        assert_eq!((cut.cols, cut.rows), (5, 2000));
+    }
+
+    #[test]
+    fn oversized_text_frames_are_refused() {
+        let tall = "x\n".repeat(2001);
+        assert_eq!(
+            parse_frame(tall.as_bytes()).unwrap_err(),
+            "text frame is 1x2001 cells; the limit is 4000x2000"
+        );
+    }
+
+    #[test]
     fn cursor_positioned_frames_size_themselves() {
         let f = from_ansi(b"\x1b[3;5Hab\x1b[1;1Hc");
         assert_eq!((f.cols, f.rows), (6, 3));

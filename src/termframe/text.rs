@@ -157,4 +157,14 @@ mod tests {
         );
         assert!(from_cells_text("nope").is_err());
     }
+
+    #[test]
+    fn a_size_whose_row_length_would_wrap_is_refused() {
+        // 17216961135462248175 × 15 wraps to 1 in 64 bits: an empty row once matched it.
+        assert_eq!(
+            from_cells_text("halfcast-cells v1 17216961135462248175x1\n\n").unwrap_err(),
+            "line 1: size 17216961135462248175x1 is over the limit of 4000x2000 cells"
+        );
+        assert!(from_cells_text("halfcast-cells v1 4001x1\n").is_err());
+    }
 }
