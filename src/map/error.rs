@@ -68,7 +68,7 @@ pub enum MapErrorKind {
     Io(String),
     #[error("file is larger than {0} bytes (the limit for a map)")]
     FileTooLarge(u64),
-    #[error("too many {what} (the limit is {limit})")]
+    #[error("too many {what}; the limit is {limit}")]
     TooMany { what: &'static str, limit: usize },
     #[error("map is too large for LIGHT ({cells} cells; lights are baked over at most {limit})")]
     TooLargeToLight { cells: usize, limit: usize },
