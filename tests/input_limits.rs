@@ -249,3 +249,28 @@ fn diff_stops_reading_at_the_byte_cap() {
         "/dev/zero: cannot read: file is larger than 67108864 bytes (the limit)",
     );
 }
+
+#[test]
+fn a_maps_images_share_one_pixel_budget() {
+    // Three distinct 4096×4096 files: each is within the per-image limit, but together they pass
+    // the map's 2^25-pixel budget, so the third falls back like a missing texture.
+    let dir = tempfile::tempdir().unwrap();
+    let mut png = Vec::new();
+    image::GrayImage::new(4096, 4096)
+        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .unwrap();
+    for name in ["a.png", "b.png", "c.png"] {
+        std::fs::write(dir.path().join(name), &png).unwrap();
+    }
+    let map = dir.path().join("m.cub");
+    std::fs::write(
+        &map,
+        "NO a.png\nSO b.png\nWE c.png\nEA a.png\nF 1,2,3\nC 4,5,6\n\n111\n1N1\n111\n",
+    )
+    .unwrap();
+    let map = map.to_str().unwrap();
+    refused(
+        &["render", "--strict", map, "--format", "txt"],
+        &format!("{map}:3:4: cannot load texture 'c.png': the map's images together would exceed 33554432 pixels (the limit)"),
+    );
+}

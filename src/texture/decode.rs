@@ -27,6 +27,20 @@ pub fn decode_within(bytes: &[u8], max_w: u32, max_h: u32) -> Result<DynamicImag
         .map_err(|e| e.to_string())?;
     let mut decoder = reader.into_decoder().map_err(|e| e.to_string())?;
     let (w, h) = decoder.dimensions();
+    check_size((w, h), (max_w, max_h))?;
+    let mut limits = Limits::default();
+    limits.max_image_width = Some(max_w);
+    limits.max_image_height = Some(max_h);
+    limits.max_alloc = Some(MAX_DECODE_ALLOC);
+    decoder.set_limits(limits).map_err(|e| e.to_string())?;
+    DynamicImage::from_decoder(decoder).map_err(|e| e.to_string())
+}
+
+/// Refuses an empty image or one over `max` (the message names both sizes).
+///
+/// # Errors
+/// "image has no pixels" or "image is WxH pixels; the limit is MxN".
+pub fn check_size((w, h): (u32, u32), (max_w, max_h): (u32, u32)) -> Result<(), String> {
     if w == 0 || h == 0 {
         return Err("image has no pixels".into());
     }
@@ -35,12 +49,19 @@ pub fn decode_within(bytes: &[u8], max_w: u32, max_h: u32) -> Result<DynamicImag
             "image is {w}x{h} pixels; the limit is {max_w}x{max_h}"
         ));
     }
-    let mut limits = Limits::default();
-    limits.max_image_width = Some(max_w);
-    limits.max_image_height = Some(max_h);
-    limits.max_alloc = Some(MAX_DECODE_ALLOC);
-    decoder.set_limits(limits).map_err(|e| e.to_string())?;
-    DynamicImage::from_decoder(decoder).map_err(|e| e.to_string())
+    Ok(())
+}
+
+/// The width and height an image's header claims, without decoding any pixel.
+///
+/// # Errors
+/// Not a readable image header.
+pub fn image_dimensions(bytes: &[u8]) -> Result<(u32, u32), String> {
+    ImageReader::new(Cursor::new(bytes))
+        .with_guessed_format()
+        .map_err(|e| e.to_string())?
+        .into_dimensions()
+        .map_err(|e| e.to_string())
 }
 
 /// [`decode_within`] at the texture limit ([`MAX_TEXTURE_SIDE`] on both sides).
