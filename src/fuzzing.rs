@@ -16,34 +16,45 @@ pub const FUZZ_FILE: &str = "fuzz.input";
 
 /// The map loader: parse, then (when valid) load with the embedded textures and bake its lights.
 ///
+/// Returns whether the input was accepted (the stable loop counts them, to show how deep the
+/// mutants reach).
+///
 /// # Panics
 /// On a finding: an error that does not name its file.
-pub fn map_loader(data: &[u8]) {
+pub fn map_loader(data: &[u8]) -> bool {
     match parse_map(FUZZ_FILE, data) {
         Ok(map) => {
             let loaded = World::load(map, &TextureSource::Embedded, false);
             assert!(loaded.is_ok(), "non-strict loading never fails");
+            true
         }
         Err(e) => {
             let msg = e.to_string();
             assert!(msg.starts_with(FUZZ_FILE), "error without its file: {msg}");
+            false
         }
     }
 }
 
 /// The `.hcr` replay reader.
 ///
+/// Returns whether the input was accepted.
+///
 /// # Panics
 /// On a finding: an error without its file, or more frames than the format allows.
-pub fn replay_reader(data: &[u8]) {
+pub fn replay_reader(data: &[u8]) -> bool {
     let Ok(text) = std::str::from_utf8(data) else {
-        return;
+        return false;
     };
     match Replay::parse(FUZZ_FILE, text) {
-        Ok(r) => assert!(r.frames.len() <= crate::replay::MAX_FRAMES),
+        Ok(r) => {
+            assert!(r.frames.len() <= crate::replay::MAX_FRAMES);
+            true
+        }
         Err(e) => {
             let msg = e.to_string();
             assert!(msg.starts_with(FUZZ_FILE), "error without its file: {msg}");
+            false
         }
     }
 }
@@ -63,19 +74,23 @@ fn check_frame(f: &TermFrame) {
 /// The frame parsers behind `halfcast diff`: PNG, cells text, ANSI (through the terminal
 /// model) and plain text.
 ///
+/// Returns whether the input was accepted.
+///
 /// # Panics
 /// On a finding: a frame over [`MAX_FRAME`] or whose cells do not match its size.
-pub fn frame_parser(data: &[u8]) {
-    if let Ok((frame, _)) = parse_frame(data) {
-        check_frame(&frame);
-    }
+pub fn frame_parser(data: &[u8]) -> bool {
+    parse_frame(data)
+        .map(|(frame, _)| check_frame(&frame))
+        .is_ok()
 }
 
 /// The SSH server's keystroke parser, fed in pieces split where the first byte says.
 ///
+/// Returns whether the input produced any event.
+///
 /// # Panics
 /// On a finding: an unfinished sequence buffered beyond [`MAX_SEQUENCE`] bytes.
-pub fn ssh_input(data: &[u8]) {
+pub fn ssh_input(data: &[u8]) -> bool {
     let split = data.first().map_or(1, |&b| usize::from(b % 16) + 1);
     let mut parser = InputParser::new();
     let mut events = Vec::new();
@@ -96,6 +111,7 @@ pub fn ssh_input(data: &[u8]) {
     parser.flush(&mut events);
     assert!(!parser.has_pending());
     assert!(events.len() <= data.len() + 1);
+    !events.is_empty()
 }
 
 #[cfg(test)]

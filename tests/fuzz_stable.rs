@@ -4,8 +4,9 @@
 //! Seeds come from `tests/fixtures`, `maps/`, `tests/images`, `tests/snapshots` and the shared
 //! cub3D corpus (`../shared/corpus`, or `HALFCAST_CORPUS`; skipped with a notice when absent),
 //! plus a few built here. Each iteration applies 1–4 mutations (bit flips, byte sets, inserts of
-//! interesting bytes and numbers, deletions, duplications, splices with another seed).
-//! `HALFCAST_FUZZ_ITERS` sets the iterations per target (default 4000), `HALFCAST_FUZZ_SEED`
+//! interesting bytes and numbers, deletions, duplications, splices with another input); mutants
+//! that a target accepts join the pool, so later mutants start from deeper inputs.
+//! `HALFCAST_FUZZ_ITERS` sets the iterations per target (default 3000), `HALFCAST_FUZZ_SEED`
 //! the random seed. A panic, or an input still running after [`HANG`], is a finding: the input
 //! is written to `target/fuzz-findings/` and the test fails naming it.
 
@@ -22,6 +23,9 @@ const HANG: Duration = Duration::from_secs(60);
 /// Peak memory of the whole test process allowed (all four targets run at once): an input that
 /// made a loader allocate without bound would pass it.
 const MAX_RSS_KIB: u64 = 2 << 20;
+
+/// Most inputs kept to mutate from (the seeds plus accepted mutants).
+const MAX_POOL: usize = 4096;
 
 /// Inputs are cut to this many bytes after mutation (the loaders' own caps are far larger; the
 /// point is many varied inputs, not big ones).
@@ -228,7 +232,7 @@ fn iterations() -> usize {
     std::env::var("HALFCAST_FUZZ_ITERS")
         .ok()
         .and_then(|v| v.parse().ok())
-        .unwrap_or(4000)
+        .unwrap_or(3000)
 }
 
 /// The process's peak resident memory in KiB (Linux; 0 elsewhere).
@@ -255,7 +259,7 @@ fn save_finding(name: &str, data: &[u8]) -> PathBuf {
 
 /// Runs `target` on the seeds and `iterations()` mutants on a worker thread, so a panic is
 /// caught and a hang noticed; fails listing every finding.
-fn run(name: &str, target: fn(&[u8]), seeds: Vec<Vec<u8>>) {
+fn run(name: &str, target: fn(&[u8]) -> bool, seeds: Vec<Vec<u8>>) {
     assert!(!seeds.is_empty(), "{name}: no seeds");
     let seed = std::env::var("HALFCAST_FUZZ_SEED")
         .ok()
@@ -263,7 +267,7 @@ fn run(name: &str, target: fn(&[u8]), seeds: Vec<Vec<u8>>) {
         .unwrap_or(0x9E37_79B9_7F4A_7C15u64);
     let mut rng = Rng(seed ^ name.len() as u64 ^ 1);
     let (to_worker, inputs) = mpsc::channel::<Vec<u8>>();
-    let (to_main, results) = mpsc::channel::<Result<(), String>>();
+    let (to_main, results) = mpsc::channel::<Result<bool, String>>();
     std::thread::spawn(move || {
         for data in inputs {
             let outcome = std::panic::catch_unwind(|| target(&data)).map_err(|p| {
@@ -280,18 +284,29 @@ fn run(name: &str, target: fn(&[u8]), seeds: Vec<Vec<u8>>) {
     let total = iterations();
     let mut findings = Vec::new();
     let mut slowest = Duration::ZERO;
+    let mut valid = 0;
     let started = Instant::now();
-    for i in 0..seeds.len() + total {
-        let data = if i < seeds.len() {
-            seeds[i].clone()
+    let first = seeds.len();
+    let mut pool = seeds;
+    for i in 0..first + total {
+        let data = if i < first {
+            pool[i].clone()
         } else {
-            let base = rng.below(seeds.len());
-            mutate(&mut rng, &seeds, &seeds[base])
+            let base = rng.below(pool.len());
+            mutate(&mut rng, &pool, &pool[base])
         };
         let t0 = Instant::now();
         to_worker.send(data.clone()).expect("worker alive");
         match results.recv_timeout(HANG) {
-            Ok(Ok(())) => {}
+            Ok(Ok(accepted)) => {
+                if accepted && i >= first {
+                    valid += 1;
+                    // Accepted mutants join the pool: later ones start from deeper inputs.
+                    if pool.len() < MAX_POOL {
+                        pool.push(data);
+                    }
+                }
+            }
             Ok(Err(msg)) => {
                 findings.push(format!(
                     "panic: {msg} ({})",
@@ -309,8 +324,8 @@ fn run(name: &str, target: fn(&[u8]), seeds: Vec<Vec<u8>>) {
         slowest = slowest.max(t0.elapsed());
     }
     eprintln!(
-        "fuzz {name}: {} seeds + {total} mutants in {:.1?}, slowest input {slowest:.1?}, peak RSS {} MiB, {} findings",
-        seeds.len(),
+        "fuzz {name}: {} seeds + {total} mutants ({valid} accepted) in {:.1?}, slowest input {slowest:.1?}, peak RSS {} MiB, {} findings",
+        first,
         started.elapsed(),
         peak_rss_kib() / 1024,
         findings.len()
