@@ -111,7 +111,15 @@ fn extent(bytes: &[u8]) -> (usize, usize) {
                 }
                 let nums: Vec<usize> = params
                     .split(';')
-                    .map(|p| p.trim_start_matches('?').parse().unwrap_or(usize::MAX))
+                    .map(|p| {
+                        let p = p.trim_start_matches('?');
+                        // Empty or not a number: the default. All digits but too big: huge.
+                        if p.is_empty() || !p.bytes().all(|b| b.is_ascii_digit()) {
+                            0
+                        } else {
+                            p.parse().unwrap_or(usize::MAX)
+                        }
+                    })
                     .collect();
                 let n = |k: usize| nums.get(k).copied().filter(|&v| v > 0).unwrap_or(1);
                 match last {
@@ -247,6 +255,13 @@ mod tests {
             parse_frame(tall.as_bytes()).unwrap_err(),
             "text frame is 1x2001 cells; the limit is 4000x2000"
         );
+    }
+
+    #[test]
+    fn moves_without_a_number_move_by_one() {
+        let f = try_from_ansi(b"\x1b[?2026h\x1b[2J\x1b[Hab\x1b[B\x1b[Cc\x1b[?2026l").unwrap();
+        assert_eq!((f.cols, f.rows), (4, 2));
+        assert_eq!(f.cell(3, 1).glyph, 'c');
     }
 
     #[test]
