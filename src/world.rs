@@ -1,13 +1,17 @@
 //! A map with its textures loaded: everything the rasterizer needs to paint.
 
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
 use crate::color::Rgb;
 use crate::door::DoorState;
+use crate::input_file::read_regular_capped;
 use crate::lightmap::LightMap;
 use crate::map::{Cell, ColourKey, Map, SpriteDef, Surface, TextureRef};
 use crate::sprite::Sprite;
+use crate::texture::decode::{
+    check_size, image_dimensions, MAX_IMAGE_FILE_BYTES, MAX_TEXTURE_SIDE,
+};
 use crate::texture::sheet::SpriteSheet;
 use crate::texture::{builtin, Texture};
 use crate::vec2::Vec2;
@@ -113,6 +117,9 @@ impl World {
             warnings: Vec::new(),
             warned: HashSet::new(),
             sheets: Vec::new(),
+            loaded: HashMap::new(),
+            loaded_sheets: HashMap::new(),
+            budget: MAX_MAP_TEXELS,
         };
         let faces: Vec<usize> = map
             .faces
@@ -310,6 +317,12 @@ struct Loader<'a> {
     warnings: Warnings,
     warned: HashSet<String>,
     sheets: Vec<SpriteSheet>,
+    /// Each texture path's outcome, so a file named by many lines is read and decoded once.
+    loaded: HashMap<String, Result<usize, String>>,
+    /// The same for sprite sheets (the colour key is part of the result).
+    loaded_sheets: HashMap<(String, ColourKey), Result<usize, String>>,
+    /// Texels the map's own image files may still add (see [`MAX_MAP_TEXELS`]).
+    budget: usize,
 }
 
 impl Loader<'_> {
@@ -337,8 +350,18 @@ impl Loader<'_> {
         key: ColourKey,
         fallback: &str,
     ) -> Result<usize, TextureError> {
-        match read_sheet(self.source, &r.path, key) {
-            Ok(t) => Ok(self.push_sheet(t)),
+        let cache_key = (r.path.clone(), key);
+        let outcome = match self.loaded_sheets.get(&cache_key) {
+            Some(known) => known.clone(),
+            None => {
+                let read = read_sheet(self.source, &r.path, key, &mut self.budget);
+                let outcome = read.map(|t| self.push_sheet(t));
+                self.loaded_sheets.insert(cache_key, outcome.clone());
+                outcome
+            }
+        };
+        match outcome {
+            Ok(i) => Ok(i),
             Err(reason) => {
                 self.fall_back(r, reason, fallback, "sprite")?;
                 Ok(self.builtin_sheet(fallback))
@@ -354,8 +377,17 @@ impl Loader<'_> {
     }
 
     fn load(&mut self, r: &TextureRef, fallback: &str) -> Result<usize, TextureError> {
-        match read_texture(self.source, &r.path) {
-            Ok(t) => Ok(self.push(t)),
+        let outcome = match self.loaded.get(&r.path) {
+            Some(known) => known.clone(),
+            None => {
+                let read = read_texture(self.source, &r.path, &mut self.budget);
+                let outcome = read.map(|t| self.push(t));
+                self.loaded.insert(r.path.clone(), outcome.clone());
+                outcome
+            }
+        };
+        match outcome {
+            Ok(i) => Ok(i),
             Err(reason) => {
                 self.fall_back(r, reason, fallback, "texture")?;
                 Ok(self.builtin(fallback))
@@ -391,7 +423,33 @@ impl Loader<'_> {
     }
 }
 
-fn read_texture(source: &TextureSource, path: &str) -> Result<Texture, String> {
+/// Most texels all of a map's own image files may add up to (two images of the largest size):
+/// each distinct file is decoded once, but a map can name dozens of texture slots and thousands
+/// of sprites, each a different 4096×4096 file. Past it, a texture falls back like a missing one.
+pub const MAX_MAP_TEXELS: usize = 1 << 25;
+
+/// An image file within the map's remaining texel `budget`: its header is read, its size
+/// checked, and only then is it decoded (the budget is then spent).
+fn read_budgeted<T>(
+    path: &Path,
+    budget: &mut usize,
+    decode: impl FnOnce(&[u8]) -> Result<T, String>,
+) -> Result<T, String> {
+    let bytes = read_image_file(path)?;
+    let (w, h) = image_dimensions(&bytes)?;
+    check_size((w, h), (MAX_TEXTURE_SIDE, MAX_TEXTURE_SIDE))?;
+    let texels = w as usize * h as usize;
+    if texels > *budget {
+        return Err(format!(
+            "the map's images together would exceed {MAX_MAP_TEXELS} pixels (the limit)"
+        ));
+    }
+    let decoded = decode(&bytes)?;
+    *budget -= texels;
+    Ok(decoded)
+}
+
+fn read_texture(source: &TextureSource, path: &str, budget: &mut usize) -> Result<Texture, String> {
     match source {
         TextureSource::Embedded => {
             let stem = Path::new(path)
@@ -400,15 +458,22 @@ fn read_texture(source: &TextureSource, path: &str) -> Result<Texture, String> {
                 .unwrap_or_default();
             builtin::by_name(stem).ok_or_else(|| "no embedded texture of that name".to_owned())
         }
-        TextureSource::Dir(dir) => {
-            let full = dir.join(path);
-            let bytes = std::fs::read(&full).map_err(|e| e.to_string())?;
-            Texture::decode(&bytes)
-        }
+        TextureSource::Dir(dir) => read_budgeted(&dir.join(path), budget, Texture::decode),
     }
 }
 
-fn read_sheet(source: &TextureSource, path: &str, key: ColourKey) -> Result<SpriteSheet, String> {
+/// An image file's bytes: only a regular file is opened (a FIFO would block the load, a device
+/// would read forever), and at most [`MAX_IMAGE_FILE_BYTES`] of it.
+fn read_image_file(path: &Path) -> Result<Vec<u8>, String> {
+    read_regular_capped(path, MAX_IMAGE_FILE_BYTES).map_err(|e| e.to_string())
+}
+
+fn read_sheet(
+    source: &TextureSource,
+    path: &str,
+    key: ColourKey,
+    budget: &mut usize,
+) -> Result<SpriteSheet, String> {
     match source {
         TextureSource::Embedded => {
             let stem = Path::new(path)
@@ -418,8 +483,7 @@ fn read_sheet(source: &TextureSource, path: &str, key: ColourKey) -> Result<Spri
             builtin::sheet_by_name(stem).ok_or_else(|| "no embedded sprite of that name".to_owned())
         }
         TextureSource::Dir(dir) => {
-            let bytes = std::fs::read(dir.join(path)).map_err(|e| e.to_string())?;
-            SpriteSheet::decode(&bytes, key)
+            read_budgeted(&dir.join(path), budget, |b| SpriteSheet::decode(b, key))
         }
     }
 }
@@ -440,11 +504,7 @@ impl World {
     /// An unreadable file or a broken rule ([`LoadError::Map`]), or under `strict` a texture.
     pub fn from_file(path: &Path, strict: bool) -> Result<(Self, Warnings), LoadError> {
         let name = path.display().to_string();
-        let bytes = std::fs::read(path).map_err(|e| crate::map::MapError {
-            file: name.clone(),
-            at: None,
-            kind: crate::map::MapErrorKind::Io(e.to_string()),
-        })?;
+        let bytes = crate::map::read_map_file(path)?;
         let map = crate::map::parse_map(&name, &bytes)?;
         let dir = path
             .parent()

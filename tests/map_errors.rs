@@ -35,6 +35,11 @@ const CASES: &[(&str, &str)] = &[
     ("invalid_not_closed", "10:5: map is not closed: floor cell at 10:5 touches void"),
     ("invalid_not_utf8", "2:7: file is not valid UTF-8 text"),
     ("invalid_tab_in_map", "9:1: bad map character '\\t'"),
+    ("invalid_too_many_lights", "263:1: too many LIGHT lines; the limit is 256"),
+    (
+        "invalid_too_many_sprites",
+        "71:3: too many sprites (SPRITE lines and '2' cells); the limit is 4096",
+    ),
     ("invalid_two_players", "10:3: second player start (first at 9:3); a map has exactly one"),
     ("invalid_two_texture_paths", "1:1: NO needs exactly one texture path"),
     ("invalid_undefined_zone", "9:3: zone letter 'a' is used in the map but has no Fa or Ca line"),

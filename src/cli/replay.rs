@@ -7,7 +7,7 @@ use halfcast::encode::{ColorLevel, EncodeOptions};
 use halfcast::tui;
 
 use super::play::{ending_result, terminal_failure};
-use super::{parse_level, write_output, Failure};
+use super::{parse_level, Failure};
 
 #[derive(Args, Debug)]
 pub(crate) struct ReplayArgs {
@@ -31,7 +31,7 @@ pub(crate) struct ReplayArgs {
 }
 
 pub(crate) fn replay(args: &ReplayArgs) -> Result<(), Failure> {
-    use super::replay_frames::{asciicast, read_replay, replay_world, write_frames, ReplayFormat};
+    use super::replay_frames::{read_replay, replay_world, write_frames, ReplayFormat};
     let failure = |f: super::replay_frames::ReplayFailure| Failure {
         code: f.code,
         message: f.message,
@@ -42,10 +42,7 @@ pub(crate) fn replay(args: &ReplayArgs) -> Result<(), Failure> {
     }
     let world = replay_world(&replay, &args.file).map_err(failure)?;
     match (args.format, &args.frames) {
-        (Some(ReplayFormat::Cast), _) => write_output(
-            args.out.as_ref(),
-            asciicast(&replay, world, args.colors).as_bytes(),
-        ),
+        (Some(ReplayFormat::Cast), _) => write_cast(args, &replay, world),
         (Some(format), Some(frames)) => {
             let dir = args.out.clone().unwrap_or_else(|| PathBuf::from("."));
             write_frames(&replay, world, frames, format, args.colors, &dir).map_err(failure)
@@ -57,6 +54,36 @@ pub(crate) fn replay(args: &ReplayArgs) -> Result<(), Failure> {
             let ending = tui::watch(world, &replay, EncodeOptions::new(args.colors))
                 .map_err(terminal_failure)?;
             ending_result(ending)
+        }
+    }
+}
+
+/// Streams the asciicast to `--out` (or standard output) while the replay renders, so nothing
+/// but the current frame is held in memory; a closed pipe ends the run quietly.
+fn write_cast(
+    args: &ReplayArgs,
+    replay: &halfcast::replay::Replay,
+    world: std::sync::Arc<halfcast::world::World>,
+) -> Result<(), Failure> {
+    use std::io::{BufWriter, ErrorKind};
+    match &args.out {
+        Some(p) => {
+            let file = std::fs::File::create(p)
+                .map_err(|e| Failure::io(format!("cannot write {}: {e}", p.display())))?;
+            super::replay_frames::write_asciicast(
+                replay,
+                world,
+                args.colors,
+                &mut BufWriter::new(file),
+            )
+            .map_err(|e| Failure::io(format!("cannot write {}: {e}", p.display())))
+        }
+        None => {
+            let mut out = BufWriter::new(std::io::stdout().lock());
+            match super::replay_frames::write_asciicast(replay, world, args.colors, &mut out) {
+                Err(e) if e.kind() == ErrorKind::BrokenPipe => Ok(()),
+                r => r.map_err(Failure::io),
+            }
         }
     }
 }

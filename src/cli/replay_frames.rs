@@ -1,13 +1,15 @@
 //! `halfcast replay`: plays a `.hcr` recording headlessly and writes chosen frames or an asciicast.
 
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use halfcast::encode::{ColorLevel, EncodeOptions};
+use halfcast::input_file::read_capped;
 use halfcast::output::{json::RayReport, text};
 use halfcast::present::Presenter;
 use halfcast::replay::player::{Frame, Player};
-use halfcast::replay::{MapSource, Replay};
+use halfcast::replay::{MapSource, Replay, MAX_FRAMES, MAX_REPLAY_BYTES};
 use halfcast::termframe::{to_cells_text, TermFrame};
 use halfcast::world::World;
 
@@ -53,8 +55,10 @@ fn io(message: impl std::fmt::Display) -> ReplayFailure {
 /// # Errors
 /// Unreadable or invalid files (exit 2).
 pub fn read_replay(path: &Path) -> Result<Replay, ReplayFailure> {
-    let text = std::fs::read_to_string(path)
+    let bytes = read_capped(path, MAX_REPLAY_BYTES)
         .map_err(|e| input(format!("{}: cannot read: {e}", path.display())))?;
+    let text = String::from_utf8(bytes)
+        .map_err(|_| input(format!("{}: cannot read: not UTF-8 text", path.display())))?;
     Replay::parse(&path.display().to_string(), &text).map_err(input)
 }
 
@@ -103,6 +107,13 @@ pub fn replay_world(replay: &Replay, replay_path: &Path) -> Result<Arc<World>, R
     }
 }
 
+fn too_many_frames() -> String {
+    format!(
+        "a replay holds at most {MAX_FRAMES} frames (0 to {})",
+        MAX_FRAMES - 1
+    )
+}
+
 /// Parses `0,5,10` and ranges like `20-30` into sorted, unique frame numbers.
 ///
 /// # Errors
@@ -118,12 +129,21 @@ pub fn parse_frames(s: &str) -> Result<Vec<usize>, String> {
         match part.split_once('-') {
             Some((a, b)) => {
                 let (a, b) = (num(a)?, num(b)?);
-                if a > b || b - a > 1_000_000 {
+                if a > b {
                     return Err(format!("'{part}' is not an ascending range"));
+                }
+                if b >= MAX_FRAMES || out.len() + (b - a) >= MAX_FRAMES {
+                    return Err(too_many_frames());
                 }
                 out.extend(a..=b);
             }
-            None => out.push(num(part)?),
+            None => {
+                let n = num(part)?;
+                if n >= MAX_FRAMES || out.len() >= MAX_FRAMES {
+                    return Err(too_many_frames());
+                }
+                out.push(n);
+            }
         }
     }
     if out.is_empty() {
@@ -212,24 +232,30 @@ pub fn write_frames(
     }
 }
 
-/// The whole run as an asciicast v2 file: a header line, then one output event per frame.
-#[must_use]
-pub fn asciicast(replay: &Replay, world: Arc<World>, level: ColorLevel) -> String {
+/// The whole run as an asciicast v2 file, written to `out` frame by frame as it is rendered
+/// (a header line, then one output event per frame), so memory stays flat however long the run.
+///
+/// # Errors
+/// The first write that fails.
+pub fn write_asciicast(
+    replay: &Replay,
+    world: Arc<World>,
+    level: ColorLevel,
+    out: &mut impl Write,
+) -> std::io::Result<()> {
     let h = &replay.header;
-    let mut out = serde_json::json!({
+    let head = serde_json::json!({
         "version": 2, "width": h.size.0, "height": h.size.1,
         "title": "halfcast replay", "env": {"TERM": "xterm-256color"},
-    })
-    .to_string();
-    out.push('\n');
+    });
+    writeln!(out, "{head}")?;
     let mut presenter = Presenter::new(EncodeOptions::new(level));
     let mut player = Player::new(world, &replay.header);
     let mut size = h.size;
-    let event = |out: &mut String, t: f64, kind: &str, data: &str| {
-        out.push_str(&serde_json::json!([t, kind, data]).to_string());
-        out.push('\n');
+    let event = |out: &mut dyn Write, t: f64, kind: &str, data: &str| {
+        writeln!(out, "{}", serde_json::json!([t, kind, data]))
     };
-    event(&mut out, 0.0, "o", "\x1b[?25l");
+    event(out, 0.0, "o", "\x1b[?25l")?;
     for input_frame in &replay.frames {
         let Some(frame) = player.play(input_frame) else {
             break;
@@ -237,10 +263,10 @@ pub fn asciicast(replay: &Replay, world: Arc<World>, level: ColorLevel) -> Strin
         let t = frame.index as f64 / f64::from(h.fps);
         if player.size() != size {
             size = player.size();
-            event(&mut out, t, "r", &format!("{}x{}", size.0, size.1));
+            event(out, t, "r", &format!("{}x{}", size.0, size.1))?;
         }
         let bytes = presenter.frame(&frame.screen, &frame.view, frame.view_area);
-        event(&mut out, t, "o", &String::from_utf8_lossy(bytes));
+        event(out, t, "o", &String::from_utf8_lossy(bytes))?;
     }
-    out
+    out.flush()
 }

@@ -66,4 +66,10 @@ pub enum MapErrorKind {
     LightOffFloor(String),
     #[error("cannot read the file: {0}")]
     Io(String),
+    #[error("file is larger than {0} bytes (the limit for a map)")]
+    FileTooLarge(u64),
+    #[error("too many {what}; the limit is {limit}")]
+    TooMany { what: &'static str, limit: usize },
+    #[error("map is too large for LIGHT ({cells} cells; lights are baked over at most {limit})")]
+    TooLargeToLight { cells: usize, limit: usize },
 }

@@ -3,11 +3,13 @@
 mod error;
 mod lamp;
 mod parse;
+mod read;
 mod sprite;
 
 pub use error::{MapError, MapErrorKind};
 pub use lamp::{LightDef, MAX_LIGHT_RADIUS};
-pub use parse::parse_map;
+pub use parse::{parse_map, MAX_CELLS, MAX_LIGHTS, MAX_LIT_CELLS, MAX_SPRITES};
+pub use read::{read_map_file, MAX_MAP_BYTES};
 pub use sprite::{Blend, ColourKey, SpriteDef};
 
 use crate::color::Rgb;

@@ -15,6 +15,16 @@ use crate::vec2::Vec2;
 /// More cells than this is refused instead of allocating without bound.
 pub const MAX_CELLS: usize = 1 << 24;
 
+/// Most `LIGHT` lines: each is baked over up to 128×128 samples, one ray cast per sample, so
+/// the count multiplies load time (10 000 lights took over a minute).
+pub const MAX_LIGHTS: usize = 256;
+
+/// Largest map (in cells) that may have lights: the light map holds 16 samples per cell.
+pub const MAX_LIT_CELLS: usize = 1 << 20;
+
+/// Most sprites, `SPRITE` lines and legacy `2` cells together: every frame sorts and draws them.
+pub const MAX_SPRITES: usize = 4096;
+
 /// Header keys that must appear, in the order a missing one is reported.
 const REQUIRED: [(&str, &str); 6] = [
     ("NO", "north wall texture"),
@@ -159,11 +169,24 @@ impl Header {
             }
         })?;
         if let Ident::Light = kind {
+            if self.lights.len() >= MAX_LIGHTS {
+                let what = "LIGHT lines";
+                return Err((
+                    at,
+                    MapErrorKind::TooMany {
+                        what,
+                        limit: MAX_LIGHTS,
+                    },
+                ));
+            }
             let def = parse_light(rest, at).map_err(|k| (at, k))?;
             self.lights.push(def);
             return Ok(());
         }
         if let Ident::SpriteEntry = kind {
+            if self.sprite_defs.len() >= MAX_SPRITES {
+                return Err((at, too_many_sprites()));
+            }
             let def = parse_sprite(rest, line_no, word_col, rest_col).map_err(|k| (at, k))?;
             self.sprite_defs.push(def);
             return Ok(());
@@ -366,6 +389,13 @@ fn fog(rest: &str) -> Result<Fog, MapErrorKind> {
     Ok(Fog { colour, density })
 }
 
+fn too_many_sprites() -> MapErrorKind {
+    MapErrorKind::TooMany {
+        what: "sprites (SPRITE lines and '2' cells)",
+        limit: MAX_SPRITES,
+    }
+}
+
 /// Turns the grid lines into cells, then checks players and closure.
 fn build(file: &str, h: Header, grid: &[(usize, &str)]) -> Result<Map, MapError> {
     let err = |at: Option<(usize, usize)>, kind| MapError {
@@ -385,6 +415,15 @@ fn build(file: &str, h: Header, grid: &[(usize, &str)]) -> Result<Map, MapError>
             MapErrorKind::TooLarge(width * height, MAX_CELLS),
         ));
     }
+    if let Some(first) = h.lights.first() {
+        if width * height > MAX_LIT_CELLS {
+            let kind = MapErrorKind::TooLargeToLight {
+                cells: width * height,
+                limit: MAX_LIT_CELLS,
+            };
+            return Err(err(Some(first.at), kind));
+        }
+    }
     let sprite_is_wall = h.wall_types[2].is_some();
     let mut cells = vec![Cell::Void; width * height];
     let mut start: Option<(Start, usize, usize)> = None;
@@ -396,6 +435,9 @@ fn build(file: &str, h: Header, grid: &[(usize, &str)]) -> Result<Map, MapError>
                 ' ' => Cell::Void,
                 '0' => Cell::Floor { zone: 0 },
                 '2' if !sprite_is_wall => {
+                    if sprites.len() + h.sprite_defs.len() >= MAX_SPRITES {
+                        return Err(err(at, too_many_sprites()));
+                    }
                     sprites.push(Vec2::new(i as f64 + 0.5, j as f64 + 0.5));
                     Cell::Floor { zone: 0 }
                 }

@@ -22,7 +22,7 @@ pub enum Blend {
 }
 
 /// Which texels are see-through.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum ColourKey {
     /// The image's alpha channel; an image without one uses black as the key (Lode's rule).
     #[default]

@@ -29,6 +29,9 @@ pub const VERSION: u64 = 1;
 /// make us allocate without bound.
 pub const MAX_FRAMES: usize = 1_000_000;
 
+/// Most bytes a replay file may hold: a million frames with an event line each fit easily.
+pub const MAX_REPLAY_BYTES: u64 = 64 << 20;
+
 /// Where the replayed map comes from.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum MapSource {

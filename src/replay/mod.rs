@@ -3,4 +3,6 @@
 pub mod format;
 pub mod player;
 
-pub use format::{FrameInput, Header, MapSource, Replay, ReplayError};
+pub use format::{
+    FrameInput, Header, MapSource, Replay, ReplayError, MAX_FRAMES, MAX_REPLAY_BYTES,
+};

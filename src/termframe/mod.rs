@@ -6,7 +6,10 @@ mod parse;
 mod text;
 
 pub use diff::{diff, CellDiff, DiffReport};
-pub use parse::{from_ansi, from_screen, load, FrameFormat};
+pub use parse::{
+    from_ansi, from_screen, load, parse_frame, try_from_ansi, FrameFormat, MAX_FRAME,
+    MAX_FRAME_BYTES,
+};
 pub use text::{cell_code, from_cells_text, to_cells_text, CELLS_HEADER};
 
 use crate::color::Rgb;

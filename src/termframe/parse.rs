@@ -17,105 +17,141 @@ pub enum FrameFormat {
     Text,
 }
 
+/// Largest frame read back, in cells: `render`'s own limit, so every frame it writes loads.
+/// Sizes found in a file are checked against it before anything is allocated.
+pub const MAX_FRAME: (usize, usize) = (4000, 2000);
+
+/// Most bytes a frame file may hold (a 4000×2000 frame of distinct colours does not fit, but
+/// anything a person diffs does; `/dev/zero` stops here).
+pub const MAX_FRAME_BYTES: u64 = 64 << 20;
+
+/// The error for a frame larger than [`MAX_FRAME`].
+fn too_large(what: &str, cols: usize, rows: usize) -> String {
+    let (mc, mr) = MAX_FRAME;
+    format!("{what} is {cols}x{rows} cells; the limit is {mc}x{mr}")
+}
+
 /// Reads a frame file of any supported kind, recognised by content, not by name.
 ///
 /// # Errors
-/// An unreadable file, a broken PNG or cells text, with the path in the message.
+/// An unreadable or oversized file, a broken PNG or cells text, a frame over [`MAX_FRAME`],
+/// with the path in the message.
 pub fn load(path: &Path) -> Result<(TermFrame, FrameFormat), String> {
-    let bytes = std::fs::read(path).map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
-    let named = |e: String| format!("{}: {e}", path.display());
+    let bytes = crate::input_file::read_capped(path, MAX_FRAME_BYTES)
+        .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
+    parse_frame(&bytes).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// Parses a frame file's bytes (what [`load`] does after reading; the fuzz targets call it).
+///
+/// # Errors
+/// A broken PNG or cells text, a frame over [`MAX_FRAME`], bytes that are not UTF-8 text.
+pub fn parse_frame(bytes: &[u8]) -> Result<(TermFrame, FrameFormat), String> {
     if bytes.starts_with(b"\x89PNG") {
-        let fb = Framebuffer::from_image_bytes(&bytes).map_err(named)?;
-        if fb.height() % 2 != 0 {
-            return Err(named(format!(
-                "PNG height {} is odd; frames are COLS x 2*ROWS pixels",
-                fb.height()
-            )));
+        let (mc, mr) = MAX_FRAME;
+        let img = crate::texture::decode::decode_within(bytes, mc as u32, 2 * mr as u32)?.to_rgb8();
+        let (w, h) = (img.width() as usize, img.height() as usize);
+        if h % 2 != 0 {
+            return Err(format!(
+                "PNG height {h} is odd; frames are COLS x 2*ROWS pixels"
+            ));
+        }
+        let mut fb = Framebuffer::new(w, h);
+        for (x, y, p) in img.enumerate_pixels() {
+            fb.set(x as usize, y as usize, Rgb::new(p[0], p[1], p[2]));
         }
         return Ok((TermFrame::from_framebuffer(&fb), FrameFormat::Png));
     }
-    let text =
-        String::from_utf8(bytes).map_err(|_| named("not a PNG and not UTF-8 text".into()))?;
+    let text = std::str::from_utf8(bytes).map_err(|_| "not a PNG and not UTF-8 text")?;
     if text.starts_with(CELLS_HEADER) {
-        return Ok((from_cells_text(&text).map_err(named)?, FrameFormat::Cells));
+        return Ok((from_cells_text(text)?, FrameFormat::Cells));
     }
     if text.contains('\x1b') {
-        return Ok((from_ansi(text.as_bytes()), FrameFormat::Ansi));
+        return Ok((try_from_ansi(text.as_bytes())?, FrameFormat::Ansi));
     }
-    let lines: Vec<Vec<char>> = text.lines().map(|l| l.chars().collect()).collect();
-    let cols = lines.iter().map(Vec::len).max().unwrap_or(0);
-    let cells = lines
-        .iter()
+    let rows = text.lines().count();
+    let cols = text.lines().map(|l| l.chars().count()).max().unwrap_or(0);
+    if cols > MAX_FRAME.0 || rows > MAX_FRAME.1 {
+        return Err(too_large("text frame", cols, rows));
+    }
+    let cells = text
+        .lines()
         .flat_map(|l| {
-            (0..cols).map(move |x| TermCell {
-                glyph: l.get(x).copied().unwrap_or(' '),
+            let mut chars = l.chars();
+            (0..cols).map(move |_| TermCell {
+                glyph: chars.next().unwrap_or(' '),
                 fg: None,
                 bg: None,
             })
         })
         .collect();
-    Ok((
-        TermFrame {
-            cols,
-            rows: lines.len(),
-            cells,
-        },
-        FrameFormat::Text,
-    ))
+    Ok((TermFrame { cols, rows, cells }, FrameFormat::Text))
 }
 
 /// The screen size a byte stream draws into: the furthest row and column it writes.
+/// Counts saturate, so any numbers in the stream give an answer (checked by the caller).
 fn extent(bytes: &[u8]) -> (usize, usize) {
     let (mut row, mut col, mut rows, mut cols) = (0usize, 0usize, 0usize, 0usize);
-    let mut i = 0;
     let text = String::from_utf8_lossy(bytes);
-    let chars: Vec<char> = text.chars().collect();
-    while i < chars.len() {
-        match chars[i] {
-            '\x1b' if chars.get(i + 1) == Some(&'[') => {
-                let start = i + 2;
-                let mut j = start;
-                while j < chars.len() && !('\x40'..='\x7e').contains(&chars[j]) {
-                    j += 1;
+    let mut chars = text.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '\x1b' if chars.peek() == Some(&'[') => {
+                chars.next();
+                let mut params = String::new();
+                let mut last = None;
+                for c in chars.by_ref() {
+                    if ('\x40'..='\x7e').contains(&c) {
+                        last = Some(c);
+                        break;
+                    }
+                    if params.len() < 64 {
+                        params.push(c);
+                    }
                 }
-                let params: String = chars[start..j.min(chars.len())].iter().collect();
                 let nums: Vec<usize> = params
                     .split(';')
-                    .map(|p| p.trim_start_matches('?').parse().unwrap_or(0))
+                    .map(|p| {
+                        let p = p.trim_start_matches('?');
+                        // Empty or not a number: the default. All digits but too big: huge.
+                        if p.is_empty() || !p.bytes().all(|b| b.is_ascii_digit()) {
+                            0
+                        } else {
+                            p.parse().unwrap_or(usize::MAX)
+                        }
+                    })
                     .collect();
                 let n = |k: usize| nums.get(k).copied().filter(|&v| v > 0).unwrap_or(1);
-                match chars.get(j) {
+                match last {
                     Some('H' | 'f') => {
                         row = n(0) - 1;
                         col = n(1) - 1;
                     }
-                    Some('C') => col += n(0),
-                    Some('B') => row += n(0),
+                    Some('C') => col = col.saturating_add(n(0)),
+                    Some('B') => row = row.saturating_add(n(0)),
                     Some('G') => col = n(0) - 1,
                     _ => {}
                 }
-                i = j + 1;
-                continue;
             }
-            '\x1b' => i += 1,
+            '\x1b' => {
+                // ESC and the one character after it (`ESC 7`, `ESC (`…) draw nothing.
+                chars.next();
+            }
             '\r' => col = 0,
-            '\n' => row += 1,
+            '\n' => row = row.saturating_add(1),
             c if !c.is_control() => {
-                col += 1;
+                col = col.saturating_add(1);
                 cols = cols.max(col);
-                rows = rows.max(row + 1);
+                rows = rows.max(row.saturating_add(1));
             }
             _ => {}
         }
-        i += 1;
     }
     (rows, cols)
 }
 
-/// Replays ANSI bytes through a terminal model (vt100) and reads back every cell.
-/// A bare `\n` is taken as a new line (as a tty's output processing would make it).
-#[must_use]
-pub fn from_ansi(bytes: &[u8]) -> TermFrame {
+/// A bare `\n` taken as a new line (as a tty's output processing would make it).
+fn with_carriage_returns(bytes: &[u8]) -> Vec<u8> {
     let mut fixed = Vec::with_capacity(bytes.len() + 256);
     let mut prev = 0u8;
     for &b in bytes {
@@ -125,14 +161,38 @@ pub fn from_ansi(bytes: &[u8]) -> TermFrame {
         fixed.push(b);
         prev = b;
     }
-    let (rows, cols) = extent(&fixed);
-    let (rows, cols) = (
-        rows.clamp(1, u16::MAX as usize),
-        cols.clamp(1, u16::MAX as usize),
-    );
+    fixed
+}
+
+/// Replays ANSI bytes through a terminal model `cols` × `rows` (at most [`MAX_FRAME`]).
+fn model(fixed: &[u8], cols: usize, rows: usize) -> TermFrame {
+    let (cols, rows) = (cols.clamp(1, MAX_FRAME.0), rows.clamp(1, MAX_FRAME.1));
     let mut parser = vt100::Parser::new(rows as u16 + 1, cols as u16, 0);
-    parser.process(&fixed);
+    parser.process(fixed);
     from_screen(parser.screen(), cols, rows)
+}
+
+/// Replays ANSI bytes through a terminal model (vt100) and reads back every cell, the screen
+/// sized by what the bytes draw, but never over [`MAX_FRAME`] (what lies beyond is cut off).
+/// A bare `\n` is taken as a new line (as a tty's output processing would make it).
+#[must_use]
+pub fn from_ansi(bytes: &[u8]) -> TermFrame {
+    let fixed = with_carriage_returns(bytes);
+    let (rows, cols) = extent(&fixed);
+    model(&fixed, cols, rows)
+}
+
+/// [`from_ansi`] that refuses a stream drawing beyond [`MAX_FRAME`] instead of cutting it.
+///
+/// # Errors
+/// The size the stream draws into, when over the limit.
+pub fn try_from_ansi(bytes: &[u8]) -> Result<TermFrame, String> {
+    let fixed = with_carriage_returns(bytes);
+    let (rows, cols) = extent(&fixed);
+    if cols > MAX_FRAME.0 || rows > MAX_FRAME.1 {
+        return Err(too_large("ANSI frame", cols, rows));
+    }
+    Ok(model(&fixed, cols, rows))
 }
 
 /// Reads the top-left `cols` × `rows` cells of a terminal model's screen.
@@ -174,6 +234,34 @@ mod tests {
         assert_eq!(f.cell(1, 0).bg, Some(Rgb::new(4, 5, 6)));
         assert_eq!(f.cell(0, 1).fg, Some(Rgb::new(255, 0, 0)));
         assert_eq!(f.cell(1, 1).glyph, ' ');
+    }
+
+    #[test]
+    fn a_cursor_far_away_is_refused_or_cut_to_the_limit() {
+        assert_eq!(
+            try_from_ansi(b"\x1b[65535;65535Hx").unwrap_err(),
+            "ANSI frame is 65535x65535 cells; the limit is 4000x2000"
+        );
+        let huge = b"\x1b[99999999999999999999999;18446744073709551615H\x1b[18446744073709551615Cx";
+        assert!(try_from_ansi(huge).is_err());
+        let cut = from_ansi(b"\x1b[3000;5Hx");
+        assert_eq!((cut.cols, cut.rows), (5, 2000));
+    }
+
+    #[test]
+    fn oversized_text_frames_are_refused() {
+        let tall = "x\n".repeat(2001);
+        assert_eq!(
+            parse_frame(tall.as_bytes()).unwrap_err(),
+            "text frame is 1x2001 cells; the limit is 4000x2000"
+        );
+    }
+
+    #[test]
+    fn moves_without_a_number_move_by_one() {
+        let f = try_from_ansi(b"\x1b[?2026h\x1b[2J\x1b[Hab\x1b[B\x1b[Cc\x1b[?2026l").unwrap();
+        assert_eq!((f.cols, f.rows), (4, 2));
+        assert_eq!(f.cell(3, 1).glyph, 'c');
     }
 
     #[test]

@@ -10,6 +10,9 @@ use crate::color::Rgb;
 /// First line of the cells text form; carries the version and the size.
 pub const CELLS_HEADER: &str = "halfcast-cells v1";
 
+/// Characters from one cell's start to the next: 14 for the cell, 1 space.
+const CELL_STRIDE: usize = 15;
+
 /// How the terminal's default colour is written.
 const DEFAULT: &str = "~~~~~~";
 
@@ -76,16 +79,24 @@ pub fn from_cells_text(text: &str) -> Result<TermFrame, String> {
         c.parse().map_err(|_| "line 1: bad size")?,
         r.parse().map_err(|_| "line 1: bad size")?,
     );
-    let mut cells = Vec::with_capacity(cols.saturating_mul(rows).min(1 << 24));
+    let (max_cols, max_rows) = super::MAX_FRAME;
+    if cols > max_cols || rows > max_rows {
+        return Err(format!(
+            "line 1: size {cols}x{rows} is over the limit of {max_cols}x{max_rows} cells"
+        ));
+    }
+    // Both are now small, so `cols * CELL_STRIDE` and `cols * rows` cannot overflow.
+    let mut cells = Vec::with_capacity(cols * rows);
     for y in 0..rows {
         let line = lines
             .next()
             .ok_or_else(|| format!("line {}: missing row {y}", y + 2))?;
-        let chars: Vec<char> = line.chars().collect();
-        let found = (chars.len() + 1) / 15;
-        if chars.len() + 1 != cols * 15 {
+        let len = line.chars().count();
+        if len + 1 != cols * CELL_STRIDE {
+            let found = (len + 1) / CELL_STRIDE;
             return Err(format!("line {}: {found} cells, expected {cols}", y + 2));
         }
+        let chars: Vec<char> = line.chars().collect();
         for x in 0..cols {
             let cell: String = chars[x * 15..x * 15 + 14].iter().collect();
             let bad = || format!("line {}: cell {x} '{cell}' is not GLYPH FG/BG", y + 2);
@@ -145,5 +156,15 @@ mod tests {
             "line 2: 1 cells, expected 2"
         );
         assert!(from_cells_text("nope").is_err());
+    }
+
+    #[test]
+    fn a_size_whose_row_length_would_wrap_is_refused() {
+        // 17216961135462248175 × 15 wraps to 1 in 64 bits: an empty row once matched it.
+        assert_eq!(
+            from_cells_text("halfcast-cells v1 17216961135462248175x1\n\n").unwrap_err(),
+            "line 1: size 17216961135462248175x1 is over the limit of 4000x2000 cells"
+        );
+        assert!(from_cells_text("halfcast-cells v1 4001x1\n").is_err());
     }
 }

@@ -1,6 +1,7 @@
 //! Textures: column-major RGB texels, so a wall stripe reads memory in order.
 
 pub mod builtin;
+pub mod decode;
 pub mod generate;
 pub mod sheet;
 pub mod sprite_art;
@@ -61,18 +62,15 @@ impl Texture {
         self.mean
     }
 
-    /// Decodes any image format the `image` crate was built with (PNG here).
+    /// Decodes any image format the `image` crate was built with (PNG here), at most
+    /// [`decode::MAX_TEXTURE_SIDE`] pixels a side (checked before decoding).
     ///
     /// # Errors
-    /// The decoder's message when the bytes are not a readable image, or the image is empty.
+    /// The decoder's message when the bytes are not a readable image, or the image is empty or
+    /// too large.
     pub fn decode(bytes: &[u8]) -> Result<Self, String> {
-        let img = image::load_from_memory(bytes)
-            .map_err(|e| e.to_string())?
-            .to_rgb8();
+        let img = decode::decode_texture_image(bytes)?.to_rgb8();
         let (w, h) = (img.width() as usize, img.height() as usize);
-        if w == 0 || h == 0 {
-            return Err("image has no pixels".into());
-        }
         Ok(Self::from_fn(w, h, |x, y| {
             let p = img.get_pixel(x as u32, y as u32);
             Rgb::new(p[0], p[1], p[2])

@@ -55,15 +55,12 @@ impl SpriteSheet {
     /// Decodes an image; without an alpha channel `key` (black under [`ColourKey::Auto`]) is clear.
     ///
     /// # Errors
-    /// The decoder's message, or "image has no pixels".
+    /// The decoder's message, "image has no pixels", or an image over the size limit.
     pub fn decode(bytes: &[u8], key: ColourKey) -> Result<Self, String> {
-        let img = image::load_from_memory(bytes).map_err(|e| e.to_string())?;
+        let img = super::decode::decode_texture_image(bytes)?;
         let has_alpha = img.color().has_alpha();
         let img = img.to_rgba8();
         let (w, h) = (img.width() as usize, img.height() as usize);
-        if w == 0 || h == 0 {
-            return Err("image has no pixels".into());
-        }
         let key = match key {
             ColourKey::Auto if !has_alpha => Some(Rgb::default()),
             ColourKey::Colour(c) => Some(c),

@@ -1,0 +1,26 @@
+//! Reading a map file with a byte cap, so `/dev/zero` or a huge file is refused, not swallowed.
+
+use std::path::Path;
+
+use super::parse::MAX_CELLS;
+use super::{MapError, MapErrorKind};
+use crate::input_file::{read_capped, ReadError};
+
+/// Most bytes a map file may hold: the largest grid ([`MAX_CELLS`] cells, one byte each) twice
+/// over, which leaves room for line ends and any header.
+pub const MAX_MAP_BYTES: u64 = 2 * MAX_CELLS as u64;
+
+/// Reads a map file (a pipe works too) of at most [`MAX_MAP_BYTES`].
+///
+/// # Errors
+/// The OS's error or a file over the cap, naming the file.
+pub fn read_map_file(path: &Path) -> Result<Vec<u8>, MapError> {
+    read_capped(path, MAX_MAP_BYTES).map_err(|e| MapError {
+        file: path.display().to_string(),
+        at: None,
+        kind: match e {
+            ReadError::TooLarge { cap } => MapErrorKind::FileTooLarge(cap),
+            other => MapErrorKind::Io(other.to_string()),
+        },
+    })
+}
