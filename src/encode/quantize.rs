@@ -27,11 +27,12 @@ pub fn quantize(palette: &Palette, fb: &Framebuffer, cells: &mut Vec<[Code; 2]>)
                     .zip(bottom)
                     .map(|(&t, &b)| [u32::from(mono_char(t, b)), 0]),
             ),
-            _ => {
-                cells.extend(top.iter().zip(bottom).enumerate().map(|(x, (&t, &b))| {
-                    [palette.code(t, x, 2 * cy), palette.code(b, x, 2 * cy + 1)]
-                }))
-            }
+            _ => cells.extend(
+                top.iter()
+                    .zip(bottom)
+                    .enumerate()
+                    .map(|(x, (&t, &b))| palette.cell(t, b, x, 2 * cy)),
+            ),
         }
     }
 }
