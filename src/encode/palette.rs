@@ -148,6 +148,13 @@ impl Palette {
         (bin(c.r) << (2 * LUT_BITS)) | (bin(c.g) << LUT_BITS) | bin(c.b)
     }
 
+    /// Whether [`Palette::cell`] chooses the two codes together (so they depend only on the pixels).
+    #[must_use]
+    #[inline]
+    pub fn pairs_cells(&self) -> bool {
+        self.pairs.is_some() && !self.dither
+    }
+
     /// The `[top, bottom]` codes of a cell showing pixels `top` over `bottom`.
     ///
     /// At 256 and 16 colours (without `--dither`) the two are chosen together so the cell's mix
