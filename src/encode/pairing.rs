@@ -113,3 +113,58 @@ pub fn choose(
     }
     best.0
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::level::ColorLevel;
+    use super::super::palette::{xterm_rgb, Palette};
+    use crate::color::{oklab, Rgb};
+
+    fn chroma(c: [f32; 3]) -> f32 {
+        c[1].hypot(c[2])
+    }
+
+    /// The OKLab colour of a cell's two codes mixed in linear light.
+    fn mix(p: &Palette, codes: [u32; 2]) -> [f32; 3] {
+        let (a, b) = (p.rgb(codes[0]).linear(), p.rgb(codes[1]).linear());
+        oklab([0, 1, 2].map(|i| (a[i] + b[i]) / 2.0))
+    }
+
+    #[test]
+    fn a_dark_brick_red_stays_red_where_the_nearest_colour_is_grey() {
+        let p = Palette::new(ColorLevel::Ansi256, false);
+        let brick = Rgb::new(104, 72, 64);
+        let nearest = p.rgb(p.code(brick, 0, 0));
+        assert_eq!(
+            nearest.r, nearest.g,
+            "the nearest xterm colour is a grey: {nearest:?}"
+        );
+        let source = oklab(brick.linear());
+        let shown = mix(&p, p.cell(brick, brick, 0, 0));
+        let kept = chroma(shown) / chroma(source);
+        assert!((0.6..1.6).contains(&kept), "chroma kept {kept}");
+        assert!(crate::color::lab_dist2(shown, source).sqrt() < 0.03);
+    }
+
+    #[test]
+    fn palette_colours_are_shown_as_themselves() {
+        let p = Palette::new(ColorLevel::Ansi256, false);
+        for i in [16u8, 52, 88, 124, 160, 196, 100, 231, 240] {
+            let c = xterm_rgb(i);
+            let [a, b] = p.cell(c, c, 3, 4);
+            assert_eq!((p.rgb(a), p.rgb(b)), (c, c), "index {i}");
+        }
+        let p = Palette::new(ColorLevel::Ansi16, false);
+        assert_eq!(p.cell(Rgb::new(255, 0, 0), Rgb::new(0, 0, 0), 0, 0), [9, 0]);
+    }
+
+    #[test]
+    fn the_choice_depends_on_the_pixels_only() {
+        let p = Palette::new(ColorLevel::Ansi16, false);
+        let (t, b) = (Rgb::new(90, 60, 40), Rgb::new(70, 50, 45));
+        let here = p.cell(t, b, 0, 0);
+        for (x, y) in [(1, 0), (5, 2), (17, 31)] {
+            assert_eq!(p.cell(t, b, x, y), here);
+        }
+    }
+}
