@@ -14,14 +14,22 @@ pub const NEAR: usize = 3;
 
 /// Weight of each pixel's own error against the error of the cell's mixed colour (which the
 /// eye sees at a normal viewing distance): low, so hue is kept, but enough to keep edges crisp.
-/// Measured on the default map (256 colours): 0.3 keeps 0.49 of the chroma, 0.1 0.68, 0.02 0.85.
-const PIXEL_WEIGHT: f32 = 0.02;
+/// Measured on the default map (256 colours): 0.3 keeps 0.49 of the chroma, 0.1 0.68, 0.01 0.88.
+const PIXEL_WEIGHT: f32 = 0.01;
 
 /// Extra cost (in squared OKLab units) of showing two different colours where one would do:
-/// a bias towards uniform cells, which cost fewer bytes. Measured (256 colours, `halfcast bench`
-/// mean of its runs vs stock ratatui truecolor): 0.0001 → 19.8 %, 0.0004 → 15.8 % (chroma kept
-/// 0.88 → 0.85), 0.001 → 14.4 % but chroma kept falls to 0.66.
+/// a bias towards uniform cells, which cost fewer bytes. Measured with [`GREY_SPLIT_COST`]
+/// (256 colours; `halfcast bench` mean of its runs vs stock ratatui truecolor; chroma kept on the
+/// default map's views): 0.0004 → 15.9 %, 0.88; 0.0006 → 15.6 %, 0.82. A single cost for all
+/// cells reaches only 16.1 % at 0.81 or 15.9 % at 0.78.
 const SPLIT_COST: f32 = 0.000_4;
+
+/// Below this OKLab chroma a cell counts as grey: splitting it buys only lightness, not hue, so it
+/// pays more for the bytes.
+const GREY_CHROMA: f32 = 0.02;
+
+/// [`SPLIT_COST`] for grey cells (0.002 → 16.1 %, 0.004 → 15.9 % at the same chroma kept).
+const GREY_SPLIT_COST: f32 = 0.004;
 
 /// The tables a pair search reads; built once per colour level.
 #[derive(Debug)]
@@ -78,6 +86,11 @@ pub fn choose(
         let c = |i: usize| to_srgb(2.0 * mean[i] - la[i]);
         near_of(Rgb::new(c(0), c(1), c(2)))[0]
     };
+    let split_cost = if lab_m[1].hypot(lab_m[2]) >= GREY_CHROMA {
+        SPLIT_COST
+    } else {
+        GREY_SPLIT_COST
+    };
     let cost = |p: u8, q: u8| -> f32 {
         let (lp, lq) = (t.lin[usize::from(p)], t.lin[usize::from(q)]);
         let mix = if p == q {
@@ -93,7 +106,7 @@ pub fn choose(
             + PIXEL_WEIGHT
                 * (lab_dist2(t.lab[usize::from(p)], lab_t)
                     + lab_dist2(t.lab[usize::from(q)], lab_b))
-            + if p == q { 0.0 } else { SPLIT_COST }
+            + if p == q { 0.0 } else { split_cost }
     };
     let (nt, nb) = (near_of(top), near_of(bottom));
     let mut best = ([nt[0], nb[0]], cost(nt[0], nb[0]));
