@@ -40,6 +40,30 @@ pub struct PairTables {
     pub lin: Vec<Linear>,
     /// OKLab of every palette index.
     pub lab: Vec<[f32; 3]>,
+    /// OKLab of the linear-light mix of indices p and q at `p * 256 + q` (the costly part of a
+    /// pair's cost, so it is computed once per process rather than per cell).
+    pub mix: Vec<[f32; 3]>,
+}
+
+impl PairTables {
+    /// The tables for palette colours `rgb(i)` of indices 0–255, with candidates' `near` lists.
+    #[must_use]
+    pub fn new(near: Vec<[u8; NEAR]>, rgb: impl Fn(u8) -> Rgb) -> Self {
+        let lin: Vec<Linear> = (0..=255u8).map(|i| rgb(i).linear()).collect();
+        let lab = lin.iter().map(|&l| oklab(l)).collect();
+        let mut mix = Vec::with_capacity(256 * 256);
+        for lp in &lin {
+            for lq in &lin {
+                mix.push(oklab([0, 1, 2].map(|i| (lp[i] + lq[i]) * 0.5)));
+            }
+        }
+        Self {
+            near,
+            lin,
+            lab,
+            mix,
+        }
+    }
 }
 
 /// A linear channel value (0..=1) → the 8-bit sRGB value nearest to it (4096-step table).
@@ -92,16 +116,7 @@ pub fn choose(
         GREY_SPLIT_COST
     };
     let cost = |p: u8, q: u8| -> f32 {
-        let (lp, lq) = (t.lin[usize::from(p)], t.lin[usize::from(q)]);
-        let mix = if p == q {
-            t.lab[usize::from(p)]
-        } else {
-            oklab([
-                (lp[0] + lq[0]) * 0.5,
-                (lp[1] + lq[1]) * 0.5,
-                (lp[2] + lq[2]) * 0.5,
-            ])
-        };
+        let mix = t.mix[usize::from(p) * 256 + usize::from(q)];
         lab_dist2(mix, lab_m)
             + PIXEL_WEIGHT
                 * (lab_dist2(t.lab[usize::from(p)], lab_t)

@@ -211,12 +211,7 @@ fn build_tables(candidates: &[u8]) -> PairTables {
             }
         }
     }
-    let all = 0..=255u8;
-    PairTables {
-        near,
-        lin: all.clone().map(|i| xterm_rgb(i).linear()).collect(),
-        lab: all.map(|i| oklab(xterm_rgb(i))).collect(),
-    }
+    PairTables::new(near, xterm_rgb)
 }
 
 /// sRGB → OKLab (Björn Ottosson's perceptual space), for nearest-colour matching.
