@@ -20,8 +20,9 @@ const PIXEL_WEIGHT: f32 = 0.01;
 /// Extra cost (in squared OKLab units) of showing two different colours where one would do:
 /// a bias towards uniform cells, which cost fewer bytes. Measured with [`GREY_SPLIT_COST`]
 /// (256 colours; `halfcast bench` mean of its runs vs stock ratatui truecolor; chroma kept on the
-/// default map's views): 0.0004 → 15.9 %, 0.88; 0.0006 → 15.6 %, 0.82. A single cost for all
-/// cells reaches only 16.1 % at 0.81 or 15.9 % at 0.78.
+/// default map's views; before the wide search): 0.0004 → 15.9 %, 0.88; 0.0006 → 15.6 %, 0.82.
+/// A single cost for all cells reaches only 16.1 % at 0.81 or 15.9 % at 0.78. With the wide search
+/// 0.0004 gives 15.5 %, 0.89 (0.0003 with 0.002 for grey: 15.9 %, 0.91, no better ΔE).
 const SPLIT_COST: f32 = 0.000_4;
 
 /// Below this OKLab chroma a cell counts as grey: splitting it buys only lightness, not hue, so it
@@ -43,12 +44,17 @@ pub struct PairTables {
     /// OKLab of the linear-light mix of indices p and q at `p * 256 + q` (the costly part of a
     /// pair's cost, so it is computed once per process rather than per cell).
     pub mix: Vec<[f32; 3]>,
+    /// Whether the search is wide: the entries nearest the cell's mix, and the [`NEAR`] nearest
+    /// to each complement, are candidates too (not only the nearest). That helps at 256 colours
+    /// (default map: blurred ΔE 1.51 → 1.46, chroma kept 0.88 → 0.89, bytes 15.9 → 15.5 %), but at
+    /// 16 it costs hue (chroma kept 0.85 → 0.67 for ΔE 6.42 → 6.17), so it is for 256 only.
+    pub wide: bool,
 }
 
 impl PairTables {
     /// The tables for palette colours `rgb(i)` of indices 0–255, with candidates' `near` lists.
     #[must_use]
-    pub fn new(near: Vec<[u8; NEAR]>, rgb: impl Fn(u8) -> Rgb) -> Self {
+    pub fn new(near: Vec<[u8; NEAR]>, rgb: impl Fn(u8) -> Rgb, wide: bool) -> Self {
         let lin: Vec<Linear> = (0..=255u8).map(|i| rgb(i).linear()).collect();
         let lab = lin.iter().map(|&l| oklab(l)).collect();
         let mut mix = Vec::with_capacity(256 * 256);
@@ -62,6 +68,7 @@ impl PairTables {
             lin,
             lab,
             mix,
+            wide,
         }
     }
 }
@@ -88,9 +95,11 @@ fn to_srgb(v: f32) -> u8 {
 /// The cell's `[top, bottom]` palette indices for pixels `top` and `bottom`.
 ///
 /// `near_of` gives the candidate list of an sRGB colour (the table lookup). Candidates: each
-/// pixel's nearest few entries, each paired with the entry that brings the cell's mix closest to
-/// the pixels' mix (its complement `2·mean − a` in linear light); the pair minimising the mix error
-/// plus [`PIXEL_WEIGHT`] × the pixels' own errors wins (first found on ties: deterministic).
+/// pixel's nearest few entries (and, with a wide search, those nearest the cell's mix), each shown
+/// whole and paired with the entries nearest its complement `2·mean − a` in linear light (what
+/// brings the cell's mix back to the pixels' mix); the pair minimising the mix error plus
+/// [`PIXEL_WEIGHT`] × the pixels' own errors plus a split cost wins (first found on ties:
+/// deterministic).
 #[must_use]
 pub fn choose(
     t: &PairTables,
@@ -105,10 +114,10 @@ pub fn choose(
         (lt[2] + lb[2]) * 0.5,
     ];
     let (lab_t, lab_b, lab_m) = (oklab(lt), oklab(lb), oklab(mean));
-    let complement = |a: u8| -> u8 {
+    let complement = |a: u8| -> [u8; NEAR] {
         let la = t.lin[usize::from(a)];
         let c = |i: usize| to_srgb(2.0 * mean[i] - la[i]);
-        near_of(Rgb::new(c(0), c(1), c(2)))[0]
+        near_of(Rgb::new(c(0), c(1), c(2)))
     };
     let split_cost = if lab_m[1].hypot(lab_m[2]) >= GREY_CHROMA {
         SPLIT_COST
@@ -131,13 +140,27 @@ pub fn choose(
             best = ([p, q], c);
         }
     };
-    for &a in &nt {
-        consider(a, complement(a));
+    let width = if t.wide { NEAR } else { 1 };
+    let nm = if t.wide {
+        near_of(Rgb::new(
+            to_srgb(mean[0]),
+            to_srgb(mean[1]),
+            to_srgb(mean[2]),
+        ))
+    } else {
+        nt
+    };
+    for &a in nt.iter().chain(&nm) {
         consider(a, a);
+        for q in complement(a).into_iter().take(width) {
+            consider(a, q);
+        }
     }
-    for &a in &nb {
-        consider(complement(a), a);
+    for &a in nb.iter().chain(&nm) {
         consider(a, a);
+        for p in complement(a).into_iter().take(width) {
+            consider(p, a);
+        }
     }
     best.0
 }

@@ -211,7 +211,7 @@ fn build_tables(candidates: &[u8]) -> PairTables {
             }
         }
     }
-    PairTables::new(near, xterm_rgb)
+    PairTables::new(near, xterm_rgb, candidates.len() > 16)
 }
 
 /// sRGB → OKLab (Björn Ottosson's perceptual space), for nearest-colour matching.
