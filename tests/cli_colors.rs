@@ -283,5 +283,8 @@ fn bench_json_has_the_documented_shape() {
         for key in ["bytes_per_frame", "first_frame_bytes"] {
             assert!(r["ratatui"][key].is_number(), "{key}");
         }
+        // Issue 12: how faithful the colours are, per run (colour level).
+        assert!(r["oklab_de_blur"].as_f64().is_some_and(|d| d > 0.0), "{r}");
+        assert!(r["chroma_kept"].is_number() || r["chroma_kept"].is_null());
     }
 }

@@ -1,6 +1,7 @@
 //! The pieces of `halfcast bench` that need no clock: camera paths, the stock-ratatui byte
-//! reference, the zlib meter and the report's JSON shape (the timing loop lives in the binary).
+//! reference, the zlib meter, the colour-fidelity figures and the report's JSON shape (the timing loop lives in the binary).
 
+pub mod fidelity;
 pub mod path;
 pub mod reference;
 pub mod report;

@@ -20,6 +20,12 @@ pub struct Run {
     pub ratatui: RatatuiFigures,
     /// halfcast diff-frame bytes / stock ratatui truecolor diff-frame bytes on the same frames.
     pub ratio_vs_ratatui_truecolor: f64,
+    /// Mean blurred OKLab ΔE (×100) of what the terminal shows against the frame (every 10th
+    /// frame; see `bench::fidelity`); `null` in mono.
+    pub oklab_de_blur: Option<f64>,
+    /// Mean blurred chroma kept (1 = as colourful as the frame, 0 = grey); `null` in mono or
+    /// when the frames carry too little colour to judge.
+    pub chroma_kept: Option<f64>,
 }
 
 /// halfcast's encoder on the sequence.

@@ -5,6 +5,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use halfcast::bench::fidelity::{self, Fidelity};
 use halfcast::bench::{
     camera_path, BenchScene, HalfcastFigures, RatatuiFigures, RatatuiReference, Report, Run,
     ZlibMeter,
@@ -12,6 +13,9 @@ use halfcast::bench::{
 use halfcast::encode::{ColorLevel, EncodeOptions, Encoder};
 use halfcast::world::World;
 use halfcast::{Framebuffer, Scene};
+
+/// Every this many frames (from the first) the fidelity figures are measured.
+const FIDELITY_EVERY: usize = 10;
 
 /// How often each sequence is re-encoded for timing (the minimum per frame is kept).
 const TIMING_REPEATS: usize = 10;
@@ -91,6 +95,7 @@ fn measure(
     let (mut bytes, mut zbytes, mut rbytes) = (Vec::new(), Vec::new(), Vec::new());
     let (mut first, mut rfirst) = (0, 0);
     let (mut enc_ms, mut draw_ms) = (0.0, 0.0);
+    let mut fidelities: Vec<Fidelity> = Vec::new();
     for (i, fb) in frames.iter().enumerate() {
         let t = Instant::now();
         let out = enc.encode(fb, 0, 0);
@@ -98,6 +103,11 @@ fn measure(
         let z = zlib.frame(out);
         dump(i, out)?;
         let n = out.len();
+        if i % FIDELITY_EVERY == 0 {
+            if let Some(shown) = enc.shown_frame() {
+                fidelities.push(fidelity::compare(fb, &shown));
+            }
+        }
         let t = Instant::now();
         let r = reference.draw(fb).len();
         let rt = ms(t);
@@ -125,6 +135,7 @@ fn measure(
     }
     enc_ms = enc_ms.min(best.iter().skip(1).sum());
     let diff_frames = frames.len().saturating_sub(1).max(1) as f64;
+    let fidelity = fidelity::mean(&fidelities);
     let bytes_per_frame = mean(&bytes);
     let ratatui_bpf = mean(&rbytes);
     let baseline = if opts.level == ColorLevel::TrueColor || truecolor_ratatui <= 0.0 {
@@ -155,6 +166,8 @@ fn measure(
         } else {
             0.0
         },
+        oklab_de_blur: fidelity.map(|f| f.oklab_de_blur),
+        chroma_kept: fidelity.and_then(|f| f.chroma_kept),
     })
 }
 
@@ -342,7 +355,7 @@ pub fn table(report: &Report) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "{:<6} {:>7} {:>9} {:>6} | {:>9} {:>9} {:>8} {:>7} {:>6} | {:>9} {:>9} {:>7} | {:>7} {:>7}",
+        "{:<6} {:>7} {:>9} {:>6} | {:>9} {:>9} {:>8} {:>7} {:>6} | {:>9} {:>9} {:>7} | {:>7} {:>7} | {:>6} {:>6}",
         "scene",
         "size",
         "colors",
@@ -356,7 +369,9 @@ pub fn table(report: &Report) -> String {
         "rat first",
         "rat ms",
         "vs rat",
-        "vs rtc"
+        "vs rtc",
+        "dE blr",
+        "chroma"
     );
     for r in &report.runs {
         let same = if r.ratatui.bytes_per_frame > 0.0 {
@@ -366,7 +381,7 @@ pub fn table(report: &Report) -> String {
         };
         let _ = writeln!(
             s,
-            "{:<6} {:>7} {:>9} {:>6} | {:>9.0} {:>9} {:>8.0} {:>7.3} {:>6.2} | {:>9.0} {:>9} {:>7.3} | {:>6.1}% {:>6.1}%",
+            "{:<6} {:>7} {:>9} {:>6} | {:>9.0} {:>9} {:>8.0} {:>7.3} {:>6.2} | {:>9.0} {:>9} {:>7.3} | {:>6.1}% {:>6.1}% | {:>6} {:>6}",
             r.scene,
             format!("{}x{}", r.cols, r.rows),
             r.colors,
@@ -381,11 +396,19 @@ pub fn table(report: &Report) -> String {
             r.ratatui.draw_ms,
             same,
             100.0 * r.ratio_vs_ratatui_truecolor,
+            figure(r.oklab_de_blur),
+            figure(r.chroma_kept),
         );
     }
     s.push_str(
         "B/frame, zlib, enc ms: mean over frames after the first; vs rat: halfcast / stock ratatui \
-         at the same level; vs rtc: halfcast / stock ratatui truecolor\n",
+         at the same level; vs rtc: halfcast / stock ratatui truecolor; dE blr, chroma: blurred \
+         OKLab distance (x100) and chroma kept of what the terminal shows (every 10th frame)\n",
     );
     s
+}
+
+/// A fidelity figure for the table (`-` when not measured).
+fn figure(v: Option<f64>) -> String {
+    v.map_or_else(|| "-".to_string(), |v| format!("{v:.2}"))
 }

@@ -4,7 +4,7 @@ use super::cursor::{write_move, Cursor};
 use super::level::ColorLevel;
 use super::palette::{distance, Code, Palette, DEFAULT, UNKNOWN};
 use super::plan::{Choice, RowPlanner, RowStart, DEFAULT_BEAM};
-use super::quantize::quantize;
+use super::quantize::{quantize_with, CellCache};
 use super::sgr;
 use crate::framebuffer::Framebuffer;
 
@@ -87,6 +87,8 @@ pub struct Encoder {
     shown: Vec<[Code; 2]>,
     /// What each cell should show this frame.
     intent: Vec<[Code; 2]>,
+    /// Pixel pairs → codes, kept across frames (the pair choice is the costly part at 256/16).
+    cache: CellCache,
     skippable: Vec<bool>,
     planner: RowPlanner,
     out: Vec<u8>,
@@ -106,6 +108,7 @@ impl Encoder {
             origin: (0, 0),
             shown: Vec::new(),
             intent: Vec::new(),
+            cache: CellCache::default(),
             skippable: Vec::new(),
             planner: RowPlanner::default(),
             out: Vec::new(),
@@ -137,6 +140,22 @@ impl Encoder {
         &self.shown
     }
 
+    /// The pixels the terminal shows after the last frame (what a player sees, for fidelity
+    /// figures); `None` in mono, where cells are shade characters rather than colours.
+    #[must_use]
+    pub fn shown_frame(&self) -> Option<Framebuffer> {
+        if self.opts.level == ColorLevel::Mono {
+            return None;
+        }
+        let mut fb = Framebuffer::new(self.cols, 2 * self.rows);
+        for (i, cell) in self.shown.iter().enumerate() {
+            let (x, y) = (i % self.cols.max(1), 2 * (i / self.cols.max(1)));
+            fb.set(x, y, self.palette.rgb(cell[0]));
+            fb.set(x, y + 1, self.palette.rgb(cell[1]));
+        }
+        Some(fb)
+    }
+
     /// The bytes that turn the terminal's view rectangle into `fb` (empty when nothing changed).
     ///
     /// A new size or origin forces a full redraw.
@@ -150,7 +169,7 @@ impl Encoder {
             self.shown.resize(cols * rows, [UNKNOWN; 2]);
             self.fresh = true;
         }
-        quantize(&self.palette, fb, &mut self.intent);
+        quantize_with(&self.palette, fb, &mut self.intent, &mut self.cache);
         self.out.clear();
         if self.opts.level == ColorLevel::Mono {
             self.encode_mono();

@@ -13,6 +13,7 @@ pub mod inline;
 pub mod level;
 mod number;
 pub mod pacer;
+pub mod pairing;
 pub mod palette;
 mod plan;
 pub mod quantize;

@@ -4,6 +4,7 @@ use std::sync::{Arc, OnceLock};
 
 use super::dither::bayer_offset;
 use super::level::ColorLevel;
+use super::pairing::{self, PairTables, NEAR};
 use crate::color::Rgb;
 
 /// A colour as the terminal is told it: packed `0xRRGGBB` at truecolor, a palette index otherwise.
@@ -70,6 +71,8 @@ pub struct Palette {
     dither: bool,
     /// Nearest palette index per 5-bit-per-channel bin (empty at truecolor and mono).
     lut: Arc<[u8]>,
+    /// What the per-cell pair choice reads (`None` at truecolor and mono).
+    pairs: Option<Arc<PairTables>>,
     /// Amplitude of the ordered-dither offset, in 8-bit channel units.
     amplitude: i16,
     /// Channel value → lookup-table bin (rounded, so 0 and 255 sit on bin centres).
@@ -80,20 +83,26 @@ impl Palette {
     /// Builds the lookup table for `level` (perceptual nearest match in OKLab).
     #[must_use]
     pub fn new(level: ColorLevel, dither: bool) -> Self {
-        static LUT_256: OnceLock<Arc<[u8]>> = OnceLock::new();
-        static LUT_16: OnceLock<Arc<[u8]>> = OnceLock::new();
-        let (lut, amplitude): (Arc<[u8]>, i16) = match level {
+        static LUT_256: OnceLock<Arc<PairTables>> = OnceLock::new();
+        static LUT_16: OnceLock<Arc<PairTables>> = OnceLock::new();
+        let (pairs, amplitude): (Option<Arc<PairTables>>, i16) = match level {
             ColorLevel::Ansi256 => (
-                Arc::clone(
-                    LUT_256.get_or_init(|| build_lut(&(16..=255).collect::<Vec<u8>>()).into()),
-                ),
+                Some(Arc::clone(LUT_256.get_or_init(|| {
+                    Arc::new(build_tables(&(16..=255).collect::<Vec<u8>>()))
+                }))),
                 40,
             ),
             ColorLevel::Ansi16 => (
-                Arc::clone(LUT_16.get_or_init(|| build_lut(&(0..16).collect::<Vec<u8>>()).into())),
+                Some(Arc::clone(LUT_16.get_or_init(|| {
+                    Arc::new(build_tables(&(0..16).collect::<Vec<u8>>()))
+                }))),
                 96,
             ),
-            ColorLevel::TrueColor | ColorLevel::Mono => (Arc::from(Vec::new()), 0),
+            ColorLevel::TrueColor | ColorLevel::Mono => (None, 0),
+        };
+        let lut: Arc<[u8]> = match &pairs {
+            Some(t) => t.near.iter().map(|n| n[0]).collect(),
+            None => Arc::from(Vec::new()),
         };
         let mut bin = [0u8; 256];
         for (v, b) in bin.iter_mut().enumerate() {
@@ -103,6 +112,7 @@ impl Palette {
             level,
             dither: dither && !lut.is_empty(),
             lut,
+            pairs,
             amplitude,
             bin,
         }
@@ -128,9 +138,39 @@ impl Palette {
         } else {
             c
         };
+        u32::from(self.lut[self.bin_of(c)])
+    }
+
+    /// The lookup-table bin of a colour.
+    #[inline]
+    fn bin_of(&self, c: Rgb) -> usize {
         let bin = |v: u8| usize::from(self.bin[usize::from(v)]);
-        let i = (bin(c.r) << (2 * LUT_BITS)) | (bin(c.g) << LUT_BITS) | bin(c.b);
-        u32::from(self.lut[i])
+        (bin(c.r) << (2 * LUT_BITS)) | (bin(c.g) << LUT_BITS) | bin(c.b)
+    }
+
+    /// Whether [`Palette::cell`] chooses the two codes together (so they depend only on the pixels).
+    #[must_use]
+    #[inline]
+    pub fn pairs_cells(&self) -> bool {
+        self.pairs.is_some() && !self.dither
+    }
+
+    /// The `[top, bottom]` codes of a cell showing pixels `top` over `bottom`.
+    ///
+    /// At 256 and 16 colours (without `--dither`) the two are chosen together so the cell's mix
+    /// keeps its colour ([`pairing`]); it depends on the two pixels only, never on the position.
+    /// Elsewhere each pixel gets [`Palette::code`] at (x, y) and (x, y + 1).
+    #[must_use]
+    #[inline]
+    pub fn cell(&self, top: Rgb, bottom: Rgb, x: usize, y: usize) -> [Code; 2] {
+        match &self.pairs {
+            Some(t) if !self.dither => {
+                let near = |c: Rgb| t.near[self.bin_of(c)];
+                let [p, q] = pairing::choose(t, near, top, bottom);
+                [u32::from(p), u32::from(q)]
+            }
+            _ => [self.code(top, x, y), self.code(bottom, x, y + 1)],
+        }
     }
 
     /// The RGB a code shows (the xterm default for palette indices).
@@ -145,50 +185,39 @@ impl Palette {
     }
 }
 
-/// For every bin centre, the candidate nearest in OKLab.
-fn build_lut(candidates: &[u8]) -> Vec<u8> {
+/// For every bin centre, the [`NEAR`] candidates nearest in OKLab; and every index's colour.
+fn build_tables(candidates: &[u8]) -> PairTables {
     let labs: Vec<[f32; 3]> = candidates.iter().map(|&i| oklab(xterm_rgb(i))).collect();
     let centre = |i: usize| ((i * 255 + (LUT_SIDE - 1) / 2) / (LUT_SIDE - 1)) as u8;
-    let mut lut = vec![0u8; LUT_SIDE * LUT_SIDE * LUT_SIDE];
+    let mut near = vec![[0u8; NEAR]; LUT_SIDE * LUT_SIDE * LUT_SIDE];
     for r in 0..LUT_SIDE {
         for g in 0..LUT_SIDE {
             for b in 0..LUT_SIDE {
                 let lab = oklab(Rgb::new(centre(r), centre(g), centre(b)));
-                let mut best = (f32::MAX, 0u8);
+                // Insertion into a short sorted list; strict `<` keeps the lower index on ties.
+                let mut best = [(f32::MAX, candidates[0]); NEAR];
                 for (k, p) in labs.iter().enumerate() {
-                    let d =
-                        (lab[0] - p[0]).powi(2) + (lab[1] - p[1]).powi(2) + (lab[2] - p[2]).powi(2);
-                    if d < best.0 {
-                        best = (d, candidates[k]);
+                    let d = crate::color::lab_dist2(lab, *p);
+                    if d < best[NEAR - 1].0 {
+                        let mut j = NEAR - 1;
+                        while j > 0 && d < best[j - 1].0 {
+                            best[j] = best[j - 1];
+                            j -= 1;
+                        }
+                        best[j] = (d, candidates[k]);
                     }
                 }
-                lut[(r * LUT_SIDE + g) * LUT_SIDE + b] = best.1;
+                near[(r * LUT_SIDE + g) * LUT_SIDE + b] = best.map(|(_, i)| i);
             }
         }
     }
-    lut
+    PairTables::new(near, xterm_rgb, candidates.len() > 16)
 }
 
 /// sRGB → OKLab (Björn Ottosson's perceptual space), for nearest-colour matching.
 #[must_use]
 pub fn oklab(c: Rgb) -> [f32; 3] {
-    let lin = |v: u8| {
-        let v = f32::from(v) / 255.0;
-        if v <= 0.040_45 {
-            v / 12.92
-        } else {
-            ((v + 0.055) / 1.055).powf(2.4)
-        }
-    };
-    let (r, g, b) = (lin(c.r), lin(c.g), lin(c.b));
-    let l = (0.412_221_46 * r + 0.536_332_55 * g + 0.051_445_995 * b).cbrt();
-    let m = (0.211_903_5 * r + 0.680_699_5 * g + 0.107_396_96 * b).cbrt();
-    let s = (0.088_302_46 * r + 0.281_718_85 * g + 0.629_978_7 * b).cbrt();
-    [
-        0.210_454_26 * l + 0.793_617_8 * m - 0.004_072_047 * s,
-        1.977_998_5 * l - 2.428_592_2 * m + 0.450_593_7 * s,
-        0.025_904_037 * l + 0.782_771_77 * m - 0.808_675_77 * s,
-    ]
+    crate::color::oklab(c.linear())
 }
 
 /// A cheap perceptual distance ("redmean" weighted RGB), scaled so black↔white ≈ 255.

@@ -12,10 +12,68 @@ pub fn mono_char(top: crate::Rgb, bottom: crate::Rgb) -> char {
     shade_char(((u16::from(top.luma()) + u16::from(bottom.luma())) / 2) as u8)
 }
 
+/// Slots in a [`CellCache`] (a power of two): 128 KiB, enough for a frame's common pixel pairs.
+const CACHE_SLOTS: usize = 1 << 13;
+
+/// Remembers recent (top, bottom) pixel pairs and their codes: the per-cell pair choice costs a
+/// few hundred ns, and a frame repeats many pairs (flat floors, texels stretched over several cells).
+/// The answer depends only on the pixels, so caching never changes the output.
+#[derive(Debug, Clone)]
+pub struct CellCache {
+    slots: Vec<(u64, [Code; 2])>,
+}
+
+impl Default for CellCache {
+    fn default() -> Self {
+        Self {
+            slots: vec![(u64::MAX, [0; 2]); CACHE_SLOTS],
+        }
+    }
+}
+
+impl CellCache {
+    /// The codes of pixels (`t`, `b`) at (x, y), from the cache or computed and stored.
+    #[inline]
+    fn cell(
+        &mut self,
+        palette: &Palette,
+        t: crate::Rgb,
+        b: crate::Rgb,
+        x: usize,
+        y: usize,
+    ) -> [Code; 2] {
+        if !palette.pairs_cells() {
+            return palette.cell(t, b, x, y);
+        }
+        let key = (u64::from(t.r) << 40)
+            | (u64::from(t.g) << 32)
+            | (u64::from(t.b) << 24)
+            | (u64::from(b.r) << 16)
+            | (u64::from(b.g) << 8)
+            | u64::from(b.b);
+        let slot = (key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> (64 - 13)) as usize;
+        let entry = &mut self.slots[slot];
+        if entry.0 != key {
+            *entry = (key, palette.cell(t, b, x, y));
+        }
+        entry.1
+    }
+}
+
 /// Fills `cells` (row-major, `width × cell_rows`) with what each cell should show.
 ///
 /// Colour levels give `[top code, bottom code]`; mono gives `[char, 0]`.
 pub fn quantize(palette: &Palette, fb: &Framebuffer, cells: &mut Vec<[Code; 2]>) {
+    quantize_with(palette, fb, cells, &mut CellCache::default());
+}
+
+/// [`quantize`] reusing a cache across frames (what the live encoder does).
+pub fn quantize_with(
+    palette: &Palette,
+    fb: &Framebuffer,
+    cells: &mut Vec<[Code; 2]>,
+    cache: &mut CellCache,
+) {
     let (w, rows) = (fb.width(), fb.cell_rows());
     cells.clear();
     cells.reserve(w * rows);
@@ -27,11 +85,12 @@ pub fn quantize(palette: &Palette, fb: &Framebuffer, cells: &mut Vec<[Code; 2]>)
                     .zip(bottom)
                     .map(|(&t, &b)| [u32::from(mono_char(t, b)), 0]),
             ),
-            _ => {
-                cells.extend(top.iter().zip(bottom).enumerate().map(|(x, (&t, &b))| {
-                    [palette.code(t, x, 2 * cy), palette.code(b, x, 2 * cy + 1)]
-                }))
-            }
+            _ => cells.extend(
+                top.iter()
+                    .zip(bottom)
+                    .enumerate()
+                    .map(|(x, (&t, &b))| cache.cell(palette, t, b, x, 2 * cy)),
+            ),
         }
     }
 }
