@@ -17,6 +17,10 @@ pub const QUERY_PATIENCE: std::time::Duration = std::time::Duration::from_millis
 
 const ESC: u8 = 0x1b;
 
+/// Input kept from the query's time to be handled as keys afterwards: far more than anyone
+/// types in a fraction of a second; a flood beyond it is dropped, not buffered.
+const MAX_KEPT: usize = 4096;
+
 /// Reads a terminal's replies to [`QUERY`] out of its input stream.
 #[derive(Debug, Default)]
 pub struct ReplyScanner {
@@ -47,21 +51,22 @@ enum Answer {
 }
 
 impl ReplyScanner {
-    /// Takes the next bytes read from the terminal.
+    /// Takes the next bytes read from the terminal. Linear in the bytes fed, whatever they
+    /// are (a client may paste megabytes while the query runs).
     pub fn feed(&mut self, bytes: &[u8]) {
         self.pending.extend_from_slice(bytes);
-        loop {
-            if self.pending.is_empty() {
-                return;
-            }
-            match scan(&self.pending) {
-                Scan::Incomplete => return,
+        let mut at = 0;
+        while at < self.pending.len() {
+            match scan(&self.pending[at..]) {
+                Scan::Incomplete => break,
                 Scan::NotReply => {
-                    let b = self.pending.remove(0);
-                    self.other.push(b);
+                    if self.other.len() < MAX_KEPT {
+                        self.other.push(self.pending[at]);
+                    }
+                    at += 1;
                 }
                 Scan::Reply(n, answer) => {
-                    self.pending.drain(..n);
+                    at += n;
                     match answer {
                         Answer::TrueColor => self.yes = true,
                         Answer::NotTrueColor => self.no = true,
@@ -71,6 +76,7 @@ impl ReplyScanner {
                 }
             }
         }
+        self.pending.drain(..at);
     }
 
     /// Whether the DA1 reply came: nothing more will answer the query.
@@ -193,6 +199,24 @@ mod tests {
         let done = s.done();
         let (answer, rest) = s.finish();
         (done, answer, rest)
+    }
+
+    #[test]
+    fn a_flood_while_asking_is_scanned_in_linear_time_and_kept_bounded() {
+        let mut s = ReplyScanner::default();
+        let chunk: Vec<u8> = b"wasd\x1b[9;9;9".repeat(4096);
+        for _ in 0..64 {
+            s.feed(&chunk);
+        }
+        s.feed(b"\x1b[?62;22c");
+        assert!(s.done());
+        let (answer, rest) = s.finish();
+        assert_eq!(answer, None);
+        assert!(
+            rest.starts_with(b"wasd") && rest.len() <= MAX_KEPT + 256,
+            "{}",
+            rest.len()
+        );
     }
 
     #[test]

@@ -234,7 +234,7 @@ impl Config {
         let _ = writeln!(out, "\n[display]");
         let _ = writeln!(
             out,
-            "# Colour level when --colors is not given: auto (from COLORTERM, TERM, NO_COLOR), truecolor, 256, 16, mono."
+            "# Colour level when --colors is not given: auto (NO_COLOR, COLORTERM, else ask the terminal, else TERM), truecolor, 256, 16, mono."
         );
         let level = self.colors.map_or("auto", ColorLevel::name);
         let _ = writeln!(out, "colors = {level:?}");
