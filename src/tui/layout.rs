@@ -70,17 +70,7 @@ impl Panes {
         let (view, side) = if !wanted {
             (body, None)
         } else if body.width >= BESIDE_MIN_WIDTH {
-            let side_w = (body.width * 3 / 10).clamp(46, 66);
-            let view_w = body.width - side_w;
-            (
-                Rect::new(body.x, body.y, view_w, body.height),
-                Some(Side::Right(Rect::new(
-                    body.x + view_w,
-                    body.y,
-                    side_w,
-                    body.height,
-                ))),
-            )
+            beside(body, (body.width * 3 / 10).clamp(46, 66))
         } else if body.width >= STACK_MIN_WIDTH && body.height >= STACK_MIN_HEIGHT {
             let strip = (body.height * 2 / 5).clamp(12, 22);
             let view_h = body.height - strip;
@@ -94,17 +84,7 @@ impl Panes {
                 ))),
             )
         } else if body.width >= COMPACT_MIN_WIDTH && body.height >= COMPACT_ONE_MIN_HEIGHT {
-            let side_w = (body.width * 3 / 8).clamp(24, 34);
-            let view_w = body.width - side_w;
-            (
-                Rect::new(body.x, body.y, view_w, body.height),
-                Some(Side::Right(Rect::new(
-                    body.x + view_w,
-                    body.y,
-                    side_w,
-                    body.height,
-                ))),
-            )
+            beside(body, (body.width * 3 / 8).clamp(24, 34))
         } else {
             (body, None)
         };
@@ -191,6 +171,20 @@ fn split_h(r: Rect, left: u16) -> (Rect, Rect) {
     (
         Rect::new(r.x, r.y, left, r.height),
         Rect::new(r.x + left, r.y, r.width - left, r.height),
+    )
+}
+
+/// Splits `body` into the view on the left and a side column `side_w` wide on the right.
+fn beside(body: Rect, side_w: u16) -> (Rect, Option<Side>) {
+    let view_w = body.width - side_w;
+    (
+        Rect::new(body.x, body.y, view_w, body.height),
+        Some(Side::Right(Rect::new(
+            body.x + view_w,
+            body.y,
+            side_w,
+            body.height,
+        ))),
     )
 }
 
