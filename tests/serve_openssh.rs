@@ -3,19 +3,13 @@
 
 mod serve_support;
 
-use std::io::{Read, Write};
+use std::io::Write;
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
-use portable_pty::{native_pty_system, CommandBuilder, PtySize};
+use portable_pty::PtySize;
+use serve_support::openssh::{ssh_available, SshPty};
 use serve_support::{half_block_cells, header_has, server, view_rect, PATIENCE};
-
-fn ssh_available() -> bool {
-    std::process::Command::new("ssh")
-        .arg("-V")
-        .output()
-        .is_ok_and(|o| o.status.success())
-}
 
 /// Feeds pty output into the screen model until `done` holds (false on EOF or timeout).
 fn until(
@@ -46,54 +40,18 @@ fn openssh_client_plays_with_compression_resizes_and_quits() {
     }
     let rt = tokio::runtime::Runtime::new().expect("runtime");
     let (srv, dir) = rt.block_on(server(|_| {}));
-    let port = srv.local_addr().port().to_string();
     let log = dir.path().join("ssh.log");
 
-    let pty = native_pty_system()
-        .openpty(PtySize {
-            rows: 24,
-            cols: 80,
-            pixel_width: 0,
-            pixel_height: 0,
-        })
-        .expect("pty");
-    let mut cmd = CommandBuilder::new("ssh");
-    for a in [
-        "-tt",
-        "-C",
-        "-v",
-        "-F",
-        "/dev/null",
-        "-p",
-        &port,
-        "-o",
-        "StrictHostKeyChecking=no",
-        "-o",
-        "UserKnownHostsFile=/dev/null",
-        "-o",
-        "BatchMode=yes",
-        "-o",
-        "ConnectTimeout=10",
-        "-E",
-    ] {
-        cmd.arg(a);
-    }
-    cmd.arg(&log);
-    cmd.arg("ann@127.0.0.1");
-    cmd.env("TERM", "xterm-256color");
-    let mut child = pty.slave.spawn_command(cmd).expect("spawn ssh");
-    drop(pty.slave);
-    let mut reader = pty.master.try_clone_reader().expect("reader");
-    let mut writer = pty.master.take_writer().expect("writer");
-    let (tx, rx) = mpsc::channel();
-    std::thread::spawn(move || {
-        let mut buf = [0u8; 8192];
-        while let Ok(n) = reader.read(&mut buf) {
-            if n == 0 || tx.send(buf[..n].to_vec()).is_err() {
-                break;
-            }
-        }
-    });
+    let SshPty {
+        master,
+        mut child,
+        mut writer,
+        rx,
+    } = SshPty::spawn(
+        srv.local_addr().port(),
+        &["-C".as_ref(), "-v".as_ref(), "-E".as_ref(), log.as_os_str()],
+        (80, 24),
+    );
     let mut screen = vt100::Parser::new(24, 80, 0);
     let ok = until(&rx, &mut screen, |s| header_has(s, "you are ann"));
     let ssh_log = std::fs::read_to_string(&log).unwrap_or_default();
@@ -118,7 +76,7 @@ fn openssh_client_plays_with_compression_resizes_and_quits() {
     assert!(until(&rx, &mut screen, |s| s.contents_formatted() != before));
 
     // Resizing the pty sends a window-change through ssh.
-    pty.master
+    master
         .resize(PtySize {
             rows: 15,
             cols: 50,

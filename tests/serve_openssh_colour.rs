@@ -4,22 +4,14 @@
 
 mod serve_support;
 
-use std::io::{Read, Write};
-use std::sync::mpsc;
+use std::io::Write;
 use std::time::Instant;
 
-use portable_pty::{native_pty_system, CommandBuilder, PtySize};
+use serve_support::openssh::{ssh_available, SshPty};
 use serve_support::{header_has, row_text, server, PATIENCE};
 
 /// The query's first bytes (XTGETTCAP `RGB`).
 const QUERY_START: &[u8] = b"\x1bP+q524742\x1b\\";
-
-fn ssh_available() -> bool {
-    std::process::Command::new("ssh")
-        .arg("-V")
-        .output()
-        .is_ok_and(|o| o.status.success())
-}
 
 /// Runs `ssh EXTRA… ann@server` in an 80×24 pty playing a terminal that answers the colour
 /// query with `answer`; returns the header once it shows `want` (or what it showed instead),
@@ -27,48 +19,13 @@ fn ssh_available() -> bool {
 fn header_via_openssh(extra: &[&str], answer: &[u8], want: &str) -> (String, bool) {
     let rt = tokio::runtime::Runtime::new().expect("runtime");
     let (srv, _dir) = rt.block_on(server(|_| {}));
-    let port = srv.local_addr().port().to_string();
-    let pty = native_pty_system()
-        .openpty(PtySize {
-            rows: 24,
-            cols: 80,
-            pixel_width: 0,
-            pixel_height: 0,
-        })
-        .expect("pty");
-    let mut cmd = CommandBuilder::new("ssh");
-    cmd.args(["-tt", "-F", "/dev/null", "-p", &port]);
-    cmd.args([
-        "-o",
-        "StrictHostKeyChecking=no",
-        "-o",
-        "UserKnownHostsFile=/dev/null",
-    ]);
-    cmd.args([
-        "-o",
-        "BatchMode=yes",
-        "-o",
-        "ConnectTimeout=10",
-        "-o",
-        "LogLevel=ERROR",
-    ]);
-    cmd.args(extra);
-    cmd.arg("ann@127.0.0.1");
-    cmd.env("TERM", "xterm-256color");
-    cmd.env_remove("COLORTERM");
-    let mut child = pty.slave.spawn_command(cmd).expect("spawn ssh");
-    drop(pty.slave);
-    let mut reader = pty.master.try_clone_reader().expect("reader");
-    let mut writer = pty.master.take_writer().expect("writer");
-    let (tx, rx) = mpsc::channel();
-    std::thread::spawn(move || {
-        let mut buf = [0u8; 8192];
-        while let Ok(n) = reader.read(&mut buf) {
-            if n == 0 || tx.send(buf[..n].to_vec()).is_err() {
-                break;
-            }
-        }
-    });
+    let extra: Vec<&std::ffi::OsStr> = extra.iter().map(|a| a.as_ref()).collect();
+    let SshPty {
+        mut child,
+        mut writer,
+        rx,
+        ..
+    } = SshPty::spawn(srv.local_addr().port(), &extra, (80, 24));
     let mut screen = vt100::Parser::new(24, 80, 0);
     let mut seen = Vec::new();
     let mut queried = false;

@@ -9,14 +9,8 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
+use serve_support::openssh::ssh_available;
 use serve_support::{header_has, server, tcp_from, Client};
-
-fn ssh_available() -> bool {
-    Command::new("ssh")
-        .arg("-V")
-        .output()
-        .is_ok_and(|o| o.status.success())
-}
 
 /// Runs `ssh -vv … ann@127.0.0.1 true` against `port` in batch mode (no pty, no prompt), with
 /// its debug log in `log`; returns the log text. Exec is refused by the server, so the command

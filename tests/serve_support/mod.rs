@@ -3,6 +3,8 @@
 //! client whose output goes through a vt100 terminal model.
 #![allow(dead_code)]
 
+pub mod openssh;
+
 use std::sync::Arc;
 use std::time::Duration;
 
