@@ -224,50 +224,6 @@ pub fn colours(s: &vt100::Screen) -> Vec<(u8, u8, u8)> {
     v
 }
 
-/// A TCP stream that counts the bytes read from the wire (after SSH compression/encryption).
-pub struct Counting {
-    inner: tokio::net::TcpStream,
-    pub read: Arc<std::sync::atomic::AtomicU64>,
-}
-
-impl tokio::io::AsyncRead for Counting {
-    fn poll_read(
-        mut self: std::pin::Pin<&mut Self>,
-        cx: &mut std::task::Context<'_>,
-        buf: &mut tokio::io::ReadBuf<'_>,
-    ) -> std::task::Poll<std::io::Result<()>> {
-        let before = buf.filled().len();
-        let r = std::pin::Pin::new(&mut self.inner).poll_read(cx, buf);
-        let n = (buf.filled().len() - before) as u64;
-        self.read.fetch_add(n, std::sync::atomic::Ordering::Relaxed);
-        r
-    }
-}
-
-impl tokio::io::AsyncWrite for Counting {
-    fn poll_write(
-        mut self: std::pin::Pin<&mut Self>,
-        cx: &mut std::task::Context<'_>,
-        buf: &[u8],
-    ) -> std::task::Poll<std::io::Result<usize>> {
-        std::pin::Pin::new(&mut self.inner).poll_write(cx, buf)
-    }
-
-    fn poll_flush(
-        mut self: std::pin::Pin<&mut Self>,
-        cx: &mut std::task::Context<'_>,
-    ) -> std::task::Poll<std::io::Result<()>> {
-        std::pin::Pin::new(&mut self.inner).poll_flush(cx)
-    }
-
-    fn poll_shutdown(
-        mut self: std::pin::Pin<&mut Self>,
-        cx: &mut std::task::Context<'_>,
-    ) -> std::task::Poll<std::io::Result<()>> {
-        std::pin::Pin::new(&mut self.inner).poll_shutdown(cx)
-    }
-}
-
 /// Opens a pty shell as `user` over a stream that counts wire bytes received (after SSH
 /// compression and encryption), offering only `compression`; the load test reads the channel
 /// itself.
@@ -283,11 +239,8 @@ pub async fn open_counting(
     russh::Channel<client::Msg>,
     Arc<std::sync::atomic::AtomicU64>,
 ) {
-    let read = Arc::new(std::sync::atomic::AtomicU64::new(0));
-    let stream = Counting {
-        inner: tokio::net::TcpStream::connect(addr).await.expect("tcp"),
-        read: Arc::clone(&read),
-    };
+    let stream = Tap::new(tokio::net::TcpStream::connect(addr).await.expect("tcp"));
+    let read = Arc::clone(&stream.read);
     let cfg = client::Config {
         preferred: Preferred {
             compression: std::borrow::Cow::Owned(vec![compression]),
@@ -409,10 +362,11 @@ pub enum TapMode {
 }
 
 /// A client-side TCP stream a test can stall or cut, to play a client that stops reading or
-/// dies mid-frame.
+/// dies mid-frame; it counts the bytes read from the wire (after SSH compression/encryption).
 pub struct Tap {
     inner: tokio::net::TcpStream,
     ctl: Arc<std::sync::Mutex<(TapMode, Option<std::task::Waker>)>>,
+    pub read: Arc<std::sync::atomic::AtomicU64>,
 }
 
 /// The test's end of a [`Tap`].
@@ -431,6 +385,15 @@ impl TapControl {
 }
 
 impl Tap {
+    /// An open tap over `inner`.
+    fn new(inner: tokio::net::TcpStream) -> Self {
+        Self {
+            inner,
+            ctl: Arc::new(std::sync::Mutex::new((TapMode::Open, None))),
+            read: Arc::default(),
+        }
+    }
+
     fn mode(&self) -> TapMode {
         self.ctl.lock().expect("tap").0
     }
@@ -457,7 +420,11 @@ impl tokio::io::AsyncRead for Tap {
                 TapMode::Open => {}
             }
         }
-        std::pin::Pin::new(&mut self.inner).poll_read(cx, buf)
+        let before = buf.filled().len();
+        let r = std::pin::Pin::new(&mut self.inner).poll_read(cx, buf);
+        let n = (buf.filled().len() - before) as u64;
+        self.read.fetch_add(n, std::sync::atomic::Ordering::Relaxed);
+        r
     }
 }
 
@@ -495,13 +462,12 @@ pub async fn connect_tapped(
     cols: u16,
     rows: u16,
 ) -> Result<(Client, TapControl), String> {
-    let ctl = Arc::new(std::sync::Mutex::new((TapMode::Open, None)));
-    let stream = Tap {
-        inner: tokio::net::TcpStream::connect(addr)
+    let stream = Tap::new(
+        tokio::net::TcpStream::connect(addr)
             .await
             .map_err(|e| format!("tcp: {e}"))?,
-        ctl: Arc::clone(&ctl),
-    };
+    );
+    let ctl = Arc::clone(&stream.ctl);
     let mut handle = client::connect_stream(Arc::new(client::Config::default()), stream, Trusting)
         .await
         .map_err(|e| format!("connect: {e}"))?;
