@@ -76,9 +76,17 @@ fn the_shutdown_summary_counts_sessions_still_running() {
         let addr = format!("127.0.0.1:{port}").parse().expect("addr");
         let mut c = Client::connect(addr, "ann", 60, 16, "xterm-256color").await;
         assert!(c.until(|s| header_has(s, "you are ann")).await);
+        // A second `ann` plays as `ann-2`, and the log says so (its login line named `ann`).
+        let mut twin = Client::connect(addr, "ann", 60, 16, "xterm-256color").await;
+        assert!(twin.until(|s| header_has(s, "you are ann-2")).await);
         c.drain_for(Duration::from_millis(300)).await;
-        c
+        (c, twin)
     });
+    let renamed = wait_for("was taken", &mut seen);
+    assert!(
+        renamed.contains(r#""ann" was taken: plays as "ann-2""#),
+        "{renamed}"
+    );
     let killed = Command::new("kill")
         .args(["-TERM", &child.id().to_string()])
         .status();
@@ -91,13 +99,13 @@ fn the_shutdown_summary_counts_sessions_still_running() {
     let summary = wait_for("served ", &mut seen);
     let _ = child.wait();
     drop(client);
-    // "served 1 connections (0 refused), N frames, M bytes"
+    // "served 2 connections (0 refused), N frames, M bytes"
     let frames: u64 = summary
         .split(", ")
         .find_map(|p| p.strip_suffix(" frames"))
         .and_then(|n| n.parse().ok())
         .unwrap_or_else(|| panic!("{summary}"));
-    assert!(summary.contains("served 1 connections"), "{summary}");
+    assert!(summary.contains("served 2 connections"), "{summary}");
     assert!(
         frames > 0,
         "the live session's frames are counted: {summary}"

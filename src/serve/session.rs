@@ -134,6 +134,8 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
     let mut tally = Tally::default();
     let mut out = if entered { Vec::new() } else { ENTER.to_vec() };
     let mut keys = Vec::new();
+    // Whether the world's (unique) name for us has been seen; spectators have none.
+    let mut named = p.spectator;
     let end = loop {
         tokio::select! {
             biased;
@@ -182,6 +184,19 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
                     }
                 }
                 let snap = snaps.borrow_and_update().clone();
+                if !named {
+                    if let Some(me) = snap.player(p.id) {
+                        named = true;
+                        if me.name != p.name {
+                            // The log line at login named what was asked for.
+                            p.log.session(
+                                p.id,
+                                p.peer,
+                                format_args!("{:?} was taken: plays as {:?}", p.name, me.name),
+                            );
+                        }
+                    }
+                }
                 s.compose(&snap, &mut out);
                 if out.is_empty() {
                     continue;
