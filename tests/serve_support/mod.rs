@@ -87,22 +87,47 @@ impl Client {
         term: &str,
         compression: Option<russh::compression::Name>,
     ) -> Self {
-        let mut handle = connect_raw(addr, compression).await.expect("connect");
-        let auth = handle.authenticate_none(user).await.expect("auth");
-        assert!(auth.success(), "auth none accepted");
-        let channel = handle.channel_open_session().await.expect("session");
+        let handle = connect_raw(addr, compression).await.expect("connect");
+        Self::start(handle, user, term, cols, rows)
+            .await
+            .unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    /// Logs in as `user` over a connected `handle` (no auth), asks for a `cols`×`rows` pty with
+    /// `term` and starts the shell; the error says which step failed.
+    pub async fn start(
+        mut handle: client::Handle<Trusting>,
+        user: &str,
+        term: &str,
+        cols: u16,
+        rows: u16,
+    ) -> Result<Self, String> {
+        let auth = handle
+            .authenticate_none(user)
+            .await
+            .map_err(|e| format!("auth: {e}"))?;
+        if !auth.success() {
+            return Err("auth refused".into());
+        }
+        let channel = handle
+            .channel_open_session()
+            .await
+            .map_err(|e| format!("session: {e}"))?;
         channel
             .request_pty(true, term, u32::from(cols), u32::from(rows), 0, 0, &[])
             .await
-            .expect("pty");
-        channel.request_shell(true).await.expect("shell");
-        Self {
+            .map_err(|e| format!("pty: {e}"))?;
+        channel
+            .request_shell(true)
+            .await
+            .map_err(|e| format!("shell: {e}"))?;
+        Ok(Self {
             handle,
             channel,
             screen: vt100::Parser::new(rows, cols, 0),
             bytes: 0,
             closed: false,
-        }
+        })
     }
 
     /// Reads output into the screen model until `done(screen)` holds; false on close or timeout.
@@ -248,21 +273,13 @@ pub async fn open_counting(
         },
         ..client::Config::default()
     };
-    let mut handle = client::connect_stream(Arc::new(cfg), stream, Trusting)
+    let handle = client::connect_stream(Arc::new(cfg), stream, Trusting)
         .await
         .expect("connect");
-    assert!(handle
-        .authenticate_none(user)
+    let c = Client::start(handle, user, term, cols, rows)
         .await
-        .expect("auth")
-        .success());
-    let channel = handle.channel_open_session().await.expect("session");
-    channel
-        .request_pty(true, term, u32::from(cols), u32::from(rows), 0, 0, &[])
-        .await
-        .expect("pty");
-    channel.request_shell(true).await.expect("shell");
-    (handle, channel, read)
+        .unwrap_or_else(|e| panic!("{e}"));
+    (c.handle, c.channel, read)
 }
 
 /// Like [`Client::connect_with`], over a stream that counts wire bytes received.
@@ -293,35 +310,10 @@ pub async fn try_connect(
     cols: u16,
     rows: u16,
 ) -> Result<Client, String> {
-    let mut handle = connect_raw(addr, None)
+    let handle = connect_raw(addr, None)
         .await
         .map_err(|e| format!("connect: {e}"))?;
-    let auth = handle
-        .authenticate_none(user)
-        .await
-        .map_err(|e| format!("auth: {e}"))?;
-    if !auth.success() {
-        return Err("auth refused".into());
-    }
-    let channel = handle
-        .channel_open_session()
-        .await
-        .map_err(|e| format!("session: {e}"))?;
-    channel
-        .request_pty(true, "xterm", u32::from(cols), u32::from(rows), 0, 0, &[])
-        .await
-        .map_err(|e| format!("pty: {e}"))?;
-    channel
-        .request_shell(true)
-        .await
-        .map_err(|e| format!("shell: {e}"))?;
-    Ok(Client {
-        handle,
-        channel,
-        screen: vt100::Parser::new(rows, cols, 0),
-        bytes: 0,
-        closed: false,
-    })
+    Client::start(handle, user, "xterm", cols, rows).await
 }
 
 /// Opens a TCP connection to `addr` from the loopback address `from` (any of 127.0.0.0/8), so
@@ -468,43 +460,10 @@ pub async fn connect_tapped(
             .map_err(|e| format!("tcp: {e}"))?,
     );
     let ctl = Arc::clone(&stream.ctl);
-    let mut handle = client::connect_stream(Arc::new(client::Config::default()), stream, Trusting)
+    let handle = client::connect_stream(Arc::new(client::Config::default()), stream, Trusting)
         .await
         .map_err(|e| format!("connect: {e}"))?;
-    let ok = handle
-        .authenticate_none(user)
-        .await
-        .map_err(|e| format!("auth: {e}"))?;
-    if !ok.success() {
-        return Err("auth refused".into());
-    }
-    let channel = handle
-        .channel_open_session()
-        .await
-        .map_err(|e| format!("session: {e}"))?;
-    channel
-        .request_pty(
-            true,
-            "xterm-256color",
-            u32::from(cols),
-            u32::from(rows),
-            0,
-            0,
-            &[],
-        )
-        .await
-        .map_err(|e| format!("pty: {e}"))?;
-    channel
-        .request_shell(true)
-        .await
-        .map_err(|e| format!("shell: {e}"))?;
-    let c = Client {
-        handle,
-        channel,
-        screen: vt100::Parser::new(rows, cols, 0),
-        bytes: 0,
-        closed: false,
-    };
+    let c = Client::start(handle, user, "xterm-256color", cols, rows).await?;
     Ok((c, TapControl(ctl)))
 }
 
