@@ -269,3 +269,41 @@ fn under_tmux_at_80x24_taps_are_small_steps_and_the_help_shows() {
     }
     tmux.run(&["send-keys", "-t", "t", "q"]);
 }
+
+/// tmux 3.3 answers neither XTGETTCAP nor DECRQSS (only DA1): with `TERM=xterm-256color` and
+/// no `COLORTERM` the game still starts at once, at 256 colours by the `TERM` rule, and says so.
+#[test]
+fn under_tmux_xterm_256color_gets_256_by_the_term_rule() {
+    if Command::new("tmux").arg("-V").output().is_err() {
+        eprintln!("skipping: tmux is not installed");
+        return;
+    }
+    let tmux = Tmux {
+        socket: format!("halfcast-colour-{}", std::process::id()),
+    };
+    let bin = env!("CARGO_BIN_EXE_halfcast");
+    let started = tmux.run(&[
+        "new-session",
+        "-d",
+        "-s",
+        "t",
+        "-x",
+        "140",
+        "-y",
+        "30",
+        "env",
+        "-u",
+        "COLORTERM",
+        "-u",
+        "NO_COLOR",
+        "TERM=xterm-256color",
+        bin,
+        "--fps",
+        "30",
+    ]);
+    assert!(started.status.success(), "{started:?}");
+    tmux.wait_for("256 (TERM)", |s| status(s).contains(" 256 (TERM)"));
+    let _ = tmux.run(&["send-keys", "-t", "t", "o"]);
+    tmux.wait_for("16 (O key)", |s| status(s).contains(" 16 (O key)"));
+    let _ = tmux.run(&["send-keys", "-t", "t", "q"]);
+}
