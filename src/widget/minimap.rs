@@ -64,26 +64,28 @@ pub struct MapView {
     pub origin: Vec2,
 }
 
+/// Where a pane showing `visible` map cells along an axis starts: the map centred when it fits,
+/// else following `at` without showing past the map's edges.
+fn follow(map_len: usize, visible: f64, at: f64) -> f64 {
+    let map_len = map_len as f64;
+    if map_len <= visible {
+        -(visible - map_len) / 2.0
+    } else {
+        (at - visible / 2.0).clamp(0.0, map_len - visible)
+    }
+}
+
 impl MapView {
     /// Fits the whole map when it fits at [`MIN_SCALE`] or more, else follows `player`.
     #[must_use]
     pub fn new(map_size: (usize, usize), canvas: (usize, usize), player: Vec2) -> Self {
         let fit = (canvas.0 / map_size.0.max(1)).min(canvas.1 / map_size.1.max(1));
         let scale = fit.clamp(MIN_SCALE, MAX_SCALE) as f64;
-        let axis = |map_len: usize, px: usize, at: f64| {
-            let visible = px as f64 / scale;
-            let map_len = map_len as f64;
-            if map_len <= visible {
-                -(visible - map_len) / 2.0
-            } else {
-                (at - visible / 2.0).clamp(0.0, map_len - visible)
-            }
-        };
         Self {
             scale,
             origin: Vec2::new(
-                axis(map_size.0, canvas.0, player.x),
-                axis(map_size.1, canvas.1, player.y),
+                follow(map_size.0, canvas.0 as f64 / scale, player.x),
+                follow(map_size.1, canvas.1 as f64 / scale, player.y),
             ),
         }
     }
@@ -441,17 +443,9 @@ impl Minimap<'_> {
             Some(e) if self.focus => Vec2::new((pos.x + e.x) / 2.0, (pos.y + e.y) / 2.0),
             _ => pos,
         };
-        let axis = |len: usize, visible: f64, at: f64| {
-            let len = len as f64;
-            if len <= visible {
-                -(visible - len) / 2.0
-            } else {
-                (at - visible / 2.0).clamp(0.0, len - visible)
-            }
-        };
         let origin = Vec2::new(
-            axis(map.width, cols, centre.x).floor(),
-            axis(map.height, rows, centre.y).floor(),
+            follow(map.width, cols, centre.x).floor(),
+            follow(map.height, rows, centre.y).floor(),
         );
         // Terminal cell of a map point, if on the pane.
         let at = |p: Vec2| -> Option<(u16, u16)> {
