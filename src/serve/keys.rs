@@ -1,5 +1,5 @@
-//! What a session does with a key: the few keys only a server has (switching whom a spectator
-//! follows, cycling the colour level), and everything else handed to the local TUI's own
+//! What a session does with a key: the keys only a server has (switching whom a spectator
+//! follows), and everything else — the colour key too — handed to the local TUI's own
 //! `tui::keys::Controls` as the crossterm event a local terminal would have produced.
 
 use crossterm::event::{
@@ -8,17 +8,12 @@ use crossterm::event::{
 
 use super::input::{Key, KeyEvent, KeyKind};
 
-/// The key that cycles the colour level (truecolor → 256 → 16 → mono → truecolor).
-pub const COLOUR_KEY: char = 'o';
-
 /// Where a key goes.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Routed {
     /// Follow the next player (Tab) or the previous one (Shift-Tab).
     NextTarget,
     PrevTarget,
-    /// Cycle the colour level.
-    CycleColour,
     /// The TUI's key map decides (movement, doors, debugger, panes, help, quit).
     Tui(Event),
     /// Releases and repeats of server keys, and keys no terminal library names.
@@ -36,7 +31,6 @@ pub fn route(ev: KeyEvent) -> Routed {
     let server_key = match ev.key {
         Key::Tab => Some(Routed::NextTarget),
         Key::BackTab => Some(Routed::PrevTarget),
-        Key::Char(c) if c.eq_ignore_ascii_case(&COLOUR_KEY) => Some(Routed::CycleColour),
         _ => None,
     };
     if let Some(r) = server_key {
@@ -98,9 +92,8 @@ mod tests {
     fn server_keys_fire_on_press_only() {
         assert_eq!(route(press(Key::Tab)), Routed::NextTarget);
         assert_eq!(route(press(Key::BackTab)), Routed::PrevTarget);
-        assert_eq!(route(press(Key::Char('O'))), Routed::CycleColour);
         let release = KeyEvent {
-            key: Key::Char('o'),
+            key: Key::Tab,
             kind: KeyKind::Release,
         };
         assert_eq!(route(release), Routed::Nothing);
@@ -120,6 +113,14 @@ mod tests {
         assert!(!c.take_input(now).held.contains(Action::Forward));
         feed(&mut c, Key::Ctrl('c'), KeyKind::Press, now);
         feed(&mut c, Key::Char('m'), KeyKind::Press, now);
-        assert_eq!(c.take_ui(), [UiCommand::Quit, UiCommand::ToggleMinimap]);
+        feed(&mut c, Key::Char('O'), KeyKind::Press, now);
+        assert_eq!(
+            c.take_ui(),
+            [
+                UiCommand::Quit,
+                UiCommand::ToggleMinimap,
+                UiCommand::CycleColours
+            ]
+        );
     }
 }

@@ -23,7 +23,7 @@ use tokio::time::MissedTickBehavior;
 use super::ask_colour::{ask_truecolor, SSH_QUERY_PATIENCE};
 use super::config::clamp_size;
 use super::input::{InputEvent, InputParser};
-use super::keys::{route, Routed, COLOUR_KEY};
+use super::keys::{route, Routed};
 use super::log::Log;
 use super::players::{PlayerId, Snapshot};
 use super::screen::{panes_for, view_rect, SessionScreen};
@@ -326,9 +326,6 @@ impl State {
                     }
                 }
                 InputEvent::Key(k) => match route(k) {
-                    Routed::CycleColour => {
-                        self.screen.set_colour(self.screen.colour().cycled());
-                    }
                     Routed::NextTarget => self.following = cycle(snap, self.following, true),
                     Routed::PrevTarget => self.following = cycle(snap, self.following, false),
                     Routed::Tui(ev) => self.controls.handle(&ev, now),
@@ -345,8 +342,6 @@ impl State {
                 UiCommand::ToggleMinimap => toggles.minimap = !toggles.minimap,
                 UiCommand::ToggleDebug => toggles.debug = !toggles.debug,
                 UiCommand::ToggleHelp => toggles.help = !toggles.help,
-                // The colour key is routed before the key map (`Routed::CycleColour`); a
-                // rebinding cannot reach here, but the cycle is the same.
                 UiCommand::CycleColours => self.screen.set_colour(self.screen.colour().cycled()),
             }
         }
@@ -391,11 +386,11 @@ impl State {
             (None, false) => "joining...".to_string(),
         };
         let mut line = format!(
-            " halfcast | {who} | {} here: {} | {} | {} colours",
+            // O is the key map's default colour key (sessions use the default keys).
+            " halfcast | {who} | {} here: {} | {} | O colours",
             names.len(),
             names.join(", "),
             self.screen.colour(),
-            COLOUR_KEY.to_ascii_uppercase(),
         );
         if self.clamped {
             let _ = write!(line, " | clamped to {}x{}", self.size.0, self.size.1);

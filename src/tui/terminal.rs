@@ -215,12 +215,10 @@ pub fn restore() {
     let _ = disable_raw_mode();
 }
 
-/// Keys in raw terminal bytes, as the crossterm events the game's key map takes (the colour
-/// key included, as a plain `o` press).
+/// Keys in raw terminal bytes, as the crossterm events the game's key map takes.
 fn keys_from_bytes(bytes: &[u8]) -> Vec<crossterm::event::Event> {
     use crate::serve::input::{InputEvent, InputParser};
-    use crate::serve::keys::{route, Routed, COLOUR_KEY};
-    use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
+    use crate::serve::keys::{route, Routed};
     let mut parsed = Vec::new();
     let mut parser = InputParser::new();
     parser.feed(bytes, &mut parsed);
@@ -230,10 +228,6 @@ fn keys_from_bytes(bytes: &[u8]) -> Vec<crossterm::event::Event> {
         .filter_map(|ev| match ev {
             InputEvent::Key(k) => match route(k) {
                 Routed::Tui(ev) => Some(ev),
-                Routed::CycleColour => Some(Event::Key(KeyEvent::new(
-                    KeyCode::Char(COLOUR_KEY),
-                    KeyModifiers::NONE,
-                ))),
                 _ => None,
             },
             InputEvent::KittyFlags(_) => None,
