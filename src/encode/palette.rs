@@ -69,9 +69,8 @@ pub fn xterm_rgb(i: u8) -> Rgb {
 pub struct Palette {
     level: ColorLevel,
     dither: bool,
-    /// Nearest palette index per 5-bit-per-channel bin (empty at truecolor and mono).
-    lut: Arc<[u8]>,
-    /// What the per-cell pair choice reads (`None` at truecolor and mono).
+    /// The nearest palette entries per 5-bit-per-channel bin and what the per-cell pair choice
+    /// reads (`None` at truecolor and mono).
     pairs: Option<Arc<PairTables>>,
     /// Amplitude of the ordered-dither offset, in 8-bit channel units.
     amplitude: i16,
@@ -100,18 +99,13 @@ impl Palette {
             ),
             ColorLevel::TrueColor | ColorLevel::Mono => (None, 0),
         };
-        let lut: Arc<[u8]> = match &pairs {
-            Some(t) => t.near.iter().map(|n| n[0]).collect(),
-            None => Arc::from(Vec::new()),
-        };
         let mut bin = [0u8; 256];
         for (v, b) in bin.iter_mut().enumerate() {
             *b = ((v * (LUT_SIDE - 1) + 127) / 255) as u8;
         }
         Self {
             level,
-            dither: dither && !lut.is_empty(),
-            lut,
+            dither: dither && pairs.is_some(),
             pairs,
             amplitude,
             bin,
@@ -128,9 +122,9 @@ impl Palette {
     #[must_use]
     #[inline]
     pub fn code(&self, c: Rgb, x: usize, y: usize) -> Code {
-        if self.lut.is_empty() {
+        let Some(t) = &self.pairs else {
             return (u32::from(c.r) << 16) | (u32::from(c.g) << 8) | u32::from(c.b);
-        }
+        };
         let c = if self.dither {
             let o = bayer_offset(x, y, self.amplitude);
             let add = |v: u8| (i16::from(v) + o).clamp(0, 255) as u8;
@@ -138,7 +132,7 @@ impl Palette {
         } else {
             c
         };
-        u32::from(self.lut[self.bin_of(c)])
+        u32::from(t.near[self.bin_of(c)][0])
     }
 
     /// The lookup-table bin of a colour.
@@ -177,7 +171,7 @@ impl Palette {
     #[must_use]
     #[inline]
     pub fn rgb(&self, code: Code) -> Rgb {
-        if self.lut.is_empty() {
+        if self.pairs.is_none() {
             Rgb::new((code >> 16) as u8, (code >> 8) as u8, code as u8)
         } else {
             xterm_rgb(code as u8)
