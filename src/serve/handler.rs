@@ -13,7 +13,7 @@ use tokio::sync::{mpsc, watch};
 use super::auth::Backoff;
 use super::config::{ServeConfig, DEFAULT_SIZE};
 use super::lifecycle::Lifeline;
-use super::limits::{Limiter, Pending, Playing};
+use super::limits::{Limiter, Pending, Playing, Refusal};
 use super::log::Log;
 use super::session::{self, End, SessionInputs, SessionParams};
 use super::stats::ServeStats;
@@ -122,6 +122,15 @@ impl ConnHandler {
         self.reject()
     }
 
+    /// Refuses a place to play: logged, counted, and told to the client as an SSH disconnect.
+    fn turn_away(&self, session: &mut Session, why: &Refusal) -> Result<(), russh::Error> {
+        self.shared
+            .log
+            .session(self.id, self.peer, format_args!("refused: {why}"));
+        ServeStats::add(&self.shared.stats.refused, 1);
+        session.disconnect(russh::Disconnect::TooManyConnections, &why.to_string(), "")
+    }
+
     /// Turns the logging-in place into a playing one, or disconnects saying the server is full.
     fn take_place(&mut self, session: &mut Session) -> Result<bool, russh::Error> {
         let promoted = self.pending.as_ref().map(Pending::promote);
@@ -133,11 +142,7 @@ impl ConnHandler {
                 Ok(true)
             }
             Some(Err(why)) => {
-                self.shared
-                    .log
-                    .session(self.id, self.peer, format_args!("refused: {why}"));
-                ServeStats::add(&self.shared.stats.refused, 1);
-                session.disconnect(russh::Disconnect::TooManyConnections, &why.to_string(), "")?;
+                self.turn_away(session, &why)?;
                 Ok(false)
             }
             None => Ok(false),
@@ -208,11 +213,7 @@ impl russh::server::Handler for ConnHandler {
     async fn auth_succeeded(&mut self, session: &mut Session) -> Result<(), Self::Error> {
         // Say "server full" now rather than after the client asked for a pty and a shell.
         if let Err(why) = self.shared.limiter.has_room() {
-            self.shared
-                .log
-                .session(self.id, self.peer, format_args!("refused: {why}"));
-            ServeStats::add(&self.shared.stats.refused, 1);
-            session.disconnect(russh::Disconnect::TooManyConnections, &why.to_string(), "")?;
+            self.turn_away(session, &why)?;
         }
         Ok(())
     }
