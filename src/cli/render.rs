@@ -12,8 +12,11 @@ use halfcast::{Framebuffer, Scene};
 use super::options::{MapArgs, PoseArgs, WorldArgs};
 use super::{camera_for, detect_level, load_world, parse_level, write_output, Failure};
 
-/// Largest view `render` accepts, in cells (columns × rows).
-const MAX_RENDER: (u16, u16) = (4000, 2000);
+/// Largest view `render` accepts, in cells (columns × rows): the largest frame `diff` reads.
+const MAX_RENDER: (u16, u16) = (
+    halfcast::termframe::MAX_FRAME.0 as u16,
+    halfcast::termframe::MAX_FRAME.1 as u16,
+);
 
 #[derive(Args, Debug)]
 pub(crate) struct RenderArgs {
