@@ -116,7 +116,7 @@ pub fn run_loop(
     // Keys typed while the start-up colour query ran come first.
     let now = Instant::now();
     for ev in &early_keys {
-        app.key(ev, now);
+        app.controls.handle(ev, now);
     }
     let period = Duration::from_secs_f64(1.0 / fps);
     let events = Events::spawn()?;
@@ -130,7 +130,7 @@ pub fn run_loop(
                 break;
             }
             if let Some(ev) = events.next_within(next - now)? {
-                app.key(&ev, Instant::now());
+                app.controls.handle(&ev, Instant::now());
             }
             if signal.load(Ordering::SeqCst) != 0 {
                 break;
@@ -274,11 +274,6 @@ pub fn run_loop(
 }
 
 impl App {
-    /// One terminal event, read through the key map.
-    fn key(&mut self, ev: &crossterm::event::Event, now: Instant) {
-        self.controls.handle(ev, now);
-    }
-
     /// The level frames are sent at now, and why.
     fn presenter_choice(&self) -> ColourChoice {
         self.stats.level.unwrap_or(ColourChoice {
