@@ -264,6 +264,19 @@ pub async fn open_counting(
     russh::Channel<client::Msg>,
     Arc<std::sync::atomic::AtomicU64>,
 ) {
+    let (c, read) = connect_counting(addr, user, cols, rows, term, compression).await;
+    (c.handle, c.channel, read)
+}
+
+/// Like [`Client::connect_with`], over a stream that counts wire bytes received.
+pub async fn connect_counting(
+    addr: std::net::SocketAddr,
+    user: &str,
+    cols: u16,
+    rows: u16,
+    term: &str,
+    compression: russh::compression::Name,
+) -> (Client, Arc<std::sync::atomic::AtomicU64>) {
     let stream = Tap::new(tokio::net::TcpStream::connect(addr).await.expect("tcp"));
     let read = Arc::clone(&stream.read);
     let cfg = client::Config {
@@ -279,26 +292,6 @@ pub async fn open_counting(
     let c = Client::start(handle, user, term, cols, rows)
         .await
         .unwrap_or_else(|e| panic!("{e}"));
-    (c.handle, c.channel, read)
-}
-
-/// Like [`Client::connect_with`], over a stream that counts wire bytes received.
-pub async fn connect_counting(
-    addr: std::net::SocketAddr,
-    user: &str,
-    cols: u16,
-    rows: u16,
-    term: &str,
-    compression: russh::compression::Name,
-) -> (Client, Arc<std::sync::atomic::AtomicU64>) {
-    let (handle, channel, read) = open_counting(addr, user, cols, rows, term, compression).await;
-    let c = Client {
-        handle,
-        channel,
-        screen: vt100::Parser::new(rows, cols, 0),
-        bytes: 0,
-        closed: false,
-    };
     (c, read)
 }
 
