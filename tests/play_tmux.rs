@@ -13,6 +13,18 @@ struct Tmux {
 }
 
 impl Tmux {
+    /// A private tmux server for one test (named `halfcast-NAME-PID`), or `None` with a skip
+    /// notice when tmux is not installed.
+    fn new(name: &str) -> Option<Self> {
+        if Command::new("tmux").arg("-V").output().is_err() {
+            eprintln!("skipping: tmux is not installed");
+            return None;
+        }
+        Some(Self {
+            socket: format!("halfcast-{name}-{}", std::process::id()),
+        })
+    }
+
     fn run(&self, args: &[&str]) -> Output {
         Command::new("tmux")
             .args(["-L", &self.socket, "-f", "/dev/null"])
@@ -67,12 +79,8 @@ fn status(screen: &str) -> String {
 
 #[test]
 fn under_tmux_the_first_screen_walks_and_quits_cleanly() {
-    if Command::new("tmux").arg("-V").output().is_err() {
-        eprintln!("skipping: tmux is not installed");
+    let Some(tmux) = Tmux::new("test") else {
         return;
-    }
-    let tmux = Tmux {
-        socket: format!("halfcast-test-{}", std::process::id()),
     };
     let bin = env!("CARGO_BIN_EXE_halfcast");
     // After the game, the shell reports its exit code and the terminal modes, then waits.
@@ -142,12 +150,8 @@ fn under_tmux_the_first_screen_walks_and_quits_cleanly() {
 /// even though the terminal library's reader would spin on the dead terminal forever.
 #[test]
 fn a_closed_terminal_ends_the_game() {
-    if Command::new("tmux").arg("-V").output().is_err() {
-        eprintln!("skipping: tmux is not installed");
+    let Some(tmux) = Tmux::new("hangup") else {
         return;
-    }
-    let tmux = Tmux {
-        socket: format!("halfcast-hangup-{}", std::process::id()),
     };
     let bin = env!("CARGO_BIN_EXE_halfcast");
     // Two arguments: tmux runs the game directly, so the pane's process is the game.
@@ -211,12 +215,8 @@ fn pose(screen: &str) -> (f64, f64, f64) {
 /// help is on screen over the view.
 #[test]
 fn under_tmux_at_80x24_taps_are_small_steps_and_the_help_shows() {
-    if Command::new("tmux").arg("-V").output().is_err() {
-        eprintln!("skipping: tmux is not installed");
+    let Some(tmux) = Tmux::new("80x24") else {
         return;
-    }
-    let tmux = Tmux {
-        socket: format!("halfcast-80x24-{}", std::process::id()),
     };
     let bin = env!("CARGO_BIN_EXE_halfcast");
     let config = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/no-such-dir");
@@ -274,12 +274,8 @@ fn under_tmux_at_80x24_taps_are_small_steps_and_the_help_shows() {
 /// no `COLORTERM` the game still starts at once, at 256 colours by the `TERM` rule, and says so.
 #[test]
 fn under_tmux_xterm_256color_gets_256_by_the_term_rule() {
-    if Command::new("tmux").arg("-V").output().is_err() {
-        eprintln!("skipping: tmux is not installed");
+    let Some(tmux) = Tmux::new("colour") else {
         return;
-    }
-    let tmux = Tmux {
-        socket: format!("halfcast-colour-{}", std::process::id()),
     };
     let bin = env!("CARGO_BIN_EXE_halfcast");
     let started = tmux.run(&[
