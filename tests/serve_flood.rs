@@ -6,7 +6,9 @@ mod serve_support;
 use std::net::Ipv4Addr;
 use std::time::{Duration, Instant};
 
-use serve_support::{closed_within, header_has, server, tcp_from, try_connect, Client};
+use serve_support::{
+    closed_within, header_has, live_becomes, server, tcp_from, try_connect, Client, PATIENCE,
+};
 
 /// The grace time the flooded servers run with (the default is 20 s; tests keep it short).
 const GRACE: Duration = Duration::from_secs(2);
@@ -79,8 +81,11 @@ async fn silent_flood_from_four_addresses_keeps_no_player_out_past_the_grace_tim
     let accepted_at = Instant::now();
     let mut flood = silent_flood(addr, 2, 5, 8).await;
     assert_eq!(flood.len(), 32, "the flood's TCP connections all connect");
-    // Let the server take them all in before the player comes.
-    tokio::time::sleep(Duration::from_millis(300)).await;
+    // Let the server take them all in (or refuse them) before the player comes.
+    let deadline = Instant::now() + PATIENCE;
+    while srv.stats().connections + srv.stats().refused < 32 && Instant::now() < deadline {
+        tokio::time::sleep(Duration::from_millis(10)).await;
+    }
     let (player, took, attempts, last_err) =
         player_gets_in(addr, GRACE * 2 + Duration::from_secs(3)).await;
     let Some(mut player) = player else {
@@ -127,7 +132,7 @@ async fn a_full_house_of_logging_in_connections_empties_within_the_grace_time() 
     let addr = srv.local_addr();
     let flooded_at = Instant::now();
     let mut flood = silent_flood(addr, 10, 14, 3).await;
-    tokio::time::sleep(Duration::from_millis(200)).await;
+    assert!(live_becomes(&srv, (10, 0)).await, "{:?}", srv.live());
     // A real client is turned away with the reason while the house is full...
     let mut s = tcp_from(Ipv4Addr::new(127, 0, 0, 101), addr)
         .await

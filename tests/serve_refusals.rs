@@ -8,7 +8,8 @@ use russh::ChannelMsg;
 use std::net::Ipv4Addr;
 
 use serve_support::{
-    closed_within, connect_raw, header_has, server, tcp_from, try_connect, Client, PATIENCE,
+    closed_within, connect_raw, header_has, live_becomes, server, tcp_from, try_connect, Client,
+    PATIENCE,
 };
 
 /// Waits for the reply to a want-reply channel request: true = success.
@@ -84,9 +85,11 @@ async fn max_sessions_counts_players_and_the_per_address_limit_says_why() {
         "a third session is refused"
     );
     assert_eq!(srv.stats().refused, 1);
+    // The client hears the refusal before the server's task has let go of that connection.
+    assert!(live_becomes(&srv, (0, 2)).await, "{:?}", srv.live());
     // Two playing and one logging in from this address: a fourth connection hears why not.
     let _pending = tcp_from(Ipv4Addr::LOCALHOST, addr).await.expect("tcp");
-    tokio::time::sleep(std::time::Duration::from_millis(100)).await;
+    assert!(live_becomes(&srv, (1, 2)).await, "{:?}", srv.live());
     let mut fourth = tcp_from(Ipv4Addr::LOCALHOST, addr).await.expect("tcp");
     let mut got = Vec::new();
     assert!(closed_within(&mut fourth, PATIENCE, &mut got).await);

@@ -42,6 +42,7 @@ const COMPRESSION: &[compression::Name] = &[
 pub struct RunningServer {
     addr: SocketAddr,
     stats: Arc<ServeStats>,
+    limiter: Limiter,
     shutdown: watch::Sender<bool>,
     accept: JoinHandle<()>,
 }
@@ -57,6 +58,13 @@ impl RunningServer {
     #[must_use]
     pub fn stats(&self) -> StatsSnapshot {
         self.stats.snapshot()
+    }
+
+    /// Connections (logging in, playing or watching) the limits count right now, so callers can
+    /// wait for the server to have noticed an arrival or a departure instead of guessing a delay.
+    #[must_use]
+    pub fn live(&self) -> (usize, usize) {
+        self.limiter.live()
     }
 
     /// Stops accepting, tells every session to end, and waits (up to a few seconds) for them;
@@ -129,7 +137,7 @@ pub async fn start(config: ServeConfig, world: World) -> Result<RunningServer, S
         stats: Arc::clone(&stats),
         log,
         shutdown: shutdown_rx.clone(),
-        limiter,
+        limiter: limiter.clone(),
         backoff: Backoff::default(),
         config,
     });
@@ -138,6 +146,7 @@ pub async fn start(config: ServeConfig, world: World) -> Result<RunningServer, S
     Ok(RunningServer {
         addr,
         stats,
+        limiter,
         shutdown: shutdown_tx,
         accept,
     })

@@ -491,3 +491,15 @@ pub fn many_loopback_addresses() -> bool {
     }
     ok
 }
+
+/// Waits until the server counts `want` (logging in, playing) connections.
+pub async fn live_becomes(srv: &RunningServer, want: (usize, usize)) -> bool {
+    let deadline = tokio::time::Instant::now() + PATIENCE;
+    while tokio::time::Instant::now() < deadline {
+        if srv.live() == want {
+            return true;
+        }
+        tokio::time::sleep(std::time::Duration::from_millis(10)).await;
+    }
+    false
+}
