@@ -20,6 +20,17 @@ const CASES: &[(&str, &str)] = &[
         "13:1: content after the blank line at 12 that ended the map (the grid must be contiguous and come last)",
     ),
     ("invalid_duplicate_texture", "7:1: duplicate identifier 'NO' (first given at line 1)"),
+    ("invalid_heights_duplicate", "9:1: duplicate identifier 'Ha' (first given at line 7)"),
+    (
+        "invalid_heights_floor_not_below_ceiling",
+        "7:8: bad value for Ha: ceiling height 1.5 must be above the floor height 1.5",
+    ),
+    ("invalid_heights_not_a_number", "7:8: bad value for Ha: ceiling height 'abc' is not a number"),
+    (
+        "invalid_heights_one_number",
+        "7:1: bad value for Ha: expected 'FLOOR CEIL' (two heights in wall units), got '0.5'",
+    ),
+    ("invalid_heights_out_of_range", "7:4: bad value for Ha: floor height -5 is below -4"),
     (
         "invalid_light_in_wall",
         "8:1: light at 0.5,1.5 is not over a floor cell",
@@ -42,7 +53,7 @@ const CASES: &[(&str, &str)] = &[
     ),
     ("invalid_two_players", "10:3: second player start (first at 9:3); a map has exactly one"),
     ("invalid_two_texture_paths", "1:1: NO needs exactly one texture path"),
-    ("invalid_undefined_zone", "9:3: zone letter 'a' is used in the map but has no Fa or Ca line"),
+    ("invalid_undefined_zone", "9:3: zone letter 'a' is used in the map but has no Fa, Ca, Ha or Wa line"),
     ("invalid_unknown_identifier", "8:1: unknown identifier 'XX'"),
     ("invalid_void_inside", "9:5: map is not closed: floor cell at 9:5 touches void"),
 ];

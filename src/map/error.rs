@@ -42,7 +42,7 @@ pub enum MapErrorKind {
     NoMap,
     #[error("bad map character '{}'", .0.escape_debug())]
     BadMapChar(char),
-    #[error("zone letter '{0}' is used in the map but has no F{0} or C{0} line")]
+    #[error("zone letter '{0}' is used in the map but has no F{0}, C{0}, H{0} or W{0} line")]
     UndefinedZone(char),
     #[error("content after the blank line at {blank_line} that ended the map (the grid must be contiguous and come last)")]
     AfterMap { blank_line: usize },

@@ -64,10 +64,42 @@ pub enum Surface {
 }
 
 /// Floor and ceiling overrides for cells marked with one zone letter.
-#[derive(Debug, Clone, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct Zone {
     pub floor: Option<Surface>,
     pub ceiling: Option<Surface>,
+    /// `Hz FLOOR CEIL`: the open span of the zone's cells, in wall heights.
+    pub heights: Option<Span>,
+    /// `Wz VALUE`: the paint of the zone's step and lintel faces (otherwise the NO/SO/WE/EA walls').
+    pub wall: Option<Surface>,
+}
+
+/// The open air of a walkable cell, between its floor and its ceiling, in wall heights (a plain
+/// cell is 0 to 1); everything above and below it is solid.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Span {
+    pub floor: f64,
+    pub ceil: f64,
+}
+
+impl Span {
+    /// What every cell outside an `Hz` zone has: Wolfenstein's floor at 0 and ceiling at 1.
+    pub const FLAT: Span = Span {
+        floor: 0.0,
+        ceil: 1.0,
+    };
+
+    /// Lowest floor height an `Hz` line may give.
+    pub const MIN_FLOOR: f64 = -4.0;
+
+    /// Highest ceiling height an `Hz` line may give.
+    pub const MAX_CEIL: f64 = 8.0;
+
+    /// Open height between floor and ceiling.
+    #[must_use]
+    pub fn height(self) -> f64 {
+        self.ceil - self.floor
+    }
 }
 
 /// The player's start: a cell centre and a facing, from the N/S/E/W letter.
@@ -143,6 +175,31 @@ impl Map {
         } else {
             self.cells[j as usize * self.width + i as usize]
         }
+    }
+
+    /// The open span of the cell at (`i`, `j`): its zone's `Hz` heights, [`Span::FLAT`] for other
+    /// floors and doors (a door spans its cell's floor to ceiling), `None` where it is solid at
+    /// every height (walls and void).
+    #[must_use]
+    #[inline]
+    pub fn span(&self, i: i64, j: i64) -> Option<Span> {
+        match self.cell(i, j) {
+            Cell::Floor { zone } if zone > 0 => Some(
+                self.zones
+                    .get(usize::from(zone - 1))
+                    .and_then(|z| z.heights)
+                    .unwrap_or(Span::FLAT),
+            ),
+            Cell::Floor { .. } | Cell::Door(_) => Some(Span::FLAT),
+            Cell::Wall(_) | Cell::Void => None,
+        }
+    }
+
+    /// Whether any zone has an `Hz` line: without one the world is flat and renders exactly as
+    /// Wolfenstein-style maps always have (renderers take the flat path).
+    #[must_use]
+    pub fn has_heights(&self) -> bool {
+        self.zones.iter().any(|z| z.heights.is_some())
     }
 
     /// Whether a point stands in a walkable cell (used by collision and pose checks).

@@ -5,8 +5,8 @@ use std::collections::HashMap;
 use super::lamp::parse_light;
 use super::sprite::parse_sprite;
 use super::{
-    Cell, DoorPlane, LightDef, Map, MapError, MapErrorKind, SpriteDef, Start, Surface, TextureRef,
-    Zone,
+    Cell, DoorPlane, LightDef, Map, MapError, MapErrorKind, Span, SpriteDef, Start, Surface,
+    TextureRef, Zone,
 };
 use crate::color::Rgb;
 use crate::light::Fog;
@@ -226,21 +226,27 @@ impl Header {
                     self.ceiling = Some(c);
                 }
             }
-            Ident::Zone { ceiling, zone } => {
+            Ident::Zone { part, zone } => {
+                if self.zones.len() <= zone {
+                    self.zones.resize(zone + 1, Zone::default());
+                }
+                if let ZonePart::Heights = part {
+                    let span = heights(word, rest, line_no, rest_col, at)?;
+                    self.zones[zone].heights = Some(span);
+                    return Ok(());
+                }
                 let value = rest.trim_matches(is_blank_char);
                 let surface = if value.contains(',') {
                     Surface::Colour(colour(word, rest).map_err(|k| (at, k))?)
                 } else {
                     Surface::Texture(one_path(word, rest, line_no, rest_col, at)?)
                 };
-                if self.zones.len() <= zone {
-                    self.zones.resize(zone + 1, Zone::default());
-                }
                 let z = &mut self.zones[zone];
-                if ceiling {
-                    z.ceiling = Some(surface);
-                } else {
-                    z.floor = Some(surface);
+                match part {
+                    ZonePart::Floor => z.floor = Some(surface),
+                    ZonePart::Ceiling => z.ceiling = Some(surface),
+                    ZonePart::Wall => z.wall = Some(surface),
+                    ZonePart::Heights => unreachable!("returned above"),
                 }
             }
             Ident::DoorTexture => {
@@ -286,13 +292,22 @@ enum Ident {
     Ceiling,
     FloorTexture,
     CeilingTexture,
-    Zone { ceiling: bool, zone: usize },
+    Zone { part: ZonePart, zone: usize },
     Resolution,
     SpriteEntry,
     DoorTexture,
     Fog,
     Shade,
     Light,
+}
+
+/// Which line of a zone letter: `Fz`, `Cz`, `Hz` or `Wz`.
+#[derive(Clone, Copy)]
+enum ZonePart {
+    Floor,
+    Ceiling,
+    Heights,
+    Wall,
 }
 
 fn classify(word: &str) -> Option<Ident> {
@@ -316,8 +331,13 @@ fn classify(word: &str) -> Option<Ident> {
             let b = word.as_bytes();
             match b {
                 [b'T', d @ b'1'..=b'9'] => Ident::WallType(usize::from(d - b'0')),
-                [fc @ (b'F' | b'C'), z @ b'a'..=b'z'] => Ident::Zone {
-                    ceiling: *fc == b'C',
+                [p @ (b'F' | b'C' | b'H' | b'W'), z @ b'a'..=b'z'] => Ident::Zone {
+                    part: match p {
+                        b'F' => ZonePart::Floor,
+                        b'C' => ZonePart::Ceiling,
+                        b'H' => ZonePart::Heights,
+                        _ => ZonePart::Wall,
+                    },
                     zone: usize::from(z - b'a'),
                 },
                 _ => return None,
@@ -370,6 +390,76 @@ fn colour(id: &str, rest: &str) -> Result<Rgb, MapErrorKind> {
         (Some(r), Some(g), Some(b)) => Ok(Rgb::new(r, g, b)),
         _ => Err(bad()),
     }
+}
+
+/// Parses `FLOOR CEIL` of an `Hz` line: two numbers with MIN_FLOOR <= FLOOR < CEIL <= MAX_CEIL;
+/// a bad one is reported at its own column.
+fn heights(
+    id: &str,
+    rest: &str,
+    line: usize,
+    rest_col: usize,
+    at: (usize, usize),
+) -> Result<Span, LineError> {
+    let bad = |col: usize, why: String| {
+        (
+            (line, col),
+            MapErrorKind::BadValue {
+                id: id.to_owned(),
+                why,
+            },
+        )
+    };
+    // Each word with its 1-based column.
+    let mut words = Vec::new();
+    let mut col = rest_col;
+    let mut current: Option<(usize, String)> = None;
+    for c in rest.chars() {
+        if is_blank_char(c) {
+            words.extend(current.take());
+        } else {
+            current
+                .get_or_insert_with(|| (col, String::new()))
+                .1
+                .push(c);
+        }
+        col += 1;
+    }
+    words.extend(current);
+    let [(fcol, f), (ccol, c)] = &words[..] else {
+        let got = rest.trim_matches(is_blank_char);
+        return Err(bad(
+            if words.len() > 2 { words[2].0 } else { at.1 },
+            format!("expected 'FLOOR CEIL' (two heights in wall units), got '{got}'"),
+        ));
+    };
+    let number = |col: usize, w: &str, what: &str| -> Result<f64, LineError> {
+        w.parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| bad(col, format!("{what} height '{w}' is not a number")))
+    };
+    let floor = number(*fcol, f, "floor")?;
+    let ceil = number(*ccol, c, "ceiling")?;
+    if floor < Span::MIN_FLOOR {
+        return Err(bad(
+            *fcol,
+            format!("floor height {f} is below {}", Span::MIN_FLOOR),
+        ));
+    }
+    if ceil > Span::MAX_CEIL {
+        return Err(bad(
+            *ccol,
+            format!("ceiling height {c} is above {}", Span::MAX_CEIL),
+        ));
+    }
+    if floor >= ceil {
+        return Err(bad(
+            *ccol,
+            format!("ceiling height {c} must be above the floor height {f}"),
+        ));
+    }
+    Ok(Span { floor, ceil })
 }
 
 /// Parses `r,g,b density` (density a number >= 0, fraction left per cell is e^-density).
@@ -466,10 +556,12 @@ fn build(file: &str, h: Header, grid: &[(usize, &str)]) -> Result<Map, MapError>
                 }
                 'a'..='z' => {
                     let z = usize::from(ch as u8 - b'a');
-                    if h.zones
-                        .get(z)
-                        .is_none_or(|zone| zone.floor.is_none() && zone.ceiling.is_none())
-                    {
+                    if h.zones.get(z).is_none_or(|zone| {
+                        zone.floor.is_none()
+                            && zone.ceiling.is_none()
+                            && zone.heights.is_none()
+                            && zone.wall.is_none()
+                    }) {
                         return Err(err(at, MapErrorKind::UndefinedZone(ch)));
                     }
                     Cell::Floor { zone: z as u8 + 1 }
@@ -687,6 +779,54 @@ mod tests {
             Some(Surface::Colour(Rgb::new(10, 20, 30)))
         );
         assert!(matches!(m.zones[1].floor, Some(Surface::Texture(_))));
+    }
+
+    #[test]
+    fn height_zones_give_spans_and_wall_paints() {
+        let text = format!(
+            "{HEADER}Ha 0.25 1\nHb -1.5 2.75\nWb 1,2,3\nWc ./step.png\n1111111\n1abc101\n10N0D01\n1111111\n"
+        );
+        let m = parse(&text).unwrap();
+        assert!(m.has_heights());
+        assert_eq!(
+            m.span(1, 1),
+            Some(Span {
+                floor: 0.25,
+                ceil: 1.0
+            })
+        );
+        assert_eq!(
+            m.span(2, 1),
+            Some(Span {
+                floor: -1.5,
+                ceil: 2.75
+            })
+        );
+        // A zone with only Wz keeps the flat span, as do plain floors, the start and doors.
+        assert_eq!(m.span(3, 1), Some(Span::FLAT));
+        assert_eq!(m.span(1, 2), Some(Span::FLAT));
+        assert_eq!(m.span(4, 2), Some(Span::FLAT));
+        assert_eq!(m.span(0, 0), None, "walls are solid at every height");
+        assert_eq!(m.span(-3, 9), None, "so is the void");
+        assert_eq!(m.zones[1].wall, Some(Surface::Colour(Rgb::new(1, 2, 3))));
+        assert!(matches!(m.zones[2].wall, Some(Surface::Texture(ref t)) if t.path == "./step.png"));
+        assert!(!parse(&format!("{HEADER}{GRID}")).unwrap().has_heights());
+    }
+
+    #[test]
+    fn heights_at_the_limits_are_accepted() {
+        let m = parse(&format!("{HEADER}Ha -4 8\n111\n1a1\n1N1\n111\n")).unwrap();
+        assert_eq!(
+            m.span(1, 1),
+            Some(Span {
+                floor: -4.0,
+                ceil: 8.0
+            })
+        );
+        assert!(parse(&format!("{HEADER}Ha 0 8.01\n111\n1a1\n1N1\n111\n")).is_err());
+        assert!(parse(&format!("{HEADER}Ha 1e400 2\n111\n1a1\n1N1\n111\n")).is_err());
+        assert!(parse(&format!("{HEADER}Ha nan 2\n111\n1a1\n1N1\n111\n")).is_err());
+        assert!(parse(&format!("{HEADER}Ha 0 1 2\n111\n1a1\n1N1\n111\n")).is_err());
     }
 
     #[test]
