@@ -412,9 +412,8 @@ fn heights(
     };
     // Each word with its 1-based column.
     let mut words = Vec::new();
-    let mut col = rest_col;
     let mut current: Option<(usize, String)> = None;
-    for c in rest.chars() {
+    for (col, c) in (rest_col..).zip(rest.chars()) {
         if is_blank_char(c) {
             words.extend(current.take());
         } else {
@@ -423,7 +422,6 @@ fn heights(
                 .1
                 .push(c);
         }
-        col += 1;
     }
     words.extend(current);
     let [(fcol, f), (ccol, c)] = &words[..] else {
