@@ -107,9 +107,9 @@ pub fn rasterize_frame(
     let table = ShadeTable::new(&scene.light);
     let spans: Vec<WallSpan> = hits
         .iter()
-        .map(|hit| wall_span_at(hit.perp_dist, focal, h, horizon, view.eye_z))
+        .map(|hit| wall_span_at(hit.perp_dist, focal, h, horizon, view.eye()))
         .collect();
-    floor_and_ceiling(scene, &spans, fb, focal, horizon, view.eye_z, &table);
+    floor_and_ceiling(scene, &spans, fb, focal, horizon, view.eye(), &table);
     let lamps = scene.lamp_light();
     for (x, (hit, span)) in hits.iter().zip(&spans).enumerate() {
         let mut shade = table.at(hit.perp_dist);

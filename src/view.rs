@@ -19,6 +19,9 @@ pub struct View {
     pub pitch_deg: f64,
     /// Eye height above the floor in wall heights (0.5 = standing); clamped to [`EYE_RANGE`].
     pub eye_z: f64,
+    /// Height of the floor the eye stands on (`Hz` maps; 0 on flat ones), so the eye is at
+    /// `ground + eye_z`; play eases it when stepping up or down, a still frame takes the cell's floor.
+    pub ground: f64,
 }
 
 impl Default for View {
@@ -27,6 +30,7 @@ impl Default for View {
         Self {
             pitch_deg: 0.0,
             eye_z: STANDING_EYE,
+            ground: 0.0,
         }
     }
 }
@@ -40,13 +44,33 @@ impl View {
         Self {
             pitch_deg: pitch.clamp(-MAX_PITCH_DEG, MAX_PITCH_DEG),
             eye_z: eye.clamp(EYE_RANGE.0, EYE_RANGE.1),
+            ground: 0.0,
         }
+    }
+
+    /// This view standing on a floor at height `ground` (NaN counts as 0; kept within the
+    /// heights a map may give).
+    #[must_use]
+    pub fn on_ground(mut self, ground: f64) -> Self {
+        self.ground = if ground.is_nan() {
+            0.0
+        } else {
+            ground.clamp(crate::map::Span::MIN_FLOOR, crate::map::Span::MAX_CEIL)
+        };
+        self
+    }
+
+    /// The eye's height in the world: the floor it stands on plus its height above that floor.
+    #[must_use]
+    #[inline]
+    pub fn eye(&self) -> f64 {
+        self.ground + self.eye_z
     }
 
     /// The clamped copy of this view (fields are public, so callers may have set anything).
     #[must_use]
     pub fn clamped(self) -> Self {
-        Self::new(self.pitch_deg, self.eye_z)
+        Self::new(self.pitch_deg, self.eye_z).on_ground(self.ground)
     }
 
     /// The horizon's pixel row (may be off-screen): h/2 + focal·tan(pitch), kept within ±h of centre.
@@ -57,11 +81,12 @@ impl View {
         h / 2.0 + shift.clamp(-h, h)
     }
 
-    /// Screen row of a point at height `z` (0 = floor, 1 = ceiling) and depth `depth`.
+    /// Screen row of a point at world height `z` (0 = a flat floor, 1 = its ceiling) and depth
+    /// `depth`.
     #[must_use]
     #[inline]
     pub fn row_of(&self, z: f64, depth: f64, focal: f64, horizon: f64) -> f64 {
-        horizon - (z - self.eye_z) * focal / depth
+        horizon - (z - self.eye()) * focal / depth
     }
 }
 
@@ -97,5 +122,15 @@ mod tests {
         assert_eq!(v.row_of(1.0, 1.0, 40.0, 30.0), 10.0);
         let crouch = View::new(0.0, 0.25);
         assert_eq!(crouch.row_of(0.0, 1.0, 40.0, 30.0), 40.0);
+    }
+
+    #[test]
+    fn standing_on_a_raised_floor_lifts_the_eye() {
+        let v = View::default().on_ground(1.5);
+        assert_eq!(v.eye(), 2.0);
+        assert_eq!(v.row_of(1.5, 1.0, 40.0, 30.0), 50.0);
+        assert_eq!(v.clamped(), v);
+        assert_eq!(View::default().on_ground(f64::NAN).ground, 0.0);
+        assert_eq!(View::default().on_ground(99.0).ground, 8.0);
     }
 }
