@@ -21,20 +21,46 @@ const CASES: &[(&str, &[&str])] = &[
     (
         "default-night-doors",
         &[
-            "--pos", "12.5,5.5", "--angle", "200", "--night", "--door-open", "0.4", "--time",
-            "1.3", "--fov", "90",
+            "--pos",
+            "12.5,5.5",
+            "--angle",
+            "200",
+            "--night",
+            "--door-open",
+            "0.4",
+            "--time",
+            "1.3",
+            "--fov",
+            "90",
         ],
     ),
     (
         "default-fog-down",
         &[
-            "--pos", "20.5,4.5", "--angle", "-60", "--fog", "200,200,210,0.3", "--pitch", "-20",
-            "--size", "97x23",
+            "--pos",
+            "20.5,4.5",
+            "--angle",
+            "-60",
+            "--fog",
+            "200,200,210,0.3",
+            "--pitch",
+            "-20",
+            "--size",
+            "97x23",
         ],
     ),
-    ("corpus/LDuheron__Cub3D_map_perso_map_big.cub", &["--size", "80x24"]),
-    ("corpus/StephanHainthaler__cub3D_maps_valid_sus_map.cub", &["--size", "80x24"]),
-    ("corpus/t-ecker__42-Cub3d_maps_bonus_library.cub", &["--size", "80x24"]),
+    (
+        "corpus/LDuheron__Cub3D_map_perso_map_big.cub",
+        &["--size", "80x24"],
+    ),
+    (
+        "corpus/StephanHainthaler__cub3D_maps_valid_sus_map.cub",
+        &["--size", "80x24"],
+    ),
+    (
+        "corpus/t-ecker__42-Cub3d_maps_bonus_library.cub",
+        &["--size", "80x24"],
+    ),
 ];
 
 const FORMATS: &[(&str, &[&str])] = &[
