@@ -317,3 +317,56 @@ fn every_pixel_shows_the_first_surface_on_its_own_ray() {
     }
     println!("worst frame: {:.4} % of pixels differ", worst * 100.0);
 }
+
+#[test]
+fn a_flat_world_drawn_by_the_heights_renderer_looks_as_before() {
+    // The default map (textures, sprites, doors, fog, lamps) plus one unused `Hz 0 1` zone takes
+    // the heights path; every cell still spans 0..1, so the frame must be today's: walls with
+    // the same texel rows, floors world-anchored the same, sprites hidden the same.
+    use halfcast::door::DoorState;
+    use halfcast::map::parse_map;
+    use halfcast::world::{TextureSource, DEFAULT_MAP};
+    let load = |extra: &str| {
+        let text = format!("{extra}{DEFAULT_MAP}");
+        let map = parse_map("default.cub", text.as_bytes()).unwrap();
+        World::load(map, &TextureSource::Embedded, true).unwrap().0
+    };
+    let flat = load("");
+    let heights = load("Hz 0 1\n");
+    assert!(!flat.map.has_heights() && heights.map.has_heights());
+    let mut doors = DoorState::new(&flat.map);
+    for cell in doors.cells().to_vec() {
+        doors.set_open(cell, 0.4);
+    }
+    let poses = [
+        (Vec2::new(14.5, 9.5), 30.0, 0.0, 0.5, false),
+        (Vec2::new(5.3, 5.7), 33.0, 12.0, 0.3, true),
+        (Vec2::new(12.5, 5.5), 200.0, -20.0, 0.8, false),
+        (Vec2::new(20.5, 4.5), -60.0, 5.0, 0.5, true),
+    ];
+    for (pos, angle, pitch, eye, night) in poses {
+        let render = |w: &World| {
+            let mut s = Scene::new(w, Camera::from_angle(pos, angle, 66.0))
+                .with_view(View::new(pitch, eye))
+                .with_doors(&doors)
+                .at_time(0.7);
+            s.light.night = night;
+            s.render(120, 40)
+        };
+        let (a, b) = (render(&flat), render(&heights));
+        let differ = a
+            .pixels()
+            .iter()
+            .zip(b.pixels())
+            .filter(|(p, q)| p != q)
+            .count();
+        println!(
+            "{pos:?} {angle}: {differ} of {} pixels differ",
+            a.pixels().len()
+        );
+        assert!(
+            differ * 1000 <= a.pixels().len() * 5,
+            "{pos:?} {angle}: {differ} pixels differ"
+        );
+    }
+}

@@ -1,0 +1,42 @@
+//! Frame cost as thread CPU time (read from /proc/thread-self/schedstat, Linux), the minimum over
+//! batches: steadier than wall-clock criterion runs on a machine shared with other work.
+//! `cargo run --release --example frame_cpu [heights]`.
+use halfcast::camera::Camera;
+use halfcast::world::World;
+use halfcast::{Framebuffer, Scene, Vec2};
+
+fn cpu_ns() -> u128 {
+    let s = std::fs::read_to_string("/proc/thread-self/schedstat").unwrap();
+    s.split_whitespace().next().unwrap().parse().unwrap()
+}
+
+fn measure(name: &str, scene: &Scene, cols: u16, rows: u16) {
+    let mut fb = Framebuffer::for_cells(cols, rows);
+    let mut best = u128::MAX;
+    for _ in 0..15 {
+        let t0 = cpu_ns();
+        for _ in 0..100 {
+            scene.render_into(&mut fb, Some(usize::from(cols) / 2));
+        }
+        best = best.min((cpu_ns() - t0) / 100);
+    }
+    println!(
+        "{name} {cols}x{rows}: {:.1} us/frame (min of 15 batches of 100, thread CPU time)",
+        best as f64 / 1000.0
+    );
+}
+
+fn main() {
+    let world = World::default_world();
+    let scene = Scene::new(&world, Camera::from_angle(Vec2::new(14.5, 9.5), 30.0, 66.0));
+    measure("flat default", &scene, 240, 68);
+    measure("flat default", &scene, 120, 40);
+    if std::env::args().nth(1).as_deref() == Some("heights") {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("maps/heights.cub");
+        let (hw, _) = World::from_file(&path, true).unwrap();
+        let s = Scene::new(&hw, Camera::from_angle(Vec2::new(13.5, 5.5), 180.0, 66.0));
+        measure("heights.cub start", &s, 240, 68);
+        let s = Scene::new(&hw, Camera::from_angle(Vec2::new(8.5, 7.5), 135.0, 66.0));
+        measure("heights.cub hall", &s, 240, 68);
+    }
+}
