@@ -57,7 +57,7 @@ fn spans_are_front_to_back_disjoint_and_on_screen() {
         for col in columns {
             let spans = col["spans"].as_array().unwrap();
             let mut last_dist = 0.0;
-            let mut rows_seen = vec![false; 60];
+            let mut rows_seen = [false; 60];
             for s in spans {
                 let kind = s["kind"].as_str().unwrap();
                 assert!(["wall", "step", "lintel"].contains(&kind), "{s}");
