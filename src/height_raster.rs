@@ -7,9 +7,10 @@
 use crate::billboard::{draw_sprites, Occluders, SpriteOutcome};
 use crate::cast::{Cast, Side};
 use crate::framebuffer::Framebuffer;
-use crate::height_cast::{Band, FaceSpan, FlatSpan, Projection};
+use crate::height_cast::{Band, FaceKind, FaceSpan, FlatSpan, Projection};
 use crate::light::{Shade, ShadeTable};
 use crate::lightmap::LightMap;
+use crate::map::Cell;
 use crate::raster::{face_texture_x, fast_floor, heading_of, Y_SIDE_SHADE};
 use crate::scene::Scene;
 use crate::vec2::Vec2;
@@ -128,7 +129,12 @@ impl Painter<'_> {
         let w = fb.width();
         let per_row = t / self.proj.focal;
         let keep_depth = !depth.is_empty();
-        match world.face_paint(f.what, heading_of(f.side, ray)) {
+        // A door's panel shows the door; the step or lintel beside a door cell is plain wall.
+        let what = match (f.kind, f.what) {
+            (FaceKind::Step | FaceKind::Lintel, Cell::Door(_)) => Cell::Floor { zone: 0 },
+            (_, what) => what,
+        };
+        match world.face_paint(what, heading_of(f.side, ray)) {
             Paint::Colour(c) => {
                 let c = shade.apply(c);
                 for y in f.rows.0..f.rows.1 {

@@ -1,8 +1,8 @@
 //! Issue 14's rendering rules checked pixel by pixel against an independent reference: for every
 //! pixel this file marches that pixel's own 3-D ray through the grid (it shares no code with the
 //! column renderer) and names the surface it meets first; `Scene::render` must show that
-//! surface's colour. Random maps with random `Hz` heights, poses, pitches, eye heights, FOVs and
-//! sizes; every surface a flat colour (walls: one-colour texture files), so colours compare
+//! surface's colour. Random maps with random `Hz` heights, shut doors, poses, pitches, eye
+//! heights, FOVs and sizes; every surface a flat colour (walls: one-colour texture files), so colours compare
 //! exactly. At most 0.5 % of a frame's pixels may differ (rays grazing an edge).
 
 use halfcast::camera::Camera;
@@ -38,7 +38,16 @@ impl Rng {
 #[derive(Clone, Copy)]
 enum Cell {
     Solid,
-    Open { floor: f64, ceil: f64, zone: usize },
+    Open {
+        floor: f64,
+        ceil: f64,
+        zone: usize,
+    },
+    /// A shut door: open 0..1 like a plain cell, its panel across the middle (the line
+    /// y = j + 0.5 when `panel_y`, between walls west and east; else x = i + 0.5).
+    Door {
+        panel_y: bool,
+    },
 }
 
 /// A random world: the grid, each zone's heights and paints, the wall face colours.
@@ -53,6 +62,10 @@ struct Case {
     face_paint: Vec<Option<Rgb>>,
     /// NO, SO, WE, EA colours (by the ray's heading).
     walls: [Rgb; 4],
+    /// The door panels' colour.
+    door: Rgb,
+    /// Each door's open neighbour and the door cell (a place to look at it from).
+    door_views: Vec<((usize, usize), (usize, usize))>,
 }
 
 impl Case {
@@ -131,10 +144,53 @@ impl Case {
             }
             grid.push('\n');
         }
+        // Doors: cells framed by two walls (west and east, or north and south).
+        let mut chars: Vec<char> = grid.chars().filter(|&c| c != '\n').collect();
+        let mut door_views = Vec::new();
+        for _ in 0..4 {
+            let (di, dj) = (1 + rng.below(w - 2), 1 + rng.below(h - 2));
+            let near_start = di.abs_diff(start.0) + dj.abs_diff(start.1) <= 1;
+            // Away from other doors, so no placement unframes another.
+            let near_door = (di.saturating_sub(2)..(di + 3).min(w))
+                .any(|i| (dj.saturating_sub(2)..(dj + 3).min(h)).any(|j| chars[j * w + i] == 'D'));
+            if rng.below(4) != 0
+                && !near_start
+                && !near_door
+                && (2..w - 2).contains(&di)
+                && (2..h - 2).contains(&dj)
+            {
+                let panel_y = rng.below(2) == 0;
+                let (frame, open) = if panel_y {
+                    ([(di - 1, dj), (di + 1, dj)], (di, dj - 1))
+                } else {
+                    ([(di, dj - 1), (di, dj + 1)], (di - 1, dj))
+                };
+                for (i, j) in frame {
+                    chars[j * w + i] = '1';
+                    cells[j * w + i] = Cell::Solid;
+                }
+                // One open side, so the frame's direction is the door's.
+                if (open.0, open.1) != start {
+                    chars[open.1 * w + open.0] = '0';
+                    cells[open.1 * w + open.0] = Cell::Open {
+                        floor: 0.0,
+                        ceil: 1.0,
+                        zone: 0,
+                    };
+                }
+                chars[dj * w + di] = 'D';
+                door_views.push((open, (di, dj)));
+                cells[dj * w + di] = Cell::Door { panel_y };
+            }
+        }
+        let grid: String = chars
+            .chunks(w)
+            .map(|r| r.iter().collect::<String>() + "\n")
+            .collect();
         let f = floor_paint[0];
         let c = ceil_paint[0];
         let text = format!(
-            "NO no.png\nSO so.png\nWE we.png\nEA ea.png\nF {},{},{}\nC {},{},{}\n{header}{grid}",
+            "NO no.png\nSO so.png\nWE we.png\nEA ea.png\nTD dr.png\nF {},{},{}\nC {},{},{}\n{header}{grid}",
             f.r, f.g, f.b, c.r, c.g, c.b
         );
         let case = Case {
@@ -145,6 +201,8 @@ impl Case {
             ceil_paint,
             face_paint,
             walls,
+            door: rng.colour(),
+            door_views,
         };
         (case, text, start)
     }
@@ -183,17 +241,33 @@ fn reference_pixel(case: &Case, pos: Vec2, ray: Vec2, eye: f64, slope: f64) -> R
             (line - pos.y) / ray.y
         }
     };
-    let Cell::Open {
-        mut floor,
-        mut ceil,
-        mut zone,
-    } = case.cell(i, j)
-    else {
-        panic!("camera inside a wall");
+    let (mut floor, mut ceil, mut zone, mut door) = match case.cell(i, j) {
+        Cell::Open { floor, ceil, zone } => (floor, ceil, zone, None),
+        Cell::Door { panel_y } => (0.0, 1.0, 0, Some(panel_y)),
+        Cell::Solid => panic!("camera inside a wall"),
     };
+    let mut t_in = 0.0;
     for _ in 0..10_000 {
         let (tx, ty) = (next_x(i), next_y(j));
         let t = tx.min(ty);
+        if let Some(panel_y) = door {
+            let tp = if panel_y {
+                (j as f64 + 0.5 - pos.y) / ray.y
+            } else {
+                (i as f64 + 0.5 - pos.x) / ray.x
+            };
+            if tp >= t_in && tp < t {
+                let z = eye - slope * tp;
+                return if z <= 0.0 {
+                    case.floor_paint[0]
+                } else if z > 1.0 {
+                    case.ceil_paint[0]
+                } else {
+                    y_shade(case.door, panel_y)
+                };
+            }
+        }
+        t_in = t;
         let z = eye - slope * t;
         if z <= floor {
             return case.floor_paint[zone];
@@ -224,7 +298,14 @@ fn reference_pixel(case: &Case, pos: Vec2, ray: Vec2, eye: f64, slope: f64) -> R
                     let paint = case.face_paint[n].unwrap_or(case.walls[heading]);
                     return y_shade(paint, side_y);
                 }
-                (floor, ceil, zone) = (f, c, n);
+                (floor, ceil, zone, door) = (f, c, n, None);
+            }
+            Cell::Door { panel_y } => {
+                // A door cell is open from 0 to 1; the faces beside it are plain walls'.
+                if z <= 0.0 || z > 1.0 {
+                    return y_shade(case.walls[heading], side_y);
+                }
+                (floor, ceil, zone, door) = (0.0, 1.0, 0, Some(panel_y));
             }
         }
     }
@@ -244,6 +325,8 @@ fn flat_png(dir: &std::path::Path, name: &str, c: Rgb) {
 #[test]
 fn every_pixel_shows_the_first_surface_on_its_own_ray() {
     let mut worst = 0.0f64;
+    let mut door_pixels = 0usize;
+    let mut maps_with_doors = 0usize;
     for n in 0..60u64 {
         let mut rng = Rng(0x9e37_79b9_7f4a_7c15 ^ (n + 1).wrapping_mul(0x1000_0000_01b3));
         let (case, text, _) = Case::random(&mut rng);
@@ -253,6 +336,10 @@ fn every_pixel_shows_the_first_surface_on_its_own_ray() {
             .zip(case.walls)
         {
             flat_png(dir.path(), name, c);
+        }
+        flat_png(dir.path(), "dr.png", case.door);
+        if text.lines().any(|l| l.starts_with('1') && l.contains('D')) {
+            maps_with_doors += 1;
         }
         let path = dir.path().join("m.cub");
         std::fs::write(&path, &text).unwrap();
@@ -266,14 +353,26 @@ fn every_pixel_shows_the_first_surface_on_its_own_ray() {
                 _ => None,
             })
             .collect();
-        let (k, floor, ceil) = open[rng.below(open.len())];
-        let pos = Vec2::new(
+        let (k, mut floor, mut ceil) = open[rng.below(open.len())];
+        let mut pos = Vec2::new(
             (k % case.w) as f64 + rng.range(0.05, 0.95),
             (k / case.w) as f64 + rng.range(0.05, 0.95),
         );
+        let mut angle = rng.range(-180.0, 180.0);
+        if n % 2 == 0 {
+            // Half the maps with a door look at one from the cell beside it.
+            if let Some(&((oi, oj), (di, dj))) = case.door_views.first() {
+                (floor, ceil) = (0.0, 1.0);
+                pos = Vec2::new(
+                    oi as f64 + rng.range(0.1, 0.9),
+                    oj as f64 + rng.range(0.1, 0.9),
+                );
+                let to = Vec2::new(di as f64 + 0.5, dj as f64 + 0.5) - pos;
+                angle = (-to.y).atan2(to.x).to_degrees() + rng.range(-25.0, 25.0);
+            }
+        }
         let eye_z = rng.range(0.05, (ceil - floor - 0.05).min(0.95));
         let pitch = rng.range(-30.0, 30.0);
-        let angle = rng.range(-180.0, 180.0);
         let fov = rng.range(40.0, 110.0);
         let (width, height) = (16 + rng.below(160), 2 * (5 + rng.below(45)));
         let camera = Camera::from_angle(pos, angle, fov);
@@ -331,6 +430,9 @@ fn every_pixel_shows_the_first_surface_on_its_own_ray() {
             for y in 0..height {
                 let slope = (y as f64 + 0.5 - horizon) / focal;
                 let want = reference_pixel(&case, pos, ray, eye, slope);
+                if want == case.door || want == y_shade(case.door, true) {
+                    door_pixels += 1;
+                }
                 if fb.get(x, y) != want {
                     if differ < 5 && std::env::var_os("DEBUG_REF").is_some() {
                         eprintln!("({x},{y}) got {:?} want {want:?}", fb.get(x, y));
@@ -349,6 +451,8 @@ fn every_pixel_shows_the_first_surface_on_its_own_ray() {
         );
     }
     println!("worst frame: {:.4} % of pixels differ", worst * 100.0);
+    println!("{door_pixels} pixels showed a door ({maps_with_doors} maps had one)");
+    assert!(door_pixels > 0, "no case showed a door");
 }
 
 #[test]
