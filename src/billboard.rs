@@ -19,10 +19,37 @@ pub struct SpriteOutcome {
     pub drawn: bool,
 }
 
-/// Projects, sorts and draws every sprite of the scene; `hits` is the frame's cast (depth buffer).
+/// What hides sprites: the nearer surfaces already drawn.
+#[derive(Debug, Clone, Copy)]
+pub enum Occluders<'a> {
+    /// Flat maps: one wall per column (the cast's perpendicular distances); floors never hide.
+    Columns(&'a [ColumnHit]),
+    /// `Hz` maps: the distance of the surface drawn at every pixel (row-major, `width` wide), so
+    /// nearer steps, ledges and lintels hide sprites pixel by pixel.
+    Pixels { depth: &'a [f32], width: usize },
+}
+
+/// The height of a sprite's bottom in the world: on `Hz` maps it stands `offset` above the floor
+/// of its cell, or hangs from that cell's ceiling; on flat maps its `offset` as given.
+#[must_use]
+pub fn sprite_base(map: &crate::map::Map, def: &crate::map::SpriteDef) -> f64 {
+    if !map.has_heights() {
+        return def.offset;
+    }
+    let span = map
+        .span(def.pos.x.floor() as i64, def.pos.y.floor() as i64)
+        .unwrap_or(crate::map::Span::FLAT);
+    if def.hang {
+        span.ceil - def.scale.1
+    } else {
+        span.floor + def.offset
+    }
+}
+
+/// Projects, sorts and draws every sprite of the scene behind `occluders`.
 pub fn draw_sprites(
     scene: &Scene,
-    hits: &[ColumnHit],
+    occluders: Occluders,
     fb: &mut Framebuffer,
     table: &ShadeTable,
 ) -> Vec<SpriteOutcome> {
@@ -40,7 +67,7 @@ pub fn draw_sprites(
                 &view,
                 s.def.pos,
                 s.def.scale,
-                s.def.offset,
+                sprite_base(&scene.world.map, &s.def),
                 w,
                 h,
             ),
@@ -59,7 +86,7 @@ pub fn draw_sprites(
         if let Some(lamps) = scene.lamp_light() {
             shade = shade.lit(lamps.at(scene.world.sprites[i].def.pos));
         }
-        outcomes[i].drawn = draw_one(scene, i, &p, hits, fb, shade);
+        outcomes[i].drawn = draw_one(scene, i, &p, occluders, fb, shade);
     }
     outcomes
 }
@@ -76,7 +103,7 @@ fn draw_one(
     scene: &Scene,
     i: usize,
     p: &Projection,
-    hits: &[ColumnHit],
+    occluders: Occluders,
     fb: &mut Framebuffer,
     shade: Shade,
 ) -> bool {
@@ -95,9 +122,12 @@ fn draw_one(
     let v_step = cell_h as f64 / (p.bottom - p.top);
     let v_start = (p.rows.0 as f64 + 0.5 - p.top) * v_step;
     let mut drawn = false;
-    for (x, hit) in hits.iter().enumerate().take(p.cols.1).skip(p.cols.0) {
-        if p.depth >= hit.perp_dist {
-            continue;
+    let depth = p.depth as f32;
+    for x in p.cols.0..p.cols.1 {
+        if let Occluders::Columns(hits) = occluders {
+            if hits.get(x).is_none_or(|hit| p.depth >= hit.perp_dist) {
+                continue;
+            }
         }
         let u = (x as f64 - p.left) / width;
         let tx = x0 + ((u * cell_w as f64) as usize).min(cell_w - 1);
@@ -109,6 +139,11 @@ fn draw_one(
             let a = alphas[ty];
             if a == 0 {
                 continue;
+            }
+            if let Occluders::Pixels { depth: d, width } = occluders {
+                if depth >= d[y * width + x] {
+                    continue;
+                }
             }
             drawn = true;
             let c = colours[ty];
@@ -139,6 +174,23 @@ fn draw_one(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn sprites_stand_on_their_cells_floor_and_hang_from_its_ceiling() {
+        let text = "NO n\nSO s\nWE w\nEA e\nF 1,2,3\nC 4,5,6\nHp -1 2.5\n\
+                    SPRITE 2.5,1.5 t.png offset=0.25\nSPRITE 2.5,1.5 t.png scale=0.5 hang\n\
+                    SPRITE 1.5,1.5 t.png scale=0.5 hang\n11111\n1Ep01\n11111\n";
+        let map = crate::map::parse_map("t.cub", text.as_bytes()).unwrap();
+        let base = |k: usize| sprite_base(&map, &map.sprite_defs[k]);
+        assert_eq!(base(0), -0.75);
+        assert_eq!(base(1), 2.0);
+        // The start cell spans 0..1 as on flat maps.
+        assert_eq!(base(2), 0.5);
+        // A map without heights keeps offsets as given.
+        let flat = text.replace("Hp -1 2.5", "Fp 9,9,9");
+        let map = crate::map::parse_map("t.cub", flat.as_bytes()).unwrap();
+        assert_eq!(sprite_base(&map, &map.sprite_defs[1]), 0.5);
+    }
 
     #[test]
     fn mixing_by_alpha() {

@@ -72,8 +72,13 @@ pub struct DdaTrace {
 /// Every column's hit, plus the full trace of the column asked for.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Cast {
+    /// One hit per column: on maps with `Hz` heights, where the column's window of open rows
+    /// closed (see [`crate::height_cast`]).
     pub columns: Vec<ColumnHit>,
     pub trace: Option<DdaTrace>,
+    /// On maps with `Hz` heights, each column's draw list front to back (floors, ceilings and
+    /// every vertical face with its rows); empty on flat maps, which are drawn from `columns`.
+    pub heights: Vec<crate::height_cast::HeightColumn>,
 }
 
 /// Casts one ray per column of a `width`-column view; traces column `traced` step by step.
@@ -98,7 +103,11 @@ pub fn cast_with_doors(
     let trace = traced
         .filter(|&x| x < width)
         .map(|x| trace_column_doors(map, doors, camera, x, width));
-    Cast { columns, trace }
+    Cast {
+        columns,
+        trace,
+        heights: Vec::new(),
+    }
 }
 
 /// Traces column `x` of `width`: every step, for debugging and the JSON `centre_trace`.
@@ -132,15 +141,15 @@ pub fn trace_column_doors(
 }
 
 /// The DDA's starting state for a ray.
-struct Setup {
-    cell: (i64, i64),
-    delta: (f64, f64),
-    step: (i64, i64),
-    side_dist: (f64, f64),
+pub(crate) struct Setup {
+    pub(crate) cell: (i64, i64),
+    pub(crate) delta: (f64, f64),
+    pub(crate) step: (i64, i64),
+    pub(crate) side_dist: (f64, f64),
 }
 
 impl Setup {
-    fn new(pos: Vec2, ray: Vec2) -> Self {
+    pub(crate) fn new(pos: Vec2, ray: Vec2) -> Self {
         let cell = (pos.x.floor() as i64, pos.y.floor() as i64);
         let delta = |d: f64| if d == 0.0 { NEVER } else { (1.0 / d).abs() };
         let delta = (delta(ray.x), delta(ray.y));
@@ -172,7 +181,7 @@ pub fn cast_ray(map: &Map, pos: Vec2, ray: Vec2, on_step: impl FnMut(DdaStep)) -
 /// meets the part not yet slid away: Wolfenstein's inset door.
 #[inline]
 #[allow(clippy::too_many_arguments)]
-fn door_hit(
+pub(crate) fn door_hit(
     doors: &DoorState,
     plane: DoorPlane,
     cell: (i64, i64),

@@ -40,6 +40,8 @@ pub mod encode;
 pub mod framebuffer;
 pub mod fuzzing;
 pub mod game;
+pub mod height_cast;
+pub mod height_raster;
 pub mod input_file;
 pub mod map;
 pub mod output;

@@ -1,7 +1,7 @@
 //! Turns the cast rays into pixels: textured floor and ceiling rows, then wall stripes, then
 //! sprites; everything lit through one distance table and placed by the view's horizon and eye.
 
-use crate::billboard::{draw_sprites, SpriteOutcome};
+use crate::billboard::{draw_sprites, Occluders, SpriteOutcome};
 use crate::cast::{ColumnHit, Side};
 use crate::color::Rgb;
 use crate::framebuffer::Framebuffer;
@@ -12,7 +12,7 @@ use crate::vec2::Vec2;
 use crate::world::{Paint, World};
 
 /// Brightness (of 256) of faces hit on a y side, so corners read as corners.
-const Y_SIDE_SHADE: u16 = 184;
+pub const Y_SIDE_SHADE: u16 = 184;
 
 /// The eye's height above the floor, in wall heights (walls span 0..1), when standing.
 const EYE_HEIGHT: f64 = crate::view::STANDING_EYE;
@@ -20,10 +20,17 @@ const EYE_HEIGHT: f64 = crate::view::STANDING_EYE;
 /// Which compass direction a ray travels when it hits (index into a wall's face textures).
 #[must_use]
 pub fn heading(hit: &ColumnHit) -> usize {
-    match hit.side {
-        Side::Y if hit.ray_dir.y < 0.0 => 0,
+    heading_of(hit.side, hit.ray_dir)
+}
+
+/// [`heading`] of a ray `ray` crossing a `side` grid line (N, S, W, E = 0..4).
+#[must_use]
+#[inline]
+pub fn heading_of(side: Side, ray: Vec2) -> usize {
+    match side {
+        Side::Y if ray.y < 0.0 => 0,
         Side::Y => 1,
-        Side::X if hit.ray_dir.x < 0.0 => 2,
+        Side::X if ray.x < 0.0 => 2,
         Side::X => 3,
     }
 }
@@ -31,10 +38,17 @@ pub fn heading(hit: &ColumnHit) -> usize {
 /// Texture column for a hit, mirrored where needed so every face reads left-to-right.
 #[must_use]
 pub fn texture_x(hit: &ColumnHit, tex_width: usize) -> usize {
-    let x = ((hit.wall_x * tex_width as f64) as usize).min(tex_width - 1);
-    let mirrored = match hit.side {
-        Side::X => hit.ray_dir.x < 0.0,
-        Side::Y => hit.ray_dir.y > 0.0,
+    face_texture_x(hit.wall_x, hit.side, hit.ray_dir, tex_width)
+}
+
+/// [`texture_x`] of a face met at `wall_x` along it by `ray` crossing a `side` grid line.
+#[must_use]
+#[inline]
+pub fn face_texture_x(wall_x: f64, side: Side, ray: Vec2, tex_width: usize) -> usize {
+    let x = ((wall_x * tex_width as f64) as usize).min(tex_width - 1);
+    let mirrored = match side {
+        Side::X => ray.x < 0.0,
+        Side::Y => ray.y > 0.0,
     };
     if mirrored {
         tex_width - 1 - x
@@ -121,7 +135,7 @@ pub fn rasterize_frame(
         }
         wall_stripe(scene.world, hit, span, x, fb, shade);
     }
-    draw_sprites(scene, hits, fb, &table)
+    draw_sprites(scene, Occluders::Columns(hits), fb, &table)
 }
 
 /// Draws one wall column from its texture column, top to bottom.
@@ -206,7 +220,7 @@ fn floor_and_ceiling(
 
 /// ⌊v⌋ without a libm call (f64::floor is one on baseline x86-64); saturates far outside i64.
 #[inline]
-fn fast_floor(v: f64) -> i64 {
+pub(crate) fn fast_floor(v: f64) -> i64 {
     let i = v as i64;
     if (i as f64) > v {
         i - 1

@@ -28,6 +28,8 @@ use crate::camera::Camera;
 use crate::cast::{cast_with_doors, Cast};
 use crate::door::DoorState;
 use crate::framebuffer::Framebuffer;
+use crate::height_cast::{cast_heights, Projection};
+use crate::height_raster::rasterize_heights;
 use crate::light::Lighting;
 use crate::lightmap::LightMap;
 use crate::raster::rasterize_frame;
@@ -117,7 +119,15 @@ impl<'a> Scene<'a> {
     pub fn render_frame(&self, fb: &mut Framebuffer, traced: Option<usize>) -> Frame {
         let none = DoorState::none();
         let doors = self.doors.unwrap_or(&none);
-        let cast = cast_with_doors(&self.world.map, doors, &self.camera, fb.width(), traced);
+        let map = &self.world.map;
+        if map.has_heights() {
+            // Steps, pits and lintels: each column keeps walking until its window of rows closes.
+            let proj = Projection::new(&self.camera, &self.view, fb.width(), fb.height());
+            let cast = cast_heights(map, doors, &self.camera, &proj, fb.width(), traced);
+            let sprites = rasterize_heights(self, &cast, fb);
+            return Frame { cast, sprites };
+        }
+        let cast = cast_with_doors(map, doors, &self.camera, fb.width(), traced);
         let sprites = rasterize_frame(self, &cast.columns, fb);
         Frame { cast, sprites }
     }

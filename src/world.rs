@@ -60,6 +60,8 @@ pub struct World {
     floor: Vec<Paint>,
     /// Ceiling paint per zone.
     ceiling: Vec<Paint>,
+    /// `Wz` paint of each zone's step and lintel faces (index 0 and zones without `Wz`: none).
+    faces: Vec<Option<Paint>>,
     /// Texture index of door panels.
     door_tex: usize,
     /// Decoded sprite sheets (with alpha), indexed by [`Sprite::sheet`].
@@ -140,7 +142,14 @@ impl World {
         let ceiling_default = loader.surface(&map.ceiling, "ceiling")?;
         let mut floor = vec![floor_default];
         let mut ceiling = vec![ceiling_default];
+        let mut faces = vec![None];
         for zone in &map.zones {
+            faces.push(
+                zone.wall
+                    .as_ref()
+                    .map(|s| loader.surface(s, builtin::fallback_stem(0)))
+                    .transpose()?,
+            );
             floor.push(
                 zone.floor
                     .as_ref()
@@ -195,6 +204,7 @@ impl World {
                 wall_tex,
                 floor,
                 ceiling,
+                faces,
                 door_tex,
                 sheets,
                 sprites,
@@ -213,6 +223,25 @@ impl World {
             _ => 0,
         };
         &self.textures[self.wall_tex[kind][heading]]
+    }
+
+    /// The paint of a vertical face of `what` (the cell whose solid part it is) seen heading
+    /// N, S, W, E (0..4): a wall's or door's texture; for a walkable cell's step or lintel its
+    /// zone's `Wz`, or else the `NO`/`SO`/`WE`/`EA` textures as walls.
+    #[must_use]
+    #[inline]
+    pub fn face_paint(&self, what: Cell, heading: usize) -> Paint {
+        match what {
+            Cell::Wall(d) => Paint::Texture(self.wall_tex[usize::from(d)][heading]),
+            Cell::Door(_) => Paint::Texture(self.door_tex),
+            Cell::Floor { zone } => self
+                .faces
+                .get(usize::from(zone))
+                .copied()
+                .flatten()
+                .unwrap_or(Paint::Texture(self.wall_tex[0][heading])),
+            Cell::Void => Paint::Texture(self.wall_tex[0][heading]),
+        }
     }
 
     /// Floor paint of a zone.

@@ -86,8 +86,13 @@ pub(crate) fn render(args: &RenderArgs) -> Result<(), Failure> {
     for cell in doors.cells().to_vec() {
         doors.set_open(cell, opts.door_open);
     }
+    let ground = world
+        .map
+        .span(camera.pos.x.floor() as i64, camera.pos.y.floor() as i64)
+        .map_or(0.0, |s| s.floor);
     let mut scene = Scene::new(&world, camera)
-        .with_view(halfcast::View::new(opts.pitch, opts.z))
+        // `--z` is the eye's height above the floor of the camera's cell.
+        .with_view(halfcast::View::new(opts.pitch, opts.z).on_ground(ground))
         .with_doors(&doors)
         .at_time(opts.time);
     if let Some(fog) = opts.fog {

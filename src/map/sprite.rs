@@ -44,6 +44,9 @@ pub struct SpriteDef {
     pub scale: (f64, f64),
     /// Height of the sprite's bottom above the floor, in wall heights (Lode's vMove).
     pub offset: f64,
+    /// Given as `hang`: its top is at its cell's ceiling (`offset` is then 1 − height, right for
+    /// a flat cell; on `Hz` maps the renderer hangs it from the cell's own ceiling).
+    pub hang: bool,
     /// Radius of the disc that blocks movement, when solid.
     pub solid: Option<f64>,
     /// How it mixes with what is behind it.
@@ -75,6 +78,7 @@ impl SpriteDef {
             texture,
             scale: (1.0, 1.0),
             offset: 0.0,
+            hang: false,
             solid: Some(DEFAULT_SOLID_RADIUS),
             blend: Blend::Normal,
             views: 1,
@@ -237,6 +241,7 @@ pub(super) fn parse_sprite(
             return Err(bad("give either offset=... or hang, not both"));
         }
         def.offset = 1.0 - def.scale.1;
+        def.hang = true;
     }
     Ok(def)
 }

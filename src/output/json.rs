@@ -5,6 +5,7 @@ use serde::Serialize;
 use crate::billboard::SpriteOutcome;
 use crate::camera::Camera;
 use crate::cast::{Cast, Side};
+use crate::height_cast::{FaceKind, FaceSpan};
 use crate::sprite::{to_camera_space, Culled};
 use crate::world::World;
 
@@ -41,13 +42,44 @@ pub struct SpriteReport {
     pub culled: Option<Culled>,
 }
 
-/// One column's hit.
+/// One column's hit (on `Hz` maps, where its window of open rows closed).
 #[derive(Debug, Serialize)]
 pub struct ColumnReport {
     pub cell: [i64; 2],
     pub side: Side,
     pub perp_dist: f64,
     pub wall_x: f64,
+    /// On maps with `Hz` heights, every vertical face drawn in the column, front to back;
+    /// absent on flat maps.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spans: Option<Vec<SpanReport>>,
+}
+
+/// One vertical face drawn in a column (see [`crate::height_cast::FaceSpan`]).
+#[derive(Debug, Serialize)]
+pub struct SpanReport {
+    /// The cell whose solid part the face is.
+    pub cell: [i64; 2],
+    pub side: Side,
+    pub perp_dist: f64,
+    pub kind: FaceKind,
+    /// The heights the face spans beside the ray's cell, low to high.
+    pub z: [f64; 2],
+    /// Pixel rows drawn, [top, bottom).
+    pub rows: [usize; 2],
+}
+
+impl SpanReport {
+    fn new(f: &FaceSpan) -> Self {
+        Self {
+            cell: [f.cell.0, f.cell.1],
+            side: f.side,
+            perp_dist: f.perp_dist,
+            kind: f.kind,
+            z: [f.z.0, f.z.1],
+            rows: [f.rows.0, f.rows.1],
+        }
+    }
 }
 
 /// One DDA step of the centre ray.
@@ -73,11 +105,16 @@ impl RayReport {
             columns: cast
                 .columns
                 .iter()
-                .map(|h| ColumnReport {
+                .enumerate()
+                .map(|(x, h)| ColumnReport {
                     cell: [h.cell.0, h.cell.1],
                     side: h.side,
                     perp_dist: h.perp_dist,
                     wall_x: h.wall_x,
+                    spans: cast
+                        .heights
+                        .get(x)
+                        .map(|col| col.faces().map(SpanReport::new).collect()),
                 })
                 .collect(),
             centre_trace: cast.trace.as_ref().map_or_else(Vec::new, |t| {

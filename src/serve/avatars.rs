@@ -56,6 +56,7 @@ pub fn avatar(state: &GameState, walking: bool, sheet: usize) -> Sprite {
         scale: (AVATAR_SCALE, AVATAR_SCALE),
         // A jumping player leaves the floor.
         offset: state.jump.0.max(0.0),
+        hang: false,
         // Players block each other in the world task, not through the sprite list.
         solid: None,
         blend: Blend::Normal,
