@@ -1,6 +1,6 @@
 //! The minimap of `maps/heights.cub` as the terminal shows it at 80×24 (the real bytes through
 //! vt100): in colour, floors are shaded by height and ledges outlined; in mono (plain ASCII),
-//! each level is a digit.
+//! each level is a digit. The ray pane beside it lists the traced column's heights.
 #![cfg(unix)]
 
 mod common;
@@ -80,6 +80,12 @@ fn the_minimap_shades_floors_by_height_and_outlines_ledges() {
     );
     // The balcony's lip over the hall (a whole wall down) is outlined.
     assert!(colours.contains(&Rgb::new(6, 6, 8)), "no ledge line");
+    // The ray pane lists the traced column's heights, closed by the wall the player faces.
+    assert!(
+        rows.iter().any(|r| r.contains("heights closed (1,0) 0.20")),
+        "{}",
+        rows.join("\n")
+    );
 }
 
 #[test]
