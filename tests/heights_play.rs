@@ -300,3 +300,33 @@ fn a_replay_starting_with_no_room_for_the_eye_is_refused() {
         )
     );
 }
+
+#[test]
+fn the_window_of_heights_cub_is_crossed_by_a_crouching_jump_only() {
+    // Hall floor 0 (ceiling 2) | window cell (11,5): floor 0.4, ceiling 0.8 | east room.
+    let (map, _) = World::from_file(std::path::Path::new("maps/heights.cub"), true).unwrap();
+    let map = Arc::new(map);
+    let start = || {
+        let cam = Camera::from_angle(Vec2::new(10.5, 5.5), 0.0, 66.0);
+        GameState::new(Arc::clone(&map), cam, 80)
+    };
+    let jump = |s: &mut GameState, held: &[Action]| {
+        let input = Input {
+            held: held.iter().copied().collect::<Held>(),
+            commands: vec![Command::Jump],
+        };
+        step(s, &input, 1.0 / 60.0);
+        hold(s, held, 1.5, 60.0);
+    };
+    // Standing, the jump reaches the sill (0.4 <= 0.5) but the head does not fit under 0.8.
+    let mut s = start();
+    hold(&mut s, &[Action::Forward], 0.5, 60.0);
+    jump(&mut s, &[Action::Forward]);
+    assert!(x(&s) < 11.0, "{:?}", s.camera.pos);
+    // Crouched, it climbs in (0.8 - 0.4 = 0.4 = crouching eye + head room) and drops out east.
+    let mut s = start();
+    hold(&mut s, &[Action::Forward, Action::Crouch], 0.5, 60.0);
+    jump(&mut s, &[Action::Forward, Action::Crouch]);
+    assert!(x(&s) > 12.0, "{:?}", s.camera.pos);
+    assert_eq!(s.footing.floor, 0.0);
+}
