@@ -164,7 +164,14 @@ impl Projection {
     #[inline]
     pub fn row_at(&self, z: f64, t: f64) -> usize {
         let edge = self.horizon - (z - self.eye) * self.focal / t.max(1e-9) - 0.5;
-        edge.ceil().clamp(0.0, self.height as f64) as usize
+        // ⌈edge⌉ without a libm call, within [0, height] (NaN reads as 0).
+        let e = edge.clamp(0.0, self.height as f64);
+        let r = e as usize;
+        if (r as f64) < e {
+            r + 1
+        } else {
+            r
+        }
     }
 }
 
@@ -302,7 +309,7 @@ pub fn cast_column(
     let mut win = Window {
         top: 0,
         bottom: proj.height,
-        bands: Vec::new(),
+        bands: Vec::with_capacity(12),
     };
     let mut what = map.cell(cell.0, cell.1);
     let mut span = map.span(cell.0, cell.1).unwrap_or(Span::FLAT);

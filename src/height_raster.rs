@@ -24,12 +24,22 @@ pub fn rasterize_heights(scene: &Scene, cast: &Cast, fb: &mut Framebuffer) -> Ve
     let proj = Projection::new(&scene.camera, &scene.view, w, h);
     let table = ShadeTable::new(&scene.light);
     let lamps = scene.lamp_light();
-    let mut depth = vec![f32::INFINITY; w * h];
+    // Sprites are hidden by the distance of whatever was drawn at each pixel.
+    let mut depth = if scene.world.sprites.is_empty() {
+        Vec::new()
+    } else {
+        vec![f32::INFINITY; w * h]
+    };
+    // focal / (row centre − horizon): a floor row's distance is (eye − z) times this.
+    let per_row: Vec<f64> = (0..h)
+        .map(|y| proj.focal / (y as f64 + 0.5 - proj.horizon))
+        .collect();
     let painter = Painter {
         scene,
         proj,
         table: &table,
         lamps,
+        per_row,
     };
     for (x, col) in cast.heights.iter().enumerate().take(w) {
         let ray = scene.camera.ray_dir(x, w);
@@ -57,6 +67,7 @@ struct Painter<'a> {
     proj: Projection,
     table: &'a ShadeTable,
     lamps: Option<&'a LightMap>,
+    per_row: Vec<f64>,
 }
 
 impl Painter<'_> {
@@ -70,16 +81,17 @@ impl Painter<'_> {
             world.floor_paint(f.zone)
         };
         let w = fb.width();
-        let rise = (self.proj.eye - f.z) * self.proj.focal;
+        let rise = self.proj.eye - f.z;
+        let pos = self.scene.camera.pos;
+        let keep_depth = !depth.is_empty();
         for y in f.rows.0..f.rows.1 {
-            let p = y as f64 + 0.5 - self.proj.horizon;
             // Within the cell's stretch of the ray whatever rounding says (and at the horizon).
-            let mut dist = rise / p;
+            let mut dist = rise * self.per_row[y];
             if dist.is_nan() {
                 dist = f.dist.1;
             }
             let dist = dist.clamp(f.dist.0, f.dist.1);
-            let at = self.scene.camera.pos + ray * dist;
+            let at = pos + ray * dist;
             let mut shade = self.table.at(dist);
             if let Some(lamps) = self.lamps {
                 shade = shade.lit(lamps.at(at));
@@ -92,7 +104,9 @@ impl Painter<'_> {
                 ),
             };
             fb.set(x, y, shade.apply(c));
-            depth[y * w + x] = dist as f32;
+            if keep_depth {
+                depth[y * w + x] = dist as f32;
+            }
         }
     }
 
@@ -113,24 +127,38 @@ impl Painter<'_> {
         };
         let w = fb.width();
         let per_row = t / self.proj.focal;
+        let keep_depth = !depth.is_empty();
         match world.face_paint(f.what, heading_of(f.side, ray)) {
             Paint::Colour(c) => {
                 let c = shade.apply(c);
                 for y in f.rows.0..f.rows.1 {
                     fb.set(x, y, c);
-                    depth[y * w + x] = t as f32;
+                    if keep_depth {
+                        depth[y * w + x] = t as f32;
+                    }
                 }
             }
             Paint::Texture(i) => {
                 let tex = &world.textures[i];
                 let column = tex.column(face_texture_x(f.wall_x, f.side, ray, tex.width()));
                 let th = tex.height();
+                // u = 1 − z, the height measured down from the top of a unit wall; the texel
+                // row is frac(u)·texH, stepped row by row.
+                let y0 = f.rows.0 as f64 + 0.5 - self.proj.horizon;
+                let u0 = 1.0 - self.proj.eye + y0 * per_row;
+                let mut u = u0 - fast_floor(u0) as f64;
+                let step = per_row - fast_floor(per_row) as f64;
+                let th_f = th as f64;
                 for y in f.rows.0..f.rows.1 {
-                    let z = self.proj.eye - (y as f64 + 0.5 - self.proj.horizon) * per_row;
-                    let u = 1.0 - z;
-                    let v = ((u - fast_floor(u) as f64) * th as f64) as usize;
+                    let v = (u * th_f) as usize;
+                    u += step;
+                    if u >= 1.0 {
+                        u -= 1.0;
+                    }
                     fb.set(x, y, shade.apply(column[v.min(th - 1)]));
-                    depth[y * w + x] = t as f32;
+                    if keep_depth {
+                        depth[y * w + x] = t as f32;
+                    }
                 }
             }
         }
