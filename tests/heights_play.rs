@@ -330,3 +330,78 @@ fn the_window_of_heights_cub_is_crossed_by_a_crouching_jump_only() {
     assert!(x(&s) > 12.0, "{:?}", s.camera.pos);
     assert_eq!(s.footing.floor, 0.0);
 }
+
+/// Zone heights the random maps pick from: steps at and just past every limit.
+const FLOORS: [f64; 10] = [-1.0, -0.5, 0.0, 0.25, 0.26, 0.5, 0.51, 0.75, 1.0, 1.5];
+const ROOMS: [f64; 7] = [0.35, 0.4, 0.5, 0.6, 0.8, 1.0, 2.0];
+
+/// The actions a random player holds in one frame (a bit set over these), or jumps.
+const ACTIONS: [Action; 7] = [
+    Action::Forward,
+    Action::Back,
+    Action::StrafeLeft,
+    Action::StrafeRight,
+    Action::TurnLeft,
+    Action::TurnRight,
+    Action::Crouch,
+];
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(40))]
+
+    /// Whatever a player does on whatever heights: its cell is open, its eye (jump included)
+    /// stays 0.1 under that cell's ceiling, and the floor under it never rises more than 0.5
+    /// from one frame to the next (a walked step plus a jump).
+    #[test]
+    fn no_input_breaks_the_height_rules(
+        zones in proptest::collection::vec((0..FLOORS.len(), 0..ROOMS.len()), 6),
+        cells in proptest::collection::vec(0u8..8, 64),
+        frames in proptest::collection::vec((0u8..128, 0u8..12), 1..240),
+    ) {
+        let letters = "abcdef";
+        let mut extra = String::new();
+        for (z, &(f, r)) in letters.chars().zip(&zones) {
+            extra.push_str(&format!("H{z} {} {}\n", FLOORS[f], FLOORS[f] + ROOMS[r]));
+        }
+        let mut grid = String::from("1111111111\n");
+        for j in 0..8 {
+            grid.push('1');
+            for i in 0..8 {
+                let c = match cells[j * 8 + i] {
+                    _ if (i, j) == (3, 3) => 'N',
+                    0 => '0',
+                    7 => '1',
+                    k => letters.as_bytes()[usize::from(k) - 1] as char,
+                };
+                grid.push(c);
+            }
+            grid.push_str("1\n");
+        }
+        grid.push_str("1111111111\n");
+        let world = Arc::new(world_common::world(&extra, &grid));
+        let cam = Camera::from_angle(Vec2::new(4.5, 4.5), 90.0, 66.0);
+        let mut s = GameState::new(Arc::clone(&world), cam, 80);
+        for (bits, jump) in frames {
+            let held: Held = ACTIONS
+                .iter()
+                .enumerate()
+                .filter(|(k, _)| bits & (1 << k) != 0)
+                .map(|(_, &a)| a)
+                .collect();
+            let commands = if jump == 0 { vec![Command::Jump] } else { vec![] };
+            let before = s.footing.floor;
+            step(&mut s, &Input { held, commands }, 1.0 / 30.0);
+            let (i, j) = halfcast::game::collision::centre_cell(s.camera.pos);
+            let span = world.map.span(i, j);
+            proptest::prop_assert!(span.is_some(), "in a wall at {:?}", s.camera.pos);
+            let span = span.unwrap();
+            proptest::prop_assert_eq!(s.footing.floor, span.floor);
+            let head = s.footing.floor + s.jump.0 + s.base_eye + halfcast::game::body::HEAD_ROOM;
+            proptest::prop_assert!(head <= span.ceil + 1e-9, "head {} over {:?}", head, span);
+            proptest::prop_assert!(
+                s.footing.floor - before <= 0.5 + 1e-9,
+                "climbed {} -> {} at {:?}", before, s.footing.floor, s.camera.pos
+            );
+        }
+    }
+}
