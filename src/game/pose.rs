@@ -23,16 +23,19 @@ fn span_at(map: &Map, pos: Vec2, what: &str) -> Result<((i64, i64), Span), Strin
     })
 }
 
-/// The span a still frame's eye `eye_z` above the floor at `pos` looks from, or an error when
-/// the eye would be in (or within [`EYE_MARGIN`] of) the cell's ceiling.
+/// Whether a still frame's eye `eye_z` above the floor at `pos` has room: the span it looks
+/// from, or `None` where `pos` is in no open cell (a wall: drawn as it always was), or an error
+/// when the eye would be in (or within [`EYE_MARGIN`] of) its cell's ceiling.
 ///
 /// # Errors
-/// `pos` on no floor cell, or `eye_z` too high for its cell.
-pub fn still_eye(map: &Map, pos: Vec2, eye_z: f64) -> Result<Span, String> {
-    let (cell, span) = span_at(map, pos, "--pos")?;
+/// `eye_z` too high for the cell at `pos`.
+pub fn still_eye(map: &Map, pos: Vec2, eye_z: f64) -> Result<Option<Span>, String> {
+    let Ok((cell, span)) = span_at(map, pos, "--pos") else {
+        return Ok(None);
+    };
     let most = span.height() - EYE_MARGIN;
     if eye_z <= most + 1e-9 {
-        Ok(span)
+        Ok(Some(span))
     } else {
         Err(format!(
             "--z {eye_z} puts the eye inside the ceiling: cell ({},{}) of {} is {} high \
@@ -106,10 +109,7 @@ mod tests {
              (floor 0, ceiling 0.5), so the eye may be at most 0.45 above its floor"
         );
         assert!(still_eye(&m, Vec2::new(4.5, 1.5), 0.95).is_ok());
-        assert_eq!(
-            still_eye(&m, Vec2::new(0.5, 1.5), 0.5).unwrap_err(),
-            "--pos 0.5,1.5 is not on a floor cell of low.cub"
-        );
+        assert_eq!(still_eye(&m, Vec2::new(0.5, 1.5), 0.9), Ok(None), "a wall");
     }
 
     #[test]
