@@ -176,6 +176,23 @@ mod tests {
     use super::*;
 
     #[test]
+    fn sprites_stand_on_their_cells_floor_and_hang_from_its_ceiling() {
+        let text = "NO n\nSO s\nWE w\nEA e\nF 1,2,3\nC 4,5,6\nHp -1 2.5\n\
+                    SPRITE 2.5,1.5 t.png offset=0.25\nSPRITE 2.5,1.5 t.png scale=0.5 hang\n\
+                    SPRITE 1.5,1.5 t.png scale=0.5 hang\n11111\n1Ep01\n11111\n";
+        let map = crate::map::parse_map("t.cub", text.as_bytes()).unwrap();
+        let base = |k: usize| sprite_base(&map, &map.sprite_defs[k]);
+        assert_eq!(base(0), -0.75);
+        assert_eq!(base(1), 2.0);
+        // The start cell spans 0..1 as on flat maps.
+        assert_eq!(base(2), 0.5);
+        // A map without heights keeps offsets as given.
+        let flat = text.replace("Hp -1 2.5", "Fp 9,9,9");
+        let map = crate::map::parse_map("t.cub", flat.as_bytes()).unwrap();
+        assert_eq!(sprite_base(&map, &map.sprite_defs[1]), 0.5);
+    }
+
+    #[test]
     fn mixing_by_alpha() {
         let (bg, fg) = (Rgb::new(0, 100, 200), Rgb::new(200, 100, 0));
         assert_eq!(mix(bg, fg, 255), fg);

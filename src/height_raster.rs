@@ -164,3 +164,80 @@ impl Painter<'_> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::camera::Camera;
+    use crate::color::Rgb;
+    use crate::framebuffer::Framebuffer;
+    use crate::light::{Fog, ShadeTable};
+    use crate::map::parse_map;
+    use crate::scene::Scene;
+    use crate::vec2::Vec2;
+    use crate::world::{TextureSource, World};
+
+    fn world(extra: &str, grid: &str) -> World {
+        let text = format!("NO n\nSO s\nWE w\nEA e\nF 100,120,140\nC 4,5,6\n{extra}{grid}");
+        let map = parse_map("t.cub", text.as_bytes()).unwrap();
+        World::load(map, &TextureSource::Embedded, false).unwrap().0
+    }
+
+    #[test]
+    fn fog_lights_steps_and_floors_by_their_own_distance() {
+        // A Wz-coloured 0.3 step two cells ahead of the eye; fog thick enough to tell distances.
+        let w = world(
+            "Hs 0.3 1\nWs 200,100,50\n",
+            "11111111\n1E0s0001\n11111111\n",
+        );
+        let mut scene = Scene::new(&w, Camera::from_angle(Vec2::new(1.5, 1.5), 0.0, 90.0));
+        scene.light.fog = Some(Fog {
+            colour: Rgb::new(10, 20, 30),
+            density: 0.4,
+        });
+        let table = ShadeTable::new(&scene.light);
+        let mut fb = Framebuffer::new(41, 41);
+        let frame = scene.render_frame(&mut fb, Some(20));
+        let col = &frame.cast.heights[20];
+        let step = col.faces().next().unwrap();
+        assert_eq!(step.cell, (3, 1));
+        assert!(step.rows.0 < step.rows.1);
+        let want = table.at(step.perp_dist).apply(Rgb::new(200, 100, 50));
+        for y in step.rows.0..step.rows.1 {
+            assert_eq!(fb.get(20, y), want, "step row {y}");
+        }
+        // The floor just below the step: each row at its own distance (focal 20.5, eye 0.5).
+        let y = step.rows.1 + 1;
+        let dist = 0.5 * 20.5 / (y as f64 + 0.5 - 20.5);
+        assert_eq!(fb.get(20, y), table.at(dist).apply(Rgb::new(100, 120, 140)));
+        assert_ne!(fb.get(20, y), fb.get(20, 40));
+    }
+
+    #[test]
+    fn texture_rows_repeat_on_a_tall_wall_instead_of_stretching() {
+        // A hall two units tall: the texel row for height z is frac(1 − z)·texH, so the wall from
+        // 1 to 2 repeats the wall from 0 to 1 row for row. Focal 32 at distance 2: one unit is
+        // exactly 16 rows, so rows 16 apart show the same texel.
+        let w = world("Hh 0 2\n", "111111\n1Ehhh1\n111111\n");
+        let view = crate::view::View::new(0.0, 0.92).on_ground(0.05);
+        let scene =
+            Scene::new(&w, Camera::from_angle(Vec2::new(3.0, 1.5), 0.0, 90.0)).with_view(view);
+        let mut fb = Framebuffer::new(64, 200);
+        let frame = scene.render_frame(&mut fb, Some(32));
+        let wall = frame.cast.heights[32].faces().last().copied().unwrap();
+        assert_eq!((wall.perp_dist, wall.z), (2.0, (0.0, 2.0)));
+        // Eye at 0.97: rows 85..100 see z in (1, 2), rows 101..116 the same heights less one.
+        // Columns whose rays meet the east wall (the room is one cell wide).
+        for x in 29..36 {
+            for y in 101..116 {
+                assert_eq!(
+                    fb.get(x, y),
+                    fb.get(x, y - 16),
+                    "column {x} rows {y}, {}",
+                    y - 16
+                );
+            }
+        }
+        // And it is a texture, not one colour.
+        assert!((29..36).any(|x| (101..116).any(|y| fb.get(x, y) != fb.get(x, 101))));
+    }
+}

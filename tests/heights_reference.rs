@@ -275,13 +275,46 @@ fn every_pixel_shows_the_first_surface_on_its_own_ray() {
         let pitch = rng.range(-30.0, 30.0);
         let angle = rng.range(-180.0, 180.0);
         let fov = rng.range(40.0, 110.0);
-        let (width, height) = (16 + rng.below(160), 10 + rng.below(90));
+        let (width, height) = (16 + rng.below(160), 2 * (5 + rng.below(45)));
         let camera = Camera::from_angle(pos, angle, fov);
         let view = View::new(pitch, eye_z).on_ground(floor);
         let mut fb = Framebuffer::new(width, height);
         Scene::new(&world, camera)
             .with_view(view)
             .render_into(&mut fb, None);
+        if n % 6 == 0 {
+            // `render --format png` shows the same frame (its eye stands on the cell's floor).
+            let out = std::process::Command::new(env!("CARGO_BIN_EXE_halfcast"))
+                .args([
+                    "render",
+                    path.to_str().unwrap(),
+                    "--pos",
+                    &format!("{},{}", pos.x, pos.y),
+                    "--angle",
+                    &angle.to_string(),
+                    "--fov",
+                    &fov.to_string(),
+                    "--pitch",
+                    &pitch.to_string(),
+                    "--z",
+                    &eye_z.to_string(),
+                    "--size",
+                    &format!("{width}x{}", height / 2),
+                    "--strict",
+                ])
+                .output()
+                .unwrap();
+            assert!(
+                out.status.success(),
+                "{}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+            let png = Framebuffer::from_image_bytes(&out.stdout).unwrap();
+            assert!(
+                png == fb,
+                "case {n}: render --format png differs from Scene::render"
+            );
+        }
 
         // The reference's own camera maths, from the formulas.
         let a = angle.to_radians();
