@@ -99,6 +99,7 @@ pub(crate) fn play(args: &PlayArgs, record: Option<&PathBuf>) -> Result<(), Fail
             camera.pos.x, camera.pos.y, world.map.name
         )));
     }
+    halfcast::game::pose::player_start(&world.map, camera.pos, "--pos").map_err(Failure::input)?;
     let colour = match (args.colors, config.colors) {
         (Some(level), _) => ColourChoice::flag(level),
         (None, Some(level)) => ColourChoice::config(level),

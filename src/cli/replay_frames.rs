@@ -105,6 +105,12 @@ pub fn replay_world(replay: &Replay, replay_path: &Path) -> Result<Arc<World>, R
             Ok(Arc::new(world))
         }
     }
+    .and_then(|world| {
+        // A start in a cell too low for the eye (an edited file) is refused like a bad `--pos`.
+        halfcast::game::pose::player_start(&world.map, replay.header.pos, "start")
+            .map_err(|m| input(format!("{}: {m}", replay_path.display())))?;
+        Ok(world)
+    })
 }
 
 fn too_many_frames() -> String {

@@ -2,8 +2,10 @@
 //!
 //! Each axis moves on its own, so pushing diagonally into a wall slides along it; a blocked
 //! axis stops exactly `radius` short of the wall, so the eye never enters a wall and the
-//! view never reaches past a corner.
+//! view never reaches past a corner. On maps with heights the same goes for a ledge too high
+//! to step onto and a ceiling too low to pass ([`Body::can_enter`]).
 
+use super::body::Body;
 use crate::door::DoorState;
 use crate::map::{Cell, Map};
 use crate::vec2::Vec2;
@@ -18,14 +20,17 @@ const MAX_SUBSTEP: f64 = 0.1;
 /// Slack so a player resting exactly against a wall does not count as overlapping it.
 const EPS: f64 = 1e-9;
 
-/// Everything that stops the player: the grid (walls, void, doors not open far enough) and
-/// solid sprites as discs.
+/// Everything that stops the player: the grid (walls, void, doors not open far enough), solid
+/// sprites as discs, and cells the body cannot enter at its height.
 #[derive(Debug, Clone, Copy)]
 pub struct Obstacles<'a> {
     pub map: &'a Map,
     /// `None` treats every door as shut.
     pub doors: Option<&'a DoorState>,
     pub discs: &'a [SolidDisc],
+    /// The moving body's feet and eye; `None` ignores floor and ceiling heights (only walls,
+    /// doors and discs stop it).
+    pub body: Option<Body>,
 }
 
 impl<'a> Obstacles<'a> {
@@ -36,6 +41,7 @@ impl<'a> Obstacles<'a> {
             map,
             doors: None,
             discs: &[],
+            body: None,
         }
     }
 
@@ -45,6 +51,24 @@ impl<'a> Obstacles<'a> {
             Cell::Door(_) => self.doors.is_none_or(|d| d.blocks((i, j))),
             _ => true,
         }
+    }
+
+    /// Whether moving a square of half-size `r` from `from` to `to` takes the body into a cell it
+    /// cannot enter: one the square did not cover before. Cells it already overlaps stay
+    /// allowed, so a body that reached half over a ledge at the top of a jump walks on onto it
+    /// after landing, and one resting half under a low ceiling can leave.
+    fn refuses_entry(&self, from: Vec2, to: Vec2, r: f64) -> bool {
+        let Some(body) = self.body else {
+            return false;
+        };
+        let ((a0, a1), (b0, b1)) = covered(from, r);
+        let ((i0, i1), (j0, j1)) = covered(to, r);
+        (j0..=j1).any(|j| {
+            (i0..=i1).any(|i| {
+                let before = (a0..=a1).contains(&i) && (b0..=b1).contains(&j);
+                !before && !body.can_enter(self.map, i, j)
+            })
+        })
     }
 
     /// Whether a player of half-size `r` at `p` overlaps a solid sprite's disc.
@@ -61,6 +85,31 @@ fn covered(p: Vec2, r: f64) -> ((i64, i64), (i64, i64)) {
     let lo = |c: f64| (c - r + EPS).floor() as i64;
     let hi = |c: f64| (c + r - EPS).ceil() as i64 - 1;
     ((lo(p.x), hi(p.x)), (lo(p.y), hi(p.y)))
+}
+
+/// The cell a point is in (the player's cell: its floor is the one stood on).
+#[must_use]
+pub fn centre_cell(p: Vec2) -> (i64, i64) {
+    (p.x.floor() as i64, p.y.floor() as i64)
+}
+
+/// The lowest ceiling over the cells a square of half-size `r` at `p` covers (walls have none;
+/// infinite if no covered cell is open), which caps how high the head may rise there.
+#[must_use]
+pub fn lowest_ceiling(map: &Map, p: Vec2, r: f64) -> f64 {
+    let ((i0, i1), (j0, j1)) = covered(p, r);
+    (j0..=j1)
+        .flat_map(|j| (i0..=i1).filter_map(move |i| map.span(i, j)))
+        .map(|s| s.ceil)
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Whether `body` fits under the ceiling of every open cell a square of half-size `r` at `p`
+/// covers: getting up (or jumping) is allowed only where this holds.
+#[must_use]
+pub fn fits_here(map: &Map, p: Vec2, r: f64, body: Body) -> bool {
+    let ((i0, i1), (j0, j1)) = covered(p, r);
+    (j0..=j1).all(|j| (i0..=i1).all(|i| map.span(i, j).is_none_or(|s| body.fits_under(s))))
 }
 
 /// Whether a player of half-size `r` standing at `p` overlaps a solid cell (wall, void, shut door).
@@ -99,7 +148,7 @@ fn move_axis(obstacles: &Obstacles, p: Vec2, d: f64, r: f64, along_x: bool) -> f
         Vec2::new(p.x, p.y + d)
     };
     let c = if along_x { p.x } else { p.y };
-    if !overlaps_wall(obstacles, moved, r) {
+    if !overlaps_wall(obstacles, moved, r) && !obstacles.refuses_entry(p, moved, r) {
         // A sprite stops the sub-step; moving away from one that overlaps already is allowed.
         let into_disc = obstacles.hits_disc(moved, r) && !obstacles.hits_disc(p, r);
         return match (into_disc, along_x) {
@@ -122,10 +171,21 @@ fn move_axis(obstacles: &Obstacles, p: Vec2, d: f64, r: f64, along_x: bool) -> f
     }
 }
 
-/// Nudges a spawn point that overlaps a wall back inside its own cell (the cell is floor).
+/// Nudges a spawn point that overlaps a wall, or a neighbour a standing body on its own floor
+/// could not enter (a ledge, a low ceiling), back inside its own cell (the cell is floor).
 #[must_use]
 pub fn settle(map: &Map, p: Vec2, r: f64) -> Vec2 {
-    if !overlaps_wall(&Obstacles::grid(map), p, r) {
+    let (i, j) = centre_cell(p);
+    let standing = Body {
+        feet: map.span(i, j).map_or(0.0, |s| s.floor),
+        eye: crate::view::STANDING_EYE,
+    };
+    let ((i0, i1), (j0, j1)) = covered(p, r);
+    let ledge = (j0..=j1).any(|b| {
+        (i0..=i1)
+            .any(|a| (a, b) != (i, j) && map.span(a, b).is_some() && !standing.can_enter(map, a, b))
+    });
+    if !ledge && !overlaps_wall(&Obstacles::grid(map), p, r) {
         return p;
     }
     let clamp = |c: f64| {

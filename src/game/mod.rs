@@ -3,19 +3,24 @@
 //! No terminal, no clock, no I/O: the TUI, replays (fixed `dt`) and an SSH server all drive
 //! the same function, so a recorded input sequence always gives the same poses.
 
+pub mod body;
 pub mod collision;
 pub mod debugger;
+pub mod footing;
 pub mod input;
+pub mod pose;
 
 use std::sync::Arc;
 
 use crate::camera::Camera;
 use crate::cast::{trace_column_doors, DdaTrace};
 use crate::door::DoorState;
-use crate::view::{View, EYE_RANGE, MAX_PITCH_DEG, STANDING_EYE};
+use crate::view::{View, MAX_PITCH_DEG, STANDING_EYE};
 use crate::world::{SolidDisc, World};
 
+pub use body::Body;
 pub use debugger::{Cursor, Debugger};
+pub use footing::Footing;
 pub use input::{Action, Command, Held, Input, Speeds};
 
 /// Walking speed in cells per second.
@@ -36,8 +41,13 @@ pub const CROUCH_SPEED: f64 = 2.0;
 /// Upward speed at take-off, in wall heights per second.
 pub const JUMP_SPEED: f64 = 2.2;
 
-/// Gravity, in wall heights per second squared (a jump peaks about 0.27 above the eye).
+/// Gravity, in wall heights per second squared.
 pub const GRAVITY: f64 = 9.0;
+
+/// Highest a jump lifts the feet, in wall heights: the arc is cut flat there (it would reach
+/// about 0.27), so at any frame rate a jump climbs a ledge of exactly
+/// [`body::STEP_UP`] + `JUMP_RISE` = 0.5 and no higher.
+pub const JUMP_RISE: f64 = 0.25;
 
 /// Longest frame time one step honours, so a stall (suspend, slow terminal) is not a jump.
 pub const MAX_DT: f64 = 0.25;
@@ -54,9 +64,12 @@ pub struct GameState {
     pub doors: DoorState,
     /// Pitch and eye height.
     pub view: View,
-    /// Eye height without the jump (standing or crouching), and the jump's height and speed.
+    /// Eye height without the jump (standing or crouching), and the jump's height (above the
+    /// floor of the player's cell) and speed.
     pub base_eye: f64,
     pub jump: (f64, f64),
+    /// The floor of the player's cell, and the eye's eased way onto it after a step.
+    pub footing: Footing,
     /// Night mode (dark, lit near the player).
     pub night: bool,
     /// Walking and turning speeds.
@@ -67,11 +80,25 @@ pub struct GameState {
 }
 
 impl GameState {
-    /// Starts at `camera` (moved off any wall it overlaps) with the debugger on the centre ray.
+    /// Starts at `camera` (moved off any wall it overlaps) with the debugger on the centre ray,
+    /// standing exactly on its cell's floor, or crouching where the ceiling is too low to stand.
     #[must_use]
     pub fn new(world: Arc<World>, mut camera: Camera, view_width: usize) -> Self {
-        camera.pos = collision::settle(&world.map, camera.pos, collision::PLAYER_RADIUS);
-        let doors = DoorState::new(&world.map);
+        let map = &world.map;
+        camera.pos = collision::settle(map, camera.pos, collision::PLAYER_RADIUS);
+        let (i, j) = collision::centre_cell(camera.pos);
+        let floor = map.span(i, j).map_or(0.0, |s| s.floor);
+        let standing = Body {
+            feet: floor,
+            eye: STANDING_EYE,
+        };
+        let base_eye = if collision::fits_here(map, camera.pos, collision::PLAYER_RADIUS, standing)
+        {
+            STANDING_EYE
+        } else {
+            CROUCH_EYE
+        };
+        let doors = DoorState::new(map);
         let solids = world.solid_discs();
         Self {
             world,
@@ -79,9 +106,10 @@ impl GameState {
             debugger: Debugger::default(),
             view_width,
             doors,
-            view: View::default(),
-            base_eye: STANDING_EYE,
+            view: View::new(0.0, base_eye).on_ground(floor),
+            base_eye,
             jump: (0.0, 0.0),
+            footing: Footing::on(floor),
             night: false,
             speeds: Speeds::default(),
             time: 0.0,
@@ -89,13 +117,24 @@ impl GameState {
         }
     }
 
-    /// What stops the player now: the grid, the doors as they are, solid sprites.
+    /// The player's body now: feet on the cell's floor plus the jump, eye without the jump.
+    #[must_use]
+    pub fn body(&self) -> Body {
+        Body {
+            feet: self.footing.floor + self.jump.0,
+            eye: self.base_eye,
+        }
+    }
+
+    /// What stops the player now: the grid, the doors as they are, solid sprites, and cells
+    /// too high to step onto or too low to fit under.
     #[must_use]
     pub fn obstacles(&self) -> collision::Obstacles<'_> {
         collision::Obstacles {
             map: &self.world.map,
             doors: Some(&self.doors),
             discs: &self.solids,
+            body: Some(self.body()),
         }
     }
 
@@ -209,13 +248,51 @@ fn advance(state: &mut GameState, input: &Input, dt: f64, owns_world: bool, bodi
         state.camera.pos =
             collision::slide(&obstacles, state.camera.pos, wish, collision::PLAYER_RADIUS);
     }
+    follow_floor(state);
+    state.footing.advance(dt);
+    state.view = View::new(state.view.pitch_deg, state.base_eye + state.jump.0)
+        .on_ground(state.footing.shown());
 }
 
-/// Looking up/down, crouching and jumping: the pitch and eye height of the view.
+/// After moving: the floor of the player's cell is the one stood on. A jump that reached a
+/// higher floor ends on it (its height given back to the eye's easing, so the eye does not
+/// dip); on a lower floor the jump goes on above it and the eye eases down.
+fn follow_floor(state: &mut GameState) {
+    let (i, j) = collision::centre_cell(state.camera.pos);
+    let Some(span) = state.world.map.span(i, j) else {
+        return;
+    };
+    let rise = span.floor - state.footing.floor;
+    if rise == 0.0 {
+        return;
+    }
+    let (height, speed) = state.jump;
+    if rise > 0.0 {
+        let left = height - rise;
+        if left > 0.0 {
+            state.jump = (left, speed);
+            state.footing.move_to(span.floor, rise);
+        } else {
+            state.jump = (0.0, 0.0);
+            state.footing.move_to(span.floor, height);
+        }
+    } else {
+        state.footing.move_to(span.floor, 0.0);
+    }
+}
+
+/// Looking up/down, crouching and jumping: the pitch, the eye above the feet and the jump.
+/// Getting up waits until the ceilings over the player leave room for a standing eye; a jump
+/// rises at most [`JUMP_RISE`] and never puts the head into a ceiling.
 fn vertical(state: &mut GameState, held: Held, dt: f64, nudged_look: f64) {
     let look = (held.axis(Action::LookUp, Action::LookDown) * dt + nudged_look) * LOOK_SPEED;
-    let pitch = (state.view.pitch_deg + look).clamp(-MAX_PITCH_DEG, MAX_PITCH_DEG);
-    let target = if held.contains(Action::Crouch) {
+    state.view.pitch_deg = (state.view.pitch_deg + look).clamp(-MAX_PITCH_DEG, MAX_PITCH_DEG);
+    let (map, pos, r) = (&state.world.map, state.camera.pos, collision::PLAYER_RADIUS);
+    let standing = Body {
+        eye: STANDING_EYE,
+        ..state.body()
+    };
+    let target = if held.contains(Action::Crouch) || !collision::fits_here(map, pos, r, standing) {
         CROUCH_EYE
     } else {
         STANDING_EYE
@@ -226,13 +303,17 @@ fn vertical(state: &mut GameState, held: Held, dt: f64, nudged_look: f64) {
     if height > 0.0 || speed > 0.0 {
         height += speed * dt;
         speed -= GRAVITY * dt;
+        let ceiling = collision::lowest_ceiling(map, pos, r);
+        let top = (ceiling - body::HEAD_ROOM - state.base_eye - state.footing.floor).min(JUMP_RISE);
+        if height >= top {
+            height = top;
+            speed = speed.min(0.0);
+        }
         if height <= 0.0 {
             (height, speed) = (0.0, 0.0);
         }
     }
     state.jump = (height, speed);
-    let eye = (state.base_eye + height).clamp(EYE_RANGE.0, EYE_RANGE.1);
-    state.view = View::new(pitch, eye);
 }
 
 #[cfg(test)]

@@ -106,7 +106,8 @@ pub fn mark_players(
         .iter()
         .filter(|p| p.id != eye_id)
         .filter_map(|p| {
-            let lift = p.state.jump.0.max(0.0);
+            // Where the avatar's feet are: its cell's floor (0 on flat maps) plus any jump.
+            let lift = p.state.footing.floor + p.state.jump.0.max(0.0);
             let pos = p.state.camera.pos;
             project(
                 &eye.camera,
@@ -290,5 +291,50 @@ mod tests {
         place(&mut w, base, sheet, &snap, 1);
         assert_eq!(w.sprites.len(), base + 2);
         assert!(avatar(ann, true, sheet).def.fps > 0.0);
+    }
+
+    #[test]
+    fn the_marker_stands_over_a_player_on_a_raised_floor() {
+        use crate::camera::Camera;
+        use crate::vec2::Vec2;
+        // A tall corridor east; cells 4-5 are a platform one wall high.
+        let text = "NO textures/bricks.png\nSO textures/bricks.png\nWE textures/stone.png\n\
+                    EA textures/stone.png\nF 96,88,80\nC 150,146,136\nHb 0 3\nHa 1 3\n\
+                    11111111\n1Ebbaab1\n11111111\n";
+        let map = crate::map::parse_map("h.cub", text.as_bytes()).unwrap();
+        let source = crate::world::TextureSource::Embedded;
+        let world = Arc::new(World::load(map, &source, true).unwrap().0);
+        let at = |x: f64, angle: f64| {
+            let cam = Camera::from_angle(Vec2::new(x, 1.5), angle, 66.0);
+            GameState::new(Arc::clone(&world), cam, 0)
+        };
+        let eye = at(1.5, 0.0);
+        let other = at(5.5, 180.0);
+        assert_eq!(other.footing.floor, 1.0);
+        let colour = Rgb::new(250, 40, 200);
+        let snap = Snapshot {
+            version: 1,
+            doors: crate::door::DoorState::none(),
+            players: vec![super::super::players::PlayerView {
+                id: 7,
+                name: "ada".into(),
+                color: colour,
+                state: other.clone(),
+                walking: false,
+            }],
+        };
+        let (w, h) = (80, 96);
+        let mut fb = Framebuffer::new(w, h);
+        let cast = crate::scene::Scene::new(&world, eye.camera)
+            .with_view(eye.view)
+            .render_into(&mut fb, None);
+        mark_players(&mut fb, &eye, &cast, &snap, 1);
+        // The marker sits just over the avatar's head, which is one wall up on the platform.
+        let scale = (AVATAR_SCALE, AVATAR_SCALE);
+        let pos = other.camera.pos;
+        let pr = project(&eye.camera, &eye.view, pos, scale, 1.0, w, h).unwrap();
+        let centre = ((pr.left + pr.right) / 2.0).floor() as usize;
+        let base = pr.top.floor() as usize - 1;
+        assert_eq!(fb.get(centre, base), colour);
     }
 }

@@ -9,9 +9,11 @@ use std::sync::Arc;
 use crate::camera::{Camera, DEFAULT_FOV_DEG};
 use crate::color::Rgb;
 use crate::door::DoorState;
-use crate::game::collision::{overlaps_wall, Obstacles, PLAYER_RADIUS};
+use crate::game::collision::{centre_cell, fits_here, overlaps_wall, Obstacles, PLAYER_RADIUS};
+use crate::game::Body;
 use crate::game::{step_shared, Command, GameState, Held, Input};
 use crate::vec2::Vec2;
+use crate::view::STANDING_EYE;
 use crate::world::{SolidDisc, World};
 
 /// A connection's id; also names its player in the world.
@@ -231,14 +233,25 @@ impl Players {
         }
     }
 
-    /// Whether a player could stand at `p`: clear of walls, shut doors and solid sprites.
+    /// Whether a player could stand at `p`: clear of walls, shut doors and solid sprites, under
+    /// a ceiling high enough to stand (by the same rule that moves everyone).
     fn free(&self, p: Vec2) -> bool {
+        let map = &self.world.map;
         let obstacles = Obstacles {
-            map: &self.world.map,
+            map,
             doors: Some(&self.doors),
             discs: &self.solids,
+            body: None,
         };
-        !overlaps_wall(&obstacles, p, PLAYER_RADIUS)
+        let (i, j) = centre_cell(p);
+        let room = map.span(i, j).is_some_and(|s| {
+            let standing = Body {
+                feet: s.floor,
+                eye: STANDING_EYE,
+            };
+            fits_here(map, p, PLAYER_RADIUS, standing)
+        });
+        room && !overlaps_wall(&obstacles, p, PLAYER_RADIUS)
             && self
                 .solids
                 .iter()

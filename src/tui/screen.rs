@@ -151,7 +151,11 @@ fn draw_debug(
     block.render(r, buf);
     if let Some(t) = revealed {
         let cells = (usize::from(view_cells.0), usize::from(view_cells.1));
-        DebugPane::new(t, &s.world, &s.camera, cells).render(inner, buf);
+        let mut pane = DebugPane::new(t, &s.world, &s.camera, cells);
+        if let Some(col) = screen.cast.heights.get(t.trace.column) {
+            pane = pane.heights(col, &s.world.map);
+        }
+        pane.render(inner, buf);
     }
 }
 

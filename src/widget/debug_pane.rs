@@ -1,4 +1,7 @@
-//! The DDA debug pane: one ray's setup, every grid step it took, and where and how it hit.
+//! The DDA debug pane: one ray's setup, every grid step it took, and where and how it hit. On
+//! maps with heights, also every height change along the ray: the cell, the distance, what was
+//! drawn there (floor, ceiling, wall, step or lintel, at which heights) in which rows, and where
+//! the column's window of open rows closed.
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -9,12 +12,16 @@ use ratatui::widgets::{Paragraph, Widget};
 use super::revealed::RevealedTrace;
 use crate::camera::Camera;
 use crate::cast::{DdaStep, Side};
-use crate::map::Cell;
+use crate::height_cast::{Band, HeightColumn};
+use crate::map::{Cell, Map};
 use crate::raster::{heading, texture_x, wall_span};
 use crate::world::World;
 
 /// Lines around the step table: column, rayDir, deltaDist, table header; then 3 hit lines.
 const FIXED_LINES: usize = 7;
+
+/// Lines above the height list's rows: its title, which says where the window closed.
+const HEIGHT_FIXED_LINES: usize = 1;
 
 const LABEL: Style = Style::new().fg(Color::Rgb(128, 132, 146));
 const VALUE: Style = Style::new().fg(Color::Rgb(226, 226, 232));
@@ -42,6 +49,14 @@ pub fn fmt_dist(v: f64) -> String {
     }
 }
 
+/// Faces stand out from floors and ceilings in the height list.
+fn kind_style(what: &str) -> Style {
+    match what {
+        "floor" | "ceil" => VALUE,
+        _ => Style::new().fg(SIDE_X),
+    }
+}
+
 fn side_style(side: Side) -> Style {
     Style::new().fg(match side {
         Side::X => SIDE_X,
@@ -53,13 +68,101 @@ fn cell_text(c: (i64, i64)) -> String {
     format!("({},{})", c.0, c.1)
 }
 
+/// A height in wall units, short: `1`, `0.25`, `-0.5` (at most 2 decimals).
+fn fmt_height(z: f64) -> String {
+    let s = format!("{z:.2}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".to_owned()
+    } else {
+        s.to_owned()
+    }
+}
+
+/// One row of the height list: a band drawn in the traced column.
+#[derive(Debug, Clone, PartialEq)]
+struct HeightRow {
+    cell: (i64, i64),
+    /// Where the ray entered the cell (a floor or ceiling) or met the face.
+    dist: f64,
+    /// `floor`, `ceil`, `wall`, `step` or `lintel`.
+    what: &'static str,
+    /// The height of a floor or ceiling, or the span of a face.
+    z: String,
+    rows: (usize, usize),
+}
+
+/// The traced column's height changes, ready to print.
+#[derive(Debug, Clone, PartialEq)]
+struct HeightList {
+    rows: Vec<HeightRow>,
+    closed: ((i64, i64), f64),
+}
+
+impl HeightList {
+    /// The bands of `col` in cells where the open span changes along the ray (the first cell
+    /// drawn, every cell whose floor or ceiling differs from the one before, every face), front
+    /// to back.
+    fn new(col: &HeightColumn, map: &Map) -> Self {
+        let mut rows = Vec::new();
+        let mut i = 0;
+        let mut before = None;
+        while i < col.bands.len() {
+            let cell = band_cell(&col.bands[i]);
+            let n = col.bands[i..]
+                .iter()
+                .take_while(|b| band_cell(b) == cell)
+                .count();
+            let group = &col.bands[i..i + n];
+            let span = map.span(cell.0, cell.1);
+            let face = group.iter().any(|b| matches!(b, Band::Face(_)));
+            if i == 0 || face || span != before {
+                rows.extend(group.iter().map(height_row));
+            }
+            before = span;
+            i += n;
+        }
+        Self {
+            rows,
+            closed: (col.closed.cell, col.closed.perp_dist),
+        }
+    }
+}
+
+fn band_cell(b: &Band) -> (i64, i64) {
+    match b {
+        Band::Flat(f) => f.cell,
+        Band::Face(f) => f.cell,
+    }
+}
+
+fn height_row(b: &Band) -> HeightRow {
+    match b {
+        Band::Flat(f) => HeightRow {
+            cell: f.cell,
+            dist: f.dist.0,
+            what: if f.ceiling { "ceil" } else { "floor" },
+            z: fmt_height(f.z),
+            rows: f.rows,
+        },
+        Band::Face(f) => HeightRow {
+            cell: f.cell,
+            dist: f.perp_dist,
+            what: f.kind.as_str(),
+            z: format!("{}..{}", fmt_height(f.z.0), fmt_height(f.z.1)),
+            rows: f.rows,
+        },
+    }
+}
+
 /// The debugged ray's traversal as text; the last revealed step is highlighted.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct DebugPane<'a> {
     ray: RevealedTrace<'a>,
     view_width: usize,
     tex_width: usize,
     line_height: f64,
+    heights: Option<HeightList>,
 }
 
 impl<'a> DebugPane<'a> {
@@ -80,7 +183,16 @@ impl<'a> DebugPane<'a> {
             view_width: view_cells.0,
             tex_width,
             line_height,
+            heights: None,
         }
+    }
+
+    /// Also lists the traced column's height changes from its draw list (`Cast::heights` of
+    /// an `Hz` map), as far as the DDA is revealed.
+    #[must_use]
+    pub fn heights(mut self, col: &HeightColumn, map: &Map) -> Self {
+        self.heights = Some(HeightList::new(col, map));
+        self
     }
 
     /// All the pane's lines for a pane `rows` tall (the step list is shortened to fit).
@@ -116,8 +228,82 @@ impl<'a> DebugPane<'a> {
                 HEAD,
             ),
         ];
-        out.extend(self.step_rows(rows.saturating_sub(FIXED_LINES)));
+        let budget = rows.saturating_sub(FIXED_LINES);
+        let Some(list) = &self.heights else {
+            out.extend(self.step_rows(budget));
+            out.extend(self.hit_lines());
+            return out;
+        };
+        let shown = self.revealed_heights(list);
+        // Both lists shorten to fit; the height list gets at least half of a tight pane.
+        let (need_steps, need_heights) = (self.ray.shown + 1, HEIGHT_FIXED_LINES + shown.len());
+        let heights = need_heights.min(budget.saturating_sub(need_steps).max(budget.div_ceil(2)));
+        out.extend(self.step_rows(budget - heights));
         out.extend(self.hit_lines());
+        out.extend(self.height_lines(list, &shown, heights));
+        out
+    }
+
+    /// The height rows revealed so far: those in the start cell and the cells stepped into.
+    fn revealed_heights<'l>(&self, list: &'l HeightList) -> Vec<&'l HeightRow> {
+        let t = self.ray.trace;
+        let mut cells = vec![t.start_cell];
+        cells.extend(t.steps[..self.ray.shown].iter().map(|s| s.cell));
+        list.rows
+            .iter()
+            .filter(|r| self.ray.hit_reached || cells.contains(&r.cell))
+            .collect()
+    }
+
+    /// The height list: a title saying where the column's window closed (cell, distance), then
+    /// its rows (elided in the middle to fit `budget` lines), each `cell dist drawn z rows`.
+    fn height_lines(
+        &self,
+        list: &HeightList,
+        shown: &[&HeightRow],
+        budget: usize,
+    ) -> Vec<Line<'static>> {
+        if budget == 0 {
+            return Vec::new();
+        }
+        let title = if self.ray.hit_reached {
+            let (cell, dist) = list.closed;
+            vec![
+                Span::styled("heights ", HEAD),
+                Span::styled("closed ", LABEL),
+                Span::styled(cell_text(cell), HIT),
+                Span::styled(format!(" {dist:.2}"), VALUE),
+            ]
+        } else {
+            vec![
+                Span::styled("heights ", HEAD),
+                Span::styled("so far", LABEL),
+            ]
+        };
+        let mut out = vec![Line::from(title)];
+        let room = budget - HEIGHT_FIXED_LINES;
+        let row = |r: &&HeightRow| {
+            Line::from(vec![
+                Span::styled(format!("{:<8}", cell_text(r.cell)), VALUE),
+                Span::styled(format!("{:>6}", format!("{:.2}", r.dist)), VALUE),
+                Span::styled(format!(" {:<6}", r.what), kind_style(r.what)),
+                Span::styled(format!(" {:<9}", r.z), VALUE),
+                Span::styled(format!(" {}..{}", r.rows.0, r.rows.1), LABEL),
+            ])
+        };
+        if shown.len() <= room {
+            out.extend(shown.iter().map(row));
+        } else if room > 0 {
+            // The first rows and the last (where the window closed), the middle counted.
+            let tail = (room.saturating_sub(1) / 2).max(1);
+            let head = room.saturating_sub(1 + tail);
+            out.extend(shown[..head].iter().map(row));
+            if room > tail {
+                let hidden = shown.len() - head - tail;
+                out.push(Line::styled(format!("{:<8}{hidden} more", "..."), LABEL));
+            }
+            out.extend(shown[shown.len() - tail..].iter().map(row));
+        }
         out
     }
 
@@ -238,7 +424,8 @@ impl Widget for DebugPane<'_> {
         if area.is_empty() {
             return;
         }
-        Paragraph::new(self.lines(usize::from(area.height))).render(area, buf);
+        let lines = self.lines(usize::from(area.height));
+        Paragraph::new(lines).render(area, buf);
     }
 }
 
@@ -292,6 +479,84 @@ mod tests {
         assert_eq!(lines.len(), 4 + 3 + 1);
         assert!(lines[6].starts_with("  2 (15,3)"), "{lines:#?}");
         assert!(lines[7].contains("not reached (step 2 of 5)"), "{lines:#?}");
+    }
+
+    /// A corridor east: a quarter step up at x = 3, a lintel down to 0.7 at x = 5, a wall at 8.
+    fn heights_world() -> World {
+        let text = "NO textures/bricks.png\nSO textures/bricks.png\nWE textures/stone.png\n\
+                    EA textures/stone.png\nF 96,88,80\nC 150,146,136\nHa 0.25 1\nHb 0.25 0.7\n\
+                    111111111\n1E0aabbb1\n111111111\n";
+        let map = crate::map::parse_map("h.cub", text.as_bytes()).unwrap();
+        let source = crate::world::TextureSource::Embedded;
+        World::load(map, &source, true).unwrap().0
+    }
+
+    fn heights_pane_lines(shown: Option<usize>, rows: usize) -> Vec<String> {
+        let w = heights_world();
+        let cam = Camera::from_angle(Vec2::new(1.5, 1.5), 0.0, 66.0);
+        let view = crate::view::View::default();
+        let proj = crate::height_cast::Projection::new(&cam, &view, 40, 24);
+        let doors = crate::door::DoorState::new(&w.map);
+        let cast = crate::height_cast::cast_heights(&w.map, &doors, &cam, &proj, 40, Some(20));
+        let t = cast.trace.as_ref().unwrap();
+        let ray = match shown {
+            Some(n) => RevealedTrace::partial(t, n),
+            None => RevealedTrace::full(t),
+        };
+        let pane = DebugPane::new(ray, &w, &cam, (40, 12)).heights(&cast.heights[20], &w.map);
+        text(&pane.lines(rows))
+    }
+
+    #[test]
+    fn on_a_heights_map_every_height_change_is_listed_with_its_rows_and_where_it_closed() {
+        let lines = heights_pane_lines(None, 40);
+        let all = lines.join("\n");
+        insta::assert_snapshot!(all);
+        assert!(all.contains("height"), "{all}");
+        // The start cell's floor and ceiling, the step at x = 3, the lintel at x = 5, the wall.
+        for want in [
+            "(1,1)",
+            "(3,1)     1.50 step   0..0.25   17..22",
+            "lintel 0.7..1",
+            "wall",
+            "heights closed (8,1) 6.50",
+        ] {
+            assert!(all.contains(want), "{want:?} missing:\n{all}");
+        }
+        // Cells with the same span as the one before are not listed again.
+        let list = &all[all.find("heights closed").unwrap()..];
+        for same in ["(4,1)", "(6,1)", "(7,1)"] {
+            assert!(
+                !list.contains(same),
+                "{same} repeats its neighbour:\n{list}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_height_list_follows_the_stepping_and_fits_a_short_pane() {
+        // Stepped into (2,1) only: its floor, nothing from the step at x = 3 yet, no closing.
+        let lines = heights_pane_lines(Some(1), 40).join("\n");
+        assert!(lines.contains("(2,1)     0.50 floor"), "{lines}");
+        assert!(
+            !lines.contains("0..0.25") && !lines.contains("closed"),
+            "{lines}"
+        );
+        // A short pane keeps the ends of both lists: the last height row is the closing wall.
+        let lines = heights_pane_lines(None, 14);
+        assert_eq!(lines.len(), 14, "{lines:#?}");
+        assert!(lines.iter().any(|l| l.starts_with("hit")), "{lines:#?}");
+        assert!(lines.contains(&"heights closed (8,1) 6.50".to_owned()));
+        assert!(lines.iter().any(|l| l.contains("more")), "{lines:#?}");
+        assert!(lines.last().unwrap().contains(" wall "), "{lines:#?}");
+    }
+
+    #[test]
+    fn heights_are_printed_short() {
+        assert_eq!(fmt_height(0.25), "0.25");
+        assert_eq!(fmt_height(1.0), "1");
+        assert_eq!(fmt_height(-0.5), "-0.5");
+        assert_eq!(fmt_height(-0.0001), "0");
     }
 
     #[test]

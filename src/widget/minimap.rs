@@ -1,6 +1,7 @@
 //! The map seen from above: walls by type, doors as far as they are open, sprites, other
 //! players, the player, the view cone, a fan of this frame's rays and the debugged ray's
-//! traversal. Drawn as square pixels in half-blocks.
+//! traversal. Drawn as square pixels in half-blocks. On maps with heights, floors are lighter
+//! the higher they are and a ledge too high to step onto is outlined on its upper side.
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -14,6 +15,7 @@ use crate::cast::ColumnHit;
 use crate::color::Rgb;
 use crate::door::DoorState;
 use crate::framebuffer::Framebuffer;
+use crate::game::body::STEP_UP;
 use crate::map::{Cell, DoorPlane, Map};
 use crate::sprite::Sprite;
 use crate::vec2::Vec2;
@@ -40,6 +42,44 @@ const HIT: Rgb = Rgb::new(255, 70, 70);
 const DEBUG_RAY: Rgb = Rgb::new(150, 240, 255);
 /// Outline of a sprite that blocks movement, so obstacles read as obstacles.
 const SOLID_RIM: Rgb = Rgb::new(20, 20, 24);
+/// The lip of a ledge too high to step onto (a contour line, as on a map of hills).
+const LEDGE: Rgb = Rgb::new(6, 6, 8);
+
+/// Brightness (of 256) of a floor at height 0; each wall height up adds [`SHADE_PER_HEIGHT`].
+const SHADE_AT_0: f64 = 110.0;
+const SHADE_PER_HEIGHT: f64 = 64.0;
+/// Darkest and brightest floor shades, so deep pits and high balconies keep their colour.
+const SHADE_RANGE: (f64, f64) = (40.0, 250.0);
+
+/// How bright a floor at `height` is drawn: higher is lighter, so levels read at a glance.
+fn height_shade(height: f64) -> u16 {
+    (SHADE_AT_0 + SHADE_PER_HEIGHT * height)
+        .round()
+        .clamp(SHADE_RANGE.0, SHADE_RANGE.1) as u16
+}
+
+/// Whether two neighbouring open cells differ by more than a walkable step.
+fn is_ledge(map: &Map, a: (i64, i64), b: (i64, i64)) -> bool {
+    match (map.span(a.0, a.1), map.span(b.0, b.1)) {
+        (Some(x), Some(y)) => (x.floor - y.floor).abs() > STEP_UP + 1e-9,
+        _ => false,
+    }
+}
+
+/// The ASCII minimap's glyph for a floor at `height`: `.` at 0, `1`–`9` quarter walls (one
+/// walkable step each) above it (9 = 2.25 or more), `-` up to half a wall below 0, `_` deeper.
+#[must_use]
+pub fn level_glyph(height: f64) -> &'static str {
+    const UP: [&str; 10] = [".", "1", "2", "3", "4", "5", "6", "7", "8", "9"];
+    let quarters = (height / STEP_UP).round();
+    if quarters >= 0.0 {
+        UP[(quarters as usize).min(9)]
+    } else if quarters >= -2.0 {
+        "-"
+    } else {
+        "_"
+    }
+}
 
 /// Radius on the map of a sprite that does not block (it has no collision radius to show).
 const DECOR_RADIUS: f64 = 0.18;
@@ -194,7 +234,7 @@ impl<'a> Minimap<'a> {
 
     /// Draws plain ASCII characters instead of coloured half-blocks (for `--colors mono`):
     /// `#` wall, `.` floor, `+` shut door, `/` open door, `o` sprite, `@` player, `*` the ray,
-    /// `X` the cell it reached.
+    /// `X` the cell it reached; raised and sunk floors by [`level_glyph`].
     #[must_use]
     pub fn ascii(mut self, on: bool) -> Self {
         self.ascii = on;
@@ -225,6 +265,7 @@ impl<'a> Minimap<'a> {
         let map = &self.world.map;
         let view = self.map_view((fb.width(), fb.height()));
         let palette = Palette::new(self.world);
+        let heights = map.has_heights();
         for py in 0..fb.height() {
             for px in 0..fb.width() {
                 let (i, j) = view.cell_at(px, py);
@@ -233,7 +274,14 @@ impl<'a> Minimap<'a> {
                     Cell::Door(_) if self.doors.is_some() => Cell::Floor { zone: 0 },
                     c => c,
                 };
-                fb.set(px, py, palette.cell(what, i, j));
+                let height = map.span(i, j).map_or(0.0, |s| s.floor);
+                let lip = heights && on_ledge_lip(map, &view, (px, py), (i, j), height);
+                let colour = if lip {
+                    LEDGE
+                } else {
+                    palette.cell(what, i, j, height)
+                };
+                fb.set(px, py, colour);
             }
         }
         if let Some(doors) = self.doors {
@@ -294,6 +342,33 @@ impl<'a> Minimap<'a> {
             line(fb, from, end(hit), FAN, 190);
         }
     }
+}
+
+/// Whether canvas pixel `px` of cell `cell` (floor at `height`) lies on the cell's edge toward
+/// a lower neighbour that cannot be stepped up from: the ledge is outlined on its upper side.
+fn on_ledge_lip(
+    map: &Map,
+    view: &MapView,
+    px: (usize, usize),
+    cell: (i64, i64),
+    height: f64,
+) -> bool {
+    let (x, y) = px;
+    let around = [
+        (x.wrapping_sub(1), y),
+        (x + 1, y),
+        (x, y.wrapping_sub(1)),
+        (x, y + 1),
+    ];
+    around.iter().any(|&(ax, ay)| {
+        if ax == usize::MAX || ay == usize::MAX {
+            return false;
+        }
+        let other = view.cell_at(ax, ay);
+        other != cell
+            && map.span(other.0, other.1).is_some_and(|s| s.floor < height)
+            && is_ledge(map, cell, other)
+    })
 }
 
 /// Each door's shut part: a bar along its panel line from `open` to the far end of the cell.
@@ -376,6 +451,7 @@ fn fill_cell(fb: &mut Framebuffer, view: &MapView, cell: (i64, i64), c: Rgb, alp
 /// Map colours derived from the world's own textures, so the minimap matches the 3D view.
 struct Palette {
     walls: [Rgb; 10],
+    /// Per zone, the floor's mean colour (shaded by height when drawn).
     floors: Vec<Rgb>,
     /// Per sprite sheet: the mean opaque colour of its first picture.
     sprites: Vec<Rgb>,
@@ -390,12 +466,9 @@ impl Palette {
         }
         let zones = world.map.zones.len() + 1;
         let floors = (0..zones)
-            .map(|z| {
-                let c = match world.floor_paint(z as u8) {
-                    Paint::Colour(c) => c,
-                    Paint::Texture(i) => world.textures[i].mean(),
-                };
-                c.scaled(110)
+            .map(|z| match world.floor_paint(z as u8) {
+                Paint::Colour(c) => c,
+                Paint::Texture(i) => world.textures[i].mean(),
             })
             .collect();
         let brighten = |c: Rgb| mix(c, Rgb::new(255, 255, 255), 40);
@@ -407,7 +480,8 @@ impl Palette {
         }
     }
 
-    fn cell(&self, what: Cell, i: i64, j: i64) -> Rgb {
+    /// The colour of a cell; floors by their `height` (0 gives the flat map's colours).
+    fn cell(&self, what: Cell, i: i64, j: i64, height: f64) -> Rgb {
         let checker = (i + j).rem_euclid(2) == 0;
         match what {
             Cell::Void => VOID,
@@ -421,7 +495,8 @@ impl Palette {
                 }
             }
             Cell::Floor { zone } => {
-                let c = self.floors[usize::from(zone).min(self.floors.len() - 1)];
+                let c = self.floors[usize::from(zone).min(self.floors.len() - 1)]
+                    .scaled(height_shade(height));
                 if checker {
                     c
                 } else {
@@ -465,7 +540,7 @@ impl Minimap<'_> {
                 let c = match map.cell(i, j) {
                     Cell::Void => " ",
                     Cell::Wall(_) => "#",
-                    Cell::Floor { .. } => ".",
+                    Cell::Floor { .. } => level_glyph(map.span(i, j).map_or(0.0, |s| s.floor)),
                     Cell::Door(_) => match self.doors {
                         Some(d) if d.open_amount((i, j)) >= 0.5 => "/",
                         _ => "+",
