@@ -100,6 +100,22 @@ fn a_step_of_0_26_stops_the_player_without_a_jump() {
 }
 
 #[test]
+fn a_body_that_dropped_into_a_pit_half_over_its_rim_cannot_walk_back_up() {
+    // Lane 11: balcony g (floor 1) then pit f (floor -1) from x = 3.
+    let mut s = player(11);
+    hold(&mut s, &[Action::Forward], 0.55, 60.0);
+    assert!(x(&s) > 3.0 && x(&s) - halfcast::game::collision::PLAYER_RADIUS < 3.0);
+    assert_eq!(
+        s.footing.floor, -1.0,
+        "the centre is over the pit: {:?}",
+        s.camera.pos
+    );
+    hold(&mut s, &[Action::Back], 1.0, 60.0);
+    assert!(x(&s) >= 3.0, "walked back up 2 walls: {:?}", s.camera.pos);
+    assert_eq!(s.footing.floor, -1.0);
+}
+
+#[test]
 fn a_jump_climbs_a_ledge_of_0_5_but_not_0_51_at_any_frame_rate() {
     for fps in [20.0, 30.0, 60.0, 144.0] {
         let mut s = player(5);
@@ -263,6 +279,34 @@ fn play_refuses_a_start_with_no_room_for_the_eye() {
         String::from_utf8_lossy(&out.stderr),
         "error: --pos 2.5,1.5 has no room for the eye: cell (2,1) of test.cub is 0.3 high, and \
          even crouching needs 0.4\n"
+    );
+}
+
+#[test]
+fn render_refuses_an_eye_inside_the_ceiling_but_flat_maps_keep_their_range() {
+    let (_dir, map) = world_common::map_file("Hz 0 0.5\n", "11111\n1Nz01\n11111\n");
+    let map = map.to_str().unwrap();
+    let render = |z: &str| {
+        world_common::halfcast(&[
+            "render", map, "--pos", "2.5,1.5", "--z", z, "--size", "20x6", "--format", "txt",
+        ])
+    };
+    let out = render("0.46");
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr),
+        "error: --z 0.46 puts the eye inside the ceiling: cell (2,1) of test.cub is 0.5 high \
+         (floor 0, ceiling 0.5), so the eye may be at most 0.45 above its floor\n"
+    );
+    assert!(out.stdout.is_empty());
+    assert_eq!(render("0.45").status.code(), Some(0));
+    let flat =
+        world_common::halfcast(&["render", "--z", "0.95", "--size", "20x6", "--format", "txt"]);
+    assert_eq!(
+        flat.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&flat.stderr)
     );
 }
 

@@ -79,6 +79,11 @@ fn parse_size(s: &str) -> Result<(u16, u16), String> {
 pub(crate) fn render(args: &RenderArgs) -> Result<(), Failure> {
     let world = load_world(&args.map)?;
     let camera = camera_for(&world, &args.pose);
+    if world.map.has_heights() {
+        // Flat maps keep accepting every --z they always did (up to 0.95).
+        halfcast::game::pose::still_eye(&world.map, camera.pos, args.world.z)
+            .map_err(Failure::input)?;
+    }
     let (cols, rows) = args.size;
     let mut fb = Framebuffer::for_cells(cols, rows);
     let opts = &args.world;

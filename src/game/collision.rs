@@ -54,21 +54,30 @@ impl<'a> Obstacles<'a> {
     }
 
     /// Whether moving a square of half-size `r` from `from` to `to` takes the body into a cell it
-    /// cannot enter: one the square did not cover before. Cells it already overlaps stay
-    /// allowed, so a body that reached half over a ledge at the top of a jump walks on onto it
-    /// after landing, and one resting half under a low ceiling can leave.
+    /// cannot enter: one the square did not cover before, or — the floor stood on being the
+    /// centre's cell — a centre crossing onto a floor too high to step onto from where the feet
+    /// are now. Cells it already overlaps stay allowed otherwise, so a body resting half under a
+    /// low ceiling can leave; but one that dropped into a pit while half over its rim cannot walk
+    /// back up onto the rim (it must jump, as from anywhere else in the pit).
     fn refuses_entry(&self, from: Vec2, to: Vec2, r: f64) -> bool {
         let Some(body) = self.body else {
             return false;
         };
         let ((a0, a1), (b0, b1)) = covered(from, r);
         let ((i0, i1), (j0, j1)) = covered(to, r);
-        (j0..=j1).any(|j| {
+        let newly = (j0..=j1).any(|j| {
             (i0..=i1).any(|i| {
                 let before = (a0..=a1).contains(&i) && (b0..=b1).contains(&j);
                 !before && !body.can_enter(self.map, i, j)
             })
-        })
+        });
+        let (centre, next) = (centre_cell(from), centre_cell(to));
+        newly
+            || (centre != next
+                && self
+                    .map
+                    .span(next.0, next.1)
+                    .is_some_and(|s| !body.can_step_onto(s)))
     }
 
     /// Whether a player of half-size `r` at `p` overlaps a solid sprite's disc.

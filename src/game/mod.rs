@@ -38,14 +38,14 @@ pub const CROUCH_EYE: f64 = 0.3;
 /// How fast the eye moves toward the crouching or standing height, in wall heights per second.
 pub const CROUCH_SPEED: f64 = 2.0;
 
-/// Upward speed at take-off, in wall heights per second.
-pub const JUMP_SPEED: f64 = 2.2;
+/// Upward speed at take-off, in wall heights per second: the uncut arc would peak at 0.38, so
+/// the feet hang at [`JUMP_RISE`] for about 0.17 s (half a cell of walking) before falling.
+pub const JUMP_SPEED: f64 = 2.6;
 
 /// Gravity, in wall heights per second squared.
 pub const GRAVITY: f64 = 9.0;
 
-/// Highest a jump lifts the feet, in wall heights: the arc is cut flat there (it would reach
-/// about 0.27), so at any frame rate a jump climbs a ledge of exactly
+/// Highest a jump lifts the feet, in wall heights: the arc is cut flat there, so at any frame rate a jump climbs a ledge of exactly
 /// [`body::STEP_UP`] + `JUMP_RISE` = 0.5 and no higher.
 pub const JUMP_RISE: f64 = 0.25;
 
@@ -307,7 +307,12 @@ fn vertical(state: &mut GameState, held: Held, dt: f64, nudged_look: f64) {
         let top = (ceiling - body::HEAD_ROOM - state.base_eye - state.footing.floor).min(JUMP_RISE);
         if height >= top {
             height = top;
-            speed = speed.min(0.0);
+            // A head that meets a ceiling falls back at once; at the jump's own top the arc is
+            // cut flat but goes on (the feet hang there while it would still rise), which gives
+            // a body time to get its centre over a ledge it reached.
+            if top < JUMP_RISE {
+                speed = speed.min(0.0);
+            }
         }
         if height <= 0.0 {
             (height, speed) = (0.0, 0.0);
