@@ -24,6 +24,7 @@
 //! assert!(halfcast::termframe::diff(&shown, &(&fb).into()).is_equal());
 //! ```
 
+#[cfg(feature = "cli")]
 pub mod bench;
 // World features: sprites, doors, light, vertical view.
 pub mod billboard;
@@ -38,19 +39,23 @@ pub mod cast;
 pub mod color;
 pub mod encode;
 pub mod framebuffer;
+#[cfg(feature = "serve")]
 pub mod fuzzing;
 pub mod game;
 pub mod input_file;
+pub mod lean_backend;
 pub mod map;
 pub mod output;
 pub mod present;
 pub mod raster;
 pub mod replay;
 pub mod scene;
+#[cfg(feature = "serve")]
 pub mod serve;
 pub mod snapshot;
 pub mod termframe;
 pub mod texture;
+#[cfg(feature = "tui")]
 pub mod tui;
 pub mod vec2;
 pub mod widget;
@@ -63,7 +68,9 @@ pub struct ReadmeExamples;
 
 pub use camera::Camera;
 pub use color::Rgb;
+pub use encode::ColorLevel;
 pub use framebuffer::Framebuffer;
+pub use lean_backend::LeanBackend;
 pub use scene::Scene;
 pub use vec2::Vec2;
 pub use view::View;

@@ -19,8 +19,20 @@ use std::fmt::Write;
 use serde_json::{json, Value};
 
 use crate::game::{Action, Command, Held, Input, Speeds};
-use crate::tui::keys::UiCommand;
 use crate::vec2::Vec2;
+
+/// Things the TUI itself does (not the game), recorded with each frame of a replay.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum UiCommand {
+    Quit,
+    /// Esc: closes the help if open, else quits.
+    Back,
+    ToggleMinimap,
+    ToggleDebug,
+    ToggleHelp,
+    /// The colour key: the next colour level (truecolor → 256 → 16 → mono).
+    CycleColours,
+}
 
 /// The format version this build writes and the newest it reads.
 pub const VERSION: u64 = 1;

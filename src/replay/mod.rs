@@ -1,6 +1,7 @@
 //! Deterministic recordings: the `.hcr` file format and the fixed-timestep player.
 
 pub mod format;
+#[cfg(feature = "tui")]
 pub mod player;
 
 pub use format::{
