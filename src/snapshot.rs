@@ -74,8 +74,11 @@ impl Default for Tolerance {
 /// What differs between two frames of the same size.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct FrameDiff {
+    /// Pixels differing by more than the threshold.
     pub differing_pixels: usize,
+    /// All pixels compared.
     pub total_pixels: usize,
+    /// The largest channel difference seen.
     pub max_channel_delta: u8,
 }
 

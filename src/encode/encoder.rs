@@ -16,6 +16,7 @@ pub const SYNC_END: &[u8] = b"\x1b[?2026l";
 /// How frames are encoded; exact and tear-free by default.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct EncodeOptions {
+    /// The colour level frames are sent at.
     pub level: ColorLevel,
     /// Ordered dithering before palette mapping (256 and 16 colours only).
     pub dither: bool,

@@ -152,7 +152,9 @@ impl ColourReason {
 /// A colour level and how it was decided.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct ColourChoice {
+    /// The level chosen.
     pub level: ColorLevel,
+    /// Why it was chosen (shown beside it).
     pub reason: ColourReason,
 }
 

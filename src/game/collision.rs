@@ -22,9 +22,11 @@ const EPS: f64 = 1e-9;
 /// solid sprites as discs.
 #[derive(Debug, Clone, Copy)]
 pub struct Obstacles<'a> {
+    /// The grid: walls, void and doors.
     pub map: &'a Map,
     /// `None` treats every door as shut.
     pub doors: Option<&'a DoorState>,
+    /// Solid sprites, as discs.
     pub discs: &'a [SolidDisc],
 }
 

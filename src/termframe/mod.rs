@@ -18,8 +18,11 @@ use crate::framebuffer::Framebuffer;
 /// (`None` = the terminal's default colour).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct TermCell {
+    /// The character shown.
     pub glyph: char,
+    /// Foreground colour (`None` = the terminal's default).
     pub fg: Option<Rgb>,
+    /// Background colour (`None` = the terminal's default).
     pub bg: Option<Rgb>,
 }
 
@@ -41,8 +44,11 @@ impl TermCell {
 /// A grid of terminal cells, row-major.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct TermFrame {
+    /// Columns.
     pub cols: usize,
+    /// Rows.
     pub rows: usize,
+    /// The cells, row-major.
     pub cells: Vec<TermCell>,
 }
 

@@ -12,9 +12,13 @@ use crate::framebuffer::Framebuffer;
 /// What kind of frame file was read.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum FrameFormat {
+    /// A PNG of COLS × 2·ROWS pixels.
     Png,
+    /// ANSI escape sequences, read through a terminal model.
     Ansi,
+    /// halfcast's colour-aware cells text.
     Cells,
+    /// Plain text, one character per cell.
     Text,
 }
 
