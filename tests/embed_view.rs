@@ -32,12 +32,21 @@ fn draw(
     view_area
 }
 
-#[test]
-fn the_stock_terminal_shows_the_view_and_the_minimap() {
+/// The default world, its start camera and a 60×20 stock terminal over `TestBackend`.
+fn setup() -> (World, Camera, Terminal<TestBackend>) {
     let world = World::default_world();
     let start = world.map.start;
     let camera = Camera::from_angle(start.pos(), start.angle_deg(), 66.0);
-    let mut terminal = Terminal::new(TestBackend::new(60, 20)).unwrap();
+    (
+        world,
+        camera,
+        Terminal::new(TestBackend::new(60, 20)).unwrap(),
+    )
+}
+
+#[test]
+fn the_stock_terminal_shows_the_view_and_the_minimap() {
+    let (world, camera, mut terminal) = setup();
     let inner = draw(&mut terminal, &world, camera, ColorLevel::TrueColor);
     let shown = terminal.backend().buffer().clone();
     assert_eq!(inner, Rect::new(1, 1, 38, 18));
@@ -70,10 +79,7 @@ fn the_stock_terminal_shows_the_view_and_the_minimap() {
 
 #[test]
 fn the_view_can_be_drawn_in_256_colours_on_the_stock_backend() {
-    let world = World::default_world();
-    let start = world.map.start;
-    let camera = Camera::from_angle(start.pos(), start.angle_deg(), 66.0);
-    let mut terminal = Terminal::new(TestBackend::new(60, 20)).unwrap();
+    let (world, camera, mut terminal) = setup();
     let inner = draw(&mut terminal, &world, camera, ColorLevel::Ansi256);
     let buf = terminal.backend().buffer();
     for y in inner.top()..inner.bottom() {

@@ -5,9 +5,9 @@
 //!
 //! `cargo test --test lean_backend -- --nocapture` prints the bytes-per-frame table.
 
-use std::cell::RefCell;
-use std::io::Write;
-use std::rc::Rc;
+mod capture;
+
+use capture::Capture;
 
 use halfcast::encode::{EncodeOptions, Palette};
 use halfcast::present::Presenter;
@@ -28,26 +28,6 @@ use ratatui::{Frame, Terminal, TerminalOptions, Viewport};
 const COLS: u16 = 120;
 const ROWS: u16 = 40;
 const FRAMES: usize = 24;
-
-/// A writer both the terminal and the test can read.
-#[derive(Clone, Default)]
-struct Capture(Rc<RefCell<Vec<u8>>>);
-
-impl Write for Capture {
-    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-        self.0.borrow_mut().extend_from_slice(buf);
-        Ok(buf.len())
-    }
-    fn flush(&mut self) -> std::io::Result<()> {
-        Ok(())
-    }
-}
-
-impl Capture {
-    fn take(&self) -> Vec<u8> {
-        std::mem::take(&mut self.0.borrow_mut())
-    }
-}
 
 fn fixed<B: Backend>(backend: B) -> Terminal<B> {
     Terminal::with_options(
