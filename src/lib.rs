@@ -151,7 +151,7 @@ pub mod camera;
 pub mod cast;
 pub mod color;
 pub mod encode;
-pub mod framebuffer;
+mod framebuffer;
 // The binary's internals: public only because tests/, benches/ and examples/ drive them;
 // not part of the library API (hidden from its docs, and absent without their feature).
 #[doc(hidden)]
@@ -160,7 +160,7 @@ pub mod framebuffer;
 pub mod fuzzing;
 pub mod game;
 pub mod input_file;
-pub mod lean_backend;
+mod lean_backend;
 // Being reworked in a parallel branch today: its docs are that branch's to add.
 #[allow(missing_docs)]
 pub mod map;
@@ -184,7 +184,7 @@ pub mod texture;
 #[allow(missing_docs)]
 #[cfg(feature = "tui")]
 pub mod tui;
-pub mod vec2;
+mod vec2;
 pub mod widget;
 pub mod world;
 
