@@ -35,7 +35,10 @@ use crate::encode::{ColorLevel, SYNC_BEGIN, SYNC_END};
 ///
 /// The terminal's size comes from the terminal itself when the `crossterm` feature is on;
 /// otherwise (or for a writer that is not the local terminal, such as an SSH channel) give it
-/// with [`LeanBackend::with_size`] and [`LeanBackend::resize`].
+/// with [`LeanBackend::with_size`] and [`LeanBackend::resize`]. The cursor position it reports
+/// is where ratatui last put it (asked of the local terminal only with `crossterm` and no fixed
+/// size), so an inline viewport on a remote writer starts at the top. Attributes are kept at
+/// every level (mono drops colours only); ratatui's underline colour is not sent.
 #[derive(Debug)]
 pub struct LeanBackend<W: Write> {
     writer: W,
@@ -137,6 +140,11 @@ impl<W: Write> Backend for LeanBackend<W> {
     }
 
     fn get_cursor_position(&mut self) -> io::Result<Position> {
+        #[cfg(feature = "crossterm")]
+        if self.size.is_none() {
+            let (x, y) = crossterm::cursor::position()?;
+            return Ok(Position::new(x, y));
+        }
         Ok(self.position)
     }
 
@@ -250,11 +258,32 @@ mod tests {
     }
 
     #[test]
-    fn without_a_size_or_a_terminal_it_says_how_to_give_one() {
+    fn a_given_size_wins_and_without_one_or_a_terminal_it_says_how_to_give_one() {
+        let mut b = LeanBackend::new(Vec::new(), ColorLevel::TrueColor).with_size(30, 7);
+        assert_eq!(b.size().unwrap(), Size::new(30, 7));
+        b.resize(31, 8);
+        assert_eq!(b.window_size().unwrap().columns_rows, Size::new(31, 8));
         let b = LeanBackend::new(Vec::new(), ColorLevel::TrueColor);
         if cfg!(not(feature = "crossterm")) {
             let e = b.size().unwrap_err().to_string();
             assert!(e.contains("with_size"), "{e}");
+        }
+    }
+
+    #[test]
+    fn wide_glyphs_and_the_cursor_land_where_ratatui_puts_them() {
+        let mut t = terminal(ColorLevel::TrueColor);
+        let mut screen = vt100::Parser::new(4, 20, 0);
+        for text in ["aコb ok", "aコc no", "xyコ  z"] {
+            t.draw(|f| {
+                f.render_widget(Paragraph::new(text), f.area());
+                f.set_cursor_position((5, 2));
+            })
+            .unwrap();
+            screen.process(&std::mem::take(t.backend_mut().writer_mut()));
+            assert_eq!(screen.screen().contents().lines().next(), Some(text));
+            assert_eq!(screen.screen().cursor_position(), (2, 5));
+            assert!(!screen.screen().hide_cursor());
         }
     }
 }
