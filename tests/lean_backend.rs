@@ -1,7 +1,8 @@
 //! `LeanBackend` against stock ratatui's `CrosstermBackend` on ratatui demo-style screens (a
 //! table, a chart, sparklines and gauges that change every frame) and halfcast's own panes:
 //! the same frames through both must leave identical terminal screens (vt100: glyphs, colours,
-//! attributes), and the lean one must send fewer bytes. Runs without default features.
+//! attributes; a half-block cell compared by the two colours it shows), and the lean one must
+//! send fewer bytes. Runs without default features.
 //!
 //! `cargo test --test lean_backend -- --nocapture` prints the bytes-per-frame table.
 
@@ -211,7 +212,9 @@ fn quantized(buf: &mut Buffer, level: ColorLevel) {
     }
 }
 
-/// Everything vt100 knows about a screen's cells.
+/// Everything vt100 knows about a screen's cells. A half-block cell is read as what it shows
+/// (its upper and lower colour), so `▀` a/b equals `▄` b/a, a space on b equals `█` in b: the
+/// lean backend may send a picture's cells either way.
 fn seen(p: &vt100::Parser) -> Vec<String> {
     let s = p.screen();
     let mut rows = Vec::new();
@@ -219,16 +222,22 @@ fn seen(p: &vt100::Parser) -> Vec<String> {
         let mut line = String::new();
         for x in 0..COLS {
             let c = s.cell(y, x).expect("inside the screen");
-            line.push_str(&format!(
-                "[{}|{:?}|{:?}|{}{}{}{}]",
-                c.contents(),
-                c.fgcolor(),
-                c.bgcolor(),
-                u8::from(c.bold()),
-                u8::from(c.italic()),
-                u8::from(c.underline()),
-                u8::from(c.inverse())
-            ));
+            let attrs = [c.bold(), c.italic(), c.underline(), c.inverse()];
+            let (fg, bg) = (c.fgcolor(), c.bgcolor());
+            let glyph = match c.contents().as_str() {
+                "" => " ".to_owned(),
+                g => g.to_owned(),
+            };
+            let (glyph, fg, bg) = match glyph.as_str() {
+                _ if attrs.iter().any(|&a| a) => (glyph, fg, bg),
+                "▀" => ("▀".into(), fg, bg),
+                "▄" => ("▀".into(), bg, fg),
+                " " => ("▀".into(), bg, bg),
+                "█" => ("▀".into(), fg, fg),
+                _ => (glyph, fg, bg),
+            };
+            let a = attrs.map(u8::from);
+            line.push_str(&format!("[{glyph}|{fg:?}|{bg:?}|{a:?}]"));
         }
         rows.push(line);
     }
@@ -315,10 +324,11 @@ fn lean_backend_sends_fewer_bytes_on_every_screen() {
     }
 }
 
-/// The 3D view through `Presenter` (LeanBackend's cell writer plus the view shortcut: the
-/// encoder's per-cell glyph choice) against `LeanBackend` drawing the view's `▀` cells.
+/// The 3D view through `Presenter` (the game's path: the cell writer for the panes, the frame
+/// encoder for the view's pixels) against `LeanBackend` drawing `HalfBlockView`'s `▀` cells:
+/// the lean backend must be as lean (within 5 %).
 #[test]
-fn the_view_shortcut_beats_the_cell_diff_for_the_3d_view() {
+fn the_lean_backend_sends_the_3d_view_as_lean_as_the_presenter() {
     let world = World::default_world();
     println!("\n3D view {COLS}x{ROWS}, mean bytes/frame after the first");
     println!("| level | CrosstermBackend | LeanBackend | Presenter (view shortcut) |\n|---|---:|---:|---:|");
@@ -377,6 +387,6 @@ fn the_view_shortcut_beats_the_cell_diff_for_the_3d_view() {
             100.0 * l / s,
             100.0 * v / s
         );
-        assert!(v <= l, "{level}: presenter {v} vs lean backend {l}");
+        assert!(l <= 1.05 * v, "{level}: lean backend {l} vs presenter {v}");
     }
 }

@@ -8,7 +8,8 @@ use unicode_width::UnicodeWidthStr;
 
 use super::cursor::{write_move, Cursor};
 use super::level::ColorLevel;
-use super::palette::{xterm_rgb, Code, Palette, DEFAULT};
+use super::palette::{xterm_rgb, Code, Palette, DEFAULT, UNKNOWN};
+use super::plan::{write_span, RowPlanner, RowStart, DEFAULT_BEAM};
 use super::sgr;
 use crate::color::Rgb;
 
@@ -66,14 +67,21 @@ const ATTRS_OFF: [(Modifier, u8); 7] = [
 ];
 
 /// Draws ratatui cells at one colour level, remembering the cursor and pen between calls.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct CellWriter {
     palette: Palette,
     cursor: Cursor,
     pen: Pen,
     /// Scratch space for choosing between two forms of one SGR change.
     scratch: (Vec<u8>, Vec<u8>),
+    /// Plans runs of `▀` cells (the glyph choice that saves colour changes).
+    planner: RowPlanner,
+    /// A run's cells as `[top, bottom]` codes, and its skippable flags (all false).
+    run: (Vec<[Code; 2]>, Vec<bool>),
 }
+
+/// The upper half block that half-block pictures are drawn with.
+const UPPER_HALF: &str = "▀";
 
 impl CellWriter {
     /// A writer for `level` that knows nothing of the cursor or the colours yet.
@@ -84,6 +92,8 @@ impl CellWriter {
             cursor: Cursor::Unknown,
             pen: PLAIN,
             scratch: (Vec::new(), Vec::new()),
+            planner: RowPlanner::default(),
+            run: (Vec::new(), Vec::new()),
         }
     }
 
@@ -106,12 +116,26 @@ impl CellWriter {
 
     /// Writes `cells` (positions and contents, as a buffer diff yields them), then returns the
     /// terminal to its default colours and attributes, as every ratatui draw ends.
+    ///
+    /// Runs of neighbouring `▀` cells (a half-block picture such as [`crate::HalfBlockView`]'s)
+    /// go through the frame encoder's row planner: each may be sent as `▀`, or as `▄`, a space
+    /// or `█` with the colours arranged to match, whichever needs fewer colour changes. The
+    /// screen looks the same; the glyph may differ.
     pub fn draw<'a>(
         &mut self,
         out: &mut Vec<u8>,
         cells: impl Iterator<Item = (u16, u16, &'a Cell)>,
     ) {
-        for (x, y, cell) in cells {
+        let cells: Vec<(u16, u16, &Cell)> = cells.collect();
+        let mut i = 0;
+        while i < cells.len() {
+            let run = self.half_block_run(&cells[i..]);
+            if run > 0 {
+                self.draw_half_blocks(out, &cells[i..i + run]);
+                i += run;
+                continue;
+            }
+            let (x, y, cell) = cells[i];
             self.move_to(out, x, y);
             let pen = self.pen_of(cell);
             self.change_pen(out, pen);
@@ -124,8 +148,99 @@ impl CellWriter {
             } else {
                 Cursor::Unknown
             };
+            i += 1;
         }
         self.change_pen(out, PLAIN);
+    }
+
+    /// The code of a colour when it is of the level's own kind (24-bit at truecolor, a palette
+    /// index at 256 or 16 colours), the only kind the row planner writes.
+    fn planned_code(&self, p: Paint) -> Option<Code> {
+        (p.kind == self.level() && p.kind != ColorLevel::Mono).then_some(p.code)
+    }
+
+    /// How many cells from the start of `cells` form a run of neighbouring plain `▀` cells
+    /// the planner can send (0: the first cell is not one).
+    fn half_block_run(&self, cells: &[(u16, u16, &Cell)]) -> usize {
+        let plannable = |c: &Cell| {
+            c.symbol() == UPPER_HALF
+                && c.modifier.is_empty()
+                && self.planned_code(self.paint(c.fg)).is_some()
+                && self.planned_code(self.paint(c.bg)).is_some()
+        };
+        let Some(&(x0, y0, first)) = cells.first() else {
+            return 0;
+        };
+        if !plannable(first) {
+            return 0;
+        }
+        cells
+            .iter()
+            .enumerate()
+            .take_while(|&(k, &(x, y, c))| {
+                y == y0 && usize::from(x) == usize::from(x0) + k && plannable(c)
+            })
+            .count()
+    }
+
+    /// Sends a run of `▀` cells (one row, neighbours) as the row planner chooses.
+    fn draw_half_blocks(&mut self, out: &mut Vec<u8>, run: &[(u16, u16, &Cell)]) {
+        if !self.pen.modifier.is_empty() {
+            self.change_pen(out, PLAIN);
+        }
+        let level = self.level();
+        let code = |p: Paint| {
+            if p == RESET {
+                DEFAULT
+            } else {
+                self.planned_code(p).unwrap_or(UNKNOWN)
+            }
+        };
+        let mut colours = (code(self.pen.fg), code(self.pen.bg));
+        let (x0, row) = (run[0].0, run[0].1);
+        let (mut codes, mut skippable) = std::mem::take(&mut self.run);
+        codes.clear();
+        skippable.clear();
+        for &(_, _, c) in run {
+            let paint = |col| self.planned_code(self.paint(col)).unwrap_or(UNKNOWN);
+            codes.push([paint(c.fg), paint(c.bg)]);
+            skippable.push(false);
+        }
+        let start = RowStart {
+            level,
+            colours,
+            cursor: self.cursor,
+            origin_col: x0,
+            row,
+        };
+        let spans = self.planner.plan(&start, &codes, &skippable, DEFAULT_BEAM);
+        for span in spans {
+            let cell = codes[usize::from(span.x)];
+            write_span(
+                out,
+                level,
+                span,
+                cell,
+                (x0, row),
+                &mut colours,
+                &mut self.cursor,
+            );
+        }
+        self.run = (codes, skippable);
+        // A colour the run never set (a space keeps the foreground) is still the pen's own.
+        let paint = |c: Code, before: Paint| match c {
+            DEFAULT => RESET,
+            UNKNOWN => before,
+            c => Paint {
+                kind: level,
+                code: c,
+            },
+        };
+        self.pen = Pen {
+            fg: paint(colours.0, self.pen.fg),
+            bg: paint(colours.1, self.pen.bg),
+            modifier: Modifier::empty(),
+        };
     }
 
     /// How `cell` is drawn at this level.
@@ -317,6 +432,25 @@ mod tests {
         assert_eq!(
             text(&b, ColorLevel::TrueColor),
             "\x1b[H\x1b[1;3;38;5;100ma\x1b[22mb\x1b[2mc\x1b[md"
+        );
+    }
+
+    #[test]
+    fn half_block_runs_turn_cells_over_to_keep_a_shared_colour() {
+        let mut b = Buffer::empty(Rect::new(0, 0, 3, 1));
+        let (a, m, c) = (
+            Color::Rgb(1, 1, 1),
+            Color::Rgb(2, 2, 2),
+            Color::Rgb(3, 3, 3),
+        );
+        b[(0, 0)].set_symbol("▀").set_fg(a).set_bg(m);
+        b[(1, 0)].set_symbol("▀").set_fg(m).set_bg(c);
+        b[(2, 0)].set_symbol("▀").set_fg(c).set_bg(c);
+        // `▄` with m over a, then `▀` m over c keeps m as the foreground; the last cell is a
+        // space on the c already set: one colour change after the first.
+        assert_eq!(
+            text(&b, ColorLevel::TrueColor),
+            "\x1b[H\x1b[38;2;2;2;2;48;2;1;1;1m▄\x1b[48;2;3;3;3m▀ \x1b[m"
         );
     }
 
