@@ -35,7 +35,9 @@ impl Presenter {
         opts.sync = false;
         Self {
             encoder: Encoder::new(opts),
-            cells: CellWriter::new(opts.level),
+            // The panes' half blocks (the minimap) keep their `▀`: the game's recorded screens
+            // are pinned glyph by glyph (tests/snapshots/replay_pty__*.snap).
+            cells: CellWriter::new(opts.level).keeping_half_blocks(),
             previous: None,
             out: Vec::new(),
             overlaid: false,

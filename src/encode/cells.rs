@@ -78,6 +78,8 @@ pub struct CellWriter {
     planner: RowPlanner,
     /// A run's cells as `[top, bottom]` codes, and its skippable flags (all false).
     run: (Vec<[Code; 2]>, Vec<bool>),
+    /// Whether runs of `▀` cells are planned (else each is sent as `▀`, as drawn).
+    plan_half_blocks: bool,
 }
 
 /// The upper half block that half-block pictures are drawn with.
@@ -94,7 +96,16 @@ impl CellWriter {
             scratch: (Vec::new(), Vec::new()),
             planner: RowPlanner::default(),
             run: (Vec::new(), Vec::new()),
+            plan_half_blocks: true,
         }
+    }
+
+    /// Sends every `▀` cell as drawn instead of planning runs of them (the screen looks the
+    /// same either way; this keeps the glyphs too, for screens pinned glyph by glyph).
+    #[must_use]
+    pub fn keeping_half_blocks(mut self) -> Self {
+        self.plan_half_blocks = false;
+        self
     }
 
     /// The colour level cells are written at.
@@ -171,7 +182,7 @@ impl CellWriter {
         let Some(&(x0, y0, first)) = cells.first() else {
             return 0;
         };
-        if !plannable(first) {
+        if !self.plan_half_blocks || !plannable(first) {
             return 0;
         }
         cells
@@ -451,6 +462,21 @@ mod tests {
         assert_eq!(
             text(&b, ColorLevel::TrueColor),
             "\x1b[H\x1b[38;2;2;2;2;48;2;1;1;1m▄\x1b[48;2;3;3;3m▀ \x1b[m"
+        );
+    }
+
+    #[test]
+    fn kept_half_blocks_are_sent_as_drawn() {
+        let mut b = Buffer::empty(Rect::new(0, 0, 2, 1));
+        let (a, m) = (Color::Rgb(1, 1, 1), Color::Rgb(2, 2, 2));
+        b[(0, 0)].set_symbol("▀").set_fg(a).set_bg(m);
+        b[(1, 0)].set_symbol("▀").set_fg(m).set_bg(m);
+        let mut w = CellWriter::new(ColorLevel::TrueColor).keeping_half_blocks();
+        let mut out = Vec::new();
+        w.draw(&mut out, Buffer::empty(b.area).diff(&b).into_iter());
+        assert_eq!(
+            String::from_utf8(out).unwrap(),
+            "\x1b[H\x1b[38;2;1;1;1;48;2;2;2;2m▀\x1b[38;2;2;2;2m▀\x1b[m"
         );
     }
 
