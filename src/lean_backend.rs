@@ -106,6 +106,27 @@ impl<W: Write> LeanBackend<W> {
     }
 }
 
+#[cfg(feature = "scrolling-regions")]
+impl<W: Write> LeanBackend<W> {
+    /// Scrolls rows `region` (0-based, end exclusive) by `n` lines: `S` up, `T` down, inside a
+    /// scrolling margin that is reset afterwards (which homes the cursor).
+    fn scroll_region(&mut self, region: std::ops::Range<u16>, n: u16, dir: u8) -> io::Result<()> {
+        if region.is_empty() || n == 0 {
+            return Ok(());
+        }
+        write!(
+            self.out,
+            "\x1b[{};{}r\x1b[{n}",
+            region.start + 1,
+            region.end
+        )?;
+        self.out.extend_from_slice(&[dir]);
+        self.out.extend_from_slice(b"\x1b[r");
+        self.cells.forget_cursor();
+        Ok(())
+    }
+}
+
 impl<W: Write> Backend for LeanBackend<W> {
     type Error = io::Error;
 
@@ -192,6 +213,16 @@ impl<W: Write> Backend for LeanBackend<W> {
         })
     }
 
+    #[cfg(feature = "scrolling-regions")]
+    fn scroll_region_up(&mut self, region: std::ops::Range<u16>, n: u16) -> io::Result<()> {
+        self.scroll_region(region, n, b'S')
+    }
+
+    #[cfg(feature = "scrolling-regions")]
+    fn scroll_region_down(&mut self, region: std::ops::Range<u16>, n: u16) -> io::Result<()> {
+        self.scroll_region(region, n, b'T')
+    }
+
     fn flush(&mut self) -> io::Result<()> {
         if !self.out.is_empty() {
             let framed = self.sync.then_some((SYNC_BEGIN, SYNC_END));
@@ -246,6 +277,18 @@ mod tests {
             .unwrap();
         let third = String::from_utf8(t.backend().writer().clone()).unwrap();
         assert_eq!(third, "\x1b[?2026h\x1b[;4Hp!\x1b[?2026l");
+    }
+
+    #[cfg(feature = "scrolling-regions")]
+    #[test]
+    fn a_scrolled_region_moves_only_its_rows() {
+        let mut b = LeanBackend::new(Vec::new(), ColorLevel::TrueColor).with_size(4, 4);
+        let mut screen = vt100::Parser::new(4, 4, 0);
+        screen.process(b"a\r\nb\r\nc\r\nd");
+        b.scroll_region_up(1..3, 1).unwrap();
+        b.flush().unwrap();
+        screen.process(b.writer());
+        assert_eq!(screen.screen().contents(), "a\nc\n\nd");
     }
 
     #[test]

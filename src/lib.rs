@@ -11,6 +11,7 @@
 //! |---|---|---|
 //! | *(none)* | engine, widgets, encoder, [`LeanBackend`], [`snapshot`], [`termframe`], [`replay`] files | ratatui (no backend), image, serde |
 //! | `crossterm` | ratatui's crossterm backend; [`LeanBackend`] asks the terminal its size | crossterm |
+//! | `scrolling-regions` | [`LeanBackend`]'s scrolling-region methods (when ratatui's feature of that name is on) | — |
 //! | `vt100` | reading ANSI frames back (`termframe::from_ansi`, `.ans` files) | vt100 |
 //! | `tui` | the interactive terminal (`halfcast play`) | crossterm, signal-hook, toml |
 //! | `serve` | the SSH server (`halfcast serve`) | russh, tokio |
