@@ -446,31 +446,34 @@ mod tests {
         );
     }
 
+    /// A row of `▀` cells, each (upper, lower) grey level.
+    fn half_blocks(cells: &[(u8, u8)]) -> Buffer {
+        let mut b = Buffer::empty(Rect::new(0, 0, cells.len() as u16, 1));
+        for (x, &(t, l)) in cells.iter().enumerate() {
+            b[(x as u16, 0)]
+                .set_symbol("▀")
+                .set_fg(Color::Rgb(t, t, t))
+                .set_bg(Color::Rgb(l, l, l));
+        }
+        b
+    }
+
     #[test]
     fn half_block_runs_turn_cells_over_to_keep_a_shared_colour() {
-        let mut b = Buffer::empty(Rect::new(0, 0, 3, 1));
-        let (a, m, c) = (
-            Color::Rgb(1, 1, 1),
-            Color::Rgb(2, 2, 2),
-            Color::Rgb(3, 3, 3),
-        );
-        b[(0, 0)].set_symbol("▀").set_fg(a).set_bg(m);
-        b[(1, 0)].set_symbol("▀").set_fg(m).set_bg(c);
-        b[(2, 0)].set_symbol("▀").set_fg(c).set_bg(c);
-        // `▄` with m over a, then `▀` m over c keeps m as the foreground; the last cell is a
-        // space on the c already set: one colour change after the first.
+        // 1 over 2, 2 over 3, 3 over 3: `▄` with 2 over 1, then `▀` 2 over 3 keeps 2 as the
+        // foreground; the last cell is a space on the 3 already set: one change after the first.
         assert_eq!(
-            text(&b, ColorLevel::TrueColor),
+            text(
+                &half_blocks(&[(1, 2), (2, 3), (3, 3)]),
+                ColorLevel::TrueColor
+            ),
             "\x1b[H\x1b[38;2;2;2;2;48;2;1;1;1m▄\x1b[48;2;3;3;3m▀ \x1b[m"
         );
     }
 
     #[test]
     fn kept_half_blocks_are_sent_as_drawn() {
-        let mut b = Buffer::empty(Rect::new(0, 0, 2, 1));
-        let (a, m) = (Color::Rgb(1, 1, 1), Color::Rgb(2, 2, 2));
-        b[(0, 0)].set_symbol("▀").set_fg(a).set_bg(m);
-        b[(1, 0)].set_symbol("▀").set_fg(m).set_bg(m);
+        let b = half_blocks(&[(1, 2), (2, 2)]);
         let mut w = CellWriter::new(ColorLevel::TrueColor).keeping_half_blocks();
         let mut out = Vec::new();
         w.draw(&mut out, Buffer::empty(b.area).diff(&b).into_iter());
