@@ -14,6 +14,7 @@ use crate::sprite::{far_to_near, frame_index, project, view_index, Culled, Proje
 pub struct SpriteOutcome {
     /// Index into [`crate::World::sprites`].
     pub index: usize,
+    /// Where it projects on screen, or why it was culled.
     pub projection: Result<Projection, Culled>,
     /// Whether at least one texel reached the screen (false when walls hide it all).
     pub drawn: bool,

@@ -8,8 +8,11 @@ pub const DEFAULT_FOV_DEG: f64 = 66.0;
 /// Where the eye is and where it looks; `plane` ⟂ `dir`, |dir| = 1, |plane| = tan(FOV/2).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Camera {
+    /// Eye position in map cells (x east, y south).
     pub pos: Vec2,
+    /// Unit view direction.
     pub dir: Vec2,
+    /// Camera plane, perpendicular to `dir`, |plane| = tan(FOV/2).
     pub plane: Vec2,
 }
 

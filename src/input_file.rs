@@ -15,7 +15,10 @@ pub enum ReadError {
     /// The operating system's message (missing file, permission, a directory…).
     Io(String),
     /// More bytes than the cap: refused before reading them all.
-    TooLarge { cap: u64 },
+    TooLarge {
+        /// The cap, in bytes.
+        cap: u64,
+    },
     /// A FIFO, device or socket where only a plain file makes sense.
     NotRegular,
 }

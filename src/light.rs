@@ -18,6 +18,7 @@ pub struct Fog {
 /// The light of a frame; the default (no fog, day, no falloff) leaves every colour unchanged.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Lighting {
+    /// Distance fog, if any.
     pub fog: Option<Fog>,
     /// Dark world lit only near the player (a lantern), as in Permadi's night effect.
     pub night: bool,

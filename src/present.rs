@@ -1,26 +1,27 @@
-//! One way to put a frame on a terminal: ratatui's cell diff for the panes, halfcast's encoder
-//! for the 3D view, one synchronized update. The TUI, replays and the SSH server all use it.
+//! One way to put a frame on a terminal: ratatui's cell diff for the panes (written as
+//! [`crate::LeanBackend`] writes it), halfcast's encoder for the 3D view (the shortcut: pixels
+//! straight to bytes, with the glyph choice per cell), one synchronized update. The TUI, replays
+//! and the SSH server all use it.
 //!
 //! An overlay (the help box) drawn over the view must stay on top, but the encoder paints the
 //! whole view region. So while the screen buffer shows anything but the view inside the view's
 //! area, the view goes through the cell diff like the panes (around the overlay), and the
 //! encoder starts afresh once the overlay is gone.
 
-use ratatui::backend::{Backend, CrosstermBackend};
 use ratatui::buffer::{Buffer, CellDiffOption};
 use ratatui::layout::Rect;
-use ratatui::style::{Color, Modifier};
+use ratatui::style::Modifier;
 
-use crate::encode::{ColorLevel, EncodeOptions, Encoder, Palette, SYNC_BEGIN, SYNC_END};
+use crate::encode::cells::CellWriter;
+use crate::encode::{ColorLevel, EncodeOptions, Encoder, SYNC_BEGIN, SYNC_END};
 use crate::framebuffer::Framebuffer;
-use crate::termframe::ratatui_rgb;
 use crate::widget::half_block::{to_color, UPPER_HALF};
 
 /// Turns whole screens into the bytes that update a terminal from the previous screen.
 #[derive(Debug)]
 pub struct Presenter {
     encoder: Encoder,
-    palette: Palette,
+    cells: CellWriter,
     previous: Option<Buffer>,
     out: Vec<u8>,
     /// Whether the last frame had an overlay over the view (drawn without the encoder).
@@ -34,7 +35,9 @@ impl Presenter {
         opts.sync = false;
         Self {
             encoder: Encoder::new(opts),
-            palette: Palette::new(opts.level, false),
+            // The panes' half blocks (the minimap) keep their `▀`: the game's recorded screens
+            // are pinned glyph by glyph (tests/snapshots/replay_pty__*.snap).
+            cells: CellWriter::new(opts.level).keeping_half_blocks(),
             previous: None,
             out: Vec::new(),
             overlaid: false,
@@ -92,7 +95,9 @@ impl Presenter {
                 }
             }
         }
-        self.adapt_colours(&mut next);
+        if level == ColorLevel::Mono {
+            plain_ascii(&mut next);
+        }
         self.out.clear();
         if level != ColorLevel::Mono {
             self.out.extend_from_slice(SYNC_BEGIN);
@@ -100,7 +105,11 @@ impl Presenter {
         let previous = match self.previous.take() {
             Some(p) if p.area == area => p,
             _ => {
-                self.out.extend_from_slice(b"\x1b[m\x1b[2J");
+                // Mono output carries no SGR at all (its colours are always the defaults).
+                if level != ColorLevel::Mono {
+                    self.out.extend_from_slice(b"\x1b[m");
+                }
+                self.out.extend_from_slice(b"\x1b[2J");
                 self.encoder.invalidate();
                 let mut blank = Buffer::empty(area);
                 // Cells that differ from a cleared screen are all that must be drawn.
@@ -111,13 +120,9 @@ impl Presenter {
         {
             let diff = previous.diff(&next);
             if !diff.is_empty() {
-                let mut backend = CrosstermBackend::new(&mut self.out);
-                // Writing into a Vec cannot fail.
-                let _ = backend.draw(diff.into_iter());
+                self.cells.forget_cursor();
+                self.cells.draw(&mut self.out, diff.into_iter());
             }
-        }
-        if level == ColorLevel::Mono {
-            strip_sgr(&mut self.out);
         }
         if usable && !overlaid {
             let bytes = self.encoder.encode(view, view_area.x, view_area.y);
@@ -129,45 +134,30 @@ impl Presenter {
         self.previous = Some(next);
         &self.out
     }
+}
 
-    /// Maps the panes' colours to the level (ratatui would send 24-bit colours as given).
-    fn adapt_colours(&self, buf: &mut Buffer) {
-        let level = self.level();
-        if level == ColorLevel::TrueColor {
-            return;
-        }
-        let map = |c: Color| -> Color {
-            if level == ColorLevel::Mono {
-                return Color::Reset;
-            }
-            match ratatui_rgb(c) {
-                None => Color::Reset,
-                Some(rgb) => Color::Indexed(self.palette.code(rgb, 0, 0) as u8),
-            }
-        };
-        for cell in buf.content.iter_mut() {
-            cell.fg = map(cell.fg);
-            cell.bg = map(cell.bg);
-            if level == ColorLevel::Mono {
-                cell.modifier = Modifier::empty();
-                if !cell.symbol().is_ascii() {
-                    let ascii = match cell.symbol() {
-                        "│" | "┃" | "║" => "|",
-                        "─" | "━" | "═" => "-",
-                        "╭" | "╮" | "╰" | "╯" | "┌" | "┐" | "└" | "┘" | "┼" | "├" | "┤" | "┬"
-                        | "┴" => "+",
-                        "←" => "<",
-                        "→" => ">",
-                        "↑" => "^",
-                        "↓" => "v",
-                        "·" | "…" => ".",
-                        "×" => "x",
-                        "°" => "o",
-                        _ => "#",
-                    };
-                    cell.set_symbol(ascii);
+/// Mono shows plain ASCII: no attributes, and line-drawing symbols as `|`, `-`, `+`…
+/// (colours are dropped by the cell writer at mono).
+fn plain_ascii(buf: &mut Buffer) {
+    for cell in buf.content.iter_mut() {
+        cell.modifier = Modifier::empty();
+        if !cell.symbol().is_ascii() {
+            let ascii = match cell.symbol() {
+                "│" | "┃" | "║" => "|",
+                "─" | "━" | "═" => "-",
+                "╭" | "╮" | "╰" | "╯" | "┌" | "┐" | "└" | "┘" | "┼" | "├" | "┤" | "┬" | "┴" => {
+                    "+"
                 }
-            }
+                "←" => "<",
+                "→" => ">",
+                "↑" => "^",
+                "↓" => "v",
+                "·" | "…" => ".",
+                "×" => "x",
+                "°" => "o",
+                _ => "#",
+            };
+            cell.set_symbol(ascii);
         }
     }
 }
@@ -188,33 +178,12 @@ fn covered(screen: &Buffer, view: &Framebuffer, at: Rect) -> bool {
     })
 }
 
-/// Removes SGR sequences (`ESC [ … m`) so mono output carries only cursor moves and text.
-fn strip_sgr(out: &mut Vec<u8>) {
-    let mut kept = Vec::with_capacity(out.len());
-    let mut i = 0;
-    while i < out.len() {
-        if out[i] == 0x1b && out.get(i + 1) == Some(&b'[') {
-            let mut j = i + 2;
-            while j < out.len() && !(0x40..=0x7e).contains(&out[j]) {
-                j += 1;
-            }
-            if out.get(j) == Some(&b'm') {
-                i = j + 1;
-                continue;
-            }
-        }
-        kept.push(out[i]);
-        i += 1;
-    }
-    *out = kept;
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::color::Rgb;
     use crate::termframe::{from_screen, TermFrame};
-    use ratatui::style::Style;
+    use ratatui::style::{Color, Style};
     use ratatui::widgets::Widget;
 
     fn screen(text: &str) -> Buffer {

@@ -40,7 +40,9 @@ use crate::world::World;
 /// The whole input of one frame (pure, no terminal, no clock): the same scene gives the same pixels.
 #[derive(Debug, Clone, Copy)]
 pub struct Scene<'a> {
+    /// The world rendered.
     pub world: &'a World,
+    /// The eye it is seen from.
     pub camera: Camera,
     /// Pitch and eye height; the default is level, standing.
     pub view: View,

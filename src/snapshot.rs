@@ -74,8 +74,11 @@ impl Default for Tolerance {
 /// What differs between two frames of the same size.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct FrameDiff {
+    /// Pixels differing by more than the threshold.
     pub differing_pixels: usize,
+    /// All pixels compared.
     pub total_pixels: usize,
+    /// The largest channel difference seen.
     pub max_channel_delta: u8,
 }
 
@@ -106,7 +109,7 @@ pub fn diff_frames(a: &Framebuffer, b: &Framebuffer, threshold: u8) -> Option<Fr
 /// Asserts `fb` matches the PNG at `path` within `tol`; with [`UPDATE_ENV`] set, writes it instead.
 ///
 /// # Panics
-/// When the golden file is missing or unreadable, the sizes differ, or too many pixels differ
+/// When the golden file is missing (saying how to create it) or unreadable, the sizes differ, or too many pixels differ
 /// (the actual frame is then saved beside the golden as `<name>.actual.png`).
 pub fn assert_png_golden(fb: &Framebuffer, path: impl AsRef<Path>, tol: Tolerance) {
     let path = path.as_ref();
@@ -117,13 +120,22 @@ pub fn assert_png_golden(fb: &Framebuffer, path: impl AsRef<Path>, tol: Toleranc
         std::fs::write(path, fb.to_png().expect("encode PNG")).expect("write golden PNG");
         return;
     }
-    let bytes = std::fs::read(path).unwrap_or_else(|e| {
+    if !path.exists() {
         panic!(
-            "golden {} unreadable ({e}); run with {UPDATE_ENV}=1 to create it",
+            "no golden image at {} yet: run the test once with {UPDATE_ENV}=1 to create it \
+             from this frame, look at the PNG, and commit it",
             path.display()
-        )
-    });
-    let golden = Framebuffer::from_image_bytes(&bytes).expect("golden is a PNG");
+        );
+    }
+    let golden = std::fs::read(path)
+        .map_err(|e| e.to_string())
+        .and_then(|bytes| Framebuffer::from_image_bytes(&bytes))
+        .unwrap_or_else(|e| {
+            panic!(
+                "golden {} is not a readable PNG ({e}); run with {UPDATE_ENV}=1 to rewrite it",
+                path.display()
+            )
+        });
     let verdict = diff_frames(fb, &golden, tol.max_channel_delta);
     let ok = verdict.is_some_and(|d| {
         d.differing_pixels as f64 <= tol.max_differing_fraction * d.total_pixels as f64
@@ -143,6 +155,26 @@ pub fn assert_png_golden(fb: &Framebuffer, path: impl AsRef<Path>, tol: Toleranc
 mod tests {
     use super::*;
     use crate::color::Rgb;
+
+    #[test]
+    fn a_missing_golden_says_how_to_create_it() {
+        if std::env::var_os(UPDATE_ENV).is_some() {
+            return; // the variable would create the file instead
+        }
+        let dir = std::env::temp_dir().join(format!("halfcast-golden-{}", std::process::id()));
+        let path = dir.join("not_yet.png");
+        let fb = Framebuffer::new(2, 2);
+        let err = std::panic::catch_unwind(|| assert_png_golden(&fb, &path, Tolerance::default()))
+            .expect_err("a missing golden fails");
+        let msg = err.downcast_ref::<String>().cloned().unwrap_or_default();
+        assert!(
+            msg.starts_with("no golden image at ")
+                && msg.contains("HALFCAST_UPDATE_GOLDEN=1 to create it"),
+            "{msg}"
+        );
+        assert!(!msg.contains("os error"), "{msg}");
+        assert!(!path.exists());
+    }
 
     #[test]
     fn diff_counts_pixels_over_the_threshold() {

@@ -37,9 +37,11 @@ pub struct Projection {
     pub lateral: f64,
     /// Left and right edges in columns, unclipped (column x samples the ray at camera x = 2x/W − 1).
     pub left: f64,
+    /// Right edge in columns, unclipped.
     pub right: f64,
     /// Top and bottom edges in pixel rows, unclipped.
     pub top: f64,
+    /// Bottom edge in pixel rows, unclipped.
     pub bottom: f64,
     /// Columns drawn, clipped to the screen: [first, end).
     pub cols: (usize, usize),

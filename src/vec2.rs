@@ -5,7 +5,9 @@ use std::ops::{Add, Mul, Sub};
 /// A point or direction on the map plane (x east, y south), in cell units.
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
 pub struct Vec2 {
+    /// East component.
     pub x: f64,
+    /// South component.
     pub y: f64,
 }
 

@@ -35,24 +35,33 @@ pub enum TextureSource {
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error("{file}:{line}:{col}: cannot load texture '{path}': {reason}")]
 pub struct TextureError {
+    /// The map file naming the texture.
     pub file: String,
+    /// 1-based line of the texture line.
     pub line: usize,
+    /// 1-based column of the path.
     pub col: usize,
+    /// The path as written.
     pub path: String,
+    /// Why it could not be loaded.
     pub reason: String,
 }
 
 /// How a floor or ceiling pixel is painted once textures are loaded.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Paint {
+    /// A flat colour.
     Colour(Rgb),
+    /// A texture, by index into [`World::textures`].
     Texture(usize),
 }
 
 /// A map plus its decoded textures, indexed for the per-pixel loops.
 #[derive(Debug, Clone)]
 pub struct World {
+    /// The parsed map.
     pub map: Map,
+    /// Every decoded texture.
     pub textures: Vec<Texture>,
     /// Texture index per wall type (0–9) and face seen (looking N, S, W, E).
     wall_tex: [[usize; 4]; 10],
@@ -520,8 +529,10 @@ fn read_sheet(
 /// Why a map file could not become a world.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum LoadError {
+    /// The map file itself is invalid.
     #[error(transparent)]
     Map(#[from] crate::map::MapError),
+    /// A texture could not be loaded (under `strict`).
     #[error(transparent)]
     Texture(#[from] TextureError),
 }

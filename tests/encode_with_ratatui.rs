@@ -1,9 +1,9 @@
 //! The encoder drawing the 3D view inside a terminal that ratatui also draws (borders, side
 //! panes): both byte streams into one terminal model; the view and the panes must both be right.
 
-use std::cell::RefCell;
-use std::io::Write;
-use std::rc::Rc;
+mod capture;
+
+use capture::Capture;
 
 use halfcast::encode::palette::{Code, DEFAULT};
 use halfcast::encode::quantize::quantize;
@@ -13,19 +13,6 @@ use ratatui::backend::CrosstermBackend;
 use ratatui::layout::Rect;
 use ratatui::widgets::{Block, Paragraph};
 use ratatui::{Terminal, TerminalOptions, Viewport};
-
-#[derive(Clone, Default)]
-struct Shared(Rc<RefCell<Vec<u8>>>);
-
-impl Write for Shared {
-    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-        self.0.borrow_mut().extend_from_slice(buf);
-        Ok(buf.len())
-    }
-    fn flush(&mut self) -> std::io::Result<()> {
-        Ok(())
-    }
-}
 
 fn code_of(c: vt100::Color) -> Code {
     match c {
@@ -39,7 +26,7 @@ fn code_of(c: vt100::Color) -> Code {
 fn view_and_ratatui_panes_coexist_frame_after_frame() {
     let world = World::default_world();
     let start = world.map.start;
-    let out = Shared::default();
+    let out = Capture::default();
     let mut terminal = Terminal::with_options(
         CrosstermBackend::new(out.clone()),
         TerminalOptions {

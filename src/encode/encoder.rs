@@ -3,7 +3,7 @@
 use super::cursor::{write_move, Cursor};
 use super::level::ColorLevel;
 use super::palette::{distance, Code, Palette, DEFAULT, UNKNOWN};
-use super::plan::{Choice, RowPlanner, RowStart, DEFAULT_BEAM};
+use super::plan::{write_span, Choice, RowPlanner, RowStart, DEFAULT_BEAM};
 use super::quantize::{quantize_with, CellCache};
 use super::sgr;
 use crate::framebuffer::Framebuffer;
@@ -16,6 +16,7 @@ pub const SYNC_END: &[u8] = b"\x1b[?2026l";
 /// How frames are encoded; exact and tear-free by default.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct EncodeOptions {
+    /// The colour level frames are sent at.
     pub level: ColorLevel,
     /// Ordered dithering before palette mapping (256 and 16 colours only).
     pub dither: bool,
@@ -231,27 +232,17 @@ impl Encoder {
                     continue;
                 }
                 let (x, len) = (usize::from(span.x), usize::from(span.len));
-                let col = self.origin.0 + span.x;
-                write_move(&mut self.out, cursor, col, row);
                 let cell = intent[x];
-                let next = span.choice.colours(cell, colours);
-                sgr::write(&mut self.out, level, colours, next);
-                if span.choice == Choice::Space {
-                    // Runs are short: pushing beats a `memset` call.
-                    for _ in 0..len {
-                        self.out.push(b' ');
-                    }
-                } else {
-                    let g = glyph3(span.choice);
-                    for _ in 0..len {
-                        self.out.extend_from_slice(&g);
-                    }
-                }
-                colours = next;
-                cursor = Cursor::At {
-                    col: col + span.len,
-                    row,
-                };
+                let at = (self.origin.0, row);
+                write_span(
+                    &mut self.out,
+                    level,
+                    span,
+                    cell,
+                    at,
+                    &mut colours,
+                    &mut cursor,
+                );
                 self.shown[y * w + x..y * w + x + len].fill(cell);
                 drew = true;
             }
@@ -299,13 +290,6 @@ impl Encoder {
             }
         }
     }
-}
-
-/// The three UTF-8 bytes of a block glyph, as a fixed-size array (copied without a memcpy call).
-#[inline]
-fn glyph3(choice: Choice) -> [u8; 3] {
-    let g = choice.glyph();
-    [g[0], g[1], g[2]]
 }
 
 #[cfg(test)]

@@ -47,6 +47,18 @@ impl ColorLevel {
         }
     }
 
+    /// The level this process's environment asks for: [`ColorLevel::detect`] of `COLORTERM`,
+    /// `TERM` and `NO_COLOR` (no terminal query, so it never waits or reads input).
+    #[must_use]
+    pub fn from_env() -> Self {
+        let var = |name| std::env::var(name).ok();
+        Self::detect(
+            var("COLORTERM").as_deref(),
+            var("TERM").as_deref(),
+            var("NO_COLOR").as_deref(),
+        )
+    }
+
     /// The level after this one in the colour key's cycle: truecolor → 256 → 16 → mono → truecolor.
     #[must_use]
     pub fn cycled(self) -> Self {
@@ -140,7 +152,9 @@ impl ColourReason {
 /// A colour level and how it was decided.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct ColourChoice {
+    /// The level chosen.
     pub level: ColorLevel,
+    /// Why it was chosen (shown beside it).
     pub reason: ColourReason,
 }
 

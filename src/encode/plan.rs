@@ -7,7 +7,7 @@
 //! drawn cell. For a row with nothing to skip and no uniform cells, two states per run (the last run
 //! drawn `▀` or `▄`) are all there are, so a beam of two is exact there.
 
-use super::cursor::{forward_cost, move_cost, Cursor};
+use super::cursor::{forward_cost, move_cost, write_move, Cursor};
 use super::level::ColorLevel;
 use super::palette::Code;
 use super::sgr;
@@ -280,6 +280,49 @@ impl RowPlanner {
         }
         &self.spans
     }
+}
+
+/// Writes one planned run of a row (not a skipped one): the move to it, the colour change, the
+/// glyphs. `cell` is the run's `[top, bottom]`; `at` is (terminal column of the row's column 0,
+/// terminal row); `colours` and `cursor` are the terminal's before and are updated to after.
+#[inline(always)]
+pub(crate) fn write_span(
+    out: &mut Vec<u8>,
+    level: ColorLevel,
+    span: &Span,
+    cell: [Code; 2],
+    at: (u16, u16),
+    colours: &mut (Code, Code),
+    cursor: &mut Cursor,
+) {
+    let (col, row) = (at.0 + span.x, at.1);
+    write_move(out, *cursor, col, row);
+    let next = span.choice.colours(cell, *colours);
+    sgr::write(out, level, *colours, next);
+    let len = usize::from(span.len);
+    if span.choice == Choice::Space {
+        // Runs are short: pushing beats a `memset` call.
+        for _ in 0..len {
+            out.push(b' ');
+        }
+    } else {
+        let g = glyph3(span.choice);
+        for _ in 0..len {
+            out.extend_from_slice(&g);
+        }
+    }
+    *colours = next;
+    *cursor = Cursor::At {
+        col: col + span.len,
+        row,
+    };
+}
+
+/// The three UTF-8 bytes of a block glyph, as a fixed-size array (copied without a memcpy call).
+#[inline]
+fn glyph3(choice: Choice) -> [u8; 3] {
+    let g = choice.glyph();
+    [g[0], g[1], g[2]]
 }
 
 /// Inserts `node` into the sorted best-`kept` list `top` (capacity `top.len()`), replacing a node with

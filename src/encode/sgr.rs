@@ -91,12 +91,19 @@ pub(crate) fn alone_lens(level: ColorLevel, code: Code) -> (u32, u32) {
 }
 
 /// A small stack buffer: a whole SGR sequence is assembled here and appended in one copy.
-struct Buf {
-    bytes: [u8; 48],
+struct Buf<const N: usize = 48> {
+    bytes: [u8; N],
     len: usize,
 }
 
-impl Buf {
+impl<const N: usize> Buf<N> {
+    fn new() -> Self {
+        Self {
+            bytes: [0; N],
+            len: 0,
+        }
+    }
+
     #[inline]
     fn push(&mut self, b: u8) {
         self.bytes[self.len] = b;
@@ -132,7 +139,7 @@ impl Buf {
 
 /// Writes one colour parameter.
 #[inline(always)]
-fn push_param(out: &mut Buf, level: ColorLevel, code: Code, bg: bool) {
+fn push_param<const N: usize>(out: &mut Buf<N>, level: ColorLevel, code: Code, bg: bool) {
     if code == DEFAULT {
         out.extend(if bg { b"49" } else { b"39" });
         return;
@@ -184,10 +191,7 @@ pub(crate) fn write(out: &mut Vec<u8>, level: ColorLevel, from: (Code, Code), to
         out.extend_from_slice(b"\x1b[m");
         return;
     }
-    let mut buf = Buf {
-        bytes: [0; 48],
-        len: 0,
-    };
+    let mut buf = Buf::<48>::new();
     buf.extend(b"\x1b[");
     if f {
         push_param(&mut buf, level, to.0, false);
@@ -203,6 +207,41 @@ pub(crate) fn write(out: &mut Vec<u8>, level: ColorLevel, from: (Code, Code), to
     let at = out.len();
     out.extend_from_slice(&buf.bytes);
     out.truncate(at + buf.len);
+}
+
+/// Writes one SGR sequence whose colours may each be of another kind (a 24-bit colour beside an
+/// indexed one, as ratatui cells mix them): the attribute parameters `attrs` first, then the
+/// foreground and background when given, each as `(kind, code)`. Nothing when all are empty.
+pub(crate) fn write_mixed(
+    out: &mut Vec<u8>,
+    attrs: &[u8],
+    fg: Option<(ColorLevel, Code)>,
+    bg: Option<(ColorLevel, Code)>,
+) {
+    if attrs.is_empty() && fg.is_none() && bg.is_none() {
+        return;
+    }
+    // At most 11 attributes of 3 bytes, two colours of 19 bytes, separators and `ESC[`…`m`.
+    let mut buf = Buf::<96>::new();
+    buf.extend(b"\x1b[");
+    let mut first = true;
+    let mut sep = |buf: &mut Buf<96>| {
+        if !std::mem::take(&mut first) {
+            buf.push(b';');
+        }
+    };
+    for &a in attrs {
+        sep(&mut buf);
+        buf.num(u32::from(a));
+    }
+    for (colour, is_bg) in [(fg, false), (bg, true)] {
+        if let Some((kind, code)) = colour {
+            sep(&mut buf);
+            push_param(&mut buf, kind, code, is_bg);
+        }
+    }
+    buf.push(b'm');
+    out.extend_from_slice(&buf.bytes[..buf.len]);
 }
 
 #[cfg(test)]
@@ -230,6 +269,25 @@ mod tests {
                 assert_eq!(b, cost(level, (3, other), (3, code)), "{level} {code}");
             }
         }
+    }
+
+    #[test]
+    fn mixed_sequences_put_attributes_then_each_colour_in_its_own_kind() {
+        use ColorLevel::*;
+        let mut v = Vec::new();
+        write_mixed(
+            &mut v,
+            &[22, 1],
+            Some((Ansi16, 9)),
+            Some((TrueColor, 0x01_02_03)),
+        );
+        assert_eq!(v, b"\x1b[22;1;91;48;2;1;2;3m");
+        v.clear();
+        write_mixed(&mut v, &[], None, Some((Ansi256, 200)));
+        assert_eq!(v, b"\x1b[48;5;200m");
+        v.clear();
+        write_mixed(&mut v, &[], None, None);
+        assert!(v.is_empty());
     }
 
     #[test]

@@ -24,9 +24,11 @@ const EPS: f64 = 1e-9;
 /// sprites as discs, and cells the body cannot enter at its height.
 #[derive(Debug, Clone, Copy)]
 pub struct Obstacles<'a> {
+    /// The grid: walls, void and doors.
     pub map: &'a Map,
     /// `None` treats every door as shut.
     pub doors: Option<&'a DoorState>,
+    /// Solid sprites, as discs.
     pub discs: &'a [SolidDisc],
     /// The moving body's feet and eye; `None` ignores floor and ceiling heights (only walls,
     /// doors and discs stop it).

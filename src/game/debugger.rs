@@ -15,8 +15,11 @@ pub enum Cursor {
 /// Paused-world ray inspection: the column is `None` for the centre ray.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Debugger {
+    /// Whether the world is paused for inspection.
     pub paused: bool,
+    /// The debugged column (`None` = the centre ray).
     pub column: Option<usize>,
+    /// How far the DDA has been stepped.
     pub cursor: Cursor,
 }
 

@@ -6,11 +6,17 @@
 /// A continuous action: applies for as long as it is held, scaled by the frame time.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Action {
+    /// Walk forward.
     Forward,
+    /// Walk back.
     Back,
+    /// Turn left.
     TurnLeft,
+    /// Turn right.
     TurnRight,
+    /// Strafe left.
     StrafeLeft,
+    /// Strafe right.
     StrafeRight,
     /// Tilt the view up (shifts the horizon down).
     LookUp,
@@ -164,7 +170,9 @@ fn check_speed(what: &str, v: f64, max: f64, unit: &str) -> Result<(), String> {
 /// Everything one step reads from the outside world.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Input {
+    /// Which movement keys are held.
     pub held: Held,
+    /// One-shot commands of this step, in order.
     pub commands: Vec<Command>,
 }
 

@@ -55,8 +55,11 @@ pub const MAX_DT: f64 = 0.25;
 /// Everything that changes while playing, and the shared world it plays in.
 #[derive(Debug, Clone)]
 pub struct GameState {
+    /// The world played in (shared, never changed by play).
     pub world: Arc<World>,
+    /// The player's eye.
     pub camera: Camera,
+    /// The ray debugger's state.
     pub debugger: Debugger,
     /// Columns of the 3D view, so the debugged column can be clamped and stepped.
     pub view_width: usize,
@@ -67,6 +70,7 @@ pub struct GameState {
     /// Eye height without the jump (standing or crouching), and the jump's height (above the
     /// floor of the player's cell) and speed.
     pub base_eye: f64,
+    /// The jump: (height above the base eye, vertical speed).
     pub jump: (f64, f64),
     /// The floor of the player's cell, and the eye's eased way onto it after a step.
     pub footing: Footing,

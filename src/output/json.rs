@@ -12,13 +12,21 @@ use crate::world::World;
 /// The JSON document `render --format json` prints (field order as documented).
 #[derive(Debug, Serialize)]
 pub struct RayReport {
+    /// Camera position (x, y) in cells.
     pub pos: [f64; 2],
+    /// View direction.
     pub dir: [f64; 2],
+    /// Camera plane.
     pub plane: [f64; 2],
+    /// Horizontal field of view in degrees.
     pub fov: f64,
+    /// Frame size in cells (cols, rows).
     pub size: [usize; 2],
+    /// The column whose ray `centre_trace` follows (cols / 2).
     pub centre_column: usize,
+    /// One ray per column.
     pub columns: Vec<ColumnReport>,
+    /// Every cell the centre ray entered, ending with the wall cell.
     pub centre_trace: Vec<StepReport>,
     /// Every sprite's projection, in world order (empty for maps without sprites).
     pub sprites: Vec<SpriteReport>,
@@ -27,7 +35,9 @@ pub struct RayReport {
 /// One sprite's projection: where it landed and whether any of it was drawn.
 #[derive(Debug, Serialize)]
 pub struct SpriteReport {
+    /// Index into the map's sprites.
     pub index: usize,
+    /// Map position (x, y).
     pub pos: [f64; 2],
     /// Left and right edges in columns, unclipped; `null` when behind the camera.
     pub screen_x: Option<[f64; 2]>,
@@ -45,9 +55,13 @@ pub struct SpriteReport {
 /// One column's hit (on `Hz` maps, where its window of open rows closed).
 #[derive(Debug, Serialize)]
 pub struct ColumnReport {
+    /// The wall cell hit (x, y).
     pub cell: [i64; 2],
+    /// Which grid line was crossed: `x` (a vertical one) or `y`.
     pub side: Side,
+    /// Perpendicular distance to the wall (no fisheye).
     pub perp_dist: f64,
+    /// Where along the wall face the ray hit, 0–1.
     pub wall_x: f64,
     /// On maps with `Hz` heights, every vertical face drawn in the column, front to back;
     /// absent on flat maps.
@@ -85,8 +99,11 @@ impl SpanReport {
 /// One DDA step of the centre ray.
 #[derive(Debug, Serialize)]
 pub struct StepReport {
+    /// The cell entered (x, y).
     pub cell: [i64; 2],
+    /// Which grid line was crossed to enter it.
     pub side: Side,
+    /// sideDistX/Y after this step.
     pub side_dist: [f64; 2],
 }
 

@@ -19,8 +19,24 @@ use std::fmt::Write;
 use serde_json::{json, Value};
 
 use crate::game::{Action, Command, Held, Input, Speeds};
-use crate::tui::keys::UiCommand;
 use crate::vec2::Vec2;
+
+/// Things the TUI itself does (not the game), recorded with each frame of a replay.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum UiCommand {
+    /// Quit.
+    Quit,
+    /// Esc: closes the help if open, else quits.
+    Back,
+    /// Show or hide the minimap.
+    ToggleMinimap,
+    /// Show or hide the ray pane.
+    ToggleDebug,
+    /// Show or hide the help.
+    ToggleHelp,
+    /// The colour key: the next colour level (truecolor → 256 → 16 → mono).
+    CycleColours,
+}
 
 /// The format version this build writes and the newest it reads.
 pub const VERSION: u64 = 1;
@@ -44,9 +60,13 @@ pub enum MapSource {
 /// The first line: everything needed to rebuild the starting state.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Header {
+    /// The map played.
     pub map: MapSource,
+    /// Start position in cells.
     pub pos: Vec2,
+    /// Start angle in degrees (0 = east, 90 = north).
     pub angle_deg: f64,
+    /// Horizontal field of view in degrees.
     pub fov_deg: f64,
     /// Terminal size at the start, in cells.
     pub size: (u16, u16),
@@ -61,7 +81,9 @@ pub struct Header {
 /// What happens at the start of one frame.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct FrameInput {
+    /// The game input of this frame.
     pub input: Input,
+    /// UI commands of this frame, in order.
     pub ui: Vec<UiCommand>,
     /// A terminal resize at this frame.
     pub resize: Option<(u16, u16)>,
@@ -70,7 +92,9 @@ pub struct FrameInput {
 /// A whole recording, expanded to one [`FrameInput`] per frame.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Replay {
+    /// The starting state.
     pub header: Header,
+    /// One entry per frame.
     pub frames: Vec<FrameInput>,
 }
 
@@ -78,8 +102,11 @@ pub struct Replay {
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error("{file}:{line}: {message}")]
 pub struct ReplayError {
+    /// The replay file's name.
     pub file: String,
+    /// 1-based line.
     pub line: usize,
+    /// What is wrong.
     pub message: String,
 }
 

@@ -10,9 +10,13 @@ use crate::framebuffer::Framebuffer;
 /// One cell that looks different in the two frames.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct CellDiff {
+    /// Column.
     pub x: usize,
+    /// Row.
     pub y: usize,
+    /// The cell in the first frame.
     pub a: TermCell,
+    /// The cell in the second frame.
     pub b: TermCell,
     /// Largest channel difference of the upper/lower colours (255 when only one has a colour).
     pub colour_delta: u8,
@@ -21,9 +25,13 @@ pub struct CellDiff {
 /// The outcome of a comparison: equal, different sizes, or the differing cells.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct DiffReport {
+    /// Size of the first frame (cols, rows).
     pub size_a: (usize, usize),
+    /// Size of the second frame (cols, rows).
     pub size_b: (usize, usize),
+    /// Every cell that looks different.
     pub differing: Vec<CellDiff>,
+    /// The largest colour channel difference among them.
     pub max_colour_delta: u8,
 }
 

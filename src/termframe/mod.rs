@@ -6,10 +6,9 @@ mod parse;
 mod text;
 
 pub use diff::{diff, CellDiff, DiffReport};
-pub use parse::{
-    from_ansi, from_screen, load, parse_frame, try_from_ansi, FrameFormat, MAX_FRAME,
-    MAX_FRAME_BYTES,
-};
+#[cfg(any(test, feature = "vt100"))]
+pub use parse::{from_ansi, from_screen, try_from_ansi};
+pub use parse::{load, parse_frame, FrameFormat, MAX_FRAME, MAX_FRAME_BYTES};
 pub use text::{cell_code, from_cells_text, to_cells_text, CELLS_HEADER};
 
 use crate::color::Rgb;
@@ -19,8 +18,11 @@ use crate::framebuffer::Framebuffer;
 /// (`None` = the terminal's default colour).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct TermCell {
+    /// The character shown.
     pub glyph: char,
+    /// Foreground colour (`None` = the terminal's default).
     pub fg: Option<Rgb>,
+    /// Background colour (`None` = the terminal's default).
     pub bg: Option<Rgb>,
 }
 
@@ -42,8 +44,11 @@ impl TermCell {
 /// A grid of terminal cells, row-major.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct TermFrame {
+    /// Columns.
     pub cols: usize,
+    /// Rows.
     pub rows: usize,
+    /// The cells, row-major.
     pub cells: Vec<TermCell>,
 }
 
@@ -118,6 +123,7 @@ impl From<&ratatui::buffer::Buffer> for TermFrame {
     }
 }
 
+#[cfg(any(test, feature = "vt100"))]
 impl From<&vt100::Screen> for TermFrame {
     /// The whole screen of a terminal model ([`from_screen`] at its size).
     fn from(screen: &vt100::Screen) -> Self {

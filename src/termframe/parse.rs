@@ -5,15 +5,20 @@ use std::path::Path;
 
 use super::{from_cells_text, TermCell, TermFrame, CELLS_HEADER};
 use crate::color::Rgb;
+#[cfg(any(test, feature = "vt100"))]
 use crate::encode::palette::xterm_rgb;
 use crate::framebuffer::Framebuffer;
 
 /// What kind of frame file was read.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum FrameFormat {
+    /// A PNG of COLS × 2·ROWS pixels.
     Png,
+    /// ANSI escape sequences, read through a terminal model.
     Ansi,
+    /// halfcast's colour-aware cells text.
     Cells,
+    /// Plain text, one character per cell.
     Text,
 }
 
@@ -67,7 +72,10 @@ pub fn parse_frame(bytes: &[u8]) -> Result<(TermFrame, FrameFormat), String> {
         return Ok((from_cells_text(text)?, FrameFormat::Cells));
     }
     if text.contains('\x1b') {
+        #[cfg(any(test, feature = "vt100"))]
         return Ok((try_from_ansi(text.as_bytes())?, FrameFormat::Ansi));
+        #[cfg(not(any(test, feature = "vt100")))]
+        return Err("reading ANSI frames needs halfcast's `vt100` feature".into());
     }
     let rows = text.lines().count();
     let cols = text.lines().map(|l| l.chars().count()).max().unwrap_or(0);
@@ -88,6 +96,7 @@ pub fn parse_frame(bytes: &[u8]) -> Result<(TermFrame, FrameFormat), String> {
     Ok((TermFrame { cols, rows, cells }, FrameFormat::Text))
 }
 
+#[cfg(any(test, feature = "vt100"))]
 /// The screen size a byte stream draws into: the furthest row and column it writes.
 /// Counts saturate, so any numbers in the stream give an answer (checked by the caller).
 fn extent(bytes: &[u8]) -> (usize, usize) {
@@ -150,6 +159,7 @@ fn extent(bytes: &[u8]) -> (usize, usize) {
     (rows, cols)
 }
 
+#[cfg(any(test, feature = "vt100"))]
 /// A bare `\n` taken as a new line (as a tty's output processing would make it).
 fn with_carriage_returns(bytes: &[u8]) -> Vec<u8> {
     let mut fixed = Vec::with_capacity(bytes.len() + 256);
@@ -164,6 +174,7 @@ fn with_carriage_returns(bytes: &[u8]) -> Vec<u8> {
     fixed
 }
 
+#[cfg(any(test, feature = "vt100"))]
 /// Replays ANSI bytes through a terminal model `cols` × `rows` (at most [`MAX_FRAME`]).
 fn model(fixed: &[u8], cols: usize, rows: usize) -> TermFrame {
     let (cols, rows) = (cols.clamp(1, MAX_FRAME.0), rows.clamp(1, MAX_FRAME.1));
@@ -172,6 +183,7 @@ fn model(fixed: &[u8], cols: usize, rows: usize) -> TermFrame {
     from_screen(parser.screen(), cols, rows)
 }
 
+#[cfg(any(test, feature = "vt100"))]
 /// Replays ANSI bytes through a terminal model (vt100) and reads back every cell, the screen
 /// sized by what the bytes draw, but never over [`MAX_FRAME`] (what lies beyond is cut off).
 /// A bare `\n` is taken as a new line (as a tty's output processing would make it).
@@ -182,6 +194,7 @@ pub fn from_ansi(bytes: &[u8]) -> TermFrame {
     model(&fixed, cols, rows)
 }
 
+#[cfg(any(test, feature = "vt100"))]
 /// [`from_ansi`] that refuses a stream drawing beyond [`MAX_FRAME`] instead of cutting it.
 ///
 /// # Errors
@@ -195,6 +208,7 @@ pub fn try_from_ansi(bytes: &[u8]) -> Result<TermFrame, String> {
     Ok(model(&fixed, cols, rows))
 }
 
+#[cfg(any(test, feature = "vt100"))]
 /// Reads the top-left `cols` × `rows` cells of a terminal model's screen.
 #[must_use]
 pub fn from_screen(screen: &vt100::Screen, cols: usize, rows: usize) -> TermFrame {

@@ -11,6 +11,7 @@ pub const SIZE: usize = 64;
 
 /// Views and frames in the creature's sheet.
 pub const CREATURE_VIEWS: usize = 8;
+/// Animation frames per view in the creature's sheet.
 pub const CREATURE_FRAMES: usize = 4;
 
 /// A sprite-sheet generator: no inputs, same sheet every time.

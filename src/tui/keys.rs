@@ -49,18 +49,8 @@ pub const TAP_WALK_CELLS: f64 = 0.25;
 /// One tap's look up or down without release events, in degrees.
 pub const TAP_LOOK_DEG: f64 = 5.0;
 
-/// Things the TUI itself does (not the game).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum UiCommand {
-    Quit,
-    /// Esc: closes the help if open, else quits.
-    Back,
-    ToggleMinimap,
-    ToggleDebug,
-    ToggleHelp,
-    /// The colour key: the next colour level (truecolor → 256 → 16 → mono).
-    CycleColours,
-}
+/// Things the TUI itself does (not the game); defined with the replay format that records them.
+pub use crate::replay::format::UiCommand;
 
 /// What a key event turns into.
 #[derive(Debug, Clone, Copy, PartialEq)]

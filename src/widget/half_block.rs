@@ -6,6 +6,8 @@ use ratatui::style::Color;
 use ratatui::widgets::Widget;
 
 use crate::color::Rgb;
+use crate::encode::quantize::mono_char;
+use crate::encode::{ColorLevel, Palette};
 use crate::framebuffer::Framebuffer;
 
 /// The upper-half block: its foreground paints the upper pixel, its background the lower.
@@ -18,7 +20,8 @@ pub fn to_color(c: Rgb) -> Color {
     Color::Rgb(c.r, c.g, c.b)
 }
 
-/// A ratatui widget drawing a framebuffer at one terminal cell per 1 × 2 pixels, 24-bit colour.
+/// A ratatui widget drawing a framebuffer at one terminal cell per 1 × 2 pixels, 24-bit colour
+/// unless told another [`ColorLevel`] ([`HalfBlockView::level`]).
 ///
 /// Cell (cx, cy) of the area shows pixel (cx, 2·cy) as the `▀` foreground and (cx, 2·cy + 1)
 /// as the background. Nothing is scaled: render the framebuffer at the area's size
@@ -45,13 +48,39 @@ pub fn to_color(c: Rgb) -> Color {
 #[derive(Debug, Clone, Copy)]
 pub struct HalfBlockView<'a> {
     fb: &'a Framebuffer,
+    level: ColorLevel,
 }
 
 impl<'a> HalfBlockView<'a> {
-    /// Wraps a framebuffer for drawing.
+    /// Wraps a framebuffer for drawing (24-bit colour).
     #[must_use]
     pub fn new(fb: &'a Framebuffer) -> Self {
-        Self { fb }
+        Self {
+            fb,
+            level: ColorLevel::TrueColor,
+        }
+    }
+
+    /// Draws at `level`, for apps on a stock backend whose terminal shows fewer colours:
+    /// 256 and 16 colours choose each cell's two palette colours together as halfcast's own
+    /// encoder does (so the scene keeps its hue), as `Color::Indexed` cells; mono draws the
+    /// ASCII shade ramp with default colours.
+    ///
+    /// ```
+    /// use halfcast::{ColorLevel, Framebuffer, HalfBlockView, Rgb};
+    /// use ratatui::{buffer::Buffer, layout::Rect, style::Color, widgets::Widget};
+    ///
+    /// let mut fb = Framebuffer::for_cells(1, 1);
+    /// fb.set(0, 0, Rgb::new(255, 0, 0));
+    /// fb.set(0, 1, Rgb::new(255, 0, 0));
+    /// let mut buf = Buffer::empty(Rect::new(0, 0, 1, 1));
+    /// HalfBlockView::new(&fb).level(ColorLevel::Ansi256).render(buf.area, &mut buf);
+    /// assert_eq!(buf[(0, 0)].fg, Color::Indexed(196));
+    /// ```
+    #[must_use]
+    pub fn level(mut self, level: ColorLevel) -> Self {
+        self.level = level;
+        self
     }
 }
 
@@ -66,6 +95,27 @@ impl Widget for &HalfBlockView<'_> {
         let area = area.intersection(buf.area);
         let cols = usize::from(area.width).min(self.fb.width());
         let rows = usize::from(area.height).min(self.fb.cell_rows());
+        if self.level != ColorLevel::TrueColor {
+            let palette = Palette::new(self.level, false);
+            for cy in 0..rows {
+                let y = area.y + cy as u16;
+                for cx in 0..cols {
+                    let (top, bottom) = self.fb.cell(cx, cy);
+                    let cell = &mut buf[(area.x + cx as u16, y)];
+                    if self.level == ColorLevel::Mono {
+                        cell.set_char(mono_char(top, bottom))
+                            .set_fg(Color::Reset)
+                            .set_bg(Color::Reset);
+                        continue;
+                    }
+                    let [t, b] = palette.cell(top, bottom, cx, 2 * cy);
+                    cell.set_symbol(UPPER_HALF)
+                        .set_fg(Color::Indexed(t as u8))
+                        .set_bg(Color::Indexed(b as u8));
+                }
+            }
+            return;
+        }
         for cy in 0..rows {
             let upper = self.fb.row(2 * cy);
             let lower = self.fb.row(2 * cy + 1);
@@ -114,6 +164,37 @@ mod tests {
             }
         }
         assert_eq!(back, fb);
+    }
+
+    #[test]
+    fn lower_levels_draw_the_encoders_palette_pair_or_the_shade_ramp() {
+        let fb = pattern(12, 4);
+        let area = Rect::new(0, 0, 12, 4);
+        for level in [ColorLevel::Ansi256, ColorLevel::Ansi16] {
+            let mut buf = Buffer::empty(area);
+            HalfBlockView::new(&fb).level(level).render(area, &mut buf);
+            let palette = Palette::new(level, false);
+            for cy in 0..4u16 {
+                for cx in 0..12u16 {
+                    let (t, b) = fb.cell(cx.into(), cy.into());
+                    let [pt, pb] = palette.cell(t, b, cx.into(), 2 * usize::from(cy));
+                    let cell = &buf[(cx, cy)];
+                    assert_eq!(cell.fg, Color::Indexed(pt as u8), "{level} ({cx},{cy})");
+                    assert_eq!(cell.bg, Color::Indexed(pb as u8), "{level} ({cx},{cy})");
+                    assert!(level != ColorLevel::Ansi16 || pt < 16 && pb < 16);
+                }
+            }
+        }
+        let mut buf = Buffer::empty(area);
+        HalfBlockView::new(&fb)
+            .level(ColorLevel::Mono)
+            .render(area, &mut buf);
+        let (t, b) = fb.cell(5, 2);
+        assert_eq!(buf[(5, 2)].symbol(), mono_char(t, b).to_string());
+        assert_eq!(
+            (buf[(5, 2)].fg, buf[(5, 2)].bg),
+            (Color::Reset, Color::Reset)
+        );
     }
 
     #[test]

@@ -88,10 +88,13 @@ const DECOR_RADIUS: f64 = 0.18;
 /// name beside it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Marker<'a> {
+    /// Map position.
     pub pos: Vec2,
     /// Facing, any length (zero: no tick).
     pub dir: Vec2,
+    /// Disc radius in cells.
     pub radius: f64,
+    /// Disc colour.
     pub colour: Rgb,
     /// Written in the cell right of the marker when it fits in the pane.
     pub label: Option<&'a str>,
@@ -100,7 +103,9 @@ pub struct Marker<'a> {
 /// Which part of the map is on the canvas: pixels per cell and the map point at pixel (0, 0).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MapView {
+    /// Canvas pixels per map cell.
     pub scale: f64,
+    /// The map point at canvas pixel (0, 0).
     pub origin: Vec2,
 }
 

@@ -6,8 +6,11 @@ use crate::vec2::Vec2;
 /// A trace plus how many of its steps are shown; `hit_reached` once all of them are.
 #[derive(Debug, Clone, Copy)]
 pub struct RevealedTrace<'a> {
+    /// The whole trace.
     pub trace: &'a DdaTrace,
+    /// Steps revealed so far.
     pub shown: usize,
+    /// Whether the hit itself is revealed.
     pub hit_reached: bool,
 }
 
