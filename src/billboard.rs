@@ -27,7 +27,12 @@ pub enum Occluders<'a> {
     Columns(&'a [ColumnHit]),
     /// `Hz` maps: the distance of the surface drawn at every pixel (row-major, `width` wide), so
     /// nearer steps, ledges and lintels hide sprites pixel by pixel.
-    Pixels { depth: &'a [f32], width: usize },
+    Pixels {
+        /// Distance of the surface at each pixel.
+        depth: &'a [f32],
+        /// Pixels per row of `depth`.
+        width: usize,
+    },
 }
 
 /// The height of a sprite's bottom in the world: on `Hz` maps it stands `offset` above the floor

@@ -37,28 +37,36 @@ pub struct ColumnHit {
     pub cell: (i64, i64),
     /// What that cell is (a wall type, or void when the ray left the map).
     pub what: Cell,
+    /// Which grid line the ray crossed into the wall (y-crossed walls are shaded darker).
     pub side: Side,
     /// Distance along the view direction (no fisheye): sideDist − deltaDist of `side`'s axis.
     pub perp_dist: f64,
     /// Where along the wall face the ray hit, in [0, 1); on a door, along the door's panel
     /// (already shifted by how far it is open).
     pub wall_x: f64,
+    /// The column's ray direction, dir + plane·(2x/W − 1) (not normalised).
     pub ray_dir: Vec2,
 }
 
 /// One DDA step: the cell entered, the side crossed, and both sideDists after the step.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct DdaStep {
+    /// The cell entered.
     pub cell: (i64, i64),
+    /// The grid line crossed to enter it.
     pub side: Side,
+    /// sideDistX/Y after the step.
     pub side_dist: (f64, f64),
 }
 
 /// The whole traversal of one column's ray, for the debug pane and the JSON.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DdaTrace {
+    /// The screen column traced.
     pub column: usize,
+    /// Its ray direction.
     pub ray_dir: Vec2,
+    /// deltaDistX/Y: ray length between two x (or y) grid lines.
     pub delta_dist: (f64, f64),
     /// The cell the ray starts in.
     pub start_cell: (i64, i64),
@@ -66,6 +74,7 @@ pub struct DdaTrace {
     pub initial_side_dist: (f64, f64),
     /// Every cell entered, in order; the last one is the hit.
     pub steps: Vec<DdaStep>,
+    /// Where the ray ended.
     pub hit: ColumnHit,
 }
 
@@ -75,6 +84,7 @@ pub struct Cast {
     /// One hit per column: on maps with `Hz` heights, where the column's window of open rows
     /// closed (see [`crate::height_cast`]).
     pub columns: Vec<ColumnHit>,
+    /// The step-by-step traversal of the traced column, when one was asked for.
     pub trace: Option<DdaTrace>,
     /// On maps with `Hz` heights, each column's draw list front to back (floors, ceilings and
     /// every vertical face with its rows); empty on flat maps, which are drawn from `columns`.

@@ -54,11 +54,13 @@ pub struct FaceSpan {
     pub cell: (i64, i64),
     /// What that cell is (its wall type or zone picks the paint).
     pub what: Cell,
+    /// Which grid line the ray crossed into the face (y-crossed faces are shaded).
     pub side: Side,
     /// Distance along the view direction where the ray meets the face.
     pub perp_dist: f64,
     /// Where along the face the ray meets it, in [0, 1) (texture column), as [`ColumnHit::wall_x`].
     pub wall_x: f64,
+    /// A full wall, a step below a raised floor, or a lintel above a lowered ceiling.
     pub kind: FaceKind,
     /// The heights the face spans where it borders the ray's cell, low to high: a step from that
     /// cell's floor up to the neighbour's, a lintel from the neighbour's ceiling up to that
@@ -89,7 +91,9 @@ pub struct FlatSpan {
 /// One run of rows of a column's draw list.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Band {
+    /// A floor or ceiling seen through the rows.
     Flat(FlatSpan),
+    /// A vertical face (wall, step or lintel).
     Face(FaceSpan),
 }
 
@@ -117,7 +121,9 @@ pub struct WindowClosed {
 /// exactly one band (every pixel is written once).
 #[derive(Debug, Clone, PartialEq)]
 pub struct HeightColumn {
+    /// The runs of rows, front to back.
     pub bands: Vec<Band>,
+    /// Where the column's window of open rows closed (what its `ColumnHit` reports).
     pub closed: WindowClosed,
 }
 

@@ -147,8 +147,6 @@ pub mod sprite;
 pub mod view;
 
 pub mod camera;
-// Being reworked in a parallel branch today: its docs are that branch's to add.
-#[allow(missing_docs)]
 pub mod cast;
 pub mod color;
 pub mod encode;
@@ -164,8 +162,6 @@ pub mod height_cast;
 pub mod height_raster;
 pub mod input_file;
 mod lean_backend;
-// Being reworked in a parallel branch today: its docs are that branch's to add.
-#[allow(missing_docs)]
 pub mod map;
 pub mod output;
 pub mod present;

@@ -5,8 +5,11 @@ use std::fmt;
 /// A map that breaks a rule: the file, where (1-based line:col, when there is a place) and which rule.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub struct MapError {
+    /// The map file as named by the user.
     pub file: String,
+    /// 1-based line and column of what broke the rule, when it has a place.
     pub at: Option<(usize, usize)>,
+    /// Which rule.
     pub kind: MapErrorKind,
 }
 
@@ -20,6 +23,8 @@ impl fmt::Display for MapError {
 }
 
 /// The rule a map broke; the text is what users read, so tests pin it exactly.
+// Each variant's `#[error]` text is its documentation (and what the user reads).
+#[allow(missing_docs)]
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum MapErrorKind {
     #[error("file is not valid UTF-8 text")]

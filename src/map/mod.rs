@@ -22,7 +22,10 @@ pub enum Cell {
     /// Outside the map (a space in the file, or beyond a short row).
     Void,
     /// Walkable; `zone` 0 is the default floor, 1–26 the zone letters `a`–`z`.
-    Floor { zone: u8 },
+    Floor {
+        /// 0 for plain floor, 1–26 for `a`–`z`.
+        zone: u8,
+    },
     /// Solid wall of type 1–9 (each type has its own texture).
     Wall(u8),
     /// A sliding door (`D`), drawn as a thin panel across the middle of its cell.
@@ -51,22 +54,29 @@ impl Cell {
 /// A texture path as written in the map, with where it was written (for warnings).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct TextureRef {
+    /// The path as written (relative paths are resolved against the map's folder).
     pub path: String,
+    /// 1-based line of the path in the map file.
     pub line: usize,
+    /// 1-based column of the path.
     pub col: usize,
 }
 
 /// How a floor or ceiling is painted: a flat colour or a texture.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Surface {
+    /// One flat colour (`r,g,b`).
     Colour(Rgb),
+    /// A texture file, world-anchored.
     Texture(TextureRef),
 }
 
 /// Floor and ceiling overrides for cells marked with one zone letter.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Zone {
+    /// `Fz`: the zone's floor paint.
     pub floor: Option<Surface>,
+    /// `Cz`: the zone's ceiling paint.
     pub ceiling: Option<Surface>,
     /// `Hz FLOOR CEIL`: the open span of the zone's cells, in wall heights.
     pub heights: Option<Span>,
@@ -78,7 +88,9 @@ pub struct Zone {
 /// cell is 0 to 1); everything above and below it is solid.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Span {
+    /// Height of the floor (solid below).
     pub floor: f64,
+    /// Height of the ceiling (solid above).
     pub ceil: f64,
 }
 
@@ -105,7 +117,9 @@ impl Span {
 /// The player's start: a cell centre and a facing, from the N/S/E/W letter.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Start {
+    /// The cell (column, row) holding the letter.
     pub cell: (usize, usize),
+    /// The letter: `N`, `S`, `E` or `W`.
     pub facing: char,
 }
 
@@ -135,15 +149,20 @@ pub struct Map {
     pub file: String,
     /// Its file name alone (for the status line).
     pub name: String,
+    /// Cells per row (the longest row of the grid; short rows end in void).
     pub width: usize,
+    /// Rows of the grid.
     pub height: usize,
     cells: Vec<Cell>,
+    /// Where the player starts and which way it faces.
     pub start: Start,
     /// Wall textures for type-1 walls, by the face the ray sees: NO, SO, WE, EA.
     pub faces: [TextureRef; 4],
     /// Textures for wall types 2–9 given by `T2`…`T9` (index = digit).
     pub wall_types: [Option<TextureRef>; 10],
+    /// `F`/`FT`: the floor of plain cells.
     pub floor: Surface,
+    /// `C`/`CT`: the ceiling of plain cells.
     pub ceiling: Surface,
     /// Zone letters `a`–`z` (index 0 = `a`).
     pub zones: Vec<Zone>,

@@ -74,8 +74,11 @@ pub struct ColumnReport {
 pub struct SpanReport {
     /// The cell whose solid part the face is.
     pub cell: [i64; 2],
+    /// `x` or `y`: which grid line the ray crossed into the face.
     pub side: Side,
+    /// Distance along the view direction where the ray meets the face.
     pub perp_dist: f64,
+    /// `wall`, `step` or `lintel`.
     pub kind: FaceKind,
     /// The heights the face spans beside the ray's cell, low to high.
     pub z: [f64; 2],
