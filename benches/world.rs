@@ -4,7 +4,7 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use halfcast::camera::Camera;
-use halfcast::door::DoorState;
+use halfcast::world::door::DoorState;
 use halfcast::world::World;
 use halfcast::{Framebuffer, Scene, Vec2, View};
 

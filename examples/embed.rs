@@ -5,7 +5,7 @@
 //! cargo run --example embed --no-default-features --features crossterm
 //! ```
 
-use halfcast::door::DoorState;
+use halfcast::world::door::DoorState;
 use halfcast::{Camera, Framebuffer, HalfBlockView, Minimap, Scene, Vec2, World};
 use ratatui::crossterm::event::{self, Event, KeyCode, KeyEventKind};
 use ratatui::layout::{Constraint, Layout};

@@ -138,19 +138,9 @@
 #[allow(missing_docs)]
 #[cfg(feature = "cli")]
 pub mod bench;
-// World features: sprites, doors, light, vertical view.
-pub mod billboard;
-pub mod door;
-pub mod light;
-pub mod lightmap;
-pub mod sprite;
-pub mod view;
-
 pub mod camera;
-pub mod cast;
 pub mod color;
 pub mod encode;
-mod framebuffer;
 // The binary's internals: public only because tests/, benches/ and examples/ drive them;
 // not part of the library API (hidden from its docs, and absent without their feature).
 #[doc(hidden)]
@@ -158,16 +148,13 @@ mod framebuffer;
 #[cfg(feature = "serve")]
 pub mod fuzzing;
 pub mod game;
-pub mod height_cast;
-pub mod height_raster;
 pub mod input_file;
 mod lean_backend;
 pub mod map;
 pub mod output;
 pub mod present;
-pub mod raster;
+pub mod render;
 pub mod replay;
-pub mod scene;
 // The binary's internals: public only because tests/, benches/ and examples/ drive them;
 // not part of the library API (hidden from its docs, and absent without their feature).
 #[doc(hidden)]
@@ -195,11 +182,11 @@ pub struct ReadmeExamples;
 pub use camera::Camera;
 pub use color::Rgb;
 pub use encode::ColorLevel;
-pub use framebuffer::Framebuffer;
 pub use lean_backend::LeanBackend;
+pub use render::scene::Scene;
+pub use render::view::View;
+pub use render::Framebuffer;
 pub use replay::{Replay, ReplayError};
-pub use scene::Scene;
 pub use vec2::Vec2;
-pub use view::View;
 pub use widget::{DebugPane, HalfBlockView, Minimap};
 pub use world::World;

@@ -14,7 +14,7 @@ use ratatui::style::Modifier;
 
 use crate::encode::cells::CellWriter;
 use crate::encode::{ColorLevel, EncodeOptions, Encoder, SYNC_BEGIN, SYNC_END};
-use crate::framebuffer::Framebuffer;
+use crate::render::framebuffer::Framebuffer;
 use crate::widget::half_block::{to_color, UPPER_HALF};
 
 /// Turns whole screens into the bytes that update a terminal from the previous screen.

@@ -39,7 +39,7 @@
 
 use std::path::Path;
 
-use crate::framebuffer::Framebuffer;
+use crate::render::framebuffer::Framebuffer;
 use crate::termframe::{to_cells_text, TermFrame};
 
 /// The text form snapshots pin (`halfcast-cells v1`: a size header, then one line per row of

@@ -4,8 +4,8 @@
 mod common;
 
 use halfcast::camera::Camera;
-use halfcast::cast::cast;
-use halfcast::raster::wall_span;
+use halfcast::render::cast::cast;
+use halfcast::render::raster::wall_span;
 use halfcast::snapshot::{assert_png_golden, Tolerance};
 use halfcast::world::World;
 use halfcast::{Scene, Vec2};

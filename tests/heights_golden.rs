@@ -6,8 +6,8 @@
 use std::path::{Path, PathBuf};
 
 use halfcast::camera::Camera;
-use halfcast::door::DoorState;
 use halfcast::snapshot::{assert_png_golden, Tolerance};
+use halfcast::world::door::DoorState;
 use halfcast::world::{TextureSource, World};
 use halfcast::{Framebuffer, Scene, Vec2, View};
 

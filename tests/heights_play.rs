@@ -9,7 +9,7 @@ use std::sync::Arc;
 use halfcast::camera::Camera;
 use halfcast::game::footing::STEP_EASE;
 use halfcast::game::{step, Action, Command, GameState, Held, Input, CROUCH_EYE};
-use halfcast::view::STANDING_EYE;
+use halfcast::render::view::STANDING_EYE;
 use halfcast::{Vec2, World};
 
 /// Heights of the lanes (each a corridor running east, its ledge at x = 3).

@@ -460,8 +460,8 @@ fn a_flat_world_drawn_by_the_heights_renderer_looks_as_before() {
     // The default map (textures, sprites, doors, fog, lamps) plus one unused `Hz 0 1` zone takes
     // the heights path; every cell still spans 0..1, so the frame must be today's: walls with
     // the same texel rows, floors world-anchored the same, sprites hidden the same.
-    use halfcast::door::DoorState;
     use halfcast::map::parse_map;
+    use halfcast::world::door::DoorState;
     use halfcast::world::{TextureSource, DEFAULT_MAP};
     let load = |extra: &str| {
         let text = format!("{extra}{DEFAULT_MAP}");

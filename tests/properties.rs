@@ -3,8 +3,8 @@
 mod common;
 
 use halfcast::camera::Camera;
-use halfcast::cast::{cast, trace_column, Side};
 use halfcast::map::{parse_map, Cell, Map, MapErrorKind};
+use halfcast::render::cast::{cast, trace_column, Side};
 use halfcast::Vec2;
 use proptest::prelude::*;
 

@@ -2,7 +2,7 @@
 //! of the project uses (`snapshot::cells_text`: glyph + fg + bg per cell).
 
 use halfcast::camera::Camera;
-use halfcast::cast::{cast, trace_column};
+use halfcast::render::cast::{cast, trace_column};
 use halfcast::snapshot::cells_text;
 use halfcast::widget::{DebugPane, HalfBlockView, Minimap, RevealedTrace};
 use halfcast::{Framebuffer, Scene, Vec2, World};

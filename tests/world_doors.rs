@@ -4,8 +4,8 @@
 mod oracle;
 mod world_common;
 
-use halfcast::door::DoorState;
 use halfcast::map::{parse_map, Cell, DoorPlane};
+use halfcast::world::door::DoorState;
 use halfcast::Vec2;
 use oracle::{close, close_fraction, walk, walled_grid};
 use proptest::prelude::*;

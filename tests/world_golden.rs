@@ -5,8 +5,8 @@
 mod world_common;
 
 use halfcast::camera::Camera;
-use halfcast::door::DoorState;
-use halfcast::light::{Fog, Lighting};
+use halfcast::render::light::{Fog, Lighting};
+use halfcast::world::door::DoorState;
 use halfcast::{Framebuffer, Rgb, Scene, Vec2, View};
 use world_common::{golden, world, ROOM};
 

@@ -4,9 +4,9 @@
 mod world_common;
 
 use halfcast::camera::Camera;
-use halfcast::cast::{ColumnHit, Side};
-use halfcast::light::Lighting;
 use halfcast::map::Cell;
+use halfcast::render::cast::{ColumnHit, Side};
+use halfcast::render::light::Lighting;
 use halfcast::{Framebuffer, Scene, Vec2, World};
 use world_common::{golden, world, ROOM};
 

@@ -5,7 +5,7 @@
 //! viewing distance, so mixing two colours in a cell is credited), then compared in OKLab.
 
 use crate::color::{oklab, Linear};
-use crate::framebuffer::Framebuffer;
+use crate::render::framebuffer::Framebuffer;
 
 /// Side of the blur block, in pixels.
 const BLOCK: usize = 4;

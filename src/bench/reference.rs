@@ -13,7 +13,7 @@ use ratatui::{Terminal, TerminalOptions, Viewport};
 use crate::encode::palette::Palette;
 use crate::encode::quantize::mono_char;
 use crate::encode::ColorLevel;
-use crate::framebuffer::Framebuffer;
+use crate::render::framebuffer::Framebuffer;
 
 /// An in-memory writer the reference can read back (the backend's own accessor is unstable).
 #[derive(Clone, Default)]

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use halfcast::camera::DEFAULT_FOV_DEG;
-use halfcast::light::Fog;
+use halfcast::render::light::Fog;
 use halfcast::Vec2;
 
 #[derive(Args, Debug)]
@@ -36,7 +36,7 @@ pub(crate) struct WorldArgs {
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true, value_parser = parse_pitch)]
     pub(crate) pitch: f64,
     /// Eye height in wall heights: 0.5 standing, lower crouches, higher jumps (0.05 to 0.95).
-    #[arg(long, default_value_t = halfcast::view::STANDING_EYE, value_parser = parse_eye)]
+    #[arg(long, default_value_t = halfcast::render::view::STANDING_EYE, value_parser = parse_eye)]
     pub(crate) z: f64,
     /// Fog colour and density R,G,B,DENSITY (replaces the map's FOG line).
     #[arg(long, value_parser = parse_fog)]
@@ -83,7 +83,7 @@ pub(crate) fn parse_fov(s: &str) -> Result<f64, String> {
 }
 
 pub(crate) fn parse_pitch(s: &str) -> Result<f64, String> {
-    use halfcast::view::MAX_PITCH_DEG;
+    use halfcast::render::view::MAX_PITCH_DEG;
     let v = parse_finite(s)?;
     if v.abs() <= MAX_PITCH_DEG {
         Ok(v)
@@ -95,7 +95,7 @@ pub(crate) fn parse_pitch(s: &str) -> Result<f64, String> {
 }
 
 pub(crate) fn parse_eye(s: &str) -> Result<f64, String> {
-    use halfcast::view::EYE_RANGE;
+    use halfcast::render::view::EYE_RANGE;
     let v = parse_finite(s)?;
     if (EYE_RANGE.0..=EYE_RANGE.1).contains(&v) {
         Ok(v)

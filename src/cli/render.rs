@@ -3,10 +3,10 @@
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use halfcast::door::DoorState;
 use halfcast::encode::{full_frame, ColorLevel, EncodeOptions};
 use halfcast::output::{json::RayReport, text};
 use halfcast::termframe;
+use halfcast::world::door::DoorState;
 use halfcast::{Framebuffer, Scene};
 
 use super::options::{MapArgs, PoseArgs, WorldArgs};

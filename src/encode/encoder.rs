@@ -6,7 +6,7 @@ use super::palette::{distance, Code, Palette, DEFAULT, UNKNOWN};
 use super::plan::{write_span, Choice, RowPlanner, RowStart, DEFAULT_BEAM};
 use super::quantize::{quantize_with, CellCache};
 use super::sgr;
-use crate::framebuffer::Framebuffer;
+use crate::render::framebuffer::Framebuffer;
 
 /// DEC private mode 2026: the terminal holds the screen until the end marker, so frames never tear.
 pub const SYNC_BEGIN: &[u8] = b"\x1b[?2026h";

@@ -8,7 +8,7 @@ use super::palette::{Palette, DEFAULT};
 use super::plan::{Choice, RowPlanner, RowStart};
 use super::quantize::quantize;
 use super::sgr;
-use crate::framebuffer::Framebuffer;
+use crate::render::framebuffer::Framebuffer;
 
 /// Every cell of `fb`, row by row, each row ending with a colour reset and a newline.
 ///

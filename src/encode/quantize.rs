@@ -2,8 +2,8 @@
 
 use super::level::ColorLevel;
 use super::palette::{Code, Palette};
-use crate::framebuffer::Framebuffer;
 use crate::output::text::shade_char;
+use crate::render::framebuffer::Framebuffer;
 
 /// The mono glyph of a cell: the shade-ramp character of its two pixels' mean luminance.
 #[must_use]

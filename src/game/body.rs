@@ -59,7 +59,7 @@ impl Body {
 mod tests {
     use super::*;
 
-    const STANDING: f64 = crate::view::STANDING_EYE;
+    const STANDING: f64 = crate::render::view::STANDING_EYE;
 
     fn span(floor: f64, ceil: f64) -> Span {
         Span { floor, ceil }

@@ -6,9 +6,9 @@
 //! to step onto and a ceiling too low to pass ([`Body::can_enter`]).
 
 use super::body::Body;
-use crate::door::DoorState;
 use crate::map::{Cell, Map};
 use crate::vec2::Vec2;
+use crate::world::door::DoorState;
 use crate::world::SolidDisc;
 
 /// Player half-size in cells; small enough to pass a one-cell corridor comfortably.
@@ -189,7 +189,7 @@ pub fn settle(map: &Map, p: Vec2, r: f64) -> Vec2 {
     let (i, j) = centre_cell(p);
     let standing = Body {
         feet: map.span(i, j).map_or(0.0, |s| s.floor),
-        eye: crate::view::STANDING_EYE,
+        eye: crate::render::view::STANDING_EYE,
     };
     let ((i0, i1), (j0, j1)) = covered(p, r);
     let ledge = (j0..=j1).any(|b| {

@@ -1,6 +1,6 @@
 //! The ray debugger's state: paused or not, which column is traced, how far its DDA is shown.
 
-use crate::cast::DdaTrace;
+use crate::render::cast::DdaTrace;
 
 /// How much of the debugged ray's traversal is revealed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

@@ -13,9 +13,9 @@ pub mod pose;
 use std::sync::Arc;
 
 use crate::camera::Camera;
-use crate::cast::{trace_column_doors, DdaTrace};
-use crate::door::DoorState;
-use crate::view::{View, MAX_PITCH_DEG, STANDING_EYE};
+use crate::render::cast::{trace_column_doors, DdaTrace};
+use crate::render::view::{View, MAX_PITCH_DEG, STANDING_EYE};
+use crate::world::door::DoorState;
 use crate::world::{SolidDisc, World};
 
 pub use body::Body;
@@ -502,7 +502,7 @@ mod tests {
         for _ in 0..45 {
             step(&mut s, &Input::default(), 1.0 / 30.0);
         }
-        assert!(s.doors.open_amount((11, 5)) >= crate::door::PASSABLE_OPEN);
+        assert!(s.doors.open_amount((11, 5)) >= crate::world::door::PASSABLE_OPEN);
         walk(&mut s, 1.0);
         assert!(s.camera.pos.x < 11.0, "walked through: {:?}", s.camera.pos);
     }

@@ -5,8 +5,8 @@
 use super::body::Body;
 use super::CROUCH_EYE;
 use crate::map::{Map, Span};
+use crate::render::view::EYE_RANGE;
 use crate::vec2::Vec2;
-use crate::view::EYE_RANGE;
 
 /// How far below its cell's ceiling a still frame's eye must stay: as on a plain floor, where
 /// the highest eye is [`EYE_RANGE`]`.1` under a ceiling at 1.

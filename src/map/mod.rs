@@ -13,7 +13,7 @@ pub use read::{read_map_file, MAX_MAP_BYTES};
 pub use sprite::{Blend, ColourKey, SpriteDef};
 
 use crate::color::Rgb;
-use crate::light::Fog;
+use crate::render::light::Fog;
 use crate::vec2::Vec2;
 
 /// What one grid cell holds; walls carry their digit (1–9), floors their zone (0 = default).
@@ -178,7 +178,7 @@ pub struct Map {
     pub door_texture: Option<TextureRef>,
     /// The `FOG r,g,b density` line.
     pub fog: Option<Fog>,
-    /// The `SHADE falloff` line: distance darkening strength (see [`crate::light::Lighting`]).
+    /// The `SHADE falloff` line: distance darkening strength (see [`crate::render::light::Lighting`]).
     pub shade: Option<f64>,
     /// halfcast's `LIGHT` lines, in file order.
     pub lights: Vec<LightDef>,
@@ -222,7 +222,7 @@ impl Map {
     }
 
     /// Whether a point stands in a walkable cell (used by collision and pose checks).
-    /// Door cells are not walkable here; whether one is open is dynamic (see [`crate::door`]).
+    /// Door cells are not walkable here; whether one is open is dynamic (see [`crate::world::door`]).
     #[must_use]
     pub fn is_walkable(&self, p: Vec2) -> bool {
         matches!(
@@ -233,7 +233,7 @@ impl Map {
 }
 
 impl Map {
-    /// Every door cell, in row-major order (the index a [`crate::door::DoorState`] uses).
+    /// Every door cell, in row-major order (the index a [`crate::world::door::DoorState`] uses).
     #[must_use]
     pub fn door_cells(&self) -> Vec<(i64, i64)> {
         let w = self.width.max(1);

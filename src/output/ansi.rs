@@ -4,7 +4,7 @@
 //! ([`crate::encode::full_frame`]), which also serves the other colour levels.
 
 use crate::encode::{full_frame, EncodeOptions};
-use crate::framebuffer::Framebuffer;
+use crate::render::framebuffer::Framebuffer;
 
 /// Each cell as a half block with exact 24-bit colours, rows ending in a reset and a newline.
 #[must_use]

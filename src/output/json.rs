@@ -2,11 +2,11 @@
 
 use serde::Serialize;
 
-use crate::billboard::SpriteOutcome;
 use crate::camera::Camera;
-use crate::cast::{Cast, Side};
-use crate::height_cast::{FaceKind, FaceSpan};
-use crate::sprite::{to_camera_space, Culled};
+use crate::render::billboard::SpriteOutcome;
+use crate::render::cast::{Cast, Side};
+use crate::render::height_cast::{FaceKind, FaceSpan};
+use crate::world::sprite::{to_camera_space, Culled};
 use crate::world::World;
 
 /// The JSON document `render --format json` prints (field order as documented).
@@ -69,7 +69,7 @@ pub struct ColumnReport {
     pub spans: Option<Vec<SpanReport>>,
 }
 
-/// One vertical face drawn in a column (see [`crate::height_cast::FaceSpan`]).
+/// One vertical face drawn in a column (see [`crate::render::height_cast::FaceSpan`]).
 #[derive(Debug, Serialize)]
 pub struct SpanReport {
     /// The cell whose solid part the face is.

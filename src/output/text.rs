@@ -1,6 +1,6 @@
 //! A plain-ASCII view: one character per cell from the cell's brightness.
 
-use crate::framebuffer::Framebuffer;
+use crate::render::framebuffer::Framebuffer;
 
 /// Dark to bright; spaces read as darkness in any terminal or code review.
 pub const SHADE_RAMP: &[u8] = b" .:-=+*#%@";

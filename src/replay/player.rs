@@ -7,9 +7,9 @@ use ratatui::layout::Rect;
 
 use super::format::{FrameInput, Header, Replay};
 use crate::camera::Camera;
-use crate::cast::Cast;
-use crate::framebuffer::Framebuffer;
 use crate::game::{step, GameState};
+use crate::render::cast::Cast;
+use crate::render::framebuffer::Framebuffer;
 use crate::tui::keys::{InputMode, UiCommand};
 use crate::tui::layout::{Panes, Toggles};
 use crate::tui::render::render_view;

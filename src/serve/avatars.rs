@@ -8,15 +8,15 @@ use ratatui::layout::Rect;
 use ratatui::style::{Color, Modifier, Style};
 
 use super::players::{PlayerId, Snapshot};
-use crate::cast::Cast;
 use crate::color::Rgb;
 use crate::encode::{ColorLevel, Palette};
-use crate::framebuffer::Framebuffer;
 use crate::game::GameState;
 use crate::map::{Blend, ColourKey, SpriteDef, TextureRef};
-use crate::sprite::{project, Sprite};
+use crate::render::cast::Cast;
+use crate::render::framebuffer::Framebuffer;
 use crate::texture::builtin;
 use crate::widget::minimap::MapView;
+use crate::world::sprite::{project, Sprite};
 use crate::world::World;
 
 /// The built-in sprite sheet players wear (8 views × 4 walking frames).
@@ -314,7 +314,7 @@ mod tests {
         let colour = Rgb::new(250, 40, 200);
         let snap = Snapshot {
             version: 1,
-            doors: crate::door::DoorState::none(),
+            doors: crate::world::door::DoorState::none(),
             players: vec![super::super::players::PlayerView {
                 id: 7,
                 name: "ada".into(),
@@ -325,7 +325,7 @@ mod tests {
         };
         let (w, h) = (80, 96);
         let mut fb = Framebuffer::new(w, h);
-        let cast = crate::scene::Scene::new(&world, eye.camera)
+        let cast = crate::render::scene::Scene::new(&world, eye.camera)
             .with_view(eye.view)
             .render_into(&mut fb, None);
         mark_players(&mut fb, &eye, &cast, &snap, 1);

@@ -8,12 +8,12 @@ use std::sync::Arc;
 
 use crate::camera::{Camera, DEFAULT_FOV_DEG};
 use crate::color::Rgb;
-use crate::door::DoorState;
 use crate::game::collision::{centre_cell, fits_here, overlaps_wall, Obstacles, PLAYER_RADIUS};
 use crate::game::Body;
 use crate::game::{step_shared, Command, GameState, Held, Input};
+use crate::render::view::STANDING_EYE;
 use crate::vec2::Vec2;
-use crate::view::STANDING_EYE;
+use crate::world::door::DoorState;
 use crate::world::{SolidDisc, World};
 
 /// A connection's id; also names its player in the world.

@@ -5,7 +5,7 @@ use std::fmt::Write;
 use super::text::cell_code;
 use super::{TermCell, TermFrame};
 use crate::color::Rgb;
-use crate::framebuffer::Framebuffer;
+use crate::render::framebuffer::Framebuffer;
 
 /// One cell that looks different in the two frames.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

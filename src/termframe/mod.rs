@@ -12,7 +12,7 @@ pub use parse::{load, parse_frame, FrameFormat, MAX_FRAME, MAX_FRAME_BYTES};
 pub use text::{cell_code, from_cells_text, to_cells_text, CELLS_HEADER};
 
 use crate::color::Rgb;
-use crate::framebuffer::Framebuffer;
+use crate::render::framebuffer::Framebuffer;
 
 /// One terminal cell as a person sees it: a glyph with a foreground and a background colour
 /// (`None` = the terminal's default colour).

@@ -7,7 +7,7 @@ use super::{from_cells_text, TermCell, TermFrame, CELLS_HEADER};
 use crate::color::Rgb;
 #[cfg(any(test, feature = "vt100"))]
 use crate::encode::palette::xterm_rgb;
-use crate::framebuffer::Framebuffer;
+use crate::render::framebuffer::Framebuffer;
 
 /// What kind of frame file was read.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

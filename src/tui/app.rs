@@ -16,9 +16,9 @@ use super::screen::{draw_notice, draw_with_keys, Screen};
 use super::stats::FrameStats;
 use super::terminal::Session;
 use crate::encode::{ColourChoice, ColourReason, EncodeOptions, Pacer};
-use crate::framebuffer::Framebuffer;
 use crate::game::{step, GameState};
 use crate::present::Presenter;
+use crate::render::framebuffer::Framebuffer;
 use crate::replay::FrameInput;
 
 /// How a play session ended.

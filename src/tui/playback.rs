@@ -19,8 +19,8 @@ use ratatui::layout::Rect;
 use ratatui::widgets::{Paragraph, Widget, Wrap};
 
 use crate::encode::EncodeOptions;
-use crate::framebuffer::Framebuffer;
 use crate::present::Presenter;
+use crate::render::framebuffer::Framebuffer;
 use crate::replay::player::Player;
 use crate::replay::Replay;
 use crate::world::World;

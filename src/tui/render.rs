@@ -1,10 +1,10 @@
 //! The render stage of a frame: game state → 3D view pixels (no terminal involved).
 
-use crate::cast::Cast;
 use crate::color::Rgb;
-use crate::framebuffer::Framebuffer;
 use crate::game::GameState;
-use crate::scene::Scene;
+use crate::render::cast::Cast;
+use crate::render::framebuffer::Framebuffer;
+use crate::render::scene::Scene;
 use crate::widget::plot::mix;
 
 /// Tint of the debugged column in the 3D view while the debugger is paused.

@@ -12,10 +12,10 @@ use super::keys::InputMode;
 use super::layout::{Panes, Toggles, MIN_SIZE};
 use super::stats::FrameStats;
 use super::status::{status_line, BAR};
-use crate::cast::Cast;
 use crate::encode::ColorLevel;
-use crate::framebuffer::Framebuffer;
 use crate::game::{Cursor, GameState};
+use crate::render::cast::Cast;
+use crate::render::framebuffer::Framebuffer;
 use crate::widget::{DebugPane, HalfBlockView, Minimap, RevealedTrace};
 
 const BORDER: Style = Style::new().fg(Color::Rgb(84, 90, 112));

@@ -11,10 +11,10 @@ use ratatui::widgets::{Paragraph, Widget};
 
 use super::revealed::RevealedTrace;
 use crate::camera::Camera;
-use crate::cast::{DdaStep, Side};
-use crate::height_cast::{Band, HeightColumn};
 use crate::map::{Cell, Map};
-use crate::raster::{heading, texture_x, wall_span};
+use crate::render::cast::{DdaStep, Side};
+use crate::render::height_cast::{Band, HeightColumn};
+use crate::render::raster::{heading, texture_x, wall_span};
 use crate::world::World;
 
 /// Lines around the step table: column, rayDir, deltaDist, table header; then 3 hit lines.
@@ -432,7 +432,7 @@ impl Widget for DebugPane<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cast::trace_column;
+    use crate::render::cast::trace_column;
     use crate::vec2::Vec2;
 
     fn text(lines: &[Line]) -> Vec<String> {
@@ -494,10 +494,11 @@ mod tests {
     fn heights_pane_lines(shown: Option<usize>, rows: usize) -> Vec<String> {
         let w = heights_world();
         let cam = Camera::from_angle(Vec2::new(1.5, 1.5), 0.0, 66.0);
-        let view = crate::view::View::default();
-        let proj = crate::height_cast::Projection::new(&cam, &view, 40, 24);
-        let doors = crate::door::DoorState::new(&w.map);
-        let cast = crate::height_cast::cast_heights(&w.map, &doors, &cam, &proj, 40, Some(20));
+        let view = crate::render::view::View::default();
+        let proj = crate::render::height_cast::Projection::new(&cam, &view, 40, 24);
+        let doors = crate::world::door::DoorState::new(&w.map);
+        let cast =
+            crate::render::height_cast::cast_heights(&w.map, &doors, &cam, &proj, 40, Some(20));
         let t = cast.trace.as_ref().unwrap();
         let ray = match shown {
             Some(n) => RevealedTrace::partial(t, n),

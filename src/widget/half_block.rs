@@ -8,7 +8,7 @@ use ratatui::widgets::Widget;
 use crate::color::Rgb;
 use crate::encode::quantize::mono_char;
 use crate::encode::{ColorLevel, Palette};
-use crate::framebuffer::Framebuffer;
+use crate::render::framebuffer::Framebuffer;
 
 /// The upper-half block: its foreground paints the upper pixel, its background the lower.
 pub const UPPER_HALF: &str = "▀";

@@ -11,14 +11,14 @@ use super::half_block::HalfBlockView;
 use super::plot::{blend, disc, dot, line, mix};
 use super::revealed::RevealedTrace;
 use crate::camera::Camera;
-use crate::cast::ColumnHit;
 use crate::color::Rgb;
-use crate::door::DoorState;
-use crate::framebuffer::Framebuffer;
 use crate::game::body::STEP_UP;
 use crate::map::{Cell, DoorPlane, Map};
-use crate::sprite::Sprite;
+use crate::render::cast::ColumnHit;
+use crate::render::framebuffer::Framebuffer;
 use crate::vec2::Vec2;
+use crate::world::door::DoorState;
+use crate::world::sprite::Sprite;
 use crate::world::{Paint, World};
 
 /// Fewest pixels per map cell; below this rays and cells blur, so the map scrolls instead.

@@ -1,7 +1,7 @@
 //! Tiny drawing primitives on a [`Framebuffer`] used as a canvas (the minimap's pixels).
 
 use crate::color::Rgb;
-use crate::framebuffer::Framebuffer;
+use crate::render::framebuffer::Framebuffer;
 
 /// Mixes `over` onto `under` with opacity `alpha` in 0..=256.
 #[must_use]

@@ -1,6 +1,6 @@
 //! The part of a DDA trace the debugger has revealed so far, shared by the pane and minimap.
 
-use crate::cast::{DdaStep, DdaTrace, Side};
+use crate::render::cast::{DdaStep, DdaTrace, Side};
 use crate::vec2::Vec2;
 
 /// A trace plus how many of its steps are shown; `hit_reached` once all of them are.
@@ -76,7 +76,7 @@ pub fn crossing(trace: &DdaTrace, step: &DdaStep) -> f64 {
 mod tests {
     use super::*;
     use crate::camera::Camera;
-    use crate::cast::trace_column;
+    use crate::render::cast::trace_column;
     use crate::world::World;
 
     #[test]

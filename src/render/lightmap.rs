@@ -2,15 +2,15 @@
 //! walls casting shadows. Built once per world; renderers read it per pixel when the world is
 //! dark (night or `SHADE`), so lamps are islands of light.
 
-use crate::cast::cast_ray_doors;
-use crate::door::DoorState;
 use crate::map::{LightDef, Map};
+use crate::render::cast::cast_ray_doors;
 use crate::vec2::Vec2;
+use crate::world::door::DoorState;
 
 /// Samples per cell along each axis (read back with bilinear filtering).
 const PER_CELL: usize = 4;
 
-/// Full brightness in the stored levels (256ths, like [`crate::light::Shade`]).
+/// Full brightness in the stored levels (256ths, like [`crate::render::light::Shade`]).
 pub const FULL: u16 = 256;
 
 /// Lamp brightness over the map in 256ths, sampled [`PER_CELL`] times per cell on each axis.

@@ -1,22 +1,22 @@
-//! Paints the draw lists of [`crate::height_cast`] (maps with `Hz` heights): floors and ceilings
+//! Paints the draw lists of [`crate::render::height_cast`] (maps with `Hz` heights): floors and ceilings
 //! world-anchored at their own heights, vertical faces with texture rows anchored to world
 //! height (the texel row for height z is frac(1 − z)·texH, so taller faces repeat, never
 //! stretch), every surface lit by its distance; then the sprites, hidden pixel by pixel by
 //! whatever nearer surface was drawn there.
 
-use crate::billboard::{draw_sprites, Occluders, SpriteOutcome};
-use crate::cast::{Cast, Side};
-use crate::framebuffer::Framebuffer;
-use crate::height_cast::{Band, FaceKind, FaceSpan, FlatSpan, Projection};
-use crate::light::{Shade, ShadeTable};
-use crate::lightmap::LightMap;
 use crate::map::Cell;
-use crate::raster::{face_texture_x, fast_floor, heading_of, Y_SIDE_SHADE};
-use crate::scene::Scene;
+use crate::render::billboard::{draw_sprites, Occluders, SpriteOutcome};
+use crate::render::cast::{Cast, Side};
+use crate::render::framebuffer::Framebuffer;
+use crate::render::height_cast::{Band, FaceKind, FaceSpan, FlatSpan, Projection};
+use crate::render::light::{Shade, ShadeTable};
+use crate::render::lightmap::LightMap;
+use crate::render::raster::{face_texture_x, fast_floor, heading_of, Y_SIDE_SHADE};
+use crate::render::scene::Scene;
 use crate::vec2::Vec2;
 use crate::world::Paint;
 
-/// Paints `cast` (from [`crate::height_cast::cast_heights`] at `fb`'s size) and the sprites.
+/// Paints `cast` (from [`crate::render::height_cast::cast_heights`] at `fb`'s size) and the sprites.
 pub fn rasterize_heights(scene: &Scene, cast: &Cast, fb: &mut Framebuffer) -> Vec<SpriteOutcome> {
     let (w, h) = (fb.width(), fb.height());
     if w == 0 || h == 0 {
@@ -175,10 +175,10 @@ impl Painter<'_> {
 mod tests {
     use crate::camera::Camera;
     use crate::color::Rgb;
-    use crate::framebuffer::Framebuffer;
-    use crate::light::{Fog, ShadeTable};
     use crate::map::parse_map;
-    use crate::scene::Scene;
+    use crate::render::framebuffer::Framebuffer;
+    use crate::render::light::{Fog, ShadeTable};
+    use crate::render::scene::Scene;
     use crate::vec2::Vec2;
     use crate::world::{TextureSource, World};
 
@@ -224,7 +224,7 @@ mod tests {
         // 1 to 2 repeats the wall from 0 to 1 row for row. Focal 32 at distance 2: one unit is
         // exactly 16 rows, so rows 16 apart show the same texel.
         let w = world("Hh 0 2\n", "111111\n1Ehhh1\n111111\n");
-        let view = crate::view::View::new(0.0, 0.92).on_ground(0.05);
+        let view = crate::render::view::View::new(0.0, 0.92).on_ground(0.05);
         let scene =
             Scene::new(&w, Camera::from_angle(Vec2::new(3.0, 1.5), 0.0, 90.0)).with_view(view);
         let mut fb = Framebuffer::new(64, 200);

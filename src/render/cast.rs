@@ -1,9 +1,9 @@
 //! The grid DDA: one ray per screen column, pure maths over a [`Map`] and a [`Camera`].
 
 use crate::camera::Camera;
-use crate::door::DoorState;
 use crate::map::{Cell, DoorPlane, Map};
 use crate::vec2::Vec2;
+use crate::world::door::DoorState;
 
 /// deltaDist for a ray component that is exactly zero (Lode's convention: finite, never chosen).
 pub const NEVER: f64 = 1e30;
@@ -82,13 +82,13 @@ pub struct DdaTrace {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Cast {
     /// One hit per column: on maps with `Hz` heights, where the column's window of open rows
-    /// closed (see [`crate::height_cast`]).
+    /// closed (see [`crate::render::height_cast`]).
     pub columns: Vec<ColumnHit>,
     /// The step-by-step traversal of the traced column, when one was asked for.
     pub trace: Option<DdaTrace>,
     /// On maps with `Hz` heights, each column's draw list front to back (floors, ceilings and
     /// every vertical face with its rows); empty on flat maps, which are drawn from `columns`.
-    pub heights: Vec<crate::height_cast::HeightColumn>,
+    pub heights: Vec<crate::render::height_cast::HeightColumn>,
 }
 
 /// Casts one ray per column of a `width`-column view; traces column `traced` step by step.

@@ -3,8 +3,8 @@
 
 use crate::camera::Camera;
 use crate::map::SpriteDef;
+use crate::render::view::View;
 use crate::vec2::Vec2;
-use crate::view::View;
 
 /// Sprites nearer than this (in depth along the view) are treated as behind the eye.
 pub const NEAR_PLANE: f64 = 0.05;

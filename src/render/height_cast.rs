@@ -1,7 +1,7 @@
 //! Casting on maps with `Hz` heights (issue 14): each column's ray keeps walking past steps and
 //! lintels, and the column keeps the window of rows still open front to back (Build's
 //! umost/dmost, Stephens' clipping) until a solid wall — or the cells' own floors and ceilings —
-//! close it. Pure: the result is a draw list per column that [`crate::height_raster`] paints.
+//! close it. Pure: the result is a draw list per column that [`crate::render::height_raster`] paints.
 //!
 //! Geometry. A walkable cell is open air between its floor and ceiling ([`Map::span`]); walls
 //! and the void are solid at every height. Pixel row `y` of a column shows, at distance `t` along
@@ -16,11 +16,11 @@
 //! so the neighbour's `Wz` paints it (otherwise `NO`/`SO`/`WE`/`EA` by heading, as walls).
 
 use crate::camera::Camera;
-use crate::cast::{door_hit, Cast, ColumnHit, DdaStep, DdaTrace, Setup, Side};
-use crate::door::DoorState;
 use crate::map::{Cell, Map, Span};
+use crate::render::cast::{door_hit, Cast, ColumnHit, DdaStep, DdaTrace, Setup, Side};
+use crate::render::view::View;
 use crate::vec2::Vec2;
-use crate::view::View;
+use crate::world::door::DoorState;
 
 /// What kind of vertical face a column drew (the JSON `kind`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
@@ -560,7 +560,7 @@ mod tests {
         let (hit, col) = column(&m, 0.5);
         covers_every_row_once(&col, 41);
         let wall = col.faces().next().unwrap();
-        let flat = crate::raster::wall_span_at(hit.perp_dist, 20.0, 41, 20.5, 0.5);
+        let flat = crate::render::raster::wall_span_at(hit.perp_dist, 20.0, 41, 20.5, 0.5);
         assert_eq!(wall.rows, flat.rows);
         assert_eq!(hit.cell, (5, 1));
     }

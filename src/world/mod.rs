@@ -1,23 +1,26 @@
 //! A map with its textures loaded: everything the rasterizer needs to paint.
 
+pub mod door;
+pub mod sprite;
+
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
 use crate::color::Rgb;
-use crate::door::DoorState;
 use crate::input_file::read_regular_capped;
-use crate::lightmap::LightMap;
 use crate::map::{Cell, ColourKey, Map, SpriteDef, Surface, TextureRef};
-use crate::sprite::Sprite;
+use crate::render::lightmap::LightMap;
 use crate::texture::decode::{
     check_size, image_dimensions, MAX_IMAGE_FILE_BYTES, MAX_TEXTURE_SIDE,
 };
 use crate::texture::sheet::SpriteSheet;
 use crate::texture::{builtin, Texture};
 use crate::vec2::Vec2;
+use crate::world::door::DoorState;
+use crate::world::sprite::Sprite;
 
 /// The default map, compiled in so the binary needs no files.
-pub const DEFAULT_MAP: &str = include_str!("../maps/default.cub");
+pub const DEFAULT_MAP: &str = include_str!("../../maps/default.cub");
 
 /// The name the embedded default map goes by in messages.
 pub const DEFAULT_MAP_NAME: &str = "maps/default.cub";
@@ -280,8 +283,8 @@ pub const LEGACY_SPRITE_FALLBACK: &str = "barrel";
 impl World {
     /// The light the map asks for: its `FOG` and `SHADE` lines (day, no night).
     #[must_use]
-    pub fn lighting(&self) -> crate::light::Lighting {
-        crate::light::Lighting {
+    pub fn lighting(&self) -> crate::render::light::Lighting {
+        crate::render::light::Lighting {
             fog: self.map.fog,
             night: false,
             falloff: self.map.shade.unwrap_or(0.0),

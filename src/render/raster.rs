@@ -1,13 +1,13 @@
 //! Turns the cast rays into pixels: textured floor and ceiling rows, then wall stripes, then
 //! sprites; everything lit through one distance table and placed by the view's horizon and eye.
 
-use crate::billboard::{draw_sprites, Occluders, SpriteOutcome};
-use crate::cast::{ColumnHit, Side};
 use crate::color::Rgb;
-use crate::framebuffer::Framebuffer;
-use crate::light::{Shade, ShadeTable};
 use crate::map::Cell;
-use crate::scene::Scene;
+use crate::render::billboard::{draw_sprites, Occluders, SpriteOutcome};
+use crate::render::cast::{ColumnHit, Side};
+use crate::render::framebuffer::Framebuffer;
+use crate::render::light::{Shade, ShadeTable};
+use crate::render::scene::Scene;
 use crate::vec2::Vec2;
 use crate::world::{Paint, World};
 
@@ -15,7 +15,7 @@ use crate::world::{Paint, World};
 pub const Y_SIDE_SHADE: u16 = 184;
 
 /// The eye's height above the floor, in wall heights (walls span 0..1), when standing.
-const EYE_HEIGHT: f64 = crate::view::STANDING_EYE;
+const EYE_HEIGHT: f64 = crate::render::view::STANDING_EYE;
 
 /// Which compass direction a ray travels when it hits (index into a wall's face textures).
 #[must_use]

@@ -1,13 +1,13 @@
 //! Draws the sprites over the walls: far to near, column by column, each column tested against
 //! the walls' depth buffer (the per-column perpendicular distances from the cast).
 
-use crate::cast::ColumnHit;
 use crate::color::Rgb;
-use crate::framebuffer::Framebuffer;
-use crate::light::{Shade, ShadeTable};
 use crate::map::Blend;
-use crate::scene::Scene;
-use crate::sprite::{far_to_near, frame_index, project, view_index, Culled, Projection};
+use crate::render::cast::ColumnHit;
+use crate::render::framebuffer::Framebuffer;
+use crate::render::light::{Shade, ShadeTable};
+use crate::render::scene::Scene;
+use crate::world::sprite::{far_to_near, frame_index, project, view_index, Culled, Projection};
 
 /// What became of one sprite in a frame (the JSON `sprites` array is built from these).
 #[derive(Debug, Clone, Copy, PartialEq)]

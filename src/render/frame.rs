@@ -1,0 +1,87 @@
+//! Drawing a [`Scene`]: cast the rays (through `Hz` heights where the map has them), rasterize
+//! walls, floors, ceilings and sprites into a [`Framebuffer`], and hand the frame out in each form
+//! a test or tool needs (pixels, ratatui cells, ANSI, PNG, snapshot text).
+
+use crate::render::billboard::SpriteOutcome;
+use crate::render::cast::{cast_with_doors, Cast};
+use crate::render::framebuffer::Framebuffer;
+use crate::render::height_cast::{cast_heights, Projection};
+use crate::render::height_raster::rasterize_heights;
+use crate::render::raster::rasterize_frame;
+use crate::render::scene::Scene;
+use crate::widget::HalfBlockView;
+use crate::world::door::DoorState;
+
+/// One rendered frame's by-products: the rays and what became of each sprite.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Frame {
+    /// The rays (and the traced column), as [`Scene::render_into`] returns them.
+    pub cast: Cast,
+    /// One outcome per world sprite, in world order.
+    pub sprites: Vec<SpriteOutcome>,
+}
+
+impl Scene<'_> {
+    /// Casts and rasterizes into `fb` at its size; returns the rays (with `traced`'s full trace).
+    pub fn render_into(&self, fb: &mut Framebuffer, traced: Option<usize>) -> Cast {
+        self.render_frame(fb, traced).cast
+    }
+
+    /// [`Scene::render_into`], also reporting each sprite's projection and visibility.
+    pub fn render_frame(&self, fb: &mut Framebuffer, traced: Option<usize>) -> Frame {
+        let none = DoorState::none();
+        let doors = self.doors.unwrap_or(&none);
+        let map = &self.world.map;
+        if map.has_heights() {
+            // Steps, pits and lintels: each column keeps walking until its window of rows closes.
+            let proj = Projection::new(&self.camera, &self.view, fb.width(), fb.height());
+            let cast = cast_heights(map, doors, &self.camera, &proj, fb.width(), traced);
+            let sprites = rasterize_heights(self, &cast, fb);
+            return Frame { cast, sprites };
+        }
+        let cast = cast_with_doors(map, doors, &self.camera, fb.width(), traced);
+        let sprites = rasterize_frame(self, &cast.columns, fb);
+        Frame { cast, sprites }
+    }
+
+    /// Renders a fresh framebuffer for a `cols` × `rows`-cell view.
+    #[must_use]
+    pub fn render(&self, cols: u16, rows: u16) -> Framebuffer {
+        let mut fb = Framebuffer::for_cells(cols, rows);
+        self.render_into(&mut fb, None);
+        fb
+    }
+
+    /// The frame as ratatui cells (`▀`, fg = upper pixel, bg = lower), as the TUI's view pane
+    /// draws it: for tests of widgets and screens built around the view.
+    #[must_use]
+    pub fn to_buffer(&self, cols: u16, rows: u16) -> ratatui::buffer::Buffer {
+        use ratatui::widgets::Widget;
+        let area = ratatui::layout::Rect::new(0, 0, cols, rows);
+        let mut buf = ratatui::buffer::Buffer::empty(area);
+        HalfBlockView::new(&self.render(cols, rows)).render(area, &mut buf);
+        buf
+    }
+
+    /// The bytes a truecolor terminal receives to show the frame in one full redraw (the same as
+    /// `halfcast render --format ansi --colors truecolor`).
+    #[must_use]
+    pub fn to_ansi(&self, cols: u16, rows: u16) -> String {
+        crate::output::ansi::to_ansi_truecolor(&self.render(cols, rows))
+    }
+
+    /// The frame as a PNG of `cols` × 2·`rows` pixels (`halfcast render --format png`).
+    ///
+    /// # Errors
+    /// The PNG encoder's message (it does not fail for in-memory frames in practice).
+    pub fn to_png(&self, cols: u16, rows: u16) -> Result<Vec<u8>, String> {
+        self.render(cols, rows).to_png()
+    }
+
+    /// The frame in the colour-aware text form snapshots pin (`halfcast-cells v1`, see
+    /// [`crate::snapshot::cells_text`]), so a test can `insta::assert_snapshot!` it.
+    #[must_use]
+    pub fn to_cells_text(&self, cols: u16, rows: u16) -> String {
+        crate::snapshot::cells_text(&self.render(cols, rows))
+    }
+}

@@ -1,0 +1,18 @@
+//! The pipeline's middle, in order: `cast` (rays through the grid; `height_cast` on `Hz` maps),
+//! then `raster` (walls, floors, ceilings; `height_raster` on `Hz` maps) and `billboard`
+//! (sprites) into the [`Framebuffer`], lit by `light`/`lightmap` and seen through a `view`.
+//! A [`scene::Scene`] holds one frame's input; [`frame`] turns it into pixels.
+
+pub mod billboard;
+pub mod cast;
+pub mod frame;
+pub(crate) mod framebuffer;
+pub mod height_cast;
+pub mod height_raster;
+pub mod light;
+pub mod lightmap;
+pub mod raster;
+pub mod scene;
+pub mod view;
+
+pub use framebuffer::Framebuffer;

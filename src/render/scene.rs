@@ -1,0 +1,99 @@
+//! What one frame shows: a loaded world seen through a camera, with the frame's view, light,
+//! door positions and time. The calls that draw it, one per output form a test or tool needs,
+//! live in [`crate::render::frame`], so the rasterizers read a scene without importing back.
+//!
+//! ```
+//! use halfcast::{Camera, Scene, World};
+//!
+//! let world = World::default_world();
+//! let start = world.map.start;
+//! let scene = Scene::new(&world, Camera::from_angle(start.pos(), start.angle_deg(), 66.0));
+//!
+//! let fb = scene.render(40, 12); // pixels: 40 × 24 (two per cell)
+//! assert_eq!((fb.width(), fb.height()), (40, 24));
+//! let buf = scene.to_buffer(40, 12); // ratatui cells: `▀`, fg = upper pixel, bg = lower
+//! assert_eq!(buf[(0, 0)].symbol(), "▀");
+//! let ansi = scene.to_ansi(40, 12); // what a truecolor terminal receives (full redraw)
+//! assert!(ansi.contains("\x1b[38;2;"));
+//! let png = scene.to_png(40, 12).unwrap(); // `render --format png`
+//! assert!(png.starts_with(b"\x89PNG"));
+//! let text = scene.to_cells_text(40, 12); // colour-aware text that snapshots pin
+//! assert!(text.starts_with("halfcast-cells v1 40x12\n"));
+//! // Every form shows the same frame.
+//! assert_eq!(text, halfcast::snapshot::cells_text(&buf));
+//! assert_eq!(text, halfcast::snapshot::cells_text(&fb));
+//! ```
+
+use crate::camera::Camera;
+use crate::render::light::Lighting;
+use crate::render::lightmap::LightMap;
+use crate::render::view::View;
+use crate::world::door::DoorState;
+use crate::world::World;
+
+/// The whole input of one frame (pure, no terminal, no clock): the same scene gives the same pixels.
+#[derive(Debug, Clone, Copy)]
+pub struct Scene<'a> {
+    /// The world rendered.
+    pub world: &'a World,
+    /// The eye it is seen from.
+    pub camera: Camera,
+    /// Pitch and eye height; the default is level, standing.
+    pub view: View,
+    /// Fog, night and distance shading; [`Scene::new`] takes the map's `FOG`/`SHADE` lines.
+    pub light: Lighting,
+    /// How far each door is open; `None` draws every door shut.
+    pub doors: Option<&'a DoorState>,
+    /// Game time in seconds, which picks animation frames (passed in, never read from a clock).
+    pub time: f64,
+}
+
+impl<'a> Scene<'a> {
+    /// Pairs a world with a camera: level standing view, the map's light, doors shut, time 0.
+    #[must_use]
+    pub fn new(world: &'a World, camera: Camera) -> Self {
+        Self {
+            world,
+            camera,
+            view: View::default(),
+            light: world.lighting(),
+            doors: None,
+            time: 0.0,
+        }
+    }
+
+    /// This scene seen with another pitch / eye height.
+    #[must_use]
+    pub fn with_view(mut self, view: View) -> Self {
+        self.view = view;
+        self
+    }
+
+    /// This scene under other light.
+    #[must_use]
+    pub fn with_light(mut self, light: Lighting) -> Self {
+        self.light = light;
+        self
+    }
+
+    /// This scene with doors open as `doors` says.
+    #[must_use]
+    pub fn with_doors(mut self, doors: &'a DoorState) -> Self {
+        self.doors = Some(doors);
+        self
+    }
+
+    /// This scene at game time `seconds` (animation).
+    #[must_use]
+    pub fn at_time(mut self, seconds: f64) -> Self {
+        self.time = seconds;
+        self
+    }
+
+    /// The lamp light map, when this scene is dark enough for lamps to show (night or falloff).
+    #[must_use]
+    pub fn lamp_light(&self) -> Option<&'a LightMap> {
+        let lamps = &self.world.lightmap;
+        (self.light.is_dark() && !lamps.is_empty()).then_some(lamps)
+    }
+}
