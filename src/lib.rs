@@ -1,8 +1,8 @@
 //! halfcast: a grid raycaster that renders into terminal-sized framebuffers, a ratatui widget
 //! that shows them, and a byte-lean terminal encoder any ratatui app can use.
 //!
-//! The pipeline, one module per stage: [`map`] → [`camera`] → [`cast`] (pure DDA) →
-//! [`raster`] into a [`Framebuffer`] → [`encode`] (bytes for a terminal), [`widget`] (ratatui)
+//! The pipeline, one module per stage: [`map`] → [`camera`] → [`cast`](render::cast) (pure DDA) →
+//! [`raster`](render::raster) into a [`Framebuffer`] → [`encode`] (bytes for a terminal), [`widget`] (ratatui)
 //! or [`output`] (PNG, ANSI, text, JSON).
 //!
 //! # Features
