@@ -3,6 +3,7 @@
 
 use crate::cast::ColumnHit;
 use crate::color::Rgb;
+use crate::dither_phase;
 use crate::framebuffer::Framebuffer;
 use crate::light::{Shade, ShadeTable};
 use crate::map::Blend;
@@ -95,6 +96,9 @@ fn draw_one(
     let v_step = cell_h as f64 / (p.bottom - p.top);
     let v_start = (p.rows.0 as f64 + 0.5 - p.top) * v_step;
     let mut drawn = false;
+    // Dither phases on the sprite's own (u, v), a lattice about a pixel fine.
+    let per_u = dither_phase::lattice(width);
+    let per_v = dither_phase::lattice(p.bottom - p.top);
     for (x, hit) in hits.iter().enumerate().take(p.cols.1).skip(p.cols.0) {
         if p.depth >= hit.perp_dist {
             continue;
@@ -131,6 +135,12 @@ fn draw_one(
                 }
             };
             fb.set(x, y, out);
+            let pv = (y as f64 + 0.5 - p.top) / (p.bottom - p.top);
+            let phase = dither_phase::at(
+                dither_phase::index(u, per_u),
+                dither_phase::index(pv, per_v),
+            );
+            fb.set_phase(x, y, phase);
         }
     }
     drawn

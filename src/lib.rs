@@ -36,6 +36,7 @@ pub mod view;
 pub mod camera;
 pub mod cast;
 pub mod color;
+pub mod dither_phase;
 pub mod encode;
 pub mod framebuffer;
 pub mod fuzzing;
