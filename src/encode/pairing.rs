@@ -347,9 +347,8 @@ pub fn choose_alternating(
     // The OKLab error of linear colour `x` against the pixels' mix.
     let error = |x: Linear| -> f32 {
         let e = [0, 1, 2].map(|i| x[i] - mean[i]);
-        let lab = [0, 1, 2].map(|k| {
-            jacobian[0][k] * e[0] + jacobian[1][k] * e[1] + jacobian[2][k] * e[2]
-        });
+        let lab = [0, 1, 2]
+            .map(|k| jacobian[0][k] * e[0] + jacobian[1][k] * e[1] + jacobian[2][k] * e[2]);
         lab[0] * lab[0] + lab[1] * lab[1] + lab[2] * lab[2]
     };
     for &b in &pairs[..len] {
