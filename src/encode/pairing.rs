@@ -3,9 +3,14 @@
 //!
 //! With one nearest colour per pixel, dark low-saturation colours (the default map's bricks) all
 //! land on greys and the scene loses its hue. Here a cell may show a grey above and a reddish
-//! colour below whose mix is the brick's red. The choice depends only on the cell's two pixels —
-//! never on where the cell is on screen — so there is no dither pattern that could stay put while
-//! the picture moves: a surface translated on screen by whole cells gives the same cells translated.
+//! colour below whose mix is the brick's red. [`choose`] depends only on the cell's two pixels —
+//! never on where the cell is on screen — so a surface translated on screen by whole cells gives
+//! the same cells translated.
+//!
+//! Where no single pair's mix is close (dark saturated colours), [`choose_alternating`] adds a
+//! second pair and a share: cells whose dither phase (written by the rasterizer, tied to the
+//! surface: [`crate::dither_phase`]) is below it show the second pair, so the mix over a few cells
+//! lands near the pixels' and the pattern moves with the surface, never with the screen.
 
 use crate::color::{lab_dist2, oklab, Linear, Rgb};
 
@@ -441,6 +446,34 @@ mod tests {
         }
         let p = Palette::new(ColorLevel::Ansi16, false);
         assert_eq!(p.cell(Rgb::new(255, 0, 0), Rgb::new(0, 0, 0), 0, 0), [9, 0]);
+    }
+
+    #[test]
+    fn a_colour_no_pair_reaches_is_reached_by_alternating_two() {
+        // A dark saturated red: every single pair's mix is far off; a share of cells showing a
+        // second pair brings the blurred mix closer than the best pair alone.
+        let p = Palette::new(ColorLevel::Ansi256, false);
+        let red = Rgb::new(40, 6, 3);
+        let alt = p.cell_dithered(red, red).expect("256 colours pair cells");
+        assert!(alt.share > 0 && alt.b != alt.a, "{alt:?}");
+        let lin = |pq: [u8; 2]| {
+            let (a, b) = (xterm_rgb(pq[0]).linear(), xterm_rgb(pq[1]).linear());
+            [0, 1, 2].map(|i| (a[i] + b[i]) / 2.0)
+        };
+        let s = f32::from(alt.share) / f32::from(super::SHARES);
+        let (la, lb) = (lin(alt.a), lin(alt.b));
+        let blurred = oklab([0, 1, 2].map(|i| la[i] + s * (lb[i] - la[i])));
+        let target = oklab(red.linear());
+        let d = |c| crate::color::lab_dist2(c, target).sqrt();
+        assert!(
+            d(blurred) < 0.8 * d(oklab(la)),
+            "{} vs {}",
+            d(blurred),
+            d(oklab(la))
+        );
+        // The phase decides: low phases show the second pair, high ones the first.
+        assert_eq!(alt.resolve(0), alt.b);
+        assert_eq!(alt.resolve(255), alt.a);
     }
 
     #[test]
