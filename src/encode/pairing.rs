@@ -3,9 +3,14 @@
 //!
 //! With one nearest colour per pixel, dark low-saturation colours (the default map's bricks) all
 //! land on greys and the scene loses its hue. Here a cell may show a grey above and a reddish
-//! colour below whose mix is the brick's red. The choice depends only on the cell's two pixels —
-//! never on where the cell is on screen — so there is no dither pattern that could stay put while
-//! the picture moves: a surface translated on screen by whole cells gives the same cells translated.
+//! colour below whose mix is the brick's red. [`choose`] depends only on the cell's two pixels —
+//! never on where the cell is on screen — so a surface translated on screen by whole cells gives
+//! the same cells translated.
+//!
+//! Where no single pair's mix is close (dark saturated colours), [`choose_alternating`] adds a
+//! second pair and a share: cells whose dither phase (written by the rasterizer, tied to the
+//! surface: [`crate::render::dither_phase`]) is below it show the second pair, so the mix over a few cells
+//! lands near the pixels' and the pattern moves with the surface, never with the screen.
 
 use crate::color::{lab_dist2, oklab, Linear, Rgb};
 
@@ -92,64 +97,24 @@ fn to_srgb(v: f32) -> u8 {
     t[(v.clamp(0.0, 1.0) * 4096.0 + 0.5) as usize]
 }
 
-/// The cell's `[top, bottom]` palette indices for pixels `top` and `bottom`.
-///
-/// `near_of` gives the candidate list of an sRGB colour (the table lookup). Candidates: each
-/// pixel's nearest few entries (and, with a wide search, those nearest the cell's mix), each shown
-/// whole and paired with the entries nearest its complement `2·mean − a` in linear light (what
-/// brings the cell's mix back to the pixels' mix); the pair minimising the mix error plus
-/// [`PIXEL_WEIGHT`] × the pixels' own errors plus a split cost wins (first found on ties:
-/// deterministic).
-#[must_use]
-pub fn choose(
+/// The candidate pairs of a cell, in the order they are tried: each pixel's nearest few entries
+/// (and, with a wide search, those nearest the cell's mix), each shown whole and paired with the
+/// entries nearest its complement `2·mean − a` in linear light (what brings the cell's mix back to
+/// the pixels' mix). `consider(p, q)` is called for each (`p` above, `q` below).
+fn for_each_candidate(
     t: &PairTables,
-    near_of: impl Fn(Rgb) -> [u8; NEAR],
-    top: Rgb,
-    bottom: Rgb,
-) -> [u8; 2] {
-    let (lt, lb) = (top.linear(), bottom.linear());
-    let mean = [
-        (lt[0] + lb[0]) * 0.5,
-        (lt[1] + lb[1]) * 0.5,
-        (lt[2] + lb[2]) * 0.5,
-    ];
-    let (lab_t, lab_b, lab_m) = (oklab(lt), oklab(lb), oklab(mean));
+    near_of: &impl Fn(Rgb) -> [u8; NEAR],
+    mean: Linear,
+    (nt, nb, nm): ([u8; NEAR], [u8; NEAR], [u8; NEAR]),
+    mut consider: impl FnMut(u8, u8),
+) {
     let complement = |a: u8| -> [u8; NEAR] {
         let la = t.lin[usize::from(a)];
         let c = |i: usize| to_srgb(2.0 * mean[i] - la[i]);
         near_of(Rgb::new(c(0), c(1), c(2)))
     };
-    let split_cost = if lab_m[1].hypot(lab_m[2]) >= GREY_CHROMA {
-        SPLIT_COST
-    } else {
-        GREY_SPLIT_COST
-    };
-    let cost = |p: u8, q: u8| -> f32 {
-        let mix = t.mix[usize::from(p) * 256 + usize::from(q)];
-        lab_dist2(mix, lab_m)
-            + PIXEL_WEIGHT
-                * (lab_dist2(t.lab[usize::from(p)], lab_t)
-                    + lab_dist2(t.lab[usize::from(q)], lab_b))
-            + if p == q { 0.0 } else { split_cost }
-    };
-    let (nt, nb) = (near_of(top), near_of(bottom));
-    let mut best = ([nt[0], nb[0]], cost(nt[0], nb[0]));
-    let mut consider = |p: u8, q: u8| {
-        let c = cost(p, q);
-        if c < best.1 {
-            best = ([p, q], c);
-        }
-    };
     let width = if t.wide { NEAR } else { 1 };
-    let nm = if t.wide {
-        near_of(Rgb::new(
-            to_srgb(mean[0]),
-            to_srgb(mean[1]),
-            to_srgb(mean[2]),
-        ))
-    } else {
-        nt
-    };
+    let nm = if t.wide { nm } else { nt };
     for &a in nt.iter().chain(&nm) {
         consider(a, a);
         for q in complement(a).into_iter().take(width) {
@@ -162,7 +127,281 @@ pub fn choose(
             consider(p, a);
         }
     }
+}
+
+/// The mean of two linear colours.
+fn mean_of(a: Linear, b: Linear) -> Linear {
+    [0, 1, 2].map(|i| (a[i] + b[i]) * 0.5)
+}
+
+/// The palette entries nearest the cell's linear mix (the wide search's extra candidates).
+fn near_mean(near_of: &impl Fn(Rgb) -> [u8; NEAR], mean: Linear) -> [u8; NEAR] {
+    near_of(Rgb::new(
+        to_srgb(mean[0]),
+        to_srgb(mean[1]),
+        to_srgb(mean[2]),
+    ))
+}
+
+/// [`SPLIT_COST`] or [`GREY_SPLIT_COST`] for a cell whose mix is `lab_m`.
+fn split_cost_of(lab_m: [f32; 3]) -> f32 {
+    if lab_m[1].hypot(lab_m[2]) >= GREY_CHROMA {
+        SPLIT_COST
+    } else {
+        GREY_SPLIT_COST
+    }
+}
+
+/// The split cost of a cell in a frame with dither phases: at 256 colours (a wide search)
+/// [`DITHERED_SPLIT_COST`], at 16 [`SPLIT_COST`] (there a split is what keeps the hue, and bytes
+/// are few), or [`GREY_SPLIT_COST`] for grey cells.
+fn split_cost_dithered(t: &PairTables, lab_m: [f32; 3]) -> f32 {
+    if lab_m[1].hypot(lab_m[2]) < GREY_CHROMA {
+        GREY_SPLIT_COST
+    } else if t.wide {
+        DITHERED_SPLIT_COST
+    } else {
+        SPLIT_COST
+    }
+}
+
+/// The cell's `[top, bottom]` palette indices for pixels `top` and `bottom`.
+///
+/// `near_of` gives the candidate list of an sRGB colour (the table lookup). Among the candidates
+/// (see [`for_each_candidate`]) the pair minimising the mix error plus [`PIXEL_WEIGHT`] × the
+/// pixels' own errors plus a split cost wins (first found on ties: deterministic). This is the
+/// choice for frames without dither phases (finished frames from elsewhere).
+#[must_use]
+pub fn choose(
+    t: &PairTables,
+    near_of: impl Fn(Rgb) -> [u8; NEAR],
+    top: Rgb,
+    bottom: Rgb,
+) -> [u8; 2] {
+    let (lt, lb) = (top.linear(), bottom.linear());
+    let mean = mean_of(lt, lb);
+    let (lab_t, lab_b, lab_m) = (oklab(lt), oklab(lb), oklab(mean));
+    let split_cost = split_cost_of(lab_m);
+    let cost = |p: u8, q: u8| -> f32 {
+        let mix = t.mix[usize::from(p) * 256 + usize::from(q)];
+        lab_dist2(mix, lab_m)
+            + PIXEL_WEIGHT
+                * (lab_dist2(t.lab[usize::from(p)], lab_t)
+                    + lab_dist2(t.lab[usize::from(q)], lab_b))
+            + if p == q { 0.0 } else { split_cost }
+    };
+    let (nt, nb) = (near_of(top), near_of(bottom));
+    let nm = if t.wide {
+        near_mean(&near_of, mean)
+    } else {
+        nt
+    };
+    let mut best = ([nt[0], nb[0]], cost(nt[0], nb[0]));
+    for_each_candidate(t, &near_of, mean, (nt, nb, nm), |p, q| {
+        let c = cost(p, q);
+        if c < best.1 {
+            best = ([p, q], c);
+        }
+    });
     best.0
+}
+
+/// Steps of a dither threshold: a cell's share of its second pair is a multiple of 1/16 (the 16
+/// phases of [`crate::render::dither_phase`]).
+pub const SHARES: u8 = 16;
+
+/// Weight of the alternation's own noise (the spread between the two pairs' mixes, which a
+/// pattern about a cell fine mostly blurs away) against the mix error.
+const NOISE_WEIGHT: f32 = 0.05;
+
+/// Extra cost per colour the two pairs use beyond the two one fg/bg setting draws: each switch
+/// between them is then another colour change on the wire.
+const SWITCH_COST: f32 = 0.000_2;
+
+/// Weight of the a/b (hue and chroma) part of a 16-colour alternation's error against its
+/// lightness: with an equal weight the alternations buy lightness with greys and the scene loses
+/// its hue. Measured (default map's eight views, 16 colours): 1 → ΔE 4.08, chroma kept 0.66;
+/// 3 → 4.25, 0.63; 10 → 4.89, 0.85 (one pair per cell: 6.42, 0.85).
+const HUE_WEIGHT_16: f32 = 10.0;
+
+/// [`SPLIT_COST`] in frames with dither phases. Alternating pairs sends more colour changes, so
+/// single cells pay more for splitting; measured (256 colours, default map's eight views at
+/// 120×40; `halfcast bench` 30 diff frames per path, vs ratatui truecolor): 0.0004 → ΔE 1.27,
+/// 16.8 %; 0.0008 → 1.30, 16.1 %; 0.001 → 1.32, 15.7 %; 0.0012 → 1.34, 15.3 %; 0.002 → 1.43, 14.0 %.
+const DITHERED_SPLIT_COST: f32 = 0.001_2;
+
+/// A best pair whose mix is this close to the pixels' (squared OKLab, ΔE 2) is kept alone: an
+/// alternation would gain little and cost bytes and time.
+const CLOSE_ENOUGH: f32 = 4e-4;
+
+/// A cell that shows pair `b` where its dither phase is below `share` sixteenths, else pair `a`:
+/// over a few neighbouring cells the mix lands between the two pairs' mixes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Alternating {
+    /// The best single pair (`[top, bottom]`).
+    pub a: [u8; 2],
+    /// The second pair.
+    pub b: [u8; 2],
+    /// Sixteenths of cells that show `b` (0 = always `a`).
+    pub share: u8,
+}
+
+impl Alternating {
+    /// The `[top, bottom]` indices for a cell whose dither phase is `phase`.
+    #[must_use]
+    #[inline]
+    pub fn resolve(self, phase: u8) -> [u8; 2] {
+        if phase >> 4 < self.share {
+            self.b
+        } else {
+            self.a
+        }
+    }
+}
+
+/// How many colours pairs `a` and `b` use together beyond two: cells of either can be drawn with
+/// one foreground and one background setting (`▀ ▄ █` and space) when this is 0.
+fn extra_colours(a: [u8; 2], b: [u8; 2]) -> u8 {
+    let mut set = [a[0], a[1], b[0], b[1]];
+    set.sort_unstable();
+    let distinct =
+        1 + u8::from(set[1] != set[0]) + u8::from(set[2] != set[1]) + u8::from(set[3] != set[2]);
+    distinct.saturating_sub(2)
+}
+
+/// The cell's best pair and, where alternating with a second pair brings the cells' blurred mix
+/// closer to the pixels' mix, that pair and its share, for frames whose dither phases are tied to
+/// their surfaces.
+///
+/// The first pair is [`choose`]'s. Every other candidate is tried as the second: the share is the
+/// pixels' mix projected on the line between the two pairs' mixes (in OKLab, where nearby mixes
+/// combine almost linearly), in sixteenths; the cost adds the alternation's noise
+/// ([`NOISE_WEIGHT`]) and [`SWITCH_COST`] per colour changed to [`choose`]'s terms, weighted by
+/// share. Ties keep the first found (deterministic).
+#[must_use]
+pub fn choose_alternating(
+    t: &PairTables,
+    near_of: impl Fn(Rgb) -> [u8; NEAR],
+    top: Rgb,
+    bottom: Rgb,
+) -> Alternating {
+    let (lt, lb) = (top.linear(), bottom.linear());
+    let mean = mean_of(lt, lb);
+    let (lab_t, lab_b, lab_m) = (oklab(lt), oklab(lb), oklab(mean));
+    let split_cost = split_cost_dithered(t, lab_m);
+    // A pair's own cost without the mix error: pixel errors and the split cost.
+    let own = |p: u8, q: u8| -> f32 {
+        PIXEL_WEIGHT
+            * (lab_dist2(t.lab[usize::from(p)], lab_t) + lab_dist2(t.lab[usize::from(q)], lab_b))
+            + if p == q { 0.0 } else { split_cost }
+    };
+    let mix = |pq: [u8; 2]| t.mix[usize::from(pq[0]) * 256 + usize::from(pq[1])];
+    let (nt, nb) = (near_of(top), near_of(bottom));
+    let nm = if t.wide {
+        near_mean(&near_of, mean)
+    } else {
+        nt
+    };
+    let mut pairs = [[0u8; 2]; 64];
+    let mut len = 0;
+    let mut best = ([nt[0], nb[0]], f32::MAX);
+    let mut consider = |p: u8, q: u8| {
+        let c = lab_dist2(mix([p, q]), lab_m) + own(p, q);
+        if c < best.1 {
+            best = ([p, q], c);
+        }
+        if len < pairs.len() {
+            pairs[len] = [p, q];
+            len += 1;
+        }
+    };
+    consider(nt[0], nb[0]);
+    for_each_candidate(t, &near_of, mean, (nt, nb, nm), &mut consider);
+    let (a, cost_a) = best;
+    let single = Alternating { a, b: a, share: 0 };
+    if lab_dist2(mix(a), lab_m) < CLOSE_ENOUGH {
+        return single;
+    }
+    let lin_mix = |pq: [u8; 2]| mean_of(t.lin[usize::from(pq[0])], t.lin[usize::from(pq[1])]);
+    let la_lin = lin_mix(a);
+    // Pairs beyond the pixels' mix as seen from `a` (what a small share of cells can pull the
+    // blurred mix back with): where no pair's mix is close, e.g. dark saturated colours.
+    for k in [2.0f32, 4.0] {
+        let x = [0, 1, 2].map(|i| (la_lin[i] + k * (mean[i] - la_lin[i])).clamp(0.0, 1.0));
+        let xs = Rgb::new(to_srgb(x[0]), to_srgb(x[1]), to_srgb(x[2]));
+        let n = near_of(xs)[0];
+        let mut push = |pq: [u8; 2]| {
+            if len < pairs.len() {
+                pairs[len] = pq;
+                len += 1;
+            }
+        };
+        push([n, n]);
+        for (p, top_fixed) in [(a[0], true), (a[1], false), (n, true)] {
+            let lp = t.lin[usize::from(p)];
+            let c = |i: usize| to_srgb(2.0 * x[i] - lp[i]);
+            let q = near_of(Rgb::new(c(0), c(1), c(2)))[0];
+            push(if top_fixed { [p, q] } else { [q, p] });
+        }
+    }
+    let la = mix(a);
+    let own_a = own(a[0], a[1]);
+    let steps = f32::from(SHARES);
+    let mut out = (single, cost_a);
+    let md = [0, 1, 2].map(|i| mean[i] - la_lin[i]);
+    // OKLab near the pixels' mix, linearised (columns: the change per unit of each channel), so
+    // each candidate's error costs a few multiplications instead of three cube roots.
+    let jacobian: [[f32; 3]; 3] = [0, 1, 2].map(|i| {
+        let h = 1e-3;
+        let mut m = mean;
+        m[i] += h;
+        let l = oklab(m);
+        [0, 1, 2].map(|k| (l[k] - lab_m[k]) / h)
+    });
+    // The OKLab error of linear colour `x` against the pixels' mix.
+    let offset = |x: Linear| -> [f32; 3] {
+        let e = [0, 1, 2].map(|i| x[i] - mean[i]);
+        [0, 1, 2].map(|k| jacobian[0][k] * e[0] + jacobian[1][k] * e[1] + jacobian[2][k] * e[2])
+    };
+    for &b in &pairs[..len] {
+        if b == a {
+            continue;
+        }
+        let lb_lin = lin_mix(b);
+        let d = [0, 1, 2].map(|i| lb_lin[i] - la_lin[i]);
+        let dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        if dd <= 1e-12 {
+            continue;
+        }
+        let along = (md[0] * d[0] + md[1] * d[1] + md[2] * d[2]) / dd;
+        let share = (along.clamp(0.0, 1.0) * steps).round() as u8;
+        if share == 0 {
+            continue;
+        }
+        let s = f32::from(share) / steps;
+        let shown = [0, 1, 2].map(|i| la_lin[i] + s * d[i]);
+        // Colours beyond the two a run of these cells can draw with one fg/bg setting.
+        let changed = extra_colours(a, b);
+        // At 16 colours mixes lie far from the pixels', beyond the linearisation's reach; and
+        // there the hue counts more than the lightness (see [`HUE_WEIGHT_16`]).
+        let miss = if t.wide {
+            let o = offset(shown);
+            o[0] * o[0] + o[1] * o[1] + o[2] * o[2]
+        } else {
+            let l = oklab(shown);
+            (l[0] - lab_m[0]).powi(2)
+                + HUE_WEIGHT_16 * ((l[1] - lab_m[1]).powi(2) + (l[2] - lab_m[2]).powi(2))
+        };
+        let c = miss
+            + (1.0 - s) * own_a
+            + s * own(b[0], b[1])
+            + NOISE_WEIGHT * s * (1.0 - s) * lab_dist2(la, mix(b))
+            + SWITCH_COST * f32::from(changed);
+        if c < out.1 {
+            out = (Alternating { a, b, share }, c);
+        }
+    }
+    out.0
 }
 
 #[cfg(test)]
@@ -207,6 +446,34 @@ mod tests {
         }
         let p = Palette::new(ColorLevel::Ansi16, false);
         assert_eq!(p.cell(Rgb::new(255, 0, 0), Rgb::new(0, 0, 0), 0, 0), [9, 0]);
+    }
+
+    #[test]
+    fn a_colour_no_pair_reaches_is_reached_by_alternating_two() {
+        // A dark saturated red: every single pair's mix is far off; a share of cells showing a
+        // second pair brings the blurred mix closer than the best pair alone.
+        let p = Palette::new(ColorLevel::Ansi256, false);
+        let red = Rgb::new(40, 6, 3);
+        let alt = p.cell_dithered(red, red).expect("256 colours pair cells");
+        assert!(alt.share > 0 && alt.b != alt.a, "{alt:?}");
+        let lin = |pq: [u8; 2]| {
+            let (a, b) = (xterm_rgb(pq[0]).linear(), xterm_rgb(pq[1]).linear());
+            [0, 1, 2].map(|i| (a[i] + b[i]) / 2.0)
+        };
+        let s = f32::from(alt.share) / f32::from(super::SHARES);
+        let (la, lb) = (lin(alt.a), lin(alt.b));
+        let blurred = oklab([0, 1, 2].map(|i| la[i] + s * (lb[i] - la[i])));
+        let target = oklab(red.linear());
+        let d = |c| crate::color::lab_dist2(c, target).sqrt();
+        assert!(
+            d(blurred) < 0.8 * d(oklab(la)),
+            "{} vs {}",
+            d(blurred),
+            d(oklab(la))
+        );
+        // The phase decides: low phases show the second pair, high ones the first.
+        assert_eq!(alt.resolve(0), alt.b);
+        assert_eq!(alt.resolve(255), alt.a);
     }
 
     #[test]

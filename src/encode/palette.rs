@@ -167,6 +167,21 @@ impl Palette {
         }
     }
 
+    /// The two pairs and share of a cell showing `top` over `bottom` in a frame with dither
+    /// phases ([`pairing::choose_alternating`]); `None` where cells are not paired (truecolor,
+    /// mono, `--dither`).
+    #[must_use]
+    #[inline]
+    pub fn cell_dithered(&self, top: Rgb, bottom: Rgb) -> Option<pairing::Alternating> {
+        match &self.pairs {
+            Some(t) if !self.dither => {
+                let near = |c: Rgb| t.near[self.bin_of(c)];
+                Some(pairing::choose_alternating(t, near, top, bottom))
+            }
+            _ => None,
+        }
+    }
+
     /// The RGB a code shows (the xterm default for palette indices).
     #[must_use]
     #[inline]

@@ -4,6 +4,7 @@
 use crate::color::Rgb;
 use crate::map::Blend;
 use crate::render::cast::ColumnHit;
+use crate::render::dither_phase;
 use crate::render::framebuffer::Framebuffer;
 use crate::render::light::{Shade, ShadeTable};
 use crate::render::scene::Scene;
@@ -129,6 +130,9 @@ fn draw_one(
     let v_start = (p.rows.0 as f64 + 0.5 - p.top) * v_step;
     let mut drawn = false;
     let depth = p.depth as f32;
+    // Dither phases on the sprite's own (u, v), a lattice about a pixel fine.
+    let per_u = dither_phase::lattice(width);
+    let per_v = dither_phase::lattice(p.bottom - p.top);
     for x in p.cols.0..p.cols.1 {
         if let Occluders::Columns(hits) = occluders {
             if hits.get(x).is_none_or(|hit| p.depth >= hit.perp_dist) {
@@ -172,6 +176,12 @@ fn draw_one(
                 }
             };
             fb.set(x, y, out);
+            let pv = (y as f64 + 0.5 - p.top) / (p.bottom - p.top);
+            let phase = dither_phase::at(
+                dither_phase::index(u, per_u),
+                dither_phase::index(pv, per_v),
+            );
+            fb.set_phase(x, y, phase);
         }
     }
     drawn

@@ -3,12 +3,30 @@
 use crate::color::Rgb;
 
 /// Row-major RGB pixels; two pixel rows make one terminal cell row.
-#[derive(Debug, Clone, PartialEq, Eq)]
+///
+/// A rendered frame also carries a dither phase per pixel (see [`Framebuffer::phase`]); frames
+/// from elsewhere (PNG files) have none. Equality compares the picture only.
+#[derive(Debug, Clone)]
 pub struct Framebuffer {
     width: usize,
     height: usize,
     pixels: Vec<Rgb>,
+    /// Per-pixel dither phase, tied to the surface the pixel shows; `None` until a renderer
+    /// writes one.
+    phases: Option<Vec<u8>>,
 }
+
+impl PartialEq for Framebuffer {
+    /// Same size and pixels: the phases are a hint to the encoder, not part of the picture.
+    fn eq(&self, other: &Self) -> bool {
+        (self.width, self.height) == (other.width, other.height) && self.pixels == other.pixels
+    }
+}
+
+impl Eq for Framebuffer {}
+
+/// The phase of a pixel no surface wrote: mid-range, so a threshold rounds to the nearer colour.
+pub const NEUTRAL_PHASE: u8 = 128;
 
 impl Framebuffer {
     /// A black framebuffer of `width` × `height` pixels.
@@ -18,6 +36,7 @@ impl Framebuffer {
             width,
             height,
             pixels: vec![Rgb::default(); width * height],
+            phases: None,
         }
     }
 
@@ -76,6 +95,32 @@ impl Framebuffer {
         &self.pixels
     }
 
+    /// The dither phases, row-major, when a renderer wrote them: each pixel's value (0–255) is
+    /// tied to the point of the surface it shows (texel, floor position), so a threshold pattern
+    /// read from it moves with the surface rather than staying fixed to the screen.
+    #[must_use]
+    pub fn phases(&self) -> Option<&[u8]> {
+        self.phases.as_deref()
+    }
+
+    /// One pixel row of phases, created (all [`NEUTRAL_PHASE`]) on first use: what renderers write.
+    pub fn phase_row_mut(&mut self, y: usize) -> &mut [u8] {
+        let n = self.width * self.height;
+        let phases = self.phases.get_or_insert_with(|| vec![NEUTRAL_PHASE; n]);
+        &mut phases[y * self.width..(y + 1) * self.width]
+    }
+
+    /// Sets the phase at (x, y) (creating the plane on first use).
+    #[inline]
+    pub fn set_phase(&mut self, x: usize, y: usize, phase: u8) {
+        self.phase_row_mut(y)[x] = phase;
+    }
+
+    /// Drops the phases (the frame then encodes as a frame from elsewhere would).
+    pub fn clear_phases(&mut self) {
+        self.phases = None;
+    }
+
     /// The two pixels a terminal cell (cx, cy) shows: (upper, lower).
     #[must_use]
     #[inline]
@@ -113,6 +158,7 @@ impl Framebuffer {
             width: img.width() as usize,
             height: img.height() as usize,
             pixels,
+            phases: None,
         })
     }
 }

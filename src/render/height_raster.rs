@@ -25,6 +25,9 @@ pub fn rasterize_heights(scene: &Scene, cast: &Cast, fb: &mut Framebuffer) -> Ve
     let proj = Projection::new(&scene.camera, &scene.view, w, h);
     let table = ShadeTable::new(&scene.light);
     let lamps = scene.lamp_light();
+    // Surfaces here carry no dither pattern (only sprites write phases): none may be left over
+    // from a previous frame in this buffer.
+    fb.clear_phases();
     // Sprites are hidden by the distance of whatever was drawn at each pixel.
     let mut depth = if scene.world.sprites.is_empty() {
         Vec::new()

@@ -5,6 +5,7 @@
 
 pub mod billboard;
 pub mod cast;
+pub mod dither_phase;
 pub mod frame;
 pub(crate) mod framebuffer;
 pub mod height_cast;

@@ -5,7 +5,8 @@ use crate::color::Rgb;
 use crate::map::Cell;
 use crate::render::billboard::{draw_sprites, Occluders, SpriteOutcome};
 use crate::render::cast::{ColumnHit, Side};
-use crate::render::framebuffer::Framebuffer;
+use crate::render::dither_phase;
+use crate::render::framebuffer::{Framebuffer, NEUTRAL_PHASE};
 use crate::render::light::{Shade, ShadeTable};
 use crate::render::scene::Scene;
 use crate::vec2::Vec2;
@@ -134,6 +135,7 @@ pub fn rasterize_frame(
             shade = shade.lit(lamps.at(at));
         }
         wall_stripe(scene.world, hit, span, x, fb, shade);
+        wall_phases(hits, span, x, fb);
     }
     draw_sprites(scene, Occluders::Columns(hits), fb, &table)
 }
@@ -163,6 +165,27 @@ fn wall_stripe(
     }
 }
 
+/// Writes one wall column's dither phases: the wall's own coordinates (fraction along, fraction
+/// up) on a lattice about a pixel fine (see [`crate::render::dither_phase`]).
+fn wall_phases(hits: &[ColumnHit], span: &WallSpan, x: usize, fb: &mut Framebuffer) {
+    let hit = &hits[x];
+    // Pixels per unit along the wall: from the next (or previous) column on the same face.
+    let same = |o: &ColumnHit| o.cell == hit.cell && o.side == hit.side;
+    let du = match (x.checked_sub(1).map(|i| &hits[i]), hits.get(x + 1)) {
+        (_, Some(n)) if same(n) => (n.wall_x - hit.wall_x).abs(),
+        (Some(p), _) if same(p) => (p.wall_x - hit.wall_x).abs(),
+        _ => 0.0,
+    };
+    let along = if du > 0.0 { 1.0 / du } else { span.height };
+    let u = dither_phase::index(hit.wall_x, dither_phase::lattice(along));
+    // Upright, a lattice step of at least a cell (two pixel rows): a cell reads its upper pixel's phase.
+    let per_v = dither_phase::lattice(span.height / 2.0);
+    for y in span.rows.0..span.rows.1 {
+        let v = dither_phase::index((y as f64 + 0.5 - span.top) / span.height, per_v);
+        fb.set_phase(x, y, dither_phase::at(u, v));
+    }
+}
+
 /// Horizontal scanline floor/ceiling casting (Lode's method with the shared focal length),
 /// with the horizon moved by pitch and the floor/ceiling distances set by the eye height.
 fn floor_and_ceiling(
@@ -188,6 +211,9 @@ fn floor_and_ceiling(
         let shade = table.at(dist);
         let start = cam.pos + left * dist;
         let step = across * dist;
+        // Floors and ceilings carry no pattern (measured: patterns there cost more bytes than
+        // they gain), and no phase left from the last frame either.
+        fb.phase_row_mut(y).fill(NEUTRAL_PHASE);
         let row = fb.row_mut(y);
         for (x, px) in row.iter_mut().enumerate() {
             let span = &spans[x].rows;
