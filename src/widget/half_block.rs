@@ -6,7 +6,7 @@ use ratatui::style::Color;
 use ratatui::widgets::Widget;
 
 use crate::color::Rgb;
-use crate::encode::quantize::mono_char;
+use crate::encode::quantize::quantize;
 use crate::encode::{ColorLevel, Palette};
 use crate::render::framebuffer::Framebuffer;
 
@@ -96,19 +96,23 @@ impl Widget for &HalfBlockView<'_> {
         let cols = usize::from(area.width).min(self.fb.width());
         let rows = usize::from(area.height).min(self.fb.cell_rows());
         if self.level != ColorLevel::TrueColor {
+            // The encoder's own choice per cell (with the surface-anchored alternation where the
+            // frame carries dither phases), so a stock backend shows what the encoder would send.
             let palette = Palette::new(self.level, false);
+            let mut codes = Vec::new();
+            quantize(&palette, self.fb, &mut codes);
+            let w = self.fb.width();
             for cy in 0..rows {
                 let y = area.y + cy as u16;
                 for cx in 0..cols {
-                    let (top, bottom) = self.fb.cell(cx, cy);
+                    let [t, b] = codes[cy * w + cx];
                     let cell = &mut buf[(area.x + cx as u16, y)];
                     if self.level == ColorLevel::Mono {
-                        cell.set_char(mono_char(top, bottom))
+                        cell.set_char(char::from_u32(t).unwrap_or(' '))
                             .set_fg(Color::Reset)
                             .set_bg(Color::Reset);
                         continue;
                     }
-                    let [t, b] = palette.cell(top, bottom, cx, 2 * cy);
                     cell.set_symbol(UPPER_HALF)
                         .set_fg(Color::Indexed(t as u8))
                         .set_bg(Color::Indexed(b as u8));
@@ -167,6 +171,40 @@ mod tests {
     }
 
     #[test]
+    fn a_rendered_frame_shows_the_encoders_surface_anchored_choice() {
+        let world = crate::World::default_world();
+        let start = world.map.start;
+        let cam = crate::Camera::from_angle(start.pos(), start.angle_deg(), 66.0);
+        let fb = crate::Scene::new(&world, cam).render(60, 20);
+        assert!(
+            fb.phases().is_some(),
+            "walls and sprites write dither phases"
+        );
+        let area = Rect::new(0, 0, 60, 20);
+        let mut buf = Buffer::empty(area);
+        HalfBlockView::new(&fb)
+            .level(ColorLevel::Ansi256)
+            .render(area, &mut buf);
+        let mut codes = Vec::new();
+        quantize(&Palette::new(ColorLevel::Ansi256, false), &fb, &mut codes);
+        let mut alternated = 0;
+        for cy in 0..20u16 {
+            for cx in 0..60u16 {
+                let [t, b] = codes[usize::from(cy) * 60 + usize::from(cx)];
+                let cell = &buf[(cx, cy)];
+                assert_eq!(
+                    (cell.fg, cell.bg),
+                    (Color::Indexed(t as u8), Color::Indexed(b as u8))
+                );
+                let (pt, pb) = fb.cell(cx.into(), cy.into());
+                let plain = Palette::new(ColorLevel::Ansi256, false).cell(pt, pb, 0, 0);
+                alternated += usize::from(plain != [t, b]);
+            }
+        }
+        assert!(alternated > 0, "some cells take their second pair");
+    }
+
+    #[test]
     fn lower_levels_draw_the_encoders_palette_pair_or_the_shade_ramp() {
         let fb = pattern(12, 4);
         let area = Rect::new(0, 0, 12, 4);
@@ -190,7 +228,10 @@ mod tests {
             .level(ColorLevel::Mono)
             .render(area, &mut buf);
         let (t, b) = fb.cell(5, 2);
-        assert_eq!(buf[(5, 2)].symbol(), mono_char(t, b).to_string());
+        assert_eq!(
+            buf[(5, 2)].symbol(),
+            crate::encode::quantize::mono_char(t, b).to_string()
+        );
         assert_eq!(
             (buf[(5, 2)].fg, buf[(5, 2)].bg),
             (Color::Reset, Color::Reset)
