@@ -4,7 +4,7 @@ use crate::color::Rgb;
 
 /// Row-major RGB pixels; two pixel rows make one terminal cell row.
 ///
-/// A rendered frame also carries a dither phase per pixel (see [`Framebuffer::phase`]); frames
+/// A rendered frame also carries a dither phase per pixel (see [`Framebuffer::phases`]); frames
 /// from elsewhere (PNG files) have none. Equality compares the picture only.
 #[derive(Debug, Clone)]
 pub struct Framebuffer {
