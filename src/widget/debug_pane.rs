@@ -162,6 +162,7 @@ pub struct DebugPane<'a> {
     view_width: usize,
     tex_width: usize,
     line_height: f64,
+    focal: f64,
     heights: Option<HeightList>,
 }
 
@@ -183,6 +184,7 @@ impl<'a> DebugPane<'a> {
             view_width: view_cells.0,
             tex_width,
             line_height,
+            focal,
             heights: None,
         }
     }
@@ -192,6 +194,15 @@ impl<'a> DebugPane<'a> {
     #[must_use]
     pub fn heights(mut self, col: &HeightColumn, map: &Map) -> Self {
         self.heights = Some(HeightList::new(col, map));
+        // The hit's line is the face that closed the window, as tall as the heights it spans
+        // (a flat wall's formula would say one wall high); none when a floor or ceiling closed it.
+        let closing = col.bands.iter().rev().find_map(|b| match b {
+            Band::Face(f) if f.cell == col.closed.cell => Some(f),
+            _ => None,
+        });
+        self.line_height = closing.map_or(0.0, |f| {
+            (f.z.1 - f.z.0) * self.focal / f.perp_dist.max(1e-9)
+        });
         self
     }
 
@@ -521,6 +532,8 @@ mod tests {
             "lintel 0.7..1",
             "wall",
             "heights closed (8,1) 6.50",
+            // The closing wall shows only its 0.25..0.7 beside (7,1): 0.45 of the flat 4.74 px.
+            "line 2.13 px",
         ] {
             assert!(all.contains(want), "{want:?} missing:\n{all}");
         }
