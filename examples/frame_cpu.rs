@@ -5,6 +5,10 @@ use halfcast::camera::Camera;
 use halfcast::world::World;
 use halfcast::{Framebuffer, Scene, Vec2};
 
+#[path = "../benches/support/stepped_hall.rs"]
+mod stepped_hall;
+use stepped_hall::stepped_hall;
+
 fn cpu_ns() -> u128 {
     let s = std::fs::read_to_string("/proc/thread-self/schedstat").unwrap();
     s.split_whitespace().next().unwrap().parse().unwrap()
@@ -43,35 +47,4 @@ fn main() {
             .with_view(halfcast::View::new(-10.0, 0.5));
         measure("stepped hall (worst case)", &s, 240, 68);
     }
-}
-
-/// The worst case of benches/frame.rs: a 40 × 40 hall whose every cell differs in height from
-/// its neighbours.
-fn stepped_hall() -> World {
-    let mut text = String::from("NO textures/bricks.png\nSO textures/bricks.png\nWE textures/stone.png\nEA textures/stone.png\nF 96,88,80\nC 150,146,136\nFT textures/floor.png\nCT textures/ceiling.png\n");
-    for (k, z) in ('a'..='h').enumerate() {
-        let f = k as f64 * 0.11 - 0.4;
-        text += &format!(
-            "H{z} {f} {}\nW{z} textures/wood.png\n",
-            f + 1.6 + (k % 3) as f64 * 0.3
-        );
-    }
-    let n = 40;
-    for j in 0..n {
-        for i in 0..n {
-            let ch = if i == 0 || j == 0 || i == n - 1 || j == n - 1 {
-                '1'
-            } else if (i, j) == (2, 2) {
-                'E'
-            } else {
-                (b'a' + ((i * 3 + j * 5) % 8) as u8) as char
-            };
-            text.push(ch);
-        }
-        text.push('\n');
-    }
-    let map = halfcast::map::parse_map("hall.cub", text.as_bytes()).unwrap();
-    World::load(map, &halfcast::world::TextureSource::Embedded, true)
-        .unwrap()
-        .0
 }

@@ -181,6 +181,26 @@ impl Setup {
     }
 }
 
+/// One DDA step (Lode's loop body): crosses the nearer of the next x and y grid lines, moving
+/// `cell` and that axis's sideDist on; returns which side was crossed.
+#[inline]
+pub(crate) fn advance(
+    side_dist: &mut (f64, f64),
+    delta: (f64, f64),
+    cell: &mut (i64, i64),
+    step: (i64, i64),
+) -> Side {
+    if side_dist.0 < side_dist.1 {
+        side_dist.0 += delta.0;
+        cell.0 += step.0;
+        Side::X
+    } else {
+        side_dist.1 += delta.1;
+        cell.1 += step.1;
+        Side::Y
+    }
+}
+
 /// Walks one ray from `pos` until it enters a cell that blocks it, reporting each step.
 /// Doors count as shut.
 pub fn cast_ray(map: &Map, pos: Vec2, ray: Vec2, on_step: impl FnMut(DdaStep)) -> ColumnHit {
@@ -250,15 +270,7 @@ pub fn cast_ray_doors(
         }
     }
     loop {
-        let side = if side_dist.0 < side_dist.1 {
-            side_dist.0 += delta.0;
-            cell.0 += step.0;
-            Side::X
-        } else {
-            side_dist.1 += delta.1;
-            cell.1 += step.1;
-            Side::Y
-        };
+        let side = advance(&mut side_dist, delta, &mut cell, step);
         on_step(DdaStep {
             cell,
             side,

@@ -364,15 +364,7 @@ pub fn cast_column(
             proj.row_at(span.floor, t_exit),
         );
         // Step into the next cell.
-        let side = if side_dist.0 < side_dist.1 {
-            side_dist.0 += delta.0;
-            cell.0 += step.0;
-            Side::X
-        } else {
-            side_dist.1 += delta.1;
-            cell.1 += step.1;
-            Side::Y
-        };
+        let side = crate::render::cast::advance(&mut side_dist, delta, &mut cell, step);
         on_step(DdaStep {
             cell,
             side,
