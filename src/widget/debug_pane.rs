@@ -155,6 +155,10 @@ fn height_row(b: &Band) -> HeightRow {
     }
 }
 
+/// Columns a height row needs in its aligned form (`cell dist drawn z rows`); narrower panes get
+/// the compact one.
+const HEIGHT_ROW_WIDTH: usize = 40;
+
 /// The debugged ray's traversal as text; the last revealed step is highlighted.
 #[derive(Debug, Clone)]
 pub struct DebugPane<'a> {
@@ -164,6 +168,8 @@ pub struct DebugPane<'a> {
     line_height: f64,
     focal: f64,
     heights: Option<HeightList>,
+    /// Columns the pane has (set when it is drawn): narrow panes get the compact height rows.
+    width: usize,
 }
 
 impl<'a> DebugPane<'a> {
@@ -186,6 +192,7 @@ impl<'a> DebugPane<'a> {
             line_height,
             focal,
             heights: None,
+            width: usize::MAX,
         }
     }
 
@@ -293,7 +300,21 @@ impl<'a> DebugPane<'a> {
         };
         let mut out = vec![Line::from(title)];
         let room = budget - HEIGHT_FIXED_LINES;
+        let compact = self.width < HEIGHT_ROW_WIDTH;
         let row = |r: &&HeightRow| {
+            if compact {
+                // One space between the fields and what was drawn as its initial (f floor, c ceil,
+                // w wall, s step, l lintel; coloured as in the wide form), so the rows column
+                // still fits a compact pane.
+                let initial: String = r.what.chars().take(1).collect();
+                return Line::from(vec![
+                    Span::styled(cell_text(r.cell), VALUE),
+                    Span::styled(format!(" {:.2}", r.dist), VALUE),
+                    Span::styled(format!(" {initial}"), kind_style(r.what)),
+                    Span::styled(format!(" {}", r.z), VALUE),
+                    Span::styled(format!(" {}..{}", r.rows.0, r.rows.1), LABEL),
+                ]);
+            }
             Line::from(vec![
                 Span::styled(format!("{:<8}", cell_text(r.cell)), VALUE),
                 Span::styled(format!("{:>6}", format!("{:.2}", r.dist)), VALUE),
@@ -435,7 +456,11 @@ impl Widget for DebugPane<'_> {
         if area.is_empty() {
             return;
         }
-        let lines = self.lines(usize::from(area.height));
+        let pane = DebugPane {
+            width: usize::from(area.width),
+            ..self
+        };
+        let lines = pane.lines(usize::from(area.height));
         Paragraph::new(lines).render(area, buf);
     }
 }
@@ -517,6 +542,40 @@ mod tests {
         };
         let pane = DebugPane::new(ray, &w, &cam, (40, 12)).heights(&cast.heights[20], &w.map);
         text(&pane.lines(rows))
+    }
+
+    #[test]
+    fn a_compact_pane_keeps_every_height_rows_column_on_screen() {
+        let w = heights_world();
+        let cam = Camera::from_angle(Vec2::new(1.5, 1.5), 0.0, 66.0);
+        let view = crate::render::view::View::default();
+        let proj = crate::render::height_cast::Projection::new(&cam, &view, 40, 24);
+        let doors = crate::world::door::DoorState::new(&w.map);
+        let cast =
+            crate::render::height_cast::cast_heights(&w.map, &doors, &cam, &proj, 40, Some(20));
+        let t = cast.trace.as_ref().unwrap();
+        let pane = DebugPane::new(RevealedTrace::full(t), &w, &cam, (40, 12))
+            .heights(&cast.heights[20], &w.map);
+        let area = Rect::new(0, 0, 28, 40);
+        let mut buf = Buffer::empty(area);
+        pane.render(area, &mut buf);
+        let rows: Vec<String> = (0..40)
+            .map(|y| (0..28).map(|x| buf[(x, y)].symbol()).collect::<String>())
+            .collect();
+        let list = rows
+            .iter()
+            .skip_while(|r| !r.starts_with("heights"))
+            .skip(1)
+            .take_while(|r| r.starts_with('('))
+            .collect::<Vec<_>>();
+        assert!(list.len() >= 3, "{rows:#?}");
+        for r in list {
+            let last = r.trim_end().rsplit(' ').next().unwrap();
+            assert!(
+                last.contains("..") && last.split("..").all(|n| n.parse::<usize>().is_ok()),
+                "the rows column is cut off: {r:?}"
+            );
+        }
     }
 
     #[test]
