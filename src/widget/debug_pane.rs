@@ -527,7 +527,8 @@ mod tests {
         World::load(map, &source, true).unwrap().0
     }
 
-    fn heights_pane_lines(shown: Option<usize>, rows: usize) -> Vec<String> {
+    /// The heights corridor seen from its west end in a 40 × 24 view, column 20 traced.
+    fn heights_cast() -> (World, Camera, crate::render::cast::Cast) {
         let w = heights_world();
         let cam = Camera::from_angle(Vec2::new(1.5, 1.5), 0.0, 66.0);
         let view = crate::render::view::View::default();
@@ -535,6 +536,11 @@ mod tests {
         let doors = crate::world::door::DoorState::new(&w.map);
         let cast =
             crate::render::height_cast::cast_heights(&w.map, &doors, &cam, &proj, 40, Some(20));
+        (w, cam, cast)
+    }
+
+    fn heights_pane_lines(shown: Option<usize>, rows: usize) -> Vec<String> {
+        let (w, cam, cast) = heights_cast();
         let t = cast.trace.as_ref().unwrap();
         let ray = match shown {
             Some(n) => RevealedTrace::partial(t, n),
@@ -546,13 +552,7 @@ mod tests {
 
     #[test]
     fn a_compact_pane_keeps_every_height_rows_column_on_screen() {
-        let w = heights_world();
-        let cam = Camera::from_angle(Vec2::new(1.5, 1.5), 0.0, 66.0);
-        let view = crate::render::view::View::default();
-        let proj = crate::render::height_cast::Projection::new(&cam, &view, 40, 24);
-        let doors = crate::world::door::DoorState::new(&w.map);
-        let cast =
-            crate::render::height_cast::cast_heights(&w.map, &doors, &cam, &proj, 40, Some(20));
+        let (w, cam, cast) = heights_cast();
         let t = cast.trace.as_ref().unwrap();
         let pane = DebugPane::new(RevealedTrace::full(t), &w, &cam, (40, 12))
             .heights(&cast.heights[20], &w.map);
