@@ -17,7 +17,7 @@ pub const EMBEDDED: [(&str, &[u8]); 8] = [
 ];
 
 /// The generated sprite sheets (RGBA) from `textures/sprites/`, by file stem.
-pub const EMBEDDED_SPRITES: [(&str, &[u8]); 5] = [
+pub const EMBEDDED_SPRITES: [(&str, &[u8]); 9] = [
     (
         "barrel",
         include_bytes!("../../textures/sprites/barrel.png"),
@@ -32,6 +32,13 @@ pub const EMBEDDED_SPRITES: [(&str, &[u8]); 5] = [
         "creature",
         include_bytes!("../../textures/sprites/creature.png"),
     ),
+    (
+        "treasure",
+        include_bytes!("../../textures/sprites/treasure.png"),
+    ),
+    ("key", include_bytes!("../../textures/sprites/key.png")),
+    ("exit", include_bytes!("../../textures/sprites/exit.png")),
+    ("orb", include_bytes!("../../textures/sprites/orb.png")),
 ];
 
 /// Decodes the embedded sprite sheet named `stem` (e.g. "barrel"), if there is one.

@@ -3,6 +3,7 @@
 pub mod builtin;
 pub mod decode;
 pub mod generate;
+pub mod pickup_art;
 pub mod sheet;
 pub mod sprite_art;
 

@@ -1,8 +1,9 @@
 //! Procedural sprite sheets: a barrel, a pillar, a hanging lamp, a potted plant and an 8-view
-//! walking creature, drawn with simple shapes and shaded as if round. Deterministic, like
+//! walking creature (the game's pickups are in [`super::pickup_art`]), drawn with simple shapes and shaded as if round. Deterministic, like
 //! [`super::generate`].
 
 use super::generate::{fbm, tint, white};
+use super::pickup_art;
 use super::sheet::SpriteSheet;
 use crate::color::Rgb;
 
@@ -18,12 +19,16 @@ pub const CREATURE_FRAMES: usize = 4;
 pub type SheetGenerator = fn() -> SpriteSheet;
 
 /// Every generated sprite with the file stem it is saved under in `textures/sprites/`.
-pub const ALL: [(&str, SheetGenerator); 5] = [
+pub const ALL: [(&str, SheetGenerator); 9] = [
     ("barrel", barrel),
     ("pillar", pillar),
     ("lamp", lamp),
     ("plant", plant),
     ("creature", creature),
+    ("treasure", pickup_art::treasure),
+    ("key", pickup_art::key),
+    ("exit", pickup_art::exit),
+    ("orb", pickup_art::orb),
 ];
 
 const CLEAR: (Rgb, u8) = (Rgb::new(0, 0, 0), 0);
