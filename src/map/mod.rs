@@ -15,7 +15,7 @@ pub use game_objects::{
 pub use lamp::{LightDef, MAX_LIGHT_RADIUS};
 pub use parse::{parse_map, MAX_CELLS, MAX_LIGHTS, MAX_LIT_CELLS, MAX_SPRITES};
 pub use read::{read_map_file, MAX_MAP_BYTES};
-pub use sprite::{Blend, ColourKey, SpriteDef};
+pub use sprite::{Blend, ColourKey, SpriteDef, DEFAULT_SOLID_RADIUS};
 
 use crate::color::Rgb;
 use crate::render::light::Fog;
