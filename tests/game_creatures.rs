@@ -95,14 +95,22 @@ proptest! {
         let mut level = Level::new(&map, seed);
         let mut score = Score::default();
         let obstacles = Obstacles { map: &map, doors: Some(&doors), discs: &[], body: None };
+        let cell = |p: Vec2| (p.x.floor() as i64, p.y.floor() as i64);
+        let mut before: Vec<(i64, i64)> = level.creatures().iter().map(|c| cell(c.pos)).collect();
         for _ in 0..240 {
             let mut players = [Player { pos: points[0], score: &mut score }];
             level.tick(&map, &doors, &mut players, 1.0 / 30.0);
-            for c in level.creatures() {
+            for (c, was) in level.creatures().iter().zip(&mut before) {
                 prop_assert!(
                     !overlaps_wall(&obstacles, c.pos, CREATURE_RADIUS - 1e-6),
                     "creature at {:?} overlaps a wall or shut door", c.pos
                 );
+                let now = cell(c.pos);
+                prop_assert!(
+                    (now.0 - was.0).abs() + (now.1 - was.1).abs() <= 1,
+                    "jumped from {:?} to {:?}", was, now
+                );
+                *was = now;
             }
         }
     }
@@ -318,4 +326,68 @@ fn same_seed_same_game_other_seed_other_wanderers() {
         pos(&c),
         "the seed did not change the wanderers' walks"
     );
+}
+
+#[test]
+fn a_door_does_not_shut_on_a_creature_in_its_doorway() {
+    let grid = "11111111\n1E0D0001\n11111111\n";
+    let mut s = game(
+        "CREATURE 6.5,1.5 creature behaviour=chase speed=1\n",
+        grid,
+        (1.5, 1.5),
+        0.0,
+        1,
+    );
+    s.doors.set_open((3, 1), 1.0);
+    let mut inside = false;
+    for _ in 0..150 {
+        step(&mut s, &Input::default(), 1.0 / 30.0);
+        if s.level.creature_in((3, 1)) {
+            inside = true;
+            break;
+        }
+    }
+    assert!(inside, "the chaser never came through the door");
+    step(
+        &mut s,
+        &Input {
+            held: Held::default(),
+            commands: vec![Command::UseDoor],
+        },
+        1.0 / 30.0,
+    );
+    run(&mut s, 0.3, &Input::default());
+    assert_eq!(s.doors.open_amount((3, 1)), 1.0);
+}
+
+#[test]
+fn creatures_keep_off_ledges_too_high_to_step_onto() {
+    // A raised dais (zone a, floor 0.5) in the middle of a hall: too high to step onto.
+    let grid = "11111111\n1E000001\n100aa001\n100aa001\n10000001\n11111111\n";
+    let lines = "Ha 0.5 1.5\nCREATURE 6.5,4.5 creature speed=3\nCREATURE 1.5,4.5 creature speed=3 behaviour=patrol\n";
+    let w = world(lines, grid);
+    let doors = DoorState::new(&w.map);
+    for seed in 0..8 {
+        let mut level = Level::new(&w.map, seed);
+        let mut score = Score::default();
+        let mut walked = 0.0;
+        for _ in 0..600 {
+            // The player stands on the dais, in sight: chasers would like to climb it.
+            let mut players = [Player {
+                pos: Vec2::new(3.5, 2.5),
+                score: &mut score,
+            }];
+            level.tick(&w.map, &doors, &mut players, 1.0 / 30.0);
+            for c in level.creatures() {
+                let (i, j) = (c.pos.x.floor() as i64, c.pos.y.floor() as i64);
+                assert!(
+                    !(3..=4).contains(&i) || !(2..=3).contains(&j),
+                    "climbed the dais: {:?}",
+                    c.pos
+                );
+            }
+        }
+        walked += level.creatures().iter().map(|c| c.walked).sum::<f64>();
+        assert!(walked > 10.0, "the creatures did not walk: {walked}");
+    }
 }

@@ -235,6 +235,13 @@ impl Level {
             };
             self.taken[k] = true;
             p.score.points += item.points;
+            if item.points > 0 {
+                events.push(Event::Picked {
+                    player,
+                    points: item.points,
+                });
+            }
+            // A key's own message comes last, so it is the one the message line shows.
             if let Some(key) = &item.key {
                 p.score.keys.insert(key.clone());
                 events.push(Event::KeyFound {
@@ -243,12 +250,6 @@ impl Level {
                 });
             } else {
                 p.score.found += 1;
-            }
-            if item.points > 0 {
-                events.push(Event::Picked {
-                    player,
-                    points: item.points,
-                });
             }
         }
         let reached = players.iter().position(|p| {
@@ -291,6 +292,17 @@ impl Level {
             Some(key) if !score.has_key(key) => Err(locked_message(key)),
             _ => Ok(()),
         }
+    }
+
+    /// Whether a creature stands in cell `cell` (a door must not shut on it).
+    #[must_use]
+    pub fn creature_in(&self, cell: (i64, i64)) -> bool {
+        self.creatures.iter().any(|c| {
+            let r = super::creature::CREATURE_RADIUS;
+            let (x0, x1) = ((c.pos.x - r).floor() as i64, (c.pos.x + r).floor() as i64);
+            let (y0, y1) = ((c.pos.y - r).floor() as i64, (c.pos.y + r).floor() as i64);
+            (x0..=x1).contains(&cell.0) && (y0..=y1).contains(&cell.1)
+        })
     }
 
     /// The key the door at `door` needs, if it is locked.

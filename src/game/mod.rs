@@ -315,14 +315,18 @@ fn advance(state: &mut GameState, input: &Input, dt: f64, owns_world: bool, bodi
 }
 
 /// Opens or closes the door ahead, unless it is shut, locked and this player lacks its key
-/// (then a [`Event::Locked`] is recorded instead and the door stays shut).
+/// (then a [`Event::Locked`] is recorded instead and the door stays shut), or a creature
+/// stands in its doorway (a door does not shut on anyone).
 fn use_door(state: &mut GameState) {
     let (map, cam) = (&state.world.map, &state.camera);
     if let Some(cell) = crate::world::door::door_ahead(map, cam.pos, cam.dir) {
-        if state.doors.open_amount(cell) == 0.0 && state.level.may_open(cell, &state.score).is_err()
-        {
+        let shut = state.doors.open_amount(cell) == 0.0;
+        if shut && state.level.may_open(cell, &state.score).is_err() {
             let key = state.level.lock_of(cell).unwrap_or_default().to_owned();
             state.events.push(Event::Locked { player: 0, key });
+            return;
+        }
+        if !shut && state.level.creature_in(cell) {
             return;
         }
     }
