@@ -163,3 +163,34 @@ fn shared_steps_respect_locks_but_leave_the_level_alone() {
     assert_eq!(s.events.len(), 1);
     assert_eq!(s.level.time(), 0.0);
 }
+
+#[test]
+fn a_tag_shot_is_recorded_in_replays_as_fire() {
+    use halfcast::replay::format::{FrameInput, Header, MapSource};
+    use halfcast::Replay;
+    let replay = Replay {
+        header: Header {
+            map: MapSource::Embedded,
+            pos: Vec2::new(1.5, 1.5),
+            angle_deg: 0.0,
+            fov_deg: 66.0,
+            size: (80, 24),
+            fps: 30,
+            seed: 7,
+            speeds: halfcast::game::Speeds::default(),
+        },
+        frames: vec![
+            FrameInput::default(),
+            FrameInput {
+                input: Input {
+                    held: Held::default(),
+                    commands: vec![Command::Fire],
+                },
+                ..FrameInput::default()
+            },
+        ],
+    };
+    let text = replay.to_jsonl();
+    assert!(text.contains(r#"{"frame":1,"command":"fire"}"#), "{text}");
+    assert_eq!(Replay::parse("r.hcr", &text).unwrap(), replay);
+}
