@@ -20,6 +20,19 @@ const CASES: &[(&str, &str)] = &[
         "13:1: content after the blank line at 12 that ended the map (the grid must be contiguous and come last)",
     ),
     ("invalid_duplicate_texture", "7:1: duplicate identifier 'NO' (first given at line 1)"),
+    (
+        "invalid_game_creature_behaviour",
+        "7:35: bad value for CREATURE: behaviour must be wander, patrol or chase, got 'fly'",
+    ),
+    ("invalid_game_exit_in_wall", "7:1: exit at 6,1 is not a floor cell"),
+    ("invalid_game_item_in_wall", "7:1: item at 0.5,1.5 is not over a floor cell"),
+    (
+        "invalid_game_item_points",
+        "7:21: bad value for ITEM: points must be a whole number 0-1000000, got 'lots'",
+    ),
+    ("invalid_game_lock_not_door", "8:1: DOORLOCK at 3,1 is not on a door cell (D)"),
+    ("invalid_game_lock_twice", "9:1: door at 4,1 is already locked (line 8)"),
+    ("invalid_game_lock_without_key", "8:1: DOORLOCK needs the key 'blue' but no ITEM has key=blue"),
     ("invalid_heights_duplicate", "9:1: duplicate identifier 'Ha' (first given at line 7)"),
     (
         "invalid_heights_floor_not_below_ceiling",

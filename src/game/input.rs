@@ -113,6 +113,8 @@ pub enum Command {
     Nudge(Action, f64),
     /// Level the view: pitch back to 0 (look straight ahead).
     CentrePitch,
+    /// Fire a tag shot from the eye along the view (ignored while paused or reloading).
+    Fire,
 }
 
 /// How fast the player walks and turns; set by `--move-speed`, `--turn-speed` or the config file.

@@ -5,10 +5,17 @@
 
 pub mod body;
 pub mod collision;
+pub mod creature;
 pub mod debugger;
 pub mod footing;
 pub mod input;
+pub mod key_colour;
+pub mod level;
 pub mod pose;
+pub mod projectile;
+pub mod rng;
+pub mod score;
+pub mod sight;
 
 use std::sync::Arc;
 
@@ -22,6 +29,8 @@ pub use body::Body;
 pub use debugger::{Cursor, Debugger};
 pub use footing::Footing;
 pub use input::{Action, Command, Held, Input, Speeds};
+pub use level::{Event, Level, Player};
+pub use score::Score;
 
 /// Walking speed in cells per second.
 pub const MOVE_SPEED: f64 = 3.0;
@@ -80,14 +89,38 @@ pub struct GameState {
     pub speeds: Speeds,
     /// Game time in seconds (animations); advances with the steps, paused with the world.
     pub time: f64,
+    /// The level in play: items, creatures, shots, the exit (advanced by [`step`] only).
+    pub level: Level,
+    /// This player's points, keys and treasures.
+    pub score: Score,
+    /// What happened to this player in the last step (pickups, locked doors, catches…).
+    pub events: Vec<Event>,
+    /// The latest event's message and the game time it happened at (the message line).
+    pub message: Option<Message>,
     solids: Vec<SolidDisc>,
+}
+
+/// A line for the player, with when it was said (so the HUD can let it fade).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Message {
+    /// What to show ("You found the red key").
+    pub text: String,
+    /// Game time ([`GameState::time`]) it was said at.
+    pub at: f64,
 }
 
 impl GameState {
     /// Starts at `camera` (moved off any wall it overlaps) with the debugger on the centre ray,
-    /// standing exactly on its cell's floor, or crouching where the ceiling is too low to stand.
+    /// standing exactly on its cell's floor, or crouching where the ceiling is too low to stand;
+    /// the level's creatures use seed 0.
     #[must_use]
-    pub fn new(world: Arc<World>, mut camera: Camera, view_width: usize) -> Self {
+    pub fn new(world: Arc<World>, camera: Camera, view_width: usize) -> Self {
+        Self::with_seed(world, camera, view_width, 0)
+    }
+
+    /// [`GameState::new`] with the level's creatures driven by `seed` (a replay stores it).
+    #[must_use]
+    pub fn with_seed(world: Arc<World>, mut camera: Camera, view_width: usize, seed: u64) -> Self {
         let map = &world.map;
         camera.pos = collision::settle(map, camera.pos, collision::PLAYER_RADIUS);
         let (i, j) = collision::centre_cell(camera.pos);
@@ -104,6 +137,7 @@ impl GameState {
         };
         let doors = DoorState::new(map);
         let solids = world.solid_discs();
+        let level = Level::new(map, seed);
         Self {
             world,
             camera,
@@ -117,6 +151,10 @@ impl GameState {
             night: false,
             speeds: Speeds::default(),
             time: 0.0,
+            level,
+            score: Score::default(),
+            events: Vec::new(),
+            message: None,
             solids,
         }
     }
@@ -180,6 +218,7 @@ fn advance(state: &mut GameState, input: &Input, dt: f64, owns_world: bool, bodi
     } else {
         0.0
     };
+    state.events.clear();
     let mut turn = 0.0;
     // Seconds of "as if held" per action from taps (Command::Nudge), in Action::ALL order.
     let mut nudged = [0.0f64; 9];
@@ -198,9 +237,10 @@ fn advance(state: &mut GameState, input: &Input, dt: f64, owns_world: bool, bodi
             }
             Command::RunToHit if d.paused => d.cursor = Cursor::AtHit,
             Command::Turn(radians) if !d.paused && radians.is_finite() => turn += radians,
-            Command::UseDoor if !d.paused => {
-                let (map, cam) = (&state.world.map, &state.camera);
-                state.doors.toggle_facing(map, cam.pos, cam.dir);
+            Command::UseDoor if !d.paused => use_door(state),
+            Command::Fire if !d.paused => {
+                let cam = &state.camera;
+                state.level.fire(0, cam.pos, cam.dir);
             }
             Command::Jump if !d.paused && state.jump == (0.0, 0.0) => state.jump.1 = JUMP_SPEED,
             Command::ToggleNight => state.night = !state.night,
@@ -256,6 +296,41 @@ fn advance(state: &mut GameState, input: &Input, dt: f64, owns_world: bool, bodi
     state.footing.advance(dt);
     state.view = View::new(state.view.pitch_deg, state.base_eye + state.jump.0)
         .on_ground(state.footing.shown());
+    if owns_world {
+        let mut players = [Player {
+            pos: state.camera.pos,
+            score: &mut state.score,
+        }];
+        let events = state
+            .level
+            .tick(&state.world.map, &state.doors, &mut players, dt);
+        state.events.extend(events);
+    }
+    if let Some(last) = state.events.last() {
+        state.message = Some(Message {
+            text: last.message(),
+            at: state.time,
+        });
+    }
+}
+
+/// Opens or closes the door ahead, unless it is shut, locked and this player lacks its key
+/// (then a [`Event::Locked`] is recorded instead and the door stays shut), or a creature
+/// stands in its doorway (a door does not shut on anyone).
+fn use_door(state: &mut GameState) {
+    let (map, cam) = (&state.world.map, &state.camera);
+    if let Some(cell) = crate::world::door::door_ahead(map, cam.pos, cam.dir) {
+        let shut = state.doors.open_amount(cell) == 0.0;
+        if shut && state.level.may_open(cell, &state.score).is_err() {
+            let key = state.level.lock_of(cell).unwrap_or_default().to_owned();
+            state.events.push(Event::Locked { player: 0, key });
+            return;
+        }
+        if !shut && state.level.creature_in(cell) {
+            return;
+        }
+    }
+    state.doors.toggle_facing(map, cam.pos, cam.dir);
 }
 
 /// After moving: the floor of the player's cell is the one stood on. A jump that reached a

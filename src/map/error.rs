@@ -69,6 +69,18 @@ pub enum MapErrorKind {
     SpriteOffFloor(String),
     #[error("light at {0} is not over a floor cell")]
     LightOffFloor(String),
+    #[error("item at {0} is not over a floor cell")]
+    ItemOffFloor(String),
+    #[error("creature at {0} is not over a floor cell")]
+    CreatureOffFloor(String),
+    #[error("exit at {0} is not a floor cell")]
+    ExitOffFloor(String),
+    #[error("DOORLOCK at {0} is not on a door cell (D)")]
+    LockNotOnDoor(String),
+    #[error("door at {cell} is already locked (line {first_line})")]
+    LockedTwice { cell: String, first_line: usize },
+    #[error("DOORLOCK needs the key '{0}' but no ITEM has key={0}")]
+    LockWithoutKey(String),
     #[error("cannot read the file: {0}")]
     Io(String),
     #[error("file is larger than {0} bytes (the limit for a map)")]

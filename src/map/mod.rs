@@ -1,16 +1,21 @@
 //! The world's grid and header, as parsed from a `.cub` file (no textures loaded yet).
 
 mod error;
+mod game_objects;
 mod lamp;
 mod parse;
 mod read;
 mod sprite;
 
 pub use error::{MapError, MapErrorKind};
+pub use game_objects::{
+    Behaviour, CreatureDef, DoorLock, ExitDef, ItemDef, DEFAULT_CREATURE_SPEED,
+    DEFAULT_TREASURE_POINTS, MAX_CREATURES, MAX_CREATURE_SPEED, MAX_ITEMS, MAX_ITEM_POINTS,
+};
 pub use lamp::{LightDef, MAX_LIGHT_RADIUS};
 pub use parse::{parse_map, MAX_CELLS, MAX_LIGHTS, MAX_LIT_CELLS, MAX_SPRITES};
 pub use read::{read_map_file, MAX_MAP_BYTES};
-pub use sprite::{Blend, ColourKey, SpriteDef};
+pub use sprite::{Blend, ColourKey, SpriteDef, DEFAULT_SOLID_RADIUS};
 
 use crate::color::Rgb;
 use crate::render::light::Fog;
@@ -182,6 +187,14 @@ pub struct Map {
     pub shade: Option<f64>,
     /// halfcast's `LIGHT` lines, in file order.
     pub lights: Vec<LightDef>,
+    /// `ITEM` lines: treasures and keys to pick up, in file order.
+    pub items: Vec<ItemDef>,
+    /// `DOORLOCK` lines: doors that need a key.
+    pub locks: Vec<DoorLock>,
+    /// `EXIT` lines: cells that end the level.
+    pub exits: Vec<ExitDef>,
+    /// `CREATURE` lines, in file order.
+    pub creatures: Vec<CreatureDef>,
 }
 
 impl Map {

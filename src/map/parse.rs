@@ -2,6 +2,7 @@
 
 use std::collections::HashMap;
 
+use super::game_objects::{GameLine, GameLines};
 use super::lamp::parse_light;
 use super::sprite::parse_sprite;
 use super::{
@@ -129,6 +130,7 @@ struct Header {
     door_texture: Option<TextureRef>,
     fog: Option<Fog>,
     shade: Option<f64>,
+    game: GameLines,
 }
 
 type LineError = ((usize, usize), MapErrorKind);
@@ -168,6 +170,9 @@ impl Header {
                 _ => (at, MapErrorKind::UnknownIdentifier(word.to_owned())),
             }
         })?;
+        if let Ident::Game(line) = kind {
+            return self.game.line(line, rest, line_no, word_col, rest_col);
+        }
         if let Ident::Light = kind {
             if self.lights.len() >= MAX_LIGHTS {
                 let what = "LIGHT lines";
@@ -265,7 +270,7 @@ impl Header {
                     },
                 ))?);
             }
-            Ident::SpriteEntry | Ident::Light => {
+            Ident::SpriteEntry | Ident::Light | Ident::Game(_) => {
                 unreachable!("handled before the duplicate check")
             }
             Ident::Resolution => {
@@ -299,6 +304,7 @@ enum Ident {
     Fog,
     Shade,
     Light,
+    Game(GameLine),
 }
 
 /// Which line of a zone letter: `Fz`, `Cz`, `Hz` or `Wz`.
@@ -327,6 +333,7 @@ fn classify(word: &str) -> Option<Ident> {
         "FOG" => Ident::Fog,
         "SHADE" => Ident::Shade,
         "LIGHT" => Ident::Light,
+        _ if GameLine::classify(word).is_some() => Ident::Game(GameLine::classify(word)?),
         _ => {
             let b = word.as_bytes();
             match b {
@@ -640,6 +647,9 @@ fn build(file: &str, h: Header, grid: &[(usize, &str)]) -> Result<Map, MapError>
             return Err(err(Some(def.at), kind));
         }
     }
+    h.game
+        .check(at)
+        .map_err(|(place, kind)| err(Some(place), kind))?;
     for (k, plane) in planes {
         cells[k] = Cell::Door(plane);
     }
@@ -672,6 +682,10 @@ fn build(file: &str, h: Header, grid: &[(usize, &str)]) -> Result<Map, MapError>
         door_texture: h.door_texture,
         fog: h.fog,
         shade: h.shade,
+        items: h.game.items,
+        locks: h.game.locks,
+        exits: h.game.exits,
+        creatures: h.game.creatures,
     })
 }
 

@@ -159,8 +159,10 @@ impl RayReport {
         camera: &Camera,
         outcomes: &[SpriteOutcome],
     ) -> Self {
+        // Only the world's own sprites are reported (a game's per-frame sprites follow them).
         self.sprites = outcomes
             .iter()
+            .filter(|o| o.index < world.sprites.len())
             .map(|o| {
                 let pos = world.sprites[o.index].def.pos;
                 let (lateral, depth) = to_camera_space(camera, pos);

@@ -13,7 +13,8 @@ use crate::world::sprite::{far_to_near, frame_index, project, view_index, Culled
 /// What became of one sprite in a frame (the JSON `sprites` array is built from these).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SpriteOutcome {
-    /// Index into [`crate::World::sprites`].
+    /// Index into [`crate::World::sprites`], then on into the scene's own sprites
+    /// ([`Scene::all_sprites`]).
     pub index: usize,
     /// Where it projects on screen, or why it was culled.
     pub projection: Result<Projection, Culled>,
@@ -63,9 +64,7 @@ pub fn draw_sprites(
     let (w, h) = (fb.width(), fb.height());
     let view = scene.view.clamped();
     let mut outcomes: Vec<SpriteOutcome> = scene
-        .world
-        .sprites
-        .iter()
+        .all_sprites()
         .enumerate()
         .map(|(index, s)| SpriteOutcome {
             index,
@@ -91,11 +90,16 @@ pub fn draw_sprites(
         };
         let mut shade = table.at(p.depth);
         if let Some(lamps) = scene.lamp_light() {
-            shade = shade.lit(lamps.at(scene.world.sprites[i].def.pos));
+            shade = shade.lit(lamps.at(p_pos(scene, i)));
         }
         outcomes[i].drawn = draw_one(scene, i, &p, occluders, fb, shade);
     }
     outcomes
+}
+
+/// Where sprite `i` of the scene stands (lamp light is read there).
+fn p_pos(scene: &Scene, i: usize) -> crate::vec2::Vec2 {
+    scene.sprite(i).map_or(scene.camera.pos, |s| s.def.pos)
 }
 
 /// Mixes `fg` over `bg` by `a`/255.
@@ -114,7 +118,9 @@ fn draw_one(
     fb: &mut Framebuffer,
     shade: Shade,
 ) -> bool {
-    let sprite = &scene.world.sprites[i];
+    let Some(sprite) = scene.sprite(i) else {
+        return false;
+    };
     let def = &sprite.def;
     let sheet = &scene.world.sheets[sprite.sheet];
     let views = usize::from(def.views).max(1);

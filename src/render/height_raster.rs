@@ -29,7 +29,7 @@ pub fn rasterize_heights(scene: &Scene, cast: &Cast, fb: &mut Framebuffer) -> Ve
     // from a previous frame in this buffer.
     fb.clear_phases();
     // Sprites are hidden by the distance of whatever was drawn at each pixel.
-    let mut depth = if scene.world.sprites.is_empty() {
+    let mut depth = if scene.world.sprites.is_empty() && scene.sprites.is_empty() {
         Vec::new()
     } else {
         vec![f32::INFINITY; w * h]
@@ -137,7 +137,7 @@ impl Painter<'_> {
             (FaceKind::Step | FaceKind::Lintel, Cell::Door(_)) => Cell::Floor { zone: 0 },
             (_, what) => what,
         };
-        match world.face_paint(what, heading_of(f.side, ray)) {
+        match world.face_paint_at(what, f.cell, heading_of(f.side, ray)) {
             Paint::Colour(c) => {
                 let c = shade.apply(c);
                 for y in f.rows.0..f.rows.1 {

@@ -149,7 +149,7 @@ fn wall_stripe(
     fb: &mut Framebuffer,
     shade: Shade,
 ) {
-    let tex = world.wall_texture(hit.what, heading(hit));
+    let tex = world.wall_texture_at(hit.what, hit.cell, heading(hit));
     let column = tex.column(texture_x(hit, tex.width()));
     let th = tex.height();
     let scale = th as f64 / span.height;
@@ -258,7 +258,7 @@ pub(crate) fn fast_floor(v: f64) -> i64 {
 /// The colour a column's wall shows at its centre row, for tests and the minimap.
 #[must_use]
 pub fn wall_colour_at(world: &World, hit: &ColumnHit, v: f64) -> Rgb {
-    let tex = world.wall_texture(hit.what, heading(hit));
+    let tex = world.wall_texture_at(hit.what, hit.cell, heading(hit));
     let y = ((v * tex.height() as f64) as usize).min(tex.height() - 1);
     tex.column(texture_x(hit, tex.width()))[y]
 }

@@ -29,6 +29,7 @@ use crate::render::light::Lighting;
 use crate::render::lightmap::LightMap;
 use crate::render::view::View;
 use crate::world::door::DoorState;
+use crate::world::sprite::Sprite;
 use crate::world::World;
 
 /// The whole input of one frame (pure, no terminal, no clock): the same scene gives the same pixels.
@@ -46,6 +47,9 @@ pub struct Scene<'a> {
     pub doors: Option<&'a DoorState>,
     /// Game time in seconds, which picks animation frames (passed in, never read from a clock).
     pub time: f64,
+    /// Sprites of this frame only (items, creatures, shots), drawn after and sorted with the
+    /// world's own; empty unless [`Scene::with_sprites`] gives some.
+    pub sprites: &'a [Sprite],
 }
 
 impl<'a> Scene<'a> {
@@ -59,6 +63,7 @@ impl<'a> Scene<'a> {
             light: world.lighting(),
             doors: None,
             time: 0.0,
+            sprites: &[],
         }
     }
 
@@ -81,6 +86,33 @@ impl<'a> Scene<'a> {
     pub fn with_doors(mut self, doors: &'a DoorState) -> Self {
         self.doors = Some(doors);
         self
+    }
+
+    /// This scene with `sprites` drawn too (the game's items, creatures and shots this frame),
+    /// depth-sorted with the world's sprites and hidden by walls and steps the same way.
+    #[must_use]
+    pub fn with_sprites(mut self, sprites: &'a [Sprite]) -> Self {
+        self.sprites = sprites;
+        self
+    }
+
+    /// Every sprite of the frame: the world's, then this frame's ([`SpriteOutcome`] indices
+    /// count through both in this order).
+    ///
+    /// [`SpriteOutcome`]: crate::render::billboard::SpriteOutcome
+    pub fn all_sprites(&self) -> impl Iterator<Item = &'a Sprite> {
+        self.world.sprites.iter().chain(self.sprites)
+    }
+
+    /// Sprite `i` of [`Scene::all_sprites`].
+    #[must_use]
+    pub fn sprite(&self, i: usize) -> Option<&'a Sprite> {
+        let n = self.world.sprites.len();
+        if i < n {
+            self.world.sprites.get(i)
+        } else {
+            self.sprites.get(i - n)
+        }
     }
 
     /// This scene at game time `seconds` (animation).

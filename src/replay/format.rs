@@ -164,6 +164,7 @@ fn command_json(frame: usize, c: &Command) -> Value {
             json!({"frame": frame, "command": "nudge", "action": action_name(a), "seconds": secs})
         }
         Command::CentrePitch => json!({"frame": frame, "command": "centre_pitch"}),
+        Command::Fire => json!({"frame": frame, "command": "fire"}),
     }
 }
 
@@ -382,6 +383,7 @@ fn parse_event(v: &Value, held: &mut Held, slot: &mut FrameInput) -> Result<(), 
             "jump" => Command::Jump,
             "toggle_night" => Command::ToggleNight,
             "centre_pitch" => Command::CentrePitch,
+            "fire" => Command::Fire,
             "nudge" => {
                 let name = v.get("action").and_then(Value::as_str).unwrap_or_default();
                 let (action, _) = ACTIONS

@@ -7,6 +7,7 @@ use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
 use crate::color::Rgb;
+use crate::game::key_colour::{key_colour, tinted};
 use crate::input_file::read_regular_capped;
 use crate::map::{Cell, ColourKey, Map, SpriteDef, Surface, TextureRef};
 use crate::render::lightmap::LightMap;
@@ -82,6 +83,14 @@ pub struct World {
     pub sprites: Vec<Sprite>,
     /// The `LIGHT`s baked onto the floor plan (empty without lights).
     pub lightmap: LightMap,
+    /// Sheet index per `ITEM` line (a key's sheet tinted with its key's colour).
+    pub item_sheets: Vec<usize>,
+    /// Sheet index per `CREATURE` line.
+    pub creature_sheets: Vec<usize>,
+    /// The sheet shots are drawn with (a soft glow).
+    pub glow_sheet: usize,
+    /// Locked doors' cells (sorted) and their panel textures, tinted with their key's colour.
+    door_tints: Vec<((i64, i64), usize)>,
 }
 
 /// A disc that blocks movement (a solid sprite).
@@ -201,6 +210,26 @@ impl World {
                 sheet,
             });
         }
+        let mut item_sheets = Vec::with_capacity(map.items.len());
+        for item in &map.items {
+            let sheet = loader.sheet(&item.texture, ColourKey::Auto, LEGACY_SPRITE_FALLBACK)?;
+            item_sheets.push(match &item.key {
+                Some(key) => loader.tinted_sheet(sheet, key_colour(key)),
+                None => sheet,
+            });
+        }
+        let creature_sheets = map
+            .creatures
+            .iter()
+            .map(|c| loader.sheet(&c.texture, ColourKey::Auto, CREATURE_FALLBACK))
+            .collect::<Result<Vec<_>, _>>()?;
+        let glow_sheet = loader.push_sheet(crate::game::projectile::glow_sheet());
+        let mut door_tints: Vec<((i64, i64), usize)> = map
+            .locks
+            .iter()
+            .map(|l| (l.cell, loader.tinted_texture(door_tex, key_colour(&l.key))))
+            .collect();
+        door_tints.sort_unstable();
         let Loader {
             textures,
             warnings,
@@ -220,6 +249,10 @@ impl World {
                 door_tex,
                 sheets,
                 sprites,
+                item_sheets,
+                creature_sheets,
+                glow_sheet,
+                door_tints,
             },
             warnings,
         ))
@@ -235,6 +268,39 @@ impl World {
             _ => 0,
         };
         &self.textures[self.wall_tex[kind][heading]]
+    }
+
+    /// [`World::wall_texture`] for the face of cell `cell`: a locked door's panel shows its
+    /// key's colour.
+    #[must_use]
+    #[inline]
+    pub fn wall_texture_at(&self, what: Cell, cell: (i64, i64), heading: usize) -> &Texture {
+        match self.door_tint(what, cell) {
+            Some(t) => &self.textures[t],
+            None => self.wall_texture(what, heading),
+        }
+    }
+
+    /// [`World::face_paint`] for the face of cell `cell` (a locked door's panel is tinted).
+    #[must_use]
+    #[inline]
+    pub fn face_paint_at(&self, what: Cell, cell: (i64, i64), heading: usize) -> Paint {
+        match self.door_tint(what, cell) {
+            Some(t) => Paint::Texture(t),
+            None => self.face_paint(what, heading),
+        }
+    }
+
+    /// The tinted panel texture of a locked door at `cell`, if `what` is one.
+    #[inline]
+    fn door_tint(&self, what: Cell, cell: (i64, i64)) -> Option<usize> {
+        if self.door_tints.is_empty() || !matches!(what, Cell::Door(_)) {
+            return None;
+        }
+        self.door_tints
+            .binary_search_by(|(c, _)| c.cmp(&cell))
+            .ok()
+            .map(|k| self.door_tints[k].1)
     }
 
     /// The paint of a vertical face of `what` (the cell whose solid part it is) seen heading
@@ -279,6 +345,9 @@ impl World {
 
 /// The built-in sheet a sprite falls back to when its texture cannot be loaded.
 pub const LEGACY_SPRITE_FALLBACK: &str = "barrel";
+
+/// The built-in sheet a `CREATURE` falls back to when its texture cannot be loaded.
+pub const CREATURE_FALLBACK: &str = "creature";
 
 impl World {
     /// The light the map asks for: its `FOG` and `SHADE` lines (day, no night).
@@ -378,6 +447,23 @@ impl Loader<'_> {
 
     fn push_sheet(&mut self, t: SpriteSheet) -> usize {
         intern(&mut self.sheets, t)
+    }
+
+    /// A copy of sheet `k` recoloured toward `tint` (a key's sprite).
+    fn tinted_sheet(&mut self, k: usize, tint: Rgb) -> usize {
+        let s = &self.sheets[k];
+        let t = SpriteSheet::from_fn(s.width(), s.height(), |x, y| {
+            let (c, a) = s.texel(x, y);
+            (tinted(c, tint), a)
+        });
+        self.push_sheet(t)
+    }
+
+    /// A copy of texture `k` recoloured toward `tint` (a locked door's panel).
+    fn tinted_texture(&mut self, k: usize, tint: Rgb) -> usize {
+        let s = &self.textures[k];
+        let t = Texture::from_fn(s.width(), s.height(), |x, y| tinted(s.texel(x, y), tint));
+        self.push(t)
     }
 
     fn builtin_sheet(&mut self, stem: &str) -> usize {

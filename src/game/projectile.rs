@@ -1,0 +1,181 @@
+//! The tag: a short glowing shot from a player's eye that flies straight, stops at the first
+//! wall or shut door on the renderer's DDA, and tags the first creature it meets.
+
+use super::creature::{Creature, CREATURE_RADIUS};
+use super::sight::first_block;
+use crate::color::Rgb;
+use crate::map::Map;
+use crate::texture::sheet::SpriteSheet;
+use crate::vec2::Vec2;
+use crate::world::door::DoorState;
+
+/// Flight speed in cells per second.
+pub const SHOT_SPEED: f64 = 8.0;
+
+/// Farthest a shot flies, in cells.
+pub const SHOT_RANGE: f64 = 6.0;
+
+/// A shot meets a creature whose centre comes this close to its path, in cells.
+pub const HIT_RADIUS: f64 = CREATURE_RADIUS + 0.1;
+
+/// Seconds between two shots of one player.
+pub const RELOAD_SECONDS: f64 = 0.4;
+
+/// The light a shot gives, as [`super::level::Level::lights`] reports it: radius in cells.
+pub const SHOT_LIGHT_RADIUS: f64 = 2.5;
+
+/// The colour of a shot's glow and light.
+pub const SHOT_COLOUR: Rgb = Rgb::new(255, 190, 90);
+
+/// One shot in flight.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Projectile {
+    /// Where it is on the map plane.
+    pub pos: Vec2,
+    /// Which way it flies (unit length).
+    pub dir: Vec2,
+    /// Its height: the eye height over the floor it flies over.
+    pub z: f64,
+    /// Cells flown so far.
+    pub travelled: f64,
+    /// The player who fired it.
+    pub owner: usize,
+}
+
+/// What became of a shot in one tick.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Flight {
+    /// Still flying.
+    Flying,
+    /// Stopped by a wall, a shut door or its range.
+    Spent,
+    /// Met the creature of this index (which it tags).
+    Hit(usize),
+}
+
+impl Projectile {
+    /// Moves the shot on by `dt` seconds: the first creature within [`HIT_RADIUS`] of its path
+    /// before any wall is hit; else it stops at a wall or at the end of its range.
+    pub fn fly(&mut self, map: &Map, doors: &DoorState, creatures: &[Creature], dt: f64) -> Flight {
+        let dist = (SHOT_SPEED * dt.max(0.0)).min(SHOT_RANGE - self.travelled);
+        let end = self.pos + self.dir * dist;
+        let wall = first_block(map, doors, self.pos, end);
+        let reach = wall.map_or(dist, |(_, t)| dist * t);
+        // The hit nearest along the path, if any comes before the wall.
+        let mut hit: Option<(f64, usize)> = None;
+        for (k, c) in creatures.iter().enumerate() {
+            if c.is_out() {
+                continue;
+            }
+            let rel = c.pos - self.pos;
+            let along = rel.dot(self.dir).clamp(0.0, reach);
+            let gap = (c.pos - (self.pos + self.dir * along)).length();
+            if gap >= HIT_RADIUS {
+                continue;
+            }
+            // Where the path first comes within the radius (the shot meets the creature's edge).
+            let meet = (along - (HIT_RADIUS * HIT_RADIUS - gap * gap).sqrt()).max(0.0);
+            if hit.is_none_or(|(a, _)| meet < a) {
+                hit = Some((meet, k));
+            }
+        }
+        if let Some((along, k)) = hit {
+            self.pos = self.pos + self.dir * along;
+            return Flight::Hit(k);
+        }
+        self.pos = self.pos + self.dir * reach;
+        self.travelled += reach;
+        if wall.is_some() || self.travelled >= SHOT_RANGE - 1e-9 {
+            Flight::Spent
+        } else {
+            Flight::Flying
+        }
+    }
+}
+
+/// The shot's sprite: a soft round glow, bright in the middle (drawn additively).
+#[must_use]
+pub fn glow_sheet() -> SpriteSheet {
+    const SIDE: usize = 16;
+    SpriteSheet::from_fn(SIDE, SIDE, |x, y| {
+        let c = (SIDE as f64 - 1.0) / 2.0;
+        let r = ((x as f64 - c).hypot(y as f64 - c) / c).min(1.0);
+        let k = (1.0 - r * r).powi(2);
+        let ch = |v: u8| (f64::from(v) * k + 255.0 * k * k * 0.5).min(255.0) as u8;
+        let colour = Rgb::new(ch(SHOT_COLOUR.r), ch(SHOT_COLOUR.g), ch(SHOT_COLOUR.b));
+        (colour, if k > 0.02 { 255 } else { 0 })
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::map::{grid_map, Behaviour, CreatureDef, TextureRef};
+
+    fn shot(from: Vec2, dir: Vec2) -> Projectile {
+        Projectile {
+            pos: from,
+            dir,
+            z: 0.5,
+            travelled: 0.0,
+            owner: 0,
+        }
+    }
+
+    #[test]
+    fn a_shot_stops_at_the_wall_and_at_its_range() {
+        let m = grid_map("111111\n1N0001\n111111\n");
+        let doors = DoorState::none();
+        let mut s = shot(Vec2::new(1.5, 1.5), Vec2::new(1.0, 0.0));
+        assert_eq!(s.fly(&m, &doors, &[], 0.25), Flight::Flying);
+        assert_eq!(s.fly(&m, &doors, &[], 0.25), Flight::Spent);
+        assert!((s.pos.x - 5.0).abs() < 1e-9, "{:?}", s.pos);
+        let long = grid_map(&format!(
+            "1{}1\n1N{}1\n1{}1\n",
+            "1".repeat(20),
+            "0".repeat(19),
+            "1".repeat(20)
+        ));
+        let mut s = shot(Vec2::new(1.5, 1.5), Vec2::new(1.0, 0.0));
+        let mut ticks = 0;
+        while s.fly(&long, &doors, &[], 0.1) == Flight::Flying {
+            ticks += 1;
+        }
+        assert!(
+            (s.travelled - SHOT_RANGE).abs() < 1e-9 && ticks == 7,
+            "{ticks} {s:?}"
+        );
+    }
+
+    #[test]
+    fn a_shot_tags_the_first_creature_on_its_path() {
+        let m = grid_map("11111111\n1N000001\n11111111\n");
+        let doors = DoorState::none();
+        let def = |x: f64| CreatureDef {
+            pos: Vec2::new(x, 1.5),
+            texture: TextureRef {
+                path: "c".into(),
+                line: 1,
+                col: 1,
+            },
+            speed: 1.0,
+            behaviour: Behaviour::Wander,
+            scale: 0.7,
+            frames: 4,
+            at: (1, 1),
+        };
+        let creatures = vec![Creature::new(&def(5.5), &m), Creature::new(&def(3.5), &m)];
+        let mut s = shot(Vec2::new(1.5, 1.5), Vec2::new(1.0, 0.0));
+        assert_eq!(s.fly(&m, &doors, &creatures, 0.5), Flight::Hit(1));
+        assert!((s.pos.x - (3.5 - HIT_RADIUS)).abs() < 1e-9, "{:?}", s.pos);
+    }
+
+    #[test]
+    fn the_glow_is_bright_in_the_middle_and_clear_at_the_corners() {
+        let g = glow_sheet();
+        assert_eq!(g.texel(0, 0).1, 0);
+        let (c, a) = g.texel(8, 8);
+        assert_eq!(a, 255);
+        assert!(c.r > 200 && c.g > 150);
+    }
+}
