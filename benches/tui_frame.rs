@@ -82,6 +82,7 @@ impl Rig {
             stats: &stats,
             toggles: Toggles::default(),
             input_mode: InputMode::Emulated,
+            results: None,
         };
         let before = self.bytes.0.get();
         let panes = self.panes;

@@ -4,11 +4,12 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use clap::Args;
+use halfcast::camera::Camera;
 use halfcast::encode::{ColorLevel, ColourChoice, EncodeOptions};
 use halfcast::game::Speeds;
 use halfcast::tui::config::Config;
 use halfcast::tui::layout::Toggles;
-use halfcast::tui::{self, Ending, LoopOptions, PlayOptions, Setup, TerminalError};
+use halfcast::tui::{self, Ending, LoopOptions, PlayOptions, Setup, Stage, TerminalError};
 
 use super::options::{MapArgs, PoseArgs};
 use super::{camera_for, detect_colours, load_world, parse_level, write_output, Failure};
@@ -17,8 +18,14 @@ use super::{camera_for, detect_colours, load_world, parse_level, write_output, F
 pub(crate) struct PlayArgs {
     #[command(flatten)]
     pub(crate) map: MapArgs,
+    /// Maps played after the first, in order (a campaign): each level's exit leads to the next.
+    #[arg(value_name = "NEXT_MAP")]
+    pub(crate) then: Vec<PathBuf>,
     #[command(flatten)]
     pub(crate) pose: PoseArgs,
+    /// Seed for the creatures' random choices (default: a new one each run; recordings keep it).
+    #[arg(long, value_name = "N")]
+    pub(crate) seed: Option<u64>,
     /// Target frames per second (1 to 1000).
     #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(1..=1000))]
     pub(crate) fps: u32,
@@ -91,15 +98,14 @@ pub(crate) fn play(args: &PlayArgs, record: Option<&PathBuf>) -> Result<(), Fail
         return Ok(());
     }
     let config = settings(args)?;
-    let world = load_world(&args.map)?;
-    let camera = camera_for(&world, &args.pose);
-    if !world.map.is_walkable(camera.pos) {
+    if record.is_some() && !args.then.is_empty() {
         return Err(Failure::input(format!(
-            "--pos {},{} is not on a floor cell of {}",
-            camera.pos.x, camera.pos.y, world.map.name
+            "record plays one map, got {}",
+            1 + args.then.len()
         )));
     }
-    halfcast::game::pose::player_start(&world.map, camera.pos, "--pos").map_err(Failure::input)?;
+    let stages = stages(args)?;
+    let seed = args.seed.unwrap_or_else(fresh_seed);
     let colour = match (args.colors, config.colors) {
         (Some(level), _) => ColourChoice::flag(level),
         (None, Some(level)) => ColourChoice::config(level),
@@ -129,8 +135,8 @@ pub(crate) fn play(args: &PlayArgs, record: Option<&PathBuf>) -> Result<(), Fail
         },
         colour,
     };
-    let (ending, stats, recording) =
-        tui::play(Arc::new(world), camera, options).map_err(terminal_failure)?;
+    let camera = stages[0].camera;
+    let (ending, stats, recording) = tui::play(stages, seed, options).map_err(terminal_failure)?;
     if args.frame_stats {
         eprintln!("halfcast: {}", stats.summary());
     }
@@ -148,7 +154,7 @@ pub(crate) fn play(args: &PlayArgs, record: Option<&PathBuf>) -> Result<(), Fail
             fov_deg: camera.fov_deg(),
             size: rec.size,
             fps: args.fps,
-            seed: 0,
+            seed,
             speeds: config.speeds,
         };
         let replay = halfcast::replay::Replay {
@@ -163,6 +169,48 @@ pub(crate) fn play(args: &PlayArgs, record: Option<&PathBuf>) -> Result<(), Fail
         );
     }
     ending_result(ending)
+}
+
+/// Every map of the campaign loaded and checked before the terminal is taken over, so a bad
+/// third level is an error now rather than a crash mid-game. `--pos`/`--angle` place the first.
+fn stages(args: &PlayArgs) -> Result<Vec<Stage>, Failure> {
+    let mut out = Vec::new();
+    let paths = std::iter::once(args.map.map.clone()).chain(args.then.iter().cloned().map(Some));
+    for (i, map) in paths.enumerate() {
+        let map_args = MapArgs {
+            map,
+            strict: args.map.strict,
+        };
+        let world = load_world(&map_args)?;
+        let camera = if i == 0 {
+            camera_for(&world, &args.pose)
+        } else {
+            let start = world.map.start;
+            Camera::from_angle(start.pos(), start.angle_deg(), args.pose.fov)
+        };
+        if !world.map.is_walkable(camera.pos) {
+            return Err(Failure::input(format!(
+                "--pos {},{} is not on a floor cell of {}",
+                camera.pos.x, camera.pos.y, world.map.name
+            )));
+        }
+        halfcast::game::pose::player_start(&world.map, camera.pos, "--pos")
+            .map_err(Failure::input)?;
+        out.push(Stage {
+            name: world.map.name.clone(),
+            world: Arc::new(world),
+            camera,
+        });
+    }
+    Ok(out)
+}
+
+/// A seed that differs from run to run (the clock's nanoseconds), for creatures that wander
+/// differently each game; `--seed` and recordings pin it.
+fn fresh_seed() -> u64 {
+    std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_nanos() as u64)
 }
 
 pub(crate) fn terminal_failure(e: TerminalError) -> Failure {

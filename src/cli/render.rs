@@ -95,10 +95,13 @@ pub(crate) fn render(args: &RenderArgs) -> Result<(), Failure> {
         .map
         .span(camera.pos.x.floor() as i64, camera.pos.y.floor() as i64)
         .map_or(0.0, |s| s.floor);
+    // The game's items and creatures as the level starts (what a player sees on the first frame).
+    let level_sprites = halfcast::game::Level::new(&world.map, 0).sprites(&world);
     let mut scene = Scene::new(&world, camera)
         // `--z` is the eye's height above the floor of the camera's cell.
         .with_view(halfcast::View::new(opts.pitch, opts.z).on_ground(ground))
         .with_doors(&doors)
+        .with_sprites(&level_sprites)
         .at_time(opts.time);
     if let Some(fog) = opts.fog {
         scene.light.fog = Some(fog);

@@ -25,6 +25,19 @@ pub const CATCH_RADIUS: f64 = 0.45;
 /// Points being caught costs (never taking a score below 0).
 pub const CATCH_POINTS: i64 = 25;
 
+/// What a player is told as a level starts ("Find the exit. 0/12 treasures."), so a first-time
+/// player knows the goal; `None` on a map without game lines.
+#[must_use]
+pub fn start_message(map: &Map) -> Option<String> {
+    let treasures = map.items.iter().filter(|i| i.is_treasure()).count();
+    match (map.exits.is_empty(), treasures) {
+        (false, 0) => Some("Find the exit.".to_owned()),
+        (false, n) => Some(format!("Find the exit. 0/{n} treasures.")),
+        (true, 0) => None,
+        (true, n) => Some(format!("Find the treasures: 0/{n}.")),
+    }
+}
+
 /// One player as a tick sees them: where they stand and the score they play for.
 #[derive(Debug)]
 pub struct Player<'a> {

@@ -138,6 +138,7 @@ impl GameState {
         let doors = DoorState::new(map);
         let solids = world.solid_discs();
         let level = Level::new(map, seed);
+        let message = level::start_message(map).map(|text| Message { text, at: 0.0 });
         Self {
             world,
             camera,
@@ -154,7 +155,7 @@ impl GameState {
             level,
             score: Score::default(),
             events: Vec::new(),
-            message: None,
+            message,
             solids,
         }
     }

@@ -13,6 +13,7 @@ use crate::render::framebuffer::Framebuffer;
 use crate::tui::keys::{InputMode, UiCommand};
 use crate::tui::layout::{Panes, Toggles};
 use crate::tui::render::render_view;
+use crate::tui::results::Results;
 use crate::tui::screen::{draw, Screen};
 use crate::tui::stats::FrameStats;
 use crate::world::World;
@@ -40,6 +41,8 @@ pub struct Player {
     stats: FrameStats,
     next: usize,
     view: Framebuffer,
+    /// The results screen, once the level's exit was reached.
+    results: Option<Results>,
 }
 
 impl Player {
@@ -49,7 +52,7 @@ impl Player {
         let camera = Camera::from_angle(header.pos, header.angle_deg, header.fov_deg);
         let mut stats = FrameStats::default();
         stats.fps = f64::from(header.fps);
-        let mut state = GameState::new(world, camera, 0);
+        let mut state = GameState::with_seed(world, camera, 0, header.seed);
         state.speeds = header.speeds;
         Self {
             state,
@@ -59,6 +62,7 @@ impl Player {
             stats,
             next: 0,
             view: Framebuffer::new(0, 0),
+            results: None,
         }
     }
 
@@ -99,7 +103,13 @@ impl Player {
             Panes::TooSmall(_) => Rect::default(),
         };
         self.state.view_width = usize::from(view.width);
-        step(&mut self.state, &input.input, self.dt);
+        // As the live loop: the world stops at the exit and the results screen shows.
+        if self.results.is_none() {
+            step(&mut self.state, &input.input, self.dt);
+            if self.state.level.finished().is_some() {
+                self.results = Some(Results::of(&self.state.world.map.name, &self.state, None));
+            }
+        }
         self.view
             .resize(usize::from(view.width), usize::from(view.height) * 2);
         let cast = render_view(&self.state, &mut self.view);
@@ -111,6 +121,7 @@ impl Player {
             stats: &self.stats,
             toggles: self.toggles,
             input_mode: InputMode::Emulated,
+            results: self.results.as_ref(),
         };
         draw(&s, &panes, area, &mut screen);
         let frame = Frame {

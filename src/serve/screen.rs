@@ -160,6 +160,7 @@ impl SessionScreen {
                     stats: &self.stats,
                     toggles: self.toggles,
                     input_mode: mode,
+                    results: None,
                 };
                 draw(&screen, &panes, body, &mut buf);
                 if let Panes::Game {

@@ -12,11 +12,12 @@ use super::events::Events;
 use super::keys::{Controls, UiCommand};
 use super::layout::{Panes, Toggles, COMPACT_MIN_WIDTH};
 use super::render::render_view;
+use super::results::Results;
 use super::screen::{draw_notice, draw_with_keys, Screen};
 use super::stats::FrameStats;
 use super::terminal::Session;
 use crate::encode::{ColourChoice, ColourReason, EncodeOptions, Pacer};
-use crate::game::{step, GameState};
+use crate::game::{step, Command, GameState};
 use crate::present::Presenter;
 use crate::render::framebuffer::Framebuffer;
 use crate::replay::FrameInput;
@@ -55,12 +56,47 @@ pub struct Recording {
     pub frames: Vec<FrameInput>,
 }
 
+/// The levels a game plays in order, and the seed their creatures start from.
+#[derive(Debug, Clone)]
+pub struct Campaign {
+    /// At least one level.
+    pub stages: Vec<super::Stage>,
+    /// Level `i` plays with seed `seed + i`.
+    pub seed: u64,
+}
+
+impl Campaign {
+    /// A fresh game state at the start of level `i`.
+    fn start(&self, i: usize, speeds: crate::game::Speeds) -> GameState {
+        let stage = &self.stages[i];
+        let mut state = GameState::with_seed(
+            Arc::clone(&stage.world),
+            stage.camera,
+            0,
+            self.seed.wrapping_add(i as u64),
+        );
+        state.speeds = speeds;
+        state
+    }
+
+    /// The results of level `i` as `state` finished it.
+    fn results(&self, i: usize, state: &GameState) -> Results {
+        let next = (i + 1 < self.stages.len()).then(|| self.stages[i + 1].name.clone());
+        Results::of(&self.stages[i].name, state, next)
+    }
+}
+
 /// Frame rate below which an adapting bandwidth cap lowers the colour level.
 const MIN_ADAPT_FPS: f64 = 12.0;
 
 /// The loop's mutable parts that are not game state.
 struct App {
     state: GameState,
+    campaign: Campaign,
+    /// The level being played (index into the campaign).
+    stage: usize,
+    /// The results screen, once this level's exit is reached.
+    results: Option<Results>,
     controls: Controls,
     toggles: Toggles,
     stats: FrameStats,
@@ -68,6 +104,8 @@ struct App {
     presenter: Presenter,
     pacer: Option<Pacer>,
     recording: Option<Recording>,
+    /// Whether frames are still being recorded (a recording ends at the level's exit).
+    recording_open: bool,
     last_size: Option<(u16, u16)>,
     keys: super::keymap::KeyMap,
     /// A note for the status line and until when it shows (a pane hidden for lack of room).
@@ -85,18 +123,22 @@ const NOTICE_FOR: Duration = Duration::from_secs(4);
 /// Terminal I/O failures (reading events, writing frames).
 pub fn run_loop(
     session: &mut Session,
-    state: GameState,
+    campaign: Campaign,
     options: LoopOptions,
     setup: &super::Setup,
     early_keys: Vec<crossterm::event::Event>,
     signal: &Arc<AtomicUsize>,
 ) -> io::Result<(Ending, FrameStats, Option<Recording>)> {
     let fps = f64::from(options.fps.max(1));
+    let state = campaign.start(0, setup.speeds);
     let mut controls = Controls::new(session.input_mode());
     controls.set_keymap(setup.keys.clone());
     controls.set_speeds(state.speeds);
     let mut app = App {
         state,
+        campaign,
+        stage: 0,
+        results: None,
         controls,
         toggles: setup.toggles,
         stats: FrameStats::default(),
@@ -104,6 +146,7 @@ pub fn run_loop(
         presenter: Presenter::new(options.encode),
         pacer: options.max_bandwidth.map(|bits| Pacer::new(bits, fps)),
         recording: options.record.then(Recording::default),
+        recording_open: true,
         last_size: None,
         keys: setup.keys.clone(),
         notice: None,
@@ -195,7 +238,18 @@ pub fn run_loop(
                 .set_turn_per_column(fov / f64::from(view.width));
         }
         let input = app.controls.take_input(now);
-        if let Some(rec) = app.recording.as_mut() {
+        if app.results.is_some() {
+            // Enter (the run-to-hit key) on the results screen: the next level, or this one again.
+            if input.commands.contains(&Command::RunToHit) {
+                app.stage = (app.stage + 1) % app.campaign.stages.len();
+                app.state = app.campaign.start(app.stage, app.state.speeds);
+                app.state.view_width = usize::from(view.width);
+                app.results = None;
+            }
+            // A recording is one level: it ends at the exit.
+            app.recording_open = false;
+        }
+        if let Some(rec) = app.recording.as_mut().filter(|_| app.recording_open) {
             let size = (size.width, size.height);
             let resize = match app.last_size {
                 None => {
@@ -212,7 +266,12 @@ pub fn run_loop(
             });
         }
         app.last_size = Some((size.width, size.height));
-        step(&mut app.state, &input, dt);
+        if app.results.is_none() {
+            step(&mut app.state, &input, dt);
+            if app.state.level.finished().is_some() {
+                app.results = Some(app.campaign.results(app.stage, &app.state));
+            }
+        }
         app.controls.set_paused(app.state.debugger.paused);
 
         // 3. Render the 3D view at exactly the pane's size.
@@ -231,6 +290,7 @@ pub fn run_loop(
             stats: &app.stats,
             toggles: app.toggles,
             input_mode: app.controls.mode(),
+            results: app.results.as_ref(),
         };
         let mut buf = Buffer::empty(area);
         draw_with_keys(&screen, &panes, area, &mut buf, &app.keys);

@@ -23,7 +23,7 @@ pub const ROWS: &[(&[&str], &str)] = &[
     (&["look_up", "look_down"], "look up / down"),
     (&["centre_pitch"], "look straight ahead again"),
     (&["jump", "crouch"], "jump / crouch (hold)"),
-    (&["use_door"], "open / close the door ahead"),
+    (&["use_door", "tag"], "open / close a door / throw a tag"),
     (&["night"], "night mode on / off"),
     (&[], "Ray debugger"),
     (&["pause"], "pause / resume the world"),

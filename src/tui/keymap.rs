@@ -11,6 +11,8 @@ pub enum KeyAction {
     /// A movement held while the key is (turn keys move the debugged column while paused).
     Hold(Action),
     UseDoor,
+    /// Throw a tag at a creature (the game's one attack; no gore).
+    Tag,
     Jump,
     Night,
     CentrePitch,
@@ -96,6 +98,12 @@ pub const ACTIONS: &[(&str, KeyAction, &str, &[&str])] = &[
         KeyAction::UseDoor,
         "open / close the door ahead",
         &["e", "f"],
+    ),
+    (
+        "tag",
+        KeyAction::Tag,
+        "throw a tag (tags a creature it hits)",
+        &["t"],
     ),
     ("night", KeyAction::Night, "night mode on / off", &["l"]),
     (

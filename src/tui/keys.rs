@@ -75,6 +75,7 @@ fn binding(map: &KeyMap, key: &KeyEvent, paused: bool) -> Option<Binding> {
         KeyAction::Hold(Action::TurnRight) if paused => Binding::Game(Command::MoveColumn(fast)),
         KeyAction::Hold(a) => Binding::Hold(a),
         KeyAction::UseDoor => Binding::Toggle(Command::UseDoor),
+        KeyAction::Tag => Binding::Toggle(Command::Fire),
         KeyAction::Jump => Binding::Toggle(Command::Jump),
         KeyAction::Night => Binding::Toggle(Command::ToggleNight),
         KeyAction::CentrePitch => Binding::Toggle(Command::CentrePitch),

@@ -15,6 +15,7 @@ pub mod layout;
 pub mod playback;
 pub mod render;
 pub mod repeat;
+pub mod results;
 pub mod screen;
 pub mod stats;
 pub mod status;
@@ -46,6 +47,17 @@ pub struct PlayOptions {
     pub setup: Setup,
 }
 
+/// One level of a campaign: its world, where the player starts, and its name for the results.
+#[derive(Debug, Clone)]
+pub struct Stage {
+    /// The level's world.
+    pub world: Arc<World>,
+    /// The player's start.
+    pub camera: Camera,
+    /// The map's name, shown on the results screen.
+    pub name: String,
+}
+
 /// The player's choices that the loop starts from.
 #[derive(Debug, Clone, Default)]
 pub struct Setup {
@@ -67,21 +79,24 @@ fn watch_signals() -> std::io::Result<Arc<AtomicUsize>> {
     Ok(signal)
 }
 
-/// Plays in this terminal until the player quits or a signal arrives; the terminal is
-/// restored on every way out (including panics, via the session's panic hook).
+/// Plays `stages` in order in this terminal (each level's exit leads to the next; the last one
+/// starts again) until the player quits or a signal arrives; the terminal is restored on every
+/// way out (including panics, via the session's panic hook). `seed` drives the creatures.
 ///
 /// # Errors
 /// Not a terminal, or terminal I/O failing mid-game.
+///
+/// # Panics
+/// If `stages` is empty.
 pub fn play(
-    world: Arc<World>,
-    camera: Camera,
+    stages: Vec<Stage>,
+    seed: u64,
     options: PlayOptions,
 ) -> Result<(Ending, FrameStats, Option<Recording>), TerminalError> {
+    assert!(!stages.is_empty(), "a campaign has at least one level");
     terminal::require_tty()?;
     let signal = watch_signals()?;
     let mut session = terminal::Session::start(options.mouse, &signal)?;
-    let mut state = crate::game::GameState::new(world, camera, 0);
-    state.speeds = options.setup.speeds;
     let mut colour = options.colour;
     let mut early_keys = Vec::new();
     if colour.worth_asking() {
@@ -94,7 +109,7 @@ pub fn play(
     looping.colour_reason = colour.reason;
     let result = app::run_loop(
         &mut session,
-        state,
+        app::Campaign { stages, seed },
         looping,
         &options.setup,
         early_keys,

@@ -16,6 +16,7 @@ use crate::encode::ColorLevel;
 use crate::game::{Cursor, GameState};
 use crate::render::cast::Cast;
 use crate::render::framebuffer::Framebuffer;
+use crate::widget::minimap::Thing;
 use crate::widget::{DebugPane, HalfBlockView, Minimap, RevealedTrace};
 
 const BORDER: Style = Style::new().fg(Color::Rgb(84, 90, 112));
@@ -34,6 +35,8 @@ pub struct Screen<'a> {
     pub stats: &'a FrameStats,
     pub toggles: Toggles,
     pub input_mode: InputMode,
+    /// The results screen over everything, once the level's exit is reached.
+    pub results: Option<&'a super::results::Results>,
 }
 
 /// Draws the 3D view pane. The one place the view reaches the terminal buffer, so a byte-lean
@@ -61,6 +64,9 @@ pub fn draw_with_keys(screen: &Screen, panes: &Panes, area: Rect, buf: &mut Buff
             status,
         } => {
             draw_view(screen.view, view.intersection(area), buf);
+            if let Some(text) = message_now(screen.state) {
+                draw_banner(text, view.intersection(area), buf);
+            }
             let revealed = screen
                 .cast
                 .trace
@@ -99,8 +105,78 @@ pub fn draw_with_keys(screen: &Screen, panes: &Panes, area: Rect, buf: &mut Buff
                 }
                 .render(area, buf);
             }
+            if let Some(results) = screen.results {
+                results.render(view.intersection(area), buf);
+            }
         }
     }
+}
+
+/// How long a game message (a pickup, a locked door) stays over the view, in game seconds.
+pub const MESSAGE_SECONDS: f64 = 4.0;
+
+/// The game's message to show this frame, while it is fresh.
+#[must_use]
+pub fn message_now(state: &GameState) -> Option<&str> {
+    state
+        .message
+        .as_ref()
+        .filter(|m| (0.0..MESSAGE_SECONDS).contains(&(state.time - m.at)))
+        .map(|m| m.text.as_str())
+}
+
+const BANNER: Style = Style::new()
+    .bg(Color::Rgb(22, 24, 32))
+    .fg(Color::Rgb(255, 226, 140))
+    .add_modifier(Modifier::BOLD);
+
+/// A one-row message centred at the top of the view (over it: the presenter draws such cells
+/// on top of the view).
+pub fn draw_banner(text: &str, view: Rect, buf: &mut Buffer) {
+    if view.width < 3 || view.height == 0 {
+        return;
+    }
+    let text = format!(" {text} ");
+    let width = (text.chars().count() as u16).min(view.width);
+    let x = view.x + (view.width - width) / 2;
+    let row = Rect::new(x, view.y, width, 1);
+    Clear.render(row, buf);
+    buf.set_stringn(x, view.y, &text, usize::from(width), BANNER);
+}
+
+/// The game's objects as the minimap shows them: items left (treasure `$`, keys `k` in their
+/// colour) and creatures (`c`; grey while tagged).
+#[must_use]
+pub fn minimap_things(state: &GameState) -> Vec<Thing> {
+    let map = &state.world.map;
+    let mut out = Vec::new();
+    for (k, item) in map.items.iter().enumerate() {
+        if state.level.is_taken(k) {
+            continue;
+        }
+        let (colour, glyph) = match &item.key {
+            Some(name) => (crate::game::key_colour::key_colour(name), "k"),
+            None => (crate::color::Rgb::new(255, 200, 60), "$"),
+        };
+        out.push(Thing {
+            pos: item.pos,
+            colour,
+            glyph,
+        });
+    }
+    for c in state.level.creatures() {
+        let colour = if c.is_out() {
+            crate::color::Rgb::new(120, 120, 130)
+        } else {
+            crate::color::Rgb::new(230, 70, 200)
+        };
+        out.push(Thing {
+            pos: c.pos,
+            colour,
+            glyph: "c",
+        });
+    }
+    out
 }
 
 fn pane(title: Line<'static>) -> Block<'static> {
@@ -115,10 +191,12 @@ fn draw_minimap(screen: &Screen, revealed: Option<RevealedTrace>, r: Rect, buf: 
     let inner = block.inner(r);
     block.render(r, buf);
     let s = screen.state;
+    let things = minimap_things(s);
     let mut map = Minimap::new(&s.world, &s.camera, &screen.cast.columns)
         .ascii(screen.stats.level.map(|c| c.level) == Some(ColorLevel::Mono))
         .focus_on_ray(s.debugger.paused)
-        .doors(&s.doors);
+        .doors(&s.doors)
+        .things(&things);
     if let Some(t) = revealed {
         map = map.debug_ray(t);
     }

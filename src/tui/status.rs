@@ -82,6 +82,7 @@ pub fn status_line(
         }
         segs.push(seg(7, hints));
     } else {
+        segs.extend(hud(state));
         segs.push(seg(8, vec![v(format!(" {:>3.0}", stats.fps)), l(" fps")]));
         segs.push(seg(
             3,
@@ -156,6 +157,36 @@ pub fn status_line(
         spans.extend(s.spans);
     }
     Line::from(spans).style(BAR)
+}
+
+/// The game's figures (on maps with something to find): points, keys held (each in its
+/// colour), items left and the time; kept before the speed figures at 80 columns.
+fn hud(state: &GameState) -> Vec<Segment> {
+    let (level, map) = (&state.level, &state.world.map);
+    if map.items.is_empty() && map.exits.is_empty() {
+        return Vec::new();
+    }
+    let score = &state.score;
+    let mut out = vec![seg(9, vec![v(format!(" {}", score.points)), l(" pts")])];
+    if !score.keys.is_empty() {
+        let mut keys = vec![l("keys")];
+        for k in &score.keys {
+            let c = crate::game::key_colour::key_colour(k);
+            keys.push(l(" "));
+            keys.push(Span::styled(
+                k.clone(),
+                Style::new()
+                    .fg(Color::Rgb(c.r, c.g, c.b))
+                    .add_modifier(Modifier::BOLD),
+            ));
+        }
+        out.push(seg(9, keys));
+    }
+    if level.items_total() > 0 {
+        out.push(seg(8, vec![v(level.items_left().to_string()), l(" left")]));
+    }
+    out.push(seg(7, vec![v(super::results::clock(state.time))]));
+    out
 }
 
 /// Drops the least useful segments until the line (with separators) fits.

@@ -100,6 +100,24 @@ pub struct Marker<'a> {
     pub label: Option<&'a str>,
 }
 
+/// A game object on the map (a treasure, a key, a creature): a dot in its colour, or its
+/// character on the ASCII map.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Thing {
+    /// Map position.
+    pub pos: Vec2,
+    /// Dot colour.
+    pub colour: Rgb,
+    /// What the ASCII map shows (one character).
+    pub glyph: &'static str,
+}
+
+/// The exit's cells on the minimap.
+const EXIT: Rgb = Rgb::new(90, 230, 120);
+
+/// Radius of a thing's dot, in cells.
+const THING_RADIUS: f64 = 0.18;
+
 /// Which part of the map is on the canvas: pixels per cell and the map point at pixel (0, 0).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MapView {
@@ -196,6 +214,7 @@ pub struct Minimap<'a> {
     focus: bool,
     doors: Option<&'a DoorState>,
     markers: &'a [Marker<'a>],
+    things: &'a [Thing],
     ascii: bool,
 }
 
@@ -211,6 +230,7 @@ impl<'a> Minimap<'a> {
             focus: false,
             doors: None,
             markers: &[],
+            things: &[],
             ascii: false,
         }
     }
@@ -229,6 +249,13 @@ impl<'a> Minimap<'a> {
         self
     }
 
+    /// Also shows the game's objects (items left, creatures); the map's exits always show.
+    #[must_use]
+    pub fn things(mut self, things: &'a [Thing]) -> Self {
+        self.things = things;
+        self
+    }
+
     /// Debugger focus: zoom on the debugged ray (its whole path to the hit) and drop the fan
     /// of rays, so single steps are easy to follow.
     #[must_use]
@@ -238,8 +265,8 @@ impl<'a> Minimap<'a> {
     }
 
     /// Draws plain ASCII characters instead of coloured half-blocks (for `--colors mono`):
-    /// `#` wall, `.` floor, `+` shut door, `/` open door, `o` sprite, `@` player, `*` the ray,
-    /// `X` the cell it reached; raised and sunk floors by [`level_glyph`].
+    /// `#` wall, `.` floor, `+` shut door, `/` open door, `o` sprite, `E` exit, things by their
+    /// glyph, `@` player, `*` the ray, `X` the cell it reached; raised and sunk floors by [`level_glyph`].
     #[must_use]
     pub fn ascii(mut self, on: bool) -> Self {
         self.ascii = on;
@@ -292,8 +319,17 @@ impl<'a> Minimap<'a> {
         if let Some(doors) = self.doors {
             paint_door_panels(fb, &view, map, doors);
         }
+        for e in &map.exits {
+            fill_cell(fb, &view, e.cell, EXIT, 200);
+        }
         for s in &self.world.sprites {
             paint_sprite(fb, &view, s, palette.sprites[s.sheet]);
+        }
+        for t in self.things {
+            let at = view.to_px(t.pos);
+            let r = (THING_RADIUS * view.scale).max(1.0);
+            disc(fb, at, r + 0.75, SOLID_RIM, 256);
+            disc(fb, at, r, t.colour, 256);
         }
         for m in self.markers {
             paint_marker(fb, &view, m);
@@ -554,8 +590,19 @@ impl Minimap<'_> {
                 buf[(area.x + cx, area.y + cy)].set_symbol(c);
             }
         }
+        for e in &map.exits {
+            put(Vec2::new(e.cell.0 as f64, e.cell.1 as f64 + 0.5), "E", buf);
+            put(
+                Vec2::new(e.cell.0 as f64 + 0.5, e.cell.1 as f64 + 0.5),
+                "E",
+                buf,
+            );
+        }
         for s in &self.world.sprites {
             put(s.def.pos, "o", buf);
+        }
+        for t in self.things {
+            put(t.pos, t.glyph, buf);
         }
         for m in self.markers {
             put(m.pos, "&", buf);

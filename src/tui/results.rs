@@ -1,0 +1,195 @@
+//! The results screen shown when a level's exit is reached: time, points, treasures found, and
+//! what the next key press does (the next map of a campaign, or the same level again). Its
+//! words are plain ASCII, so it reads the same at every colour level.
+
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Clear, Paragraph, Widget};
+
+/// One finished level's figures, and where the player goes from here.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Results {
+    /// The level's map name, as the title.
+    pub level: String,
+    /// Game seconds from the start to the exit.
+    pub seconds: f64,
+    /// Points at the exit.
+    pub points: i64,
+    /// Treasures found, of all the level has.
+    pub treasures: (usize, usize),
+    /// The next map's name, or `None` when Enter plays this level again.
+    pub next: Option<String>,
+    /// Who reached the exit, when that was someone else (a shared world).
+    pub by: Option<String>,
+}
+
+impl Results {
+    /// The results of the level `level` as `state` finished it, going on to `next`.
+    #[must_use]
+    pub fn of(level: &str, state: &crate::game::GameState, next: Option<String>) -> Self {
+        Self {
+            level: level.to_owned(),
+            seconds: state.time,
+            points: state.score.points,
+            treasures: (state.score.found, state.level.treasures_total()),
+            next,
+            by: None,
+        }
+    }
+}
+
+/// `m:ss` (or `h:mm:ss`), how long a level took.
+#[must_use]
+pub fn clock(seconds: f64) -> String {
+    let s = if seconds.is_finite() {
+        seconds.max(0.0) as u64
+    } else {
+        0
+    };
+    if s >= 3600 {
+        format!("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60)
+    } else {
+        format!("{}:{:02}", s / 60, s % 60)
+    }
+}
+
+const LABEL: Style = Style::new().fg(Color::Rgb(150, 154, 168));
+const VALUE: Style = Style::new()
+    .fg(Color::Rgb(255, 214, 110))
+    .add_modifier(Modifier::BOLD);
+const KEY: Style = Style::new()
+    .fg(Color::Rgb(110, 200, 230))
+    .add_modifier(Modifier::BOLD);
+
+impl Results {
+    /// The box's text rows.
+    #[must_use]
+    pub fn lines(&self) -> Vec<Line<'static>> {
+        let row = |label: &str, value: String| {
+            Line::from(vec![
+                Span::styled(format!("{label:<10}"), LABEL),
+                Span::styled(value, VALUE),
+            ])
+        };
+        let mut out = vec![Line::from(Span::styled(
+            "Level complete!",
+            VALUE.fg(Color::Rgb(120, 255, 150)),
+        ))];
+        if let Some(who) = &self.by {
+            out.push(Line::from(Span::styled(
+                format!("{who} reached the exit"),
+                LABEL,
+            )));
+        }
+        out.push(Line::default());
+        out.push(row("Time", clock(self.seconds)));
+        out.push(row("Points", self.points.to_string()));
+        out.push(row(
+            "Treasures",
+            format!("{} of {}", self.treasures.0, self.treasures.1),
+        ));
+        out.push(Line::default());
+        let then = match &self.next {
+            Some(name) => format!(" next level: {name}"),
+            None => " play this level again".to_owned(),
+        };
+        out.push(Line::from(vec![
+            Span::styled("Enter", KEY),
+            Span::styled(then, LABEL),
+        ]));
+        out.push(Line::from(vec![
+            Span::styled("q", KEY),
+            Span::styled(" quit", LABEL),
+        ]));
+        out
+    }
+}
+
+impl Widget for &Results {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        let lines = self.lines();
+        let text_width = lines.iter().map(Line::width).max().unwrap_or(0);
+        let title = format!(" {} ", self.level);
+        let w = (text_width.max(title.len()) as u16 + 4).min(area.width);
+        let h = (lines.len() as u16 + 2).min(area.height);
+        if w < 4 || h < 3 {
+            return;
+        }
+        let r = Rect::new(
+            area.x + (area.width - w) / 2,
+            area.y + (area.height - h) / 2,
+            w,
+            h,
+        );
+        Clear.render(r, buf);
+        let block = Block::bordered()
+            .border_set(ratatui::symbols::border::PLAIN)
+            .border_style(Style::new().fg(Color::Rgb(120, 255, 150)))
+            .title(title)
+            .style(Style::new().bg(Color::Rgb(22, 24, 32)));
+        let inner = block.inner(r);
+        block.render(r, buf);
+        Paragraph::new(lines).centered().render(inner, buf);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn text(buf: &Buffer) -> String {
+        let a = buf.area;
+        (a.top()..a.bottom())
+            .map(|y| {
+                (a.left()..a.right())
+                    .map(|x| buf[(x, y)].symbol().to_owned())
+                    .collect::<String>()
+            })
+            .collect::<Vec<_>>()
+            .join("\n")
+    }
+
+    #[test]
+    fn clock_reads_minutes_and_seconds() {
+        assert_eq!(clock(0.4), "0:00");
+        assert_eq!(clock(83.9), "1:23");
+        assert_eq!(clock(3723.0), "1:02:03");
+        assert_eq!(clock(f64::NAN), "0:00");
+    }
+
+    #[test]
+    fn the_box_shows_every_figure_and_the_next_step_in_plain_ascii_at_80x24() {
+        let r = Results {
+            level: "maps/level1.cub".into(),
+            seconds: 83.2,
+            points: 120,
+            treasures: (8, 12),
+            next: Some("maps/level2.cub".into()),
+            by: None,
+        };
+        let mut buf = Buffer::empty(Rect::new(0, 0, 80, 24));
+        (&r).render(buf.area, &mut buf);
+        let t = text(&buf);
+        for want in [
+            "maps/level1.cub",
+            "Level complete!",
+            "1:23",
+            "120",
+            "8 of 12",
+            "Enter next level: maps/level2.cub",
+            "q quit",
+        ] {
+            assert!(t.contains(want), "{want} missing in\n{t}");
+        }
+        // The words are ASCII (the presenter turns the border into ASCII in mono).
+        for line in r.lines() {
+            assert!(line.to_string().is_ascii(), "{line}");
+        }
+        let again = Results { next: None, ..r };
+        let mut buf = Buffer::empty(Rect::new(0, 0, 80, 24));
+        (&again).render(buf.area, &mut buf);
+        assert!(text(&buf).contains("Enter play this level again"));
+    }
+}
