@@ -64,6 +64,14 @@ pub(crate) struct ServeArgs {
     /// No connect/disconnect log on stderr.
     #[arg(long)]
     pub(crate) quiet: bool,
+    /// The game: coop (shared points, anyone's exit ends the round) or tag (one player is
+    /// "it"; touching passes it on; the least time as "it" wins).
+    #[arg(long, default_value = "coop", value_parser = parse_mode)]
+    pub(crate) mode: halfcast::serve::round::Mode,
+}
+
+fn parse_mode(s: &str) -> Result<halfcast::serve::round::Mode, String> {
+    s.parse()
 }
 
 /// The authentication mode from the flags and the environment; warns about `--password`.
@@ -117,6 +125,7 @@ pub(crate) fn serve(args: ServeArgs) -> Result<(), Failure> {
     config.idle_timeout = Duration::from_secs(args.idle_timeout);
     config.fps = args.fps;
     config.quiet = args.quiet;
+    config.mode = args.mode;
     let mut seed = [0u8; 8];
     // Unpredictable refusals where the OS has randomness; the fixed seed otherwise.
     if getrandom::fill(&mut seed).is_ok() {

@@ -151,6 +151,26 @@ pub struct Level {
     discs: Vec<SolidDisc>,
 }
 
+impl Default for Level {
+    /// A level with nothing in it (what a shared world shows before its first tick).
+    fn default() -> Self {
+        Self {
+            taken: Vec::new(),
+            treasures: 0,
+            locks: BTreeMap::new(),
+            exits: Vec::new(),
+            creatures: Vec::new(),
+            looks: Vec::new(),
+            projectiles: Vec::new(),
+            rng: Rng::new(0),
+            finished: None,
+            time: 0.0,
+            reload: BTreeMap::new(),
+            discs: Vec::new(),
+        }
+    }
+}
+
 impl Level {
     /// The level as `map` sets it up, its creatures' choices driven by `seed`.
     #[must_use]

@@ -13,7 +13,7 @@ use crate::render::framebuffer::Framebuffer;
 use crate::tui::keys::{InputMode, UiCommand};
 use crate::tui::layout::{Panes, Toggles};
 use crate::tui::render::render_view;
-use crate::tui::results::Results;
+use crate::tui::results::{Results, Then};
 use crate::tui::screen::{draw, Screen};
 use crate::tui::stats::FrameStats;
 use crate::world::World;
@@ -107,7 +107,11 @@ impl Player {
         if self.results.is_none() {
             step(&mut self.state, &input.input, self.dt);
             if self.state.level.finished().is_some() {
-                self.results = Some(Results::of(&self.state.world.map.name, &self.state, None));
+                self.results = Some(Results::of(
+                    &self.state.world.map.name,
+                    &self.state,
+                    Then::Again,
+                ));
             }
         }
         self.view

@@ -156,7 +156,13 @@ pub fn mark_players(
         }
         let rows = (h / 2) as i64;
         let row = ((base - k - 1).div_euclid(2) - 1).clamp(0, rows - 1);
-        let name: String = p.name.chars().take(w).collect();
+        // Tag: whoever is "it" says so over their head.
+        let label = if snap.it == Some(p.id) {
+            format!("{} (it)", p.name)
+        } else {
+            p.name.clone()
+        };
+        let name: String = label.chars().take(w).collect();
         let n = name.chars().count() as i64;
         let col = (centre - n / 2).clamp(0, w as i64 - n);
         for x in col..col + n {

@@ -58,6 +58,8 @@ pub struct ServeConfig {
     pub fps: u32,
     /// Silence the connect/disconnect log on stderr.
     pub quiet: bool,
+    /// The game everybody plays: coop or tag.
+    pub mode: super::round::Mode,
 }
 
 impl ServeConfig {
@@ -81,6 +83,7 @@ impl ServeConfig {
             tick_hz: 30,
             fps: 30,
             quiet: false,
+            mode: super::round::Mode::Coop,
         }
     }
 }

@@ -25,6 +25,7 @@ pub mod lifecycle;
 pub mod limits;
 pub mod log;
 pub mod players;
+pub mod round;
 pub mod screen;
 pub mod server;
 pub mod session;

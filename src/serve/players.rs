@@ -10,7 +10,10 @@ use crate::camera::{Camera, DEFAULT_FOV_DEG};
 use crate::color::Rgb;
 use crate::game::collision::{centre_cell, fits_here, overlaps_wall, Obstacles, PLAYER_RADIUS};
 use crate::game::Body;
-use crate::game::{step_shared, Command, GameState, Held, Input};
+use crate::game::Player as LevelPlayer;
+use crate::game::{step_shared, Command, GameState, Held, Input, Level, Message, Score};
+
+use super::round::{self, Here, Mode, Round, RoundEnd};
 use crate::render::view::STANDING_EYE;
 use crate::vec2::Vec2;
 use crate::world::door::DoorState;
@@ -55,6 +58,14 @@ pub struct Snapshot {
     pub doors: DoorState,
     /// In join order.
     pub players: Vec<PlayerView>,
+    /// The level everybody plays (items left, creatures, shots).
+    pub level: Level,
+    /// The header's game part: mode, team score or who is "it", the scoreboard.
+    pub scoreboard: String,
+    /// Who is "it" (tag).
+    pub it: Option<PlayerId>,
+    /// The round's results while they show.
+    pub ended: Option<RoundEnd>,
 }
 
 impl Default for Snapshot {
@@ -63,6 +74,10 @@ impl Default for Snapshot {
             version: 0,
             doors: DoorState::none(),
             players: Vec::new(),
+            level: Level::default(),
+            scoreboard: String::new(),
+            it: None,
+            ended: None,
         }
     }
 }
@@ -80,6 +95,8 @@ struct Player {
     name: String,
     color: Rgb,
     state: GameState,
+    /// What this player found and lost this round (coop shows the team's in `state.score`).
+    own: Score,
     held: Held,
     commands: Vec<Command>,
     walking: bool,
@@ -92,6 +109,8 @@ pub struct Players {
     solids: Vec<SolidDisc>,
     players: BTreeMap<PlayerId, Player>,
     doors: DoorState,
+    /// The game everybody plays: the level, the mode's rules, the results between rounds.
+    round: Round,
     /// World time in seconds: sprite animations, the same for everyone.
     time: f64,
     joined: u64,
@@ -99,12 +118,19 @@ pub struct Players {
 }
 
 impl Players {
-    /// Nobody here yet; every door shut.
+    /// Nobody here yet; every door shut; a round of coop.
     #[must_use]
     pub fn new(world: Arc<World>) -> Self {
+        Self::with_mode(world, Mode::Coop, 0)
+    }
+
+    /// Nobody here yet, playing `mode`; the creatures' random choices start from `seed`.
+    #[must_use]
+    pub fn with_mode(world: Arc<World>, mode: Mode, seed: u64) -> Self {
         Self {
             solids: world.solid_discs(),
             doors: DoorState::new(&world.map),
+            round: Round::new(&world.map, mode, seed),
             world,
             players: BTreeMap::new(),
             time: 0.0,
@@ -133,6 +159,7 @@ impl Players {
                 name,
                 color,
                 state,
+                own: Score::default(),
                 held: Held::default(),
                 commands: Vec::new(),
                 walking: false,
@@ -182,12 +209,21 @@ impl Players {
     }
 
     /// Advances the world by `dt` seconds: doors slide once, then each player (in id order)
-    /// takes one `game::step_shared` against the others' current places.
+    /// takes one `game::step_shared` against the others' current places, then the shared level
+    /// moves (creatures, shots, pickups, the exit) and the mode's rules run. While a round's
+    /// results show, the world waits; then the next round starts with everyone respawned.
     pub fn tick(&mut self, dt: f64) {
         self.time += dt;
+        if self.round.ended.is_some() {
+            if self.round.wait(dt) {
+                self.next_round();
+            }
+            return;
+        }
+        self.round.elapsed += dt;
         self.doors.update(dt);
         let ids: Vec<PlayerId> = self.players.keys().copied().collect();
-        for id in ids {
+        for (index, &id) in ids.iter().enumerate() {
             let bodies: Vec<SolidDisc> = self
                 .players
                 .iter()
@@ -200,23 +236,175 @@ impl Players {
             let Some(p) = self.players.get_mut(&id) else {
                 continue;
             };
+            let mut commands = std::mem::take(&mut p.commands);
+            // Shots belong to the shared level, credited to this player.
+            let fired = commands.iter().any(|c| *c == Command::Fire);
+            commands.retain(|c| *c != Command::Fire);
             let input = Input {
                 held: p.held,
-                commands: std::mem::take(&mut p.commands),
+                commands,
             };
             let before = p.state.camera.pos;
             std::mem::swap(&mut p.state.doors, &mut self.doors);
+            std::mem::swap(&mut p.state.level, &mut self.round.level);
             step_shared(&mut p.state, &input, dt, &bodies);
+            if fired && !p.state.debugger.paused {
+                let cam = p.state.camera;
+                p.state.level.fire(index, cam.pos, cam.dir);
+            }
+            std::mem::swap(&mut p.state.level, &mut self.round.level);
             std::mem::swap(&mut p.state.doors, &mut self.doors);
             p.state.time = self.time;
             p.walking = p.state.camera.pos != before;
         }
+        self.level_tick(&ids, dt);
+    }
+
+    /// The shared level's tick for everyone here, the scores it changed, the messages it has
+    /// for each player, and the mode's rules.
+    fn level_tick(&mut self, ids: &[PlayerId], dt: f64) {
+        let coop = self.round.mode == Mode::Coop;
+        let was: Vec<Score> = ids
+            .iter()
+            .map(|id| {
+                if coop {
+                    self.round.team.clone()
+                } else {
+                    self.players[id].own.clone()
+                }
+            })
+            .collect();
+        let mut scores = was.clone();
+        let events = {
+            let mut here: Vec<LevelPlayer> = ids
+                .iter()
+                .zip(scores.iter_mut())
+                .map(|(id, score)| LevelPlayer {
+                    pos: self.players[id].state.camera.pos,
+                    score,
+                })
+                .collect();
+            self.round
+                .level
+                .tick(&self.world.map, &self.doors, &mut here, dt)
+        };
+        for ((id, before), after) in ids.iter().zip(&was).zip(&scores) {
+            if let Some(p) = self.players.get_mut(id) {
+                p.own.points = (p.own.points + after.points - before.points).max(0);
+                p.own.found += after.found.saturating_sub(before.found);
+                p.own.keys.extend(after.keys.iter().cloned());
+            }
+        }
+        if coop {
+            let team_was = self.round.team.clone();
+            round::pool(&mut self.round.team, &team_was, &scores);
+        }
+        for e in &events {
+            if let Some(p) = ids.get(e.player()).and_then(|id| self.players.get_mut(id)) {
+                p.state.message = Some(Message {
+                    text: e.message(),
+                    at: self.time,
+                });
+            }
+        }
+        let here: Vec<(PlayerId, String, Rgb, Vec2, Score)> = self
+            .players
+            .iter()
+            .map(|(&id, p)| {
+                (
+                    id,
+                    p.name.clone(),
+                    p.color,
+                    p.state.camera.pos,
+                    p.own.clone(),
+                )
+            })
+            .collect();
+        let here: Vec<Here> = here
+            .iter()
+            .map(|(id, name, colour, pos, score)| Here {
+                id: *id,
+                name,
+                colour: *colour,
+                pos: *pos,
+                score,
+            })
+            .collect();
+        if let Some(it) = self.round.tag_tick(&here, dt) {
+            let text = format!("{it} is it!");
+            for p in self.players.values_mut() {
+                p.state.message = Some(Message {
+                    text: text.clone(),
+                    at: self.time,
+                });
+            }
+        }
+        if self.round.is_over() {
+            let by = self
+                .round
+                .level
+                .finished()
+                .and_then(|k| ids.get(k))
+                .and_then(|id| self.players.get(id))
+                .map(|p| p.name.clone());
+            self.round.end(&here, by.as_deref());
+        }
+        // Each player's HUD: the team's score in coop, their own in tag.
+        for p in self.players.values_mut() {
+            p.state.score = if coop {
+                self.round.team.clone()
+            } else {
+                p.own.clone()
+            };
+        }
+    }
+
+    /// A new round: a fresh level, scores cleared, everyone back at a spawn point.
+    fn next_round(&mut self) {
+        self.round.next(&self.world.map);
+        self.doors = DoorState::new(&self.world.map);
+        let ids: Vec<PlayerId> = self.players.keys().copied().collect();
+        let mut taken = Vec::new();
+        for id in ids {
+            let pos = self.spawn_point(&taken);
+            taken.push(pos);
+            if let Some(p) = self.players.get_mut(&id) {
+                let camera =
+                    Camera::from_angle(pos, self.world.map.start.angle_deg(), DEFAULT_FOV_DEG);
+                let mut state = GameState::new(Arc::clone(&self.world), camera, 0);
+                state.time = self.time;
+                state.speeds = p.state.speeds;
+                state.view_width = p.state.view_width;
+                p.state = state;
+                p.own = Score::default();
+            }
+        }
+    }
+
+    /// The players as the round's rules see them.
+    fn here(&self) -> Vec<Here<'_>> {
+        self.players
+            .iter()
+            .map(|(&id, p)| Here {
+                id,
+                name: &p.name,
+                colour: p.color,
+                pos: p.state.camera.pos,
+                score: &p.own,
+            })
+            .collect()
     }
 
     /// The current state as sessions see it; bumps the version.
     pub fn snapshot(&mut self) -> Snapshot {
         self.version += 1;
+        let here = self.here();
+        let scoreboard = self.round.header(&here);
         Snapshot {
+            level: self.round.level.clone(),
+            scoreboard,
+            it: self.round.it,
+            ended: self.round.ended.clone(),
             version: self.version,
             doors: self.doors.clone(),
             players: self

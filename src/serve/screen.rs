@@ -13,12 +13,14 @@ use ratatui::widgets::{Block, Paragraph, Widget, Wrap};
 
 use super::avatars;
 use super::players::{PlayerId, Snapshot};
+use super::round::RoundEnd;
 use crate::encode::{ColorLevel, ColourChoice, ColourReason, EncodeOptions, SYNC_END};
 use crate::present::Presenter;
 use crate::render::framebuffer::Framebuffer;
 use crate::tui::keys::InputMode;
 use crate::tui::layout::{Panes, Toggles};
 use crate::tui::render::render_view;
+use crate::tui::results::{Results, Then};
 use crate::tui::screen::{draw, Screen};
 use crate::tui::stats::FrameStats;
 use crate::tui::status::BAR;
@@ -66,6 +68,23 @@ pub fn view_rect(panes: &Panes) -> Rect {
     }
 }
 
+/// A finished round as the results screen shows it.
+fn round_results(state: &crate::game::GameState, end: &RoundEnd) -> Results {
+    Results {
+        level: state.world.map.name.clone(),
+        seconds: end.seconds,
+        points: end.points,
+        treasures: end.treasures,
+        then: Then::NewRound(end.left.max(0.0).ceil() as u64),
+        by: end.by.clone(),
+        board: end
+            .board
+            .iter()
+            .map(|r| (r.name.clone(), r.figure.clone()))
+            .collect(),
+    }
+}
+
 impl SessionScreen {
     /// A screen over `world` (the served world, with the avatar sheet at `avatar_sheet`).
     #[must_use]
@@ -85,6 +104,12 @@ impl SessionScreen {
             out: Vec::new(),
             toggles: Toggles::default(),
         }
+    }
+
+    /// The map served.
+    #[must_use]
+    pub fn map(&self) -> &crate::map::Map {
+        &self.world.map
     }
 
     /// The colour level frames are sent at.
@@ -147,12 +172,14 @@ impl SessionScreen {
                 let mut state = p.state.clone();
                 state.world = Arc::clone(&self.world);
                 state.doors = snap.doors.clone();
+                state.level = snap.level.clone();
                 state.view_width = usize::from(view.width);
                 self.fb
                     .resize(usize::from(view.width), usize::from(view.height) * 2);
                 let cast = render_view(&state, &mut self.fb);
                 tags = avatars::mark_players(&mut self.fb, &state, &cast, snap, id);
                 render_time = started.elapsed();
+                let results = snap.ended.as_ref().map(|end| round_results(&state, end));
                 let screen = Screen {
                     state: &state,
                     view: &self.fb,
@@ -160,7 +187,7 @@ impl SessionScreen {
                     stats: &self.stats,
                     toggles: self.toggles,
                     input_mode: mode,
-                    results: None,
+                    results: results.as_ref(),
                 };
                 draw(&screen, &panes, body, &mut buf);
                 if let Panes::Game {

@@ -27,7 +27,7 @@ use super::lifecycle::Lifeline;
 use super::limits::{Caps, Limiter, Refusal};
 use super::log::Log;
 use super::stats::{ServeStats, StatsSnapshot};
-use super::world_task::spawn_world;
+use super::world_task::spawn_game;
 use crate::world::World;
 
 /// Compression offered to clients, most preferred first: the delayed `zlib@openssh.com`
@@ -131,7 +131,7 @@ pub async fn start(config: ServeConfig, world: World) -> Result<RunningServer, S
     let (shutdown_tx, shutdown_rx) = watch::channel(false);
     let stats = Arc::new(ServeStats::default());
     let shared = Arc::new(Shared {
-        world: spawn_world(Arc::clone(&world), config.tick_hz),
+        world: spawn_game(Arc::clone(&world), config.tick_hz, config.mode, config.seed),
         world_data: world,
         avatar_sheet,
         stats: Arc::clone(&stats),

@@ -385,11 +385,18 @@ impl State {
             (Some(p), false) => format!("you are {}", p.name),
             (None, false) => "joining...".to_string(),
         };
+        // On maps with something to play for, the game's scoreboard (which names everyone)
+        // takes the place of the list of who is here; spectators see it too.
+        let map = self.screen.map();
+        let game = !snap.scoreboard.is_empty() && !(map.items.is_empty() && map.exits.is_empty());
+        let here = if game {
+            snap.scoreboard.clone()
+        } else {
+            format!("{} here: {}", names.len(), names.join(", "))
+        };
         let mut line = format!(
             // O is the key map's default colour key (sessions use the default keys).
-            " halfcast | {who} | {} here: {} | {} | O colours",
-            names.len(),
-            names.join(", "),
+            " halfcast | {who} | {here} | {} | O colours",
             self.screen.colour(),
         );
         if self.clamped {

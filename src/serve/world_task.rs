@@ -10,6 +10,7 @@ use tokio::sync::{mpsc, watch};
 use tokio::time::MissedTickBehavior;
 
 use super::players::{PlayerId, Players, SharedSnapshot, Snapshot};
+use super::round::Mode;
 use crate::game::Input;
 use crate::world::World;
 
@@ -59,15 +60,22 @@ impl WorldHandle {
     }
 }
 
-/// Starts the world task on the current runtime; it ends when every handle is dropped.
+/// Starts the world task on the current runtime (a round of coop); it ends when every handle
+/// is dropped.
 #[must_use]
 pub fn spawn_world(world: Arc<World>, tick_hz: u32) -> WorldHandle {
+    spawn_game(world, tick_hz, Mode::Coop, 0)
+}
+
+/// [`spawn_world`] playing `mode`, its creatures' random choices starting from `seed`.
+#[must_use]
+pub fn spawn_game(world: Arc<World>, tick_hz: u32, mode: Mode, seed: u64) -> WorldHandle {
     let (tx, mut rx) = mpsc::channel::<WorldMsg>(1024);
     let (snap_tx, snap_rx) = watch::channel(Arc::new(Snapshot::default()));
     let tick_hz = tick_hz.clamp(1, 1000);
     let dt = 1.0 / f64::from(tick_hz);
     tokio::spawn(async move {
-        let mut players = Players::new(world);
+        let mut players = Players::with_mode(world, mode, seed);
         let mut tick = tokio::time::interval(Duration::from_secs_f64(dt));
         tick.set_missed_tick_behavior(MissedTickBehavior::Skip);
         loop {

@@ -12,7 +12,7 @@ use super::events::Events;
 use super::keys::{Controls, UiCommand};
 use super::layout::{Panes, Toggles, COMPACT_MIN_WIDTH};
 use super::render::render_view;
-use super::results::Results;
+use super::results::{Results, Then};
 use super::screen::{draw_notice, draw_with_keys, Screen};
 use super::stats::FrameStats;
 use super::terminal::Session;
@@ -81,8 +81,11 @@ impl Campaign {
 
     /// The results of level `i` as `state` finished it.
     fn results(&self, i: usize, state: &GameState) -> Results {
-        let next = (i + 1 < self.stages.len()).then(|| self.stages[i + 1].name.clone());
-        Results::of(&self.stages[i].name, state, next)
+        let then = match self.stages.get(i + 1) {
+            Some(next) => Then::Level(next.name.clone()),
+            None => Then::Again,
+        };
+        Results::of(&self.stages[i].name, state, then)
     }
 }
 

@@ -8,6 +8,17 @@ use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Clear, Paragraph, Widget};
 
+/// What follows the results.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Then {
+    /// Enter plays the campaign's next map (its name).
+    Level(String),
+    /// Enter plays this level again.
+    Again,
+    /// A shared world starts the next round by itself, in this many seconds.
+    NewRound(u64),
+}
+
 /// One finished level's figures, and where the player goes from here.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Results {
@@ -19,23 +30,26 @@ pub struct Results {
     pub points: i64,
     /// Treasures found, of all the level has.
     pub treasures: (usize, usize),
-    /// The next map's name, or `None` when Enter plays this level again.
-    pub next: Option<String>,
+    /// What comes after.
+    pub then: Then,
     /// Who reached the exit, when that was someone else (a shared world).
     pub by: Option<String>,
+    /// A shared world's scoreboard (name, figure), best first.
+    pub board: Vec<(String, String)>,
 }
 
 impl Results {
     /// The results of the level `level` as `state` finished it, going on to `next`.
     #[must_use]
-    pub fn of(level: &str, state: &crate::game::GameState, next: Option<String>) -> Self {
+    pub fn of(level: &str, state: &crate::game::GameState, then: Then) -> Self {
         Self {
             level: level.to_owned(),
             seconds: state.time,
             points: state.score.points,
             treasures: (state.score.found, state.level.treasures_total()),
-            next,
+            then,
             by: None,
+            board: Vec::new(),
         }
     }
 }
@@ -90,15 +104,30 @@ impl Results {
             "Treasures",
             format!("{} of {}", self.treasures.0, self.treasures.1),
         ));
+        if !self.board.is_empty() {
+            out.push(Line::default());
+            for (name, figure) in &self.board {
+                out.push(row(name, figure.clone()));
+            }
+        }
         out.push(Line::default());
-        let then = match &self.next {
-            Some(name) => format!(" next level: {name}"),
-            None => " play this level again".to_owned(),
+        let then = match &self.then {
+            Then::Level(name) => Some(format!(" next level: {name}")),
+            Then::Again => Some(" play this level again".to_owned()),
+            Then::NewRound(s) => {
+                out.push(Line::from(Span::styled(
+                    format!("next round in {s} s"),
+                    LABEL,
+                )));
+                None
+            }
         };
-        out.push(Line::from(vec![
-            Span::styled("Enter", KEY),
-            Span::styled(then, LABEL),
-        ]));
+        if let Some(then) = then {
+            out.push(Line::from(vec![
+                Span::styled("Enter", KEY),
+                Span::styled(then, LABEL),
+            ]));
+        }
         out.push(Line::from(vec![
             Span::styled("q", KEY),
             Span::styled(" quit", LABEL),
@@ -166,8 +195,9 @@ mod tests {
             seconds: 83.2,
             points: 120,
             treasures: (8, 12),
-            next: Some("maps/level2.cub".into()),
+            then: Then::Level("maps/level2.cub".into()),
             by: None,
+            board: Vec::new(),
         };
         let mut buf = Buffer::empty(Rect::new(0, 0, 80, 24));
         (&r).render(buf.area, &mut buf);
@@ -187,7 +217,10 @@ mod tests {
         for line in r.lines() {
             assert!(line.to_string().is_ascii(), "{line}");
         }
-        let again = Results { next: None, ..r };
+        let again = Results {
+            then: Then::Again,
+            ..r
+        };
         let mut buf = Buffer::empty(Rect::new(0, 0, 80, 24));
         (&again).render(buf.area, &mut buf);
         assert!(text(&buf).contains("Enter play this level again"));
