@@ -162,6 +162,16 @@ fn shared_steps_respect_locks_but_leave_the_level_alone() {
     halfcast::game::step_shared(&mut s, &input, 1.0 / 30.0, &[]);
     assert_eq!(s.events.len(), 1);
     assert_eq!(s.level.time(), 0.0);
+    // A shot is handed to the shared world instead of flying in this player's copy.
+    let fire = Input {
+        held: Held::default(),
+        commands: vec![Command::Fire],
+    };
+    halfcast::game::step_shared(&mut s, &fire, 1.0 / 30.0, &[]);
+    assert_eq!(s.shots, [(s.camera.pos, s.camera.dir)]);
+    assert!(s.level.projectiles().is_empty());
+    halfcast::game::step_shared(&mut s, &Input::default(), 1.0 / 30.0, &[]);
+    assert!(s.shots.is_empty());
 }
 
 #[test]

@@ -61,3 +61,29 @@ fn a_locked_door_and_its_key_share_the_keys_colour() {
     let mean = locked.sheets[key.sheet].mean();
     assert!(mean.r > mean.g && mean.r > mean.b, "{mean:?}");
 }
+
+#[test]
+fn item_and_creature_textures_load_from_disk_and_a_missing_one_is_placed() {
+    use halfcast::world::World;
+    let grid = "1111111\n1E00001\n1111111\n";
+    let extra = "ITEM 2.5,1.5 textures/sprites/barrel.png\nCREATURE 4.5,1.5 missing.png\n";
+    let (_dir, path) = world_common::map_file(extra, grid);
+    let (w, warnings) = World::from_file(&path, false).unwrap();
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    assert!(
+        warnings[0].contains(":10:18: cannot load texture 'missing.png'"),
+        "{warnings:?}"
+    );
+    assert!(
+        warnings[0].ends_with("using the built-in 'creature' sprite"),
+        "{warnings:?}"
+    );
+    assert_eq!((w.item_sheets.len(), w.creature_sheets.len()), (1, 1));
+    let err = World::from_file(&path, true).unwrap_err().to_string();
+    assert!(
+        err.ends_with(
+            ":10:18: cannot load texture 'missing.png': No such file or directory (os error 2)"
+        ),
+        "{err}"
+    );
+}

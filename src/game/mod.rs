@@ -22,6 +22,7 @@ use std::sync::Arc;
 use crate::camera::Camera;
 use crate::render::cast::{trace_column_doors, DdaTrace};
 use crate::render::view::{View, MAX_PITCH_DEG, STANDING_EYE};
+use crate::vec2::Vec2;
 use crate::world::door::DoorState;
 use crate::world::{SolidDisc, World};
 
@@ -97,6 +98,9 @@ pub struct GameState {
     pub events: Vec<Event>,
     /// The latest event's message and the game time it happened at (the message line).
     pub message: Option<Message>,
+    /// Tag shots asked for in the last [`step_shared`] (eye position, view direction): the
+    /// shared world fires them in its own [`Level`] (a local [`step`] fires at once).
+    pub shots: Vec<(Vec2, Vec2)>,
     solids: Vec<SolidDisc>,
 }
 
@@ -156,6 +160,7 @@ impl GameState {
             score: Score::default(),
             events: Vec::new(),
             message,
+            shots: Vec::new(),
             solids,
         }
     }
@@ -220,6 +225,7 @@ fn advance(state: &mut GameState, input: &Input, dt: f64, owns_world: bool, bodi
         0.0
     };
     state.events.clear();
+    state.shots.clear();
     let mut turn = 0.0;
     // Seconds of "as if held" per action from taps (Command::Nudge), in Action::ALL order.
     let mut nudged = [0.0f64; 9];
@@ -241,7 +247,11 @@ fn advance(state: &mut GameState, input: &Input, dt: f64, owns_world: bool, bodi
             Command::UseDoor if !d.paused => use_door(state),
             Command::Fire if !d.paused => {
                 let cam = &state.camera;
-                state.level.fire(0, cam.pos, cam.dir);
+                if owns_world {
+                    state.level.fire(0, cam.pos, cam.dir);
+                } else {
+                    state.shots.push((cam.pos, cam.dir));
+                }
             }
             Command::Jump if !d.paused && state.jump == (0.0, 0.0) => state.jump.1 = JUMP_SPEED,
             Command::ToggleNight => state.night = !state.night,

@@ -454,6 +454,34 @@ fn key_name_rule(got: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #[test]
+        fn item_and_creature_lines_read_back_what_was_written(
+            x in -50.0f64..50.0, y in -50.0f64..50.0,
+            points in 0i64..=MAX_ITEM_POINTS,
+            key in "[a-z0-9_-]{1,12}",
+            scale in 0.01f64..4.0,
+            speed in 0.01f64..MAX_CREATURE_SPEED,
+            behaviour in 0usize..3,
+        ) {
+            let g = read(GameLine::Item, &format!(" {x},{y} tex points={points} key={key} scale={scale}")).unwrap();
+            let i = &g.items[0];
+            prop_assert_eq!((i.pos, i.points, i.key.as_deref(), i.scale), (Vec2::new(x, y), points, Some(key.as_str()), scale));
+            let b = [Behaviour::Wander, Behaviour::Patrol, Behaviour::Chase][behaviour];
+            let g = read(GameLine::Creature, &format!("\t{x},{y}\tc  speed={speed} behaviour={}", b.name())).unwrap();
+            let c = &g.creatures[0];
+            prop_assert_eq!((c.pos, c.speed, c.behaviour), (Vec2::new(x, y), speed, b));
+        }
+
+        #[test]
+        fn any_text_after_a_game_word_is_read_or_refused_without_panicking(rest in "\\PC{0,40}") {
+            for kind in [GameLine::Item, GameLine::DoorLock, GameLine::Exit, GameLine::Creature] {
+                let _ = read(kind, &format!(" {rest}"));
+            }
+        }
+    }
 
     fn read(kind: GameLine, rest: &str) -> Result<GameLines, String> {
         let mut g = GameLines::default();

@@ -236,24 +236,22 @@ impl Players {
             let Some(p) = self.players.get_mut(&id) else {
                 continue;
             };
-            let mut commands = std::mem::take(&mut p.commands);
-            // Shots belong to the shared level, credited to this player.
-            let fired = commands.iter().any(|c| *c == Command::Fire);
-            commands.retain(|c| *c != Command::Fire);
             let input = Input {
                 held: p.held,
-                commands,
+                commands: std::mem::take(&mut p.commands),
             };
             let before = p.state.camera.pos;
+            // The shared doors and level stand in for the player's own while it steps (locks,
+            // a creature in a doorway).
             std::mem::swap(&mut p.state.doors, &mut self.doors);
             std::mem::swap(&mut p.state.level, &mut self.round.level);
             step_shared(&mut p.state, &input, dt, &bodies);
-            if fired && !p.state.debugger.paused {
-                let cam = p.state.camera;
-                p.state.level.fire(index, cam.pos, cam.dir);
-            }
             std::mem::swap(&mut p.state.level, &mut self.round.level);
             std::mem::swap(&mut p.state.doors, &mut self.doors);
+            // Shots belong to the shared level, credited to this player.
+            for (from, dir) in p.state.shots.drain(..) {
+                self.round.level.fire(index, from, dir);
+            }
             p.state.time = self.time;
             p.walking = p.state.camera.pos != before;
         }
