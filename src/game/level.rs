@@ -378,6 +378,21 @@ impl Level {
                 sheet: world.creature_sheets[k],
             });
         }
+        // Each exit as a glowing arch standing in its cell (see-through, so the way on shows).
+        for &(i, j) in &self.exits {
+            let texture = crate::map::TextureRef {
+                path: "exit".to_owned(),
+                line: 0,
+                col: 0,
+            };
+            let centre = Vec2::new(i as f64 + 0.5, j as f64 + 0.5);
+            let mut def = billboard(centre, texture, 0.9, (0, 0));
+            def.key = ColourKey::Auto;
+            out.push(Sprite {
+                def,
+                sheet: world.exit_sheet,
+            });
+        }
         for shot in &self.projectiles {
             let size = 0.25;
             let texture = crate::map::TextureRef {

@@ -5,7 +5,6 @@ use super::creature::{Creature, CREATURE_RADIUS};
 use super::sight::first_block;
 use crate::color::Rgb;
 use crate::map::Map;
-use crate::texture::sheet::SpriteSheet;
 use crate::vec2::Vec2;
 use crate::world::door::DoorState;
 
@@ -93,20 +92,6 @@ impl Projectile {
     }
 }
 
-/// The shot's sprite: a soft round glow, bright in the middle (drawn additively).
-#[must_use]
-pub fn glow_sheet() -> SpriteSheet {
-    const SIDE: usize = 16;
-    SpriteSheet::from_fn(SIDE, SIDE, |x, y| {
-        let c = (SIDE as f64 - 1.0) / 2.0;
-        let r = ((x as f64 - c).hypot(y as f64 - c) / c).min(1.0);
-        let k = (1.0 - r * r).powi(2);
-        let ch = |v: u8| (f64::from(v) * k + 255.0 * k * k * 0.5).min(255.0) as u8;
-        let colour = Rgb::new(ch(SHOT_COLOUR.r), ch(SHOT_COLOUR.g), ch(SHOT_COLOUR.b));
-        (colour, if k > 0.02 { 255 } else { 0 })
-    })
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -168,14 +153,5 @@ mod tests {
         let mut s = shot(Vec2::new(1.5, 1.5), Vec2::new(1.0, 0.0));
         assert_eq!(s.fly(&m, &doors, &creatures, 0.5), Flight::Hit(1));
         assert!((s.pos.x - (3.5 - HIT_RADIUS)).abs() < 1e-9, "{:?}", s.pos);
-    }
-
-    #[test]
-    fn the_glow_is_bright_in_the_middle_and_clear_at_the_corners() {
-        let g = glow_sheet();
-        assert_eq!(g.texel(0, 0).1, 0);
-        let (c, a) = g.texel(8, 8);
-        assert_eq!(a, 255);
-        assert!(c.r > 200 && c.g > 150);
     }
 }

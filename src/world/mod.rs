@@ -89,6 +89,8 @@ pub struct World {
     pub creature_sheets: Vec<usize>,
     /// The sheet shots are drawn with (a soft glow).
     pub glow_sheet: usize,
+    /// The sheet exits are drawn with (a glowing arch).
+    pub exit_sheet: usize,
     /// Locked doors' cells (sorted) and their panel textures, tinted with their key's colour.
     door_tints: Vec<((i64, i64), usize)>,
 }
@@ -100,6 +102,11 @@ pub struct SolidDisc {
     pub centre: Vec2,
     /// Blocking radius in cells.
     pub radius: f64,
+}
+
+/// A built-in sprite sheet the game draws with (always embedded).
+fn builtin_sheet(stem: &str) -> SpriteSheet {
+    builtin::sheet_by_name(stem).expect("the game's sheets are built in")
 }
 
 /// The warnings printed while loading (one line per texture that fell back).
@@ -223,7 +230,8 @@ impl World {
             .iter()
             .map(|c| loader.sheet(&c.texture, ColourKey::Auto, CREATURE_FALLBACK))
             .collect::<Result<Vec<_>, _>>()?;
-        let glow_sheet = loader.push_sheet(crate::game::projectile::glow_sheet());
+        let glow_sheet = loader.push_sheet(builtin_sheet("orb"));
+        let exit_sheet = loader.push_sheet(builtin_sheet("exit"));
         let mut door_tints: Vec<((i64, i64), usize)> = map
             .locks
             .iter()
@@ -252,6 +260,7 @@ impl World {
                 item_sheets,
                 creature_sheets,
                 glow_sheet,
+                exit_sheet,
                 door_tints,
             },
             warnings,
