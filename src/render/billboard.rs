@@ -7,6 +7,7 @@ use crate::render::cast::ColumnHit;
 use crate::render::dither_phase;
 use crate::render::framebuffer::Framebuffer;
 use crate::render::light::{Shade, ShadeTable};
+use crate::render::point_light;
 use crate::render::scene::Scene;
 use crate::world::sprite::{far_to_near, frame_index, project, view_index, Culled, Projection};
 
@@ -90,8 +91,15 @@ pub fn draw_sprites(
             continue;
         };
         let mut shade = table.at(p.depth);
-        if let Some(lamps) = scene.lamp_light() {
-            shade = shade.lit(lamps.at(scene.world.sprites[i].def.pos));
+        let lamps = scene.lamp_light();
+        let moving = scene.point_lights();
+        if lamps.is_some() || !moving.is_empty() {
+            // Lit at its middle: its own height on maps with heights, by moving lights.
+            let def = &scene.world.sprites[i].def;
+            let z = sprite_base(&scene.world.map, def) + def.scale.1 / 2.0;
+            let lamp = lamps.map_or(0, |l| l.at_z(def.pos, z));
+            let glow = point_light::level(moving, def.pos, z);
+            shade = shade.lit(point_light::add(lamp, glow));
         }
         outcomes[i].drawn = draw_one(scene, i, &p, occluders, fb, shade);
     }

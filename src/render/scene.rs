@@ -27,6 +27,7 @@
 use crate::camera::Camera;
 use crate::render::light::Lighting;
 use crate::render::lightmap::LightMap;
+use crate::render::point_light::PointLight;
 use crate::render::view::View;
 use crate::world::door::DoorState;
 use crate::world::World;
@@ -46,6 +47,8 @@ pub struct Scene<'a> {
     pub doors: Option<&'a DoorState>,
     /// Game time in seconds, which picks animation frames (passed in, never read from a clock).
     pub time: f64,
+    /// Moving lights of this frame (projectiles), shown when the world is dark; none by default.
+    pub lights: &'a [PointLight],
 }
 
 impl<'a> Scene<'a> {
@@ -59,6 +62,7 @@ impl<'a> Scene<'a> {
             light: world.lighting(),
             doors: None,
             time: 0.0,
+            lights: &[],
         }
     }
 
@@ -88,6 +92,23 @@ impl<'a> Scene<'a> {
     pub fn at_time(mut self, seconds: f64) -> Self {
         self.time = seconds;
         self
+    }
+
+    /// This scene with moving lights (e.g. projectiles) that brighten what is near them at night.
+    #[must_use]
+    pub fn with_lights(mut self, lights: &'a [PointLight]) -> Self {
+        self.lights = lights;
+        self
+    }
+
+    /// The moving lights that show in this frame: all of them when the world is dark, else none.
+    #[must_use]
+    pub fn point_lights(&self) -> &'a [PointLight] {
+        if self.light.is_dark() {
+            self.lights
+        } else {
+            &[]
+        }
     }
 
     /// The lamp light map, when this scene is dark enough for lamps to show (night or falloff).
