@@ -52,6 +52,11 @@ fn main() {
         let mut s = Scene::new(&hw, Camera::from_angle(Vec2::new(13.5, 5.5), 0.0, 66.0));
         s.light.night = true;
         measure("heights.cub pit night (lamps)", &s, 240, 68);
+        let mut dark = hw.clone();
+        dark.lightmap = Default::default();
+        let mut s = Scene::new(&dark, Camera::from_angle(Vec2::new(8.5, 7.5), 135.0, 66.0));
+        s.light.night = true;
+        measure("heights.cub hall night (no lamps)", &s, 240, 68);
         let hall = stepped_hall();
         let s = Scene::new(&hall, Camera::from_angle(Vec2::new(2.5, 2.5), -45.0, 66.0))
             .with_view(halfcast::View::new(-10.0, 0.5));

@@ -569,29 +569,32 @@ fn light_span(case: &Case, i: i64, j: i64) -> Option<(f64, f64)> {
     }
 }
 
-/// Issue 14's lamp rule at the surface point `p` (plan) at height `z`, in 256ths, walked in
-/// small steps along the straight line from the lamp (no grid stepping shared with the engine):
-/// a wall anywhere on the way hides it; a floor the line from the lamp's top passes under, or a
-/// ceiling the line from its bottom passes over, hides it; else it shines by the 3-D distance
-/// to its segment. `three_d` false gives the flat 2-D rule (for showing the test can tell).
-fn reference_lamp_level(case: &Case, lamps: &[RefLamp], p: Vec2, z: f64, three_d: bool) -> u16 {
+/// Issue 14's lamp rule at the map point `p` at height `z`, in [0, 1], walked in small steps
+/// along the straight line from each lamp (no grid stepping shared with the engine): a wall on
+/// the way hides it (a point inside a wall is seen when that wall is the first met: its lit
+/// face); a floor the line from the lamp's top passes under, or a ceiling the line from its
+/// bottom passes over, hides it; else it shines by the 3-D distance to its segment. `three_d`
+/// false gives the flat 2-D rule (for showing the test can tell the two apart).
+fn lamp_light_at(case: &Case, lamps: &[RefLamp], p: Vec2, z: f64, three_d: bool) -> f64 {
+    let own = (p.x.floor() as i64, p.y.floor() as i64);
     let mut sum = 0.0;
     for l in lamps {
         let d = (p - l.pos).length();
         if d >= l.radius {
             continue;
         }
-        let steps = (d / 0.005).ceil().max(1.0) as usize;
+        let steps = (d / 0.004).ceil().max(1.0) as usize;
         let mut seen = true;
         for k in 0..=steps {
             let s = k as f64 / steps as f64;
             let q = l.pos + (p - l.pos) * s;
-            let Some((floor, ceil)) = light_span(case, q.x.floor() as i64, q.y.floor() as i64)
-            else {
-                seen = false;
+            let cell = (q.x.floor() as i64, q.y.floor() as i64);
+            let Some((floor, ceil)) = light_span(case, cell.0, cell.1) else {
+                seen = cell == own;
                 break;
             };
-            if three_d && (l.hi + (z - l.hi) * s < floor - 1e-3 || l.lo + (z - l.lo) * s > ceil + 1e-3)
+            if three_d
+                && (l.hi + (z - l.hi) * s < floor - 1e-3 || l.lo + (z - l.lo) * s > ceil + 1e-3)
             {
                 seen = false;
                 break;
@@ -608,14 +611,34 @@ fn reference_lamp_level(case: &Case, lamps: &[RefLamp], p: Vec2, z: f64, three_d
         let t = ((d * d + dz * dz).sqrt() / l.radius).min(1.0);
         sum += l.strength * (1.0 - t * t).powi(2);
     }
-    (sum.min(1.0) * 256.0).round() as u16
+    sum.min(1.0)
+}
+
+/// The lamp light the README documents for surface point `p` at height `z`, in 256ths: the rule
+/// of [`lamp_light_at`] taken at the light map's samples (4 per cell each way, at their centres)
+/// around `p`, blended bilinearly (samples past the map's edge clamped to it).
+fn reference_lamp_level(case: &Case, lamps: &[RefLamp], p: Vec2, z: f64, three_d: bool) -> u16 {
+    let (sx, sy) = (p.x * 4.0 - 0.5, p.y * 4.0 - 0.5);
+    let (x0, y0) = (sx.floor(), sy.floor());
+    let (fx, fy) = (sx - x0, sy - y0);
+    let (w, h) = ((case.w * 4 - 1) as f64, (case.h * 4 - 1) as f64);
+    let sample = |x: f64, y: f64| {
+        let (x, y) = (x.clamp(0.0, w), y.clamp(0.0, h));
+        let at = Vec2::new((x + 0.5) / 4.0, (y + 0.5) / 4.0);
+        (lamp_light_at(case, lamps, at, z, three_d) * 256.0).round()
+    };
+    let top = sample(x0, y0) * (1.0 - fx) + sample(x0 + 1.0, y0) * fx;
+    let bottom = sample(x0, y0 + 1.0) * (1.0 - fx) + sample(x0 + 1.0, y0 + 1.0) * fx;
+    (top * (1.0 - fy) + bottom * fy).round() as u16
 }
 
 #[test]
 fn lamps_light_every_surface_by_its_3d_distance_like_the_reference() {
     use halfcast::render::light::{Lighting, ShadeTable};
+    // `SHADE 3`: dark beyond a step from the eye, so the lamps show (at night the eye's own
+    // lantern outshines them near it).
     let night = Lighting {
-        night: true,
+        falloff: 3.0,
         ..Lighting::default()
     };
     let table = ShadeTable::new(&night);
@@ -669,8 +692,10 @@ fn lamps_light_every_surface_by_its_3d_distance_like_the_reference() {
         let a = angle.to_radians();
         let d = Vec2::new(a.cos(), -a.sin());
         let pos = l0 - d * 0.15;
-        if !matches!(case.cell(pos.x.floor() as i64, pos.y.floor() as i64), Cell::Open { .. })
-            || ceil - floor < 0.2
+        if !matches!(
+            case.cell(pos.x.floor() as i64, pos.y.floor() as i64),
+            Cell::Open { .. }
+        ) || ceil - floor < 0.2
         {
             continue;
         }
@@ -709,8 +734,17 @@ fn lamps_light_every_surface_by_its_3d_distance_like_the_reference() {
                 let flat = colour(reference_lamp_level(&case, &lamps, p, hit.z, false));
                 let got = fb.get(x, y);
                 let far = |a: Rgb, b: Rgb| {
-                    a.r.abs_diff(b.r).max(a.g.abs_diff(b.g)).max(a.b.abs_diff(b.b)) > 10
+                    a.r.abs_diff(b.r)
+                        .max(a.g.abs_diff(b.g))
+                        .max(a.b.abs_diff(b.b))
+                        > 10
                 };
+                if far(got, want) && std::env::var_os("DEBUG_REF").is_some() && off < 40 {
+                    eprintln!(
+                        "case {n} ({x},{y}) got {got:?} want {want:?} flat {flat:?} level {level} z {:.2} face {} p {p:?} t {:.2}",
+                        hit.z, hit.face, hit.t
+                    );
+                }
                 total += 1;
                 lit += usize::from(level > 0);
                 off += usize::from(far(got, want));
@@ -726,7 +760,11 @@ fn lamps_light_every_surface_by_its_3d_distance_like_the_reference() {
         share(off_2d)
     );
     assert!(share(lit) > 20.0, "too few lamp-lit pixels to judge");
-    assert!(share(off) <= 3.0, "{:.2} % of pixels off the reference", share(off));
+    assert!(
+        share(off) <= 1.0,
+        "{:.2} % of pixels off the reference",
+        share(off)
+    );
     assert!(
         off_2d > 3 * off,
         "the flat 2-D rule would pass too ({off_2d} vs {off}): the test cannot tell"

@@ -10,7 +10,7 @@ use crate::render::cast::{Cast, Side};
 use crate::render::framebuffer::Framebuffer;
 use crate::render::height_cast::{Band, FaceKind, FaceSpan, FlatSpan, Projection};
 use crate::render::light::{Shade, ShadeTable};
-use crate::render::lightmap::{LightMap, Probe};
+use crate::render::lightmap::{Corners, LightMap, Probe};
 use crate::render::point_light::{self, PointLight};
 use crate::render::raster::{face_texture_x, fast_floor, heading_of, Y_SIDE_SHADE};
 use crate::render::scene::Scene;
@@ -92,6 +92,7 @@ impl Painter<'_> {
         let rise = self.proj.eye - f.z;
         let pos = self.scene.camera.pos;
         let keep_depth = !depth.is_empty();
+        let mut corners = Corners::default();
         for y in f.rows.0..f.rows.1 {
             // Within the cell's stretch of the ray whatever rounding says (and at the horizon).
             let mut dist = rise * self.per_row[y];
@@ -103,7 +104,9 @@ impl Painter<'_> {
             let mut shade = self.table.at(dist);
             if self.lamps.is_some() || !self.moving.is_empty() {
                 // Lamps and moving lights add up, measured at the surface's own height.
-                let lamp = self.lamps.map_or(0, |l| l.at_z(at, f.z));
+                let lamp = self
+                    .lamps
+                    .map_or(0, |l| l.at_z_cached(at, f.z, &mut corners));
                 let glow = if self.moving.is_empty() {
                     0
                 } else {
@@ -149,10 +152,20 @@ impl Painter<'_> {
         };
         let row_z =
             |y: usize| self.proj.eye - (y as f64 + 0.5 - self.proj.horizon) * t / self.proj.focal;
-        let varies = !moving.is_empty() || matches!(probe, Some(Probe::Heights { .. }));
-        let flat_shade = side(match probe {
-            Some(p) => base.lit(p.at(0.0)),
-            None => base,
+        // One level for the whole face when no moving light is near and every height it shows
+        // reads the lamps' shared level (most faces: within the lamps' own segments).
+        let (z_top, z_bottom) = (row_z(f.rows.0), row_z(f.rows.1.max(f.rows.0 + 1) - 1));
+        let lamp = match probe {
+            None => Some(0),
+            Some(Probe::Level(l)) => Some(l),
+            Some(Probe::Heights { za, zb, level, .. }) => {
+                (z_bottom >= za && z_top <= zb).then_some(level)
+            }
+        };
+        let varies = !moving.is_empty() || lamp.is_none();
+        let flat_shade = side(match (probe, lamp) {
+            (Some(_), Some(l)) => base.lit(l),
+            _ => base,
         });
         let shade_of = |y: usize| {
             if !varies {

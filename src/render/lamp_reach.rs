@@ -145,28 +145,42 @@ fn seen_heights(map: &Map, from: Vec2, to: Vec2, lo: f64, hi: f64) -> (f64, f64)
     (zmin, zmax)
 }
 
-/// A sample's lamps: where they are in the list, and the level shared by every height where
-/// all of them shine fully (the fast path).
+/// A sample's lamps: the level shared by every height where all of them shine fully (the fast
+/// path, read per pixel), and where its list of lamps is for the other heights.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Quick {
+    /// Heights from `za` to `zb` see every lamp of the sample from inside its segment (rounded
+    /// inward, so the fast path is never wrong; no lamps: every height).
+    za: f32,
+    /// See `za`.
+    zb: f32,
+    /// Index into the heads, `u32::MAX` for none.
+    head: u32,
+    /// The level between `za` and `zb`, in 256ths (what a flat map's bake stores).
+    full: u16,
+}
+
+impl Quick {
+    const NONE: Quick = Quick {
+        za: f32::NEG_INFINITY,
+        zb: f32::INFINITY,
+        head: u32::MAX,
+        full: 0,
+    };
+}
+
+/// Where a sample's lamps are in the list.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Head {
-    /// Heights from `za` to `zb` see every lamp of the sample from inside its segment.
-    za: f64,
-    /// See `za`.
-    zb: f64,
-    /// First entry.
     first: u32,
-    /// How many entries.
     count: u32,
-    /// The level there, in 256ths (what a flat map's bake stores).
-    full: u16,
 }
 
 /// Every sample's lamps on a map with heights.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LampReach {
     lamps: Vec<Lamp>,
-    /// Per sample: 0 for no lamp, else 1 + index into `heads`.
-    slot: Vec<u32>,
+    quick: Vec<Quick>,
     heads: Vec<Head>,
     entries: Vec<Reach>,
 }
@@ -178,35 +192,39 @@ impl LampReach {
         let lamps: Vec<Lamp> = map.lights.iter().map(|l| Lamp::new(map, l)).collect();
         // Stable: each sample keeps its lamps in the map's order (sums as a flat bake's).
         found.sort_by_key(|&(sample, _)| sample);
-        let mut slot = vec![0u32; samples];
+        let mut quick = vec![Quick::NONE; samples];
         let mut heads: Vec<Head> = Vec::new();
+        let mut ranges: Vec<(f64, f64)> = Vec::new();
         let mut entries = Vec::with_capacity(found.len());
         for (sample, reach) in found {
-            if slot[sample] == 0 {
+            if quick[sample].head == u32::MAX {
+                quick[sample].head = heads.len() as u32;
                 heads.push(Head {
-                    za: f64::NEG_INFINITY,
-                    zb: f64::INFINITY,
                     first: entries.len() as u32,
                     count: 0,
-                    full: 0,
                 });
-                slot[sample] = heads.len() as u32;
+                ranges.push((f64::NEG_INFINITY, f64::INFINITY));
             }
-            let head = heads.last_mut().expect("pushed above");
             let lamp = &lamps[usize::from(reach.lamp)];
-            head.za = head.za.max(lamp.lo.max(f64::from(reach.zmin)));
-            head.zb = head.zb.min(lamp.hi.min(f64::from(reach.zmax)));
-            head.count += 1;
+            let range = ranges.last_mut().expect("pushed above");
+            range.0 = range.0.max(lamp.lo.max(f64::from(reach.zmin)));
+            range.1 = range.1.min(lamp.hi.min(f64::from(reach.zmax)));
+            heads.last_mut().expect("pushed above").count += 1;
             entries.push(reach);
         }
-        for head in &mut heads {
+        for q in &mut quick {
+            let Some(head) = heads.get(q.head as usize) else {
+                continue;
+            };
+            let (za, zb) = ranges[q.head as usize];
             let list = &entries[head.first as usize..][..head.count as usize];
-            let sum = list.iter().fold(0.0, |s, e| s + e.flat);
-            head.full = quantize(sum);
+            q.full = quantize(list.iter().fold(0.0, |s, e| s + e.flat));
+            // Inward by more than an f32 step at these heights.
+            (q.za, q.zb) = ((za + 1e-5) as f32, (zb - 1e-5) as f32);
         }
         Self {
             lamps,
-            slot,
+            quick,
             heads,
             entries,
         }
@@ -216,19 +234,26 @@ impl LampReach {
     #[must_use]
     #[inline]
     pub fn level(&self, i: usize, z: f64) -> u16 {
-        let slot = self.slot[i];
-        if slot == 0 {
-            return 0;
+        let q = &self.quick[i];
+        if z >= f64::from(q.za) && z <= f64::from(q.zb) {
+            return q.full;
         }
-        let head = &self.heads[slot as usize - 1];
-        if z >= head.za && z <= head.zb {
-            return head.full;
-        }
-        self.measure(head, z)
+        self.measure(q.head, z)
+    }
+
+    /// The heights at sample `i` that all read one level, and that level.
+    #[must_use]
+    #[inline]
+    pub fn range(&self, i: usize) -> (f64, f64, u16) {
+        let q = &self.quick[i];
+        (f64::from(q.za), f64::from(q.zb), q.full)
     }
 
     /// [`LampReach::level`] lamp by lamp, for a height outside the sample's fast range.
-    fn measure(&self, head: &Head, z: f64) -> u16 {
+    fn measure(&self, head: u32, z: f64) -> u16 {
+        let Some(head) = self.heads.get(head as usize) else {
+            return 0;
+        };
         let zf = z as f32;
         let mut sum = 0.0;
         for e in &self.entries[head.first as usize..][..head.count as usize] {
@@ -246,7 +271,8 @@ impl LampReach {
                 sum += lamp.strength * (1.0 - t2) * (1.0 - t2);
             }
         }
-        quantize(sum)
+        // Rounded by adding ½ (sum ≥ 0): `f64::round` is a libm call here.
+        (sum.min(1.0) * f64::from(crate::render::lightmap::FULL) + 0.5) as u16
     }
 }
 

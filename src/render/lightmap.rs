@@ -110,14 +110,79 @@ impl LightMap {
     }
 
     /// The lamps reaching `p`, for reading many heights there (a face's rows): `probe(p).at(z)`
-    /// equals `at_z(p, z)`.
+    /// equals `at_z(p, z)`, and costs nothing more where every nearby lamp shines fully.
     #[must_use]
     #[inline]
     pub fn probe(&self, p: Vec2) -> Probe<'_> {
-        match &self.reach {
-            Some(_) => Probe::Heights { map: self, p },
-            None => Probe::Level(self.at(p)),
+        let Some(reach) = &self.reach else {
+            return Probe::Level(self.at(p));
+        };
+        let k = PER_CELL as f64;
+        let (sx, sy) = (p.x * k - 0.5, p.y * k - 0.5);
+        let inside =
+            sx >= 0.0 && sy >= 0.0 && sx < (self.width - 1) as f64 && sy < (self.height - 1) as f64;
+        let (mut za, mut zb) = (f64::INFINITY, f64::NEG_INFINITY);
+        let mut corners = None;
+        if inside {
+            let (x0, y0) = (sx as usize, sy as usize);
+            let fx = ((sx - x0 as f64) * 256.0) as u32;
+            let fy = ((sy - y0 as f64) * 256.0) as u32;
+            let i = y0 * self.width + x0;
+            (za, zb) = (f64::NEG_INFINITY, f64::INFINITY);
+            for j in [i, i + 1, i + self.width, i + self.width + 1] {
+                let (a, b, _) = reach.range(j);
+                (za, zb) = (za.max(a), zb.min(b));
+            }
+            corners = Some((i, fx, fy));
         }
+        let level = if za <= zb {
+            self.blend(p, |i| reach.range(i).2)
+        } else {
+            0
+        };
+        Probe::Heights {
+            map: self,
+            p,
+            za,
+            zb,
+            level,
+            corners,
+        }
+    }
+
+    /// [`LightMap::at_z`], remembering the four samples it read in `corners`: a run of pixels
+    /// over the same samples at one height (a floor's rows) measures them once.
+    #[must_use]
+    #[inline]
+    pub fn at_z_cached(&self, p: Vec2, z: f64, corners: &mut Corners) -> u16 {
+        let Some(reach) = &self.reach else {
+            return self.at(p);
+        };
+        let k = PER_CELL as f64;
+        let (sx, sy) = (p.x * k - 0.5, p.y * k - 0.5);
+        let inside =
+            sx >= 0.0 && sy >= 0.0 && sx < (self.width - 1) as f64 && sy < (self.height - 1) as f64;
+        if !inside {
+            return self.at_z(p, z);
+        }
+        let (x0, y0) = (sx as usize, sy as usize);
+        let fx = ((sx - x0 as f64) * 256.0) as u32;
+        let fy = ((sy - y0 as f64) * 256.0) as u32;
+        let i = y0 * self.width + x0;
+        if corners.sample != i || corners.z != z {
+            let w = self.width;
+            corners.levels = [
+                reach.level(i, z),
+                reach.level(i + 1, z),
+                reach.level(i + w, z),
+                reach.level(i + w + 1, z),
+            ];
+            (corners.sample, corners.z) = (i, z);
+        }
+        let l = |j: usize| u32::from(corners.levels[j]);
+        let top = l(0) * (256 - fx) + l(1) * fx;
+        let bottom = l(2) * (256 - fx) + l(3) * fx;
+        ((top * (256 - fy) + bottom * fy + (1 << 15)) >> 16) as u16
     }
 
     /// Bilinear blend at `p` of the sample levels `level` gives.
@@ -162,17 +227,44 @@ impl LightMap {
     }
 }
 
+/// The four sample levels [`LightMap::at_z_cached`] read last, and where and at what height.
+#[derive(Debug, Clone, Copy)]
+pub struct Corners {
+    sample: usize,
+    z: f64,
+    levels: [u16; 4],
+}
+
+impl Default for Corners {
+    fn default() -> Self {
+        Self {
+            sample: usize::MAX,
+            z: f64::NAN,
+            levels: [0; 4],
+        }
+    }
+}
+
 /// The lamp light at one map point, read at many heights (the rows of a face).
 #[derive(Debug, Clone, Copy)]
 pub enum Probe<'a> {
     /// A flat map: one level at every height.
     Level(u16),
-    /// A map with heights: measured per height.
+    /// A map with heights: `level` between `za` and `zb`, else measured per height.
     Heights {
         /// The light map.
         map: &'a LightMap,
         /// The point on the floor plan.
         p: Vec2,
+        /// Lowest height of the shared level.
+        za: f64,
+        /// Highest height of the shared level.
+        zb: f64,
+        /// The level every height from `za` to `zb` reads.
+        level: u16,
+        /// The first of the four samples around `p` and the weights between them (256ths),
+        /// away from the map's rim.
+        corners: Option<(usize, u32, u32)>,
     },
 }
 
@@ -183,7 +275,26 @@ impl Probe<'_> {
     pub fn at(&self, z: f64) -> u16 {
         match *self {
             Probe::Level(l) => l,
-            Probe::Heights { map, p } => map.at_z(p, z),
+            Probe::Heights {
+                map,
+                p,
+                za,
+                zb,
+                level,
+                corners,
+            } => {
+                if z >= za && z <= zb {
+                    return level;
+                }
+                let (Some((i, fx, fy)), Some(reach)) = (corners, map.reach.as_deref()) else {
+                    return map.at_z(p, z);
+                };
+                let w = map.width;
+                let l = |j: usize| u32::from(reach.level(j, z));
+                let top = l(i) * (256 - fx) + l(i + 1) * fx;
+                let bottom = l(i + w) * (256 - fx) + l(i + w + 1) * fx;
+                ((top * (256 - fy) + bottom * fy + (1 << 15)) >> 16) as u16
+            }
         }
     }
 }
@@ -314,6 +425,37 @@ mod tests {
                 "at {p:?}"
             );
         }
+    }
+
+    #[test]
+    fn on_heights_maps_a_probe_reads_what_at_z_reads() {
+        let text = "NO n\nSO s\nWE w\nEA e\nF 1,2,3\nC 4,5,6\nHp -1 3\nHb 2 3\n\
+                    LIGHT 3.5,2.5 4 1\nLIGHT 5.2,1.7 3 0.7\n\
+                    11111111\n1N0bbb01\n10ppbb01\n10pppb01\n11111111\n";
+        let map = crate::map::parse_map("t.cub", text.as_bytes()).unwrap();
+        let m = LightMap::build(&map);
+        let mut lit_above = 0;
+        for i in 0..60 {
+            let p = Vec2::new(0.9 + i as f64 * 0.11, 1.05 + (i % 7) as f64 * 0.41);
+            let probe = m.probe(p);
+            for k in 0..30 {
+                let z = -1.2 + k as f64 * 0.15;
+                assert_eq!(probe.at(z), m.at_z(p, z), "at {p:?} z {z}");
+                let mut corners = Corners::default();
+                assert_eq!(m.at_z_cached(p, z, &mut corners), m.at_z(p, z));
+                // Read again from the cache, and a neighbour over the same samples.
+                assert_eq!(m.at_z_cached(p, z, &mut corners), m.at_z(p, z));
+                let q = Vec2::new(p.x + 0.01, p.y);
+                assert_eq!(m.at_z_cached(q, z, &mut corners), m.at_z(q, z));
+                lit_above += usize::from(z > 2.0 && m.at_z(p, z) > 0);
+            }
+        }
+        assert!(lit_above > 0);
+        // A flat map's probe is its one level at every height.
+        let flat = lit(ROOMS, &[(2.0, 2.0, 3.0)]);
+        let p = Vec2::new(2.3, 2.2);
+        assert_eq!(flat.probe(p).at(7.0), flat.at(p));
+        assert_eq!(flat.at_z(p, -3.0), flat.at(p));
     }
 
     #[test]
