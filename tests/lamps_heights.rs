@@ -65,14 +65,20 @@ fn a_lamp_in_a_pit_lights_the_pit_floor_far_more_than_a_ledge_three_above_it() {
     let cam = Camera::from_angle(Vec2::new(6.15, 4.5), 180.0, 90.0);
     let view = View::new(-45.0, 0.5).on_ground(2.0);
     let (w, h) = (160, 120);
+    // `SHADE 3`: dark a step from the eye (at night the eye's own lantern would outshine the
+    // lamp on the ledge near the eye).
+    let shade = Lighting {
+        falloff: 3.0,
+        ..Lighting::default()
+    };
     let render = |world: &World| {
         Scene::new(world, cam)
             .with_view(view)
-            .with_light(night())
+            .with_light(shade)
             .render(w as u16, (h / 2) as u16)
     };
     let (with, without) = (render(&lit), render(&dark));
-    let scene = Scene::new(&lit, cam).with_view(view).with_light(night());
+    let scene = Scene::new(&lit, cam).with_view(view).with_light(shade);
     // The lamp's gain on each floor, over points 1 to 2 cells from the lamp (in plan).
     let (mut pit, mut ledge) = (Vec::new(), Vec::new());
     for (x, y, at, z) in floor_pixels(&scene, w, h) {
