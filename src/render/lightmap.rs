@@ -83,8 +83,8 @@ impl LightMap {
     }
 
     /// Lamp brightness at `p` in 256ths (0 off the map or without lights), bilinear between
-    /// samples. On a map with heights, the level at the height of `p`'s lamps' own floors is
-    /// meaningless: use [`LightMap::at_z`] there (this reads as if every point were at z = 0).
+    /// samples. On a map with heights this is the light at height 0; surfaces there read
+    /// [`LightMap::at_z`] at their own height.
     #[must_use]
     #[inline]
     pub fn at(&self, p: Vec2) -> u16 {
