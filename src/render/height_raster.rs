@@ -135,10 +135,15 @@ impl Painter<'_> {
         let base = self.table.at(t);
         // Lamps and moving lights are read just in front of the face, on the side the ray came
         // from, at the height each row shows.
-        let back = 0.01 / ray.length().max(1e-9);
-        let front = self.scene.camera.pos + ray * (t - back);
+        let lit = self.lamps.is_some() || !self.moving.is_empty();
+        let front = if lit {
+            let back = 0.01 / ray.length().max(1e-9);
+            self.scene.camera.pos + ray * (t - back)
+        } else {
+            Vec2::default()
+        };
         let probe = self.lamps.map(|l| l.probe(front));
-        let moving = if point_light::near(self.moving, front) {
+        let moving = if lit && point_light::near(self.moving, front) {
             self.moving
         } else {
             &[]
@@ -154,11 +159,11 @@ impl Painter<'_> {
             |y: usize| self.proj.eye - (y as f64 + 0.5 - self.proj.horizon) * t / self.proj.focal;
         // One level for the whole face when no moving light is near and every height it shows
         // reads the lamps' shared level (most faces: within the lamps' own segments).
-        let (z_top, z_bottom) = (row_z(f.rows.0), row_z(f.rows.1.max(f.rows.0 + 1) - 1));
         let lamp = match probe {
             None => Some(0),
             Some(Probe::Level(l)) => Some(l),
             Some(Probe::Heights { za, zb, level, .. }) => {
+                let (z_top, z_bottom) = (row_z(f.rows.0), row_z(f.rows.1.max(f.rows.0 + 1) - 1));
                 (z_bottom >= za && z_top <= zb).then_some(level)
             }
         };
