@@ -1,6 +1,7 @@
 //! Cast + rasterize, single thread: the engine core's frame cost on the flat default map, on
 //! `maps/heights.cub` (issue 14's variable heights) and on a worst case for heights: an open
-//! hall whose every cell has its own floor and ceiling, seen looking down across it.
+//! hall whose every cell has its own floor and ceiling, seen looking down across it; and at night,
+//! `maps/heights.cub`'s lamps (3-D lamp light) beside the flat default map's.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use halfcast::camera::Camera;
@@ -57,6 +58,21 @@ fn heights(c: &mut Criterion) {
     for (name, w, pos, angle, pitch, ground) in cases {
         let scene = Scene::new(w, Camera::from_angle(pos, angle, 66.0))
             .with_view(View::new(pitch, 0.5).on_ground(ground));
+        let mut fb = Framebuffer::for_cells(240, 68);
+        group.bench_with_input(BenchmarkId::new(name, "240x68"), &(), |b, ()| {
+            b.iter(|| scene.render_into(&mut fb, Some(120)));
+        });
+    }
+    // Night: its two lamps light the hall, each surface by its 3-D distance; the flat default
+    // map at night (its lamps baked in 2-D) for comparison.
+    let flat = World::default_world();
+    let nights = [
+        ("heights.cub-hall-night", &world, Vec2::new(8.5, 7.5), 135.0),
+        ("flat-default-night", &flat, Vec2::new(14.5, 9.5), 30.0),
+    ];
+    for (name, w, pos, angle) in nights {
+        let mut scene = Scene::new(w, Camera::from_angle(pos, angle, 66.0));
+        scene.light.night = true;
         let mut fb = Framebuffer::for_cells(240, 68);
         group.bench_with_input(BenchmarkId::new(name, "240x68"), &(), |b, ()| {
             b.iter(|| scene.render_into(&mut fb, Some(120)));

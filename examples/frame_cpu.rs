@@ -35,6 +35,9 @@ fn main() {
     let scene = Scene::new(&world, Camera::from_angle(Vec2::new(14.5, 9.5), 30.0, 66.0));
     measure("flat default", &scene, 240, 68);
     measure("flat default", &scene, 120, 40);
+    let mut night = scene;
+    night.light.night = true;
+    measure("flat default night (lamps)", &night, 240, 68);
     if std::env::args().nth(1).as_deref() == Some("heights") {
         let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("maps/heights.cub");
         let (hw, _) = World::from_file(&path, true).unwrap();
@@ -42,6 +45,18 @@ fn main() {
         measure("heights.cub start", &s, 240, 68);
         let s = Scene::new(&hw, Camera::from_angle(Vec2::new(8.5, 7.5), 135.0, 66.0));
         measure("heights.cub hall", &s, 240, 68);
+        // Night: the balcony lamp and the one by the pit light the hall (3-D lamp light).
+        let mut s = Scene::new(&hw, Camera::from_angle(Vec2::new(8.5, 7.5), 135.0, 66.0));
+        s.light.night = true;
+        measure("heights.cub hall night (lamps)", &s, 240, 68);
+        let mut s = Scene::new(&hw, Camera::from_angle(Vec2::new(13.5, 5.5), 0.0, 66.0));
+        s.light.night = true;
+        measure("heights.cub pit night (lamps)", &s, 240, 68);
+        let mut dark = hw.clone();
+        dark.lightmap = Default::default();
+        let mut s = Scene::new(&dark, Camera::from_angle(Vec2::new(8.5, 7.5), 135.0, 66.0));
+        s.light.night = true;
+        measure("heights.cub hall night (no lamps)", &s, 240, 68);
         let hall = stepped_hall();
         let s = Scene::new(&hall, Camera::from_angle(Vec2::new(2.5, 2.5), -45.0, 66.0))
             .with_view(halfcast::View::new(-10.0, 0.5));

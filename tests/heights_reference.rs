@@ -221,6 +221,26 @@ fn y_shade(c: Rgb, side_y: bool) -> Rgb {
 /// The colour pixel (x, y) should show: its ray, 2-D direction `ray` and height
 /// z(t) = eye − slope·t, walked cell by cell.
 fn reference_pixel(case: &Case, pos: Vec2, ray: Vec2, eye: f64, slope: f64) -> Rgb {
+    let hit = reference_hit(case, pos, ray, eye, slope);
+    y_shade(hit.paint, hit.side_y)
+}
+
+/// The surface a pixel's ray meets first.
+struct Hit {
+    /// Its paint, unshaded.
+    paint: Rgb,
+    /// A face met across a y grid line (shaded darker).
+    side_y: bool,
+    /// A vertical face (true) or a floor or ceiling.
+    face: bool,
+    /// Distance along the view direction.
+    t: f64,
+    /// The height met.
+    z: f64,
+}
+
+/// [`reference_pixel`]'s walk, naming the surface met.
+fn reference_hit(case: &Case, pos: Vec2, ray: Vec2, eye: f64, slope: f64) -> Hit {
     let (mut i, mut j) = (pos.x.floor() as i64, pos.y.floor() as i64);
     let step_i: i64 = if ray.x < 0.0 { -1 } else { 1 };
     let step_j: i64 = if ray.y < 0.0 { -1 } else { 1 };
@@ -250,6 +270,22 @@ fn reference_pixel(case: &Case, pos: Vec2, ray: Vec2, eye: f64, slope: f64) -> R
     for _ in 0..10_000 {
         let (tx, ty) = (next_x(i), next_y(j));
         let t = tx.min(ty);
+        // A floor or ceiling at height `at` (met where the pixel's height reaches it).
+        let flat = |paint: Rgb, at: f64| Hit {
+            paint,
+            side_y: false,
+            face: false,
+            t: if slope == 0.0 { t } else { (eye - at) / slope },
+            z: at,
+        };
+        // A face at the crossing `t`.
+        let face = |paint: Rgb, side_y: bool| Hit {
+            paint,
+            side_y,
+            face: true,
+            t,
+            z: eye - slope * t,
+        };
         if let Some(panel_y) = door {
             let tp = if panel_y {
                 (j as f64 + 0.5 - pos.y) / ray.y
@@ -259,21 +295,27 @@ fn reference_pixel(case: &Case, pos: Vec2, ray: Vec2, eye: f64, slope: f64) -> R
             if tp >= t_in && tp < t {
                 let z = eye - slope * tp;
                 return if z <= 0.0 {
-                    case.floor_paint[0]
+                    flat(case.floor_paint[0], 0.0)
                 } else if z > 1.0 {
-                    case.ceil_paint[0]
+                    flat(case.ceil_paint[0], 1.0)
                 } else {
-                    y_shade(case.door, panel_y)
+                    Hit {
+                        paint: case.door,
+                        side_y: panel_y,
+                        face: true,
+                        t: tp,
+                        z,
+                    }
                 };
             }
         }
         t_in = t;
         let z = eye - slope * t;
         if z <= floor {
-            return case.floor_paint[zone];
+            return flat(case.floor_paint[zone], floor);
         }
         if z > ceil {
-            return case.ceil_paint[zone];
+            return flat(case.ceil_paint[zone], ceil);
         }
         let side_y = ty <= tx;
         if side_y {
@@ -288,7 +330,7 @@ fn reference_pixel(case: &Case, pos: Vec2, ray: Vec2, eye: f64, slope: f64) -> R
             (false, _) => 3,
         };
         match case.cell(i, j) {
-            Cell::Solid => return y_shade(case.walls[heading], side_y),
+            Cell::Solid => return face(case.walls[heading], side_y),
             Cell::Open {
                 floor: f,
                 ceil: c,
@@ -296,14 +338,14 @@ fn reference_pixel(case: &Case, pos: Vec2, ray: Vec2, eye: f64, slope: f64) -> R
             } => {
                 if z <= f || z > c {
                     let paint = case.face_paint[n].unwrap_or(case.walls[heading]);
-                    return y_shade(paint, side_y);
+                    return face(paint, side_y);
                 }
                 (floor, ceil, zone, door) = (f, c, n, None);
             }
             Cell::Door { panel_y } => {
                 // A door cell is open from 0 to 1; the faces beside it are plain walls'.
                 if z <= 0.0 || z > 1.0 {
-                    return y_shade(case.walls[heading], side_y);
+                    return face(case.walls[heading], side_y);
                 }
                 (floor, ceil, zone, door) = (0.0, 1.0, 0, Some(panel_y));
             }
@@ -506,4 +548,225 @@ fn a_flat_world_drawn_by_the_heights_renderer_looks_as_before() {
             "{pos:?} {angle}: {differ} pixels differ"
         );
     }
+}
+
+/// A lamp as the reference sees it: where, how far, how bright, and its segment of light (its
+/// cell's floor up one wall height, clipped by the ceiling).
+struct RefLamp {
+    pos: Vec2,
+    radius: f64,
+    strength: f64,
+    lo: f64,
+    hi: f64,
+}
+
+/// The open span of a cell for light: doors count open (0..1), solid cells none.
+fn light_span(case: &Case, i: i64, j: i64) -> Option<(f64, f64)> {
+    match case.cell(i, j) {
+        Cell::Solid => None,
+        Cell::Open { floor, ceil, .. } => Some((floor, ceil)),
+        Cell::Door { .. } => Some((0.0, 1.0)),
+    }
+}
+
+/// Issue 14's lamp rule at the map point `p` at height `z`, in [0, 1], walked in small steps
+/// along the straight line from each lamp (no grid stepping shared with the engine): a wall on
+/// the way hides it (a point inside a wall is seen when that wall is the first met: its lit
+/// face); a floor the line from the lamp's top passes under, or a ceiling the line from its
+/// bottom passes over, hides it; else it shines by the 3-D distance to its segment. `three_d`
+/// false gives the flat 2-D rule (for showing the test can tell the two apart).
+fn lamp_light_at(case: &Case, lamps: &[RefLamp], p: Vec2, z: f64, three_d: bool) -> f64 {
+    let own = (p.x.floor() as i64, p.y.floor() as i64);
+    let mut sum = 0.0;
+    for l in lamps {
+        let d = (p - l.pos).length();
+        if d >= l.radius {
+            continue;
+        }
+        let steps = (d / 0.004).ceil().max(1.0) as usize;
+        let mut seen = true;
+        for k in 0..=steps {
+            let s = k as f64 / steps as f64;
+            let q = l.pos + (p - l.pos) * s;
+            let cell = (q.x.floor() as i64, q.y.floor() as i64);
+            let Some((floor, ceil)) = light_span(case, cell.0, cell.1) else {
+                seen = cell == own;
+                break;
+            };
+            if three_d
+                && (l.hi + (z - l.hi) * s < floor - 1e-3 || l.lo + (z - l.lo) * s > ceil + 1e-3)
+            {
+                seen = false;
+                break;
+            }
+        }
+        if !seen {
+            continue;
+        }
+        let dz = if three_d {
+            (l.lo - z).max(z - l.hi).max(0.0)
+        } else {
+            0.0
+        };
+        let t = ((d * d + dz * dz).sqrt() / l.radius).min(1.0);
+        sum += l.strength * (1.0 - t * t).powi(2);
+    }
+    sum.min(1.0)
+}
+
+/// The lamp light the README documents for surface point `p` at height `z`, in 256ths: the rule
+/// of [`lamp_light_at`] taken at the light map's samples (4 per cell each way, at their centres)
+/// around `p`, blended bilinearly (samples past the map's edge clamped to it).
+fn reference_lamp_level(case: &Case, lamps: &[RefLamp], p: Vec2, z: f64, three_d: bool) -> u16 {
+    let (sx, sy) = (p.x * 4.0 - 0.5, p.y * 4.0 - 0.5);
+    let (x0, y0) = (sx.floor(), sy.floor());
+    let (fx, fy) = (sx - x0, sy - y0);
+    let (w, h) = ((case.w * 4 - 1) as f64, (case.h * 4 - 1) as f64);
+    let sample = |x: f64, y: f64| {
+        let (x, y) = (x.clamp(0.0, w), y.clamp(0.0, h));
+        let at = Vec2::new((x + 0.5) / 4.0, (y + 0.5) / 4.0);
+        (lamp_light_at(case, lamps, at, z, three_d) * 256.0).round()
+    };
+    let top = sample(x0, y0) * (1.0 - fx) + sample(x0 + 1.0, y0) * fx;
+    let bottom = sample(x0, y0 + 1.0) * (1.0 - fx) + sample(x0 + 1.0, y0 + 1.0) * fx;
+    (top * (1.0 - fy) + bottom * fy).round() as u16
+}
+
+#[test]
+fn lamps_light_every_surface_by_its_3d_distance_like_the_reference() {
+    use halfcast::render::light::{Lighting, ShadeTable};
+    // `SHADE 3`: dark beyond a step from the eye, so the lamps show (at night the eye's own
+    // lantern outshines them near it).
+    let night = Lighting {
+        falloff: 3.0,
+        ..Lighting::default()
+    };
+    let table = ShadeTable::new(&night);
+    let (mut total, mut lit, mut off, mut off_2d) = (0usize, 0usize, 0usize, 0usize);
+    for n in 0..30u64 {
+        let mut rng = Rng(0x51a7_e5ed_0000_0001 ^ (n + 7).wrapping_mul(0x1000_0000_01b3));
+        let (case, text, _) = Case::random(&mut rng);
+        // One to three lamps over random open cells.
+        let open: Vec<usize> = (0..case.cells.len())
+            .filter(|&k| matches!(case.cells[k], Cell::Open { .. }))
+            .collect();
+        let mut lamps = Vec::new();
+        let mut lines = String::new();
+        for _ in 0..1 + rng.below(3) {
+            let k = open[rng.below(open.len())];
+            let pos = Vec2::new(
+                (k % case.w) as f64 + rng.range(0.2, 0.8),
+                (k / case.w) as f64 + rng.range(0.2, 0.8),
+            );
+            let (radius, strength) = (rng.range(2.0, 5.0), rng.range(0.6, 1.0));
+            let Cell::Open { floor, ceil, .. } = case.cells[k] else {
+                unreachable!()
+            };
+            lines += &format!("LIGHT {},{} {radius} {strength}\n", pos.x, pos.y);
+            lamps.push(RefLamp {
+                pos,
+                radius,
+                strength,
+                lo: floor,
+                hi: ceil.min(floor + 1.0),
+            });
+        }
+        let text = text.replacen("TD dr.png\n", &format!("TD dr.png\n{lines}"), 1);
+        let dir = tempfile::tempdir().unwrap();
+        for (name, c) in ["no.png", "so.png", "we.png", "ea.png"]
+            .iter()
+            .zip(case.walls)
+        {
+            flat_png(dir.path(), name, c);
+        }
+        flat_png(dir.path(), "dr.png", case.door);
+        let path = dir.path().join("m.cub");
+        std::fs::write(&path, &text).unwrap();
+        let (world, _) = World::from_file(&path, true).unwrap();
+        assert_eq!(world.map.lights.len(), lamps.len());
+        // Stand near the first lamp, looking across it.
+        let l0 = lamps[0].pos;
+        let (floor, ceil) = light_span(&case, l0.x.floor() as i64, l0.y.floor() as i64).unwrap();
+        let eye_z = rng.range(0.05, (ceil - floor - 0.05).clamp(0.06, 0.95));
+        let angle = rng.range(-180.0, 180.0);
+        let a = angle.to_radians();
+        let d = Vec2::new(a.cos(), -a.sin());
+        let pos = l0 - d * 0.15;
+        if !matches!(
+            case.cell(pos.x.floor() as i64, pos.y.floor() as i64),
+            Cell::Open { .. }
+        ) || ceil - floor < 0.2
+        {
+            continue;
+        }
+        let (floor, _) = light_span(&case, pos.x.floor() as i64, pos.y.floor() as i64).unwrap();
+        let pitch = rng.range(-30.0, 30.0);
+        let fov = rng.range(50.0, 100.0);
+        let (width, height) = (60 + rng.below(100), 2 * (20 + rng.below(30)));
+        let camera = Camera::from_angle(pos, angle, fov);
+        let view = View::new(pitch, eye_z).on_ground(floor);
+        let mut fb = Framebuffer::new(width, height);
+        Scene::new(&world, camera)
+            .with_view(view)
+            .with_light(night)
+            .render_into(&mut fb, None);
+        let half = (fov.to_radians() / 2.0).tan();
+        let plane = Vec2::new(-d.y * half, d.x * half);
+        let focal = width as f64 / (2.0 * half);
+        let hh = height as f64;
+        let horizon = hh / 2.0 + (focal * pitch.to_radians().tan()).clamp(-hh, hh);
+        let eye = floor + eye_z;
+        for x in 0..width {
+            let ray = d + plane * (2.0 * x as f64 / width as f64 - 1.0);
+            for y in 0..height {
+                let slope = (y as f64 + 0.5 - horizon) / focal;
+                let hit = reference_hit(&case, pos, ray, eye, slope);
+                // Faces are lit just in front of them, on the side the ray came from.
+                let back = if hit.face { 0.01 / ray.length() } else { 0.0 };
+                let p = pos + ray * (hit.t - back);
+                let colour = |level: u16| {
+                    let s = table.at(hit.t).lit(level);
+                    let s = if hit.side_y { s.scaled(184) } else { s };
+                    s.apply(hit.paint)
+                };
+                let level = reference_lamp_level(&case, &lamps, p, hit.z, true);
+                let want = colour(level);
+                let flat = colour(reference_lamp_level(&case, &lamps, p, hit.z, false));
+                let got = fb.get(x, y);
+                let far = |a: Rgb, b: Rgb| {
+                    a.r.abs_diff(b.r)
+                        .max(a.g.abs_diff(b.g))
+                        .max(a.b.abs_diff(b.b))
+                        > 10
+                };
+                if far(got, want) && std::env::var_os("DEBUG_REF").is_some() && off < 40 {
+                    eprintln!(
+                        "case {n} ({x},{y}) got {got:?} want {want:?} flat {flat:?} level {level} z {:.2} face {} p {p:?} t {:.2}",
+                        hit.z, hit.face, hit.t
+                    );
+                }
+                total += 1;
+                lit += usize::from(level > 0);
+                off += usize::from(far(got, want));
+                off_2d += usize::from(far(flat, want));
+            }
+        }
+    }
+    let share = |k: usize| k as f64 / total.max(1) as f64 * 100.0;
+    println!(
+        "{total} pixels, {:.1} % lamp-lit; {:.2} % off the 3-D reference by more than 10 (the 2-D rule: {:.2} %)",
+        share(lit),
+        share(off),
+        share(off_2d)
+    );
+    assert!(share(lit) > 20.0, "too few lamp-lit pixels to judge");
+    assert!(
+        share(off) <= 1.0,
+        "{:.2} % of pixels off the reference",
+        share(off)
+    );
+    assert!(
+        off_2d > 3 * off,
+        "the flat 2-D rule would pass too ({off_2d} vs {off}): the test cannot tell"
+    );
 }

@@ -7,6 +7,7 @@ use crate::render::cast::ColumnHit;
 use crate::render::dither_phase;
 use crate::render::framebuffer::Framebuffer;
 use crate::render::light::{Shade, ShadeTable};
+use crate::render::point_light;
 use crate::render::scene::Scene;
 use crate::world::sprite::{far_to_near, frame_index, project, view_index, Culled, Projection};
 
@@ -89,17 +90,19 @@ pub fn draw_sprites(
             continue;
         };
         let mut shade = table.at(p.depth);
-        if let Some(lamps) = scene.lamp_light() {
-            shade = shade.lit(lamps.at(p_pos(scene, i)));
+        let lamps = scene.lamp_light();
+        let moving = scene.point_lights();
+        if let (true, Some(sprite)) = (lamps.is_some() || !moving.is_empty(), scene.sprite(i)) {
+            // Lit at its middle: its own height on maps with heights, by moving lights.
+            let def = &sprite.def;
+            let z = sprite_base(&scene.world.map, def) + def.scale.1 / 2.0;
+            let lamp = lamps.map_or(0, |l| l.at_z(def.pos, z));
+            let glow = point_light::level(moving, def.pos, z);
+            shade = shade.lit(point_light::add(lamp, glow));
         }
         outcomes[i].drawn = draw_one(scene, i, &p, occluders, fb, shade);
     }
     outcomes
-}
-
-/// Where sprite `i` of the scene stands (lamp light is read there).
-fn p_pos(scene: &Scene, i: usize) -> crate::vec2::Vec2 {
-    scene.sprite(i).map_or(scene.camera.pos, |s| s.def.pos)
 }
 
 /// Mixes `fg` over `bg` by `a`/255.

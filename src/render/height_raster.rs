@@ -10,7 +10,8 @@ use crate::render::cast::{Cast, Side};
 use crate::render::framebuffer::Framebuffer;
 use crate::render::height_cast::{Band, FaceKind, FaceSpan, FlatSpan, Projection};
 use crate::render::light::{Shade, ShadeTable};
-use crate::render::lightmap::LightMap;
+use crate::render::lightmap::{Corners, LightMap, Probe};
+use crate::render::point_light::{self, PointLight};
 use crate::render::raster::{face_texture_x, fast_floor, heading_of, Y_SIDE_SHADE};
 use crate::render::scene::Scene;
 use crate::vec2::Vec2;
@@ -43,6 +44,7 @@ pub fn rasterize_heights(scene: &Scene, cast: &Cast, fb: &mut Framebuffer) -> Ve
         proj,
         table: &table,
         lamps,
+        moving: scene.point_lights(),
         per_row,
     };
     for (x, col) in cast.heights.iter().enumerate().take(w) {
@@ -71,6 +73,8 @@ struct Painter<'a> {
     proj: Projection,
     table: &'a ShadeTable,
     lamps: Option<&'a LightMap>,
+    /// The frame's moving lights (empty by day).
+    moving: &'a [PointLight],
     per_row: Vec<f64>,
 }
 
@@ -88,6 +92,7 @@ impl Painter<'_> {
         let rise = self.proj.eye - f.z;
         let pos = self.scene.camera.pos;
         let keep_depth = !depth.is_empty();
+        let mut corners = Corners::default();
         for y in f.rows.0..f.rows.1 {
             // Within the cell's stretch of the ray whatever rounding says (and at the horizon).
             let mut dist = rise * self.per_row[y];
@@ -97,8 +102,17 @@ impl Painter<'_> {
             let dist = dist.clamp(f.dist.0, f.dist.1);
             let at = pos + ray * dist;
             let mut shade = self.table.at(dist);
-            if let Some(lamps) = self.lamps {
-                shade = shade.lit(lamps.at(at));
+            if self.lamps.is_some() || !self.moving.is_empty() {
+                // Lamps and moving lights add up, measured at the surface's own height.
+                let lamp = self
+                    .lamps
+                    .map_or(0, |l| l.at_z_cached(at, f.z, &mut corners));
+                let glow = if self.moving.is_empty() {
+                    0
+                } else {
+                    point_light::level(self.moving, at, f.z)
+                };
+                shade = shade.lit(point_light::add(lamp, glow));
             }
             let c = match paint {
                 Paint::Colour(c) => c,
@@ -118,16 +132,58 @@ impl Painter<'_> {
     fn face(&self, f: &FaceSpan, x: usize, ray: Vec2, fb: &mut Framebuffer, depth: &mut [f32]) {
         let world = self.scene.world;
         let t = f.perp_dist;
-        let mut shade = self.table.at(t);
-        if let Some(lamps) = self.lamps {
-            // Just in front of the face, on the side the ray came from.
+        let base = self.table.at(t);
+        // Lamps and moving lights are read just in front of the face, on the side the ray came
+        // from, at the height each row shows.
+        let lit = self.lamps.is_some() || !self.moving.is_empty();
+        let front = if lit {
             let back = 0.01 / ray.length().max(1e-9);
-            shade = shade.lit(lamps.at(self.scene.camera.pos + ray * (t - back)));
-        }
-        let shade: Shade = if f.side == Side::Y {
-            shade.scaled(Y_SIDE_SHADE)
+            self.scene.camera.pos + ray * (t - back)
         } else {
-            shade
+            Vec2::default()
+        };
+        let probe = self.lamps.map(|l| l.probe(front));
+        let moving = if lit && point_light::near(self.moving, front) {
+            self.moving
+        } else {
+            &[]
+        };
+        let side = |s: Shade| {
+            if f.side == Side::Y {
+                s.scaled(Y_SIDE_SHADE)
+            } else {
+                s
+            }
+        };
+        let row_z =
+            |y: usize| self.proj.eye - (y as f64 + 0.5 - self.proj.horizon) * t / self.proj.focal;
+        // One level for the whole face when no moving light is near and every height it shows
+        // reads the lamps' shared level (most faces: within the lamps' own segments).
+        let lamp = match probe {
+            None => Some(0),
+            Some(Probe::Level(l)) => Some(l),
+            Some(Probe::Heights { za, zb, level, .. }) => {
+                let (z_top, z_bottom) = (row_z(f.rows.0), row_z(f.rows.1.max(f.rows.0 + 1) - 1));
+                (z_bottom >= za && z_top <= zb).then_some(level)
+            }
+        };
+        let varies = !moving.is_empty() || lamp.is_none();
+        let flat_shade = side(match (probe, lamp) {
+            (Some(_), Some(l)) => base.lit(l),
+            _ => base,
+        });
+        let shade_of = |y: usize| {
+            if !varies {
+                return flat_shade;
+            }
+            let z = row_z(y);
+            let lamp = probe.map_or(0, |p| p.at(z));
+            let glow = if moving.is_empty() {
+                0
+            } else {
+                point_light::level(moving, front, z)
+            };
+            side(base.lit(point_light::add(lamp, glow)))
         };
         let w = fb.width();
         let per_row = t / self.proj.focal;
@@ -138,10 +194,18 @@ impl Painter<'_> {
             (_, what) => what,
         };
         match world.face_paint_at(what, f.cell, heading_of(f.side, ray)) {
-            Paint::Colour(c) => {
-                let c = shade.apply(c);
+            Paint::Colour(c) if !varies => {
+                let c = flat_shade.apply(c);
                 for y in f.rows.0..f.rows.1 {
                     fb.set(x, y, c);
+                    if keep_depth {
+                        depth[y * w + x] = t as f32;
+                    }
+                }
+            }
+            Paint::Colour(c) => {
+                for y in f.rows.0..f.rows.1 {
+                    fb.set(x, y, shade_of(y).apply(c));
                     if keep_depth {
                         depth[y * w + x] = t as f32;
                     }
@@ -164,7 +228,7 @@ impl Painter<'_> {
                     if u >= 1.0 {
                         u -= 1.0;
                     }
-                    fb.set(x, y, shade.apply(column[v.min(th - 1)]));
+                    fb.set(x, y, shade_of(y).apply(column[v.min(th - 1)]));
                     if keep_depth {
                         depth[y * w + x] = t as f32;
                     }

@@ -8,6 +8,7 @@ use crate::render::cast::{ColumnHit, Side};
 use crate::render::dither_phase;
 use crate::render::framebuffer::{Framebuffer, NEUTRAL_PHASE};
 use crate::render::light::{Shade, ShadeTable};
+use crate::render::point_light;
 use crate::render::scene::Scene;
 use crate::vec2::Vec2;
 use crate::world::{Paint, World};
@@ -126,42 +127,62 @@ pub fn rasterize_frame(
         .collect();
     floor_and_ceiling(scene, &spans, fb, focal, horizon, view.eye(), &table);
     let lamps = scene.lamp_light();
+    let moving = scene.point_lights();
     for (x, (hit, span)) in hits.iter().zip(&spans).enumerate() {
         let mut shade = table.at(hit.perp_dist);
-        if let Some(lamps) = lamps {
-            // Just in front of the wall, on the side the ray came from.
+        // Just in front of the wall, on the side the ray came from.
+        let front = || {
             let back = 0.01 / hit.ray_dir.length().max(1e-9);
-            let at = scene.camera.pos + hit.ray_dir * (hit.perp_dist - back);
-            shade = shade.lit(lamps.at(at));
+            scene.camera.pos + hit.ray_dir * (hit.perp_dist - back)
+        };
+        if let Some(lamps) = lamps {
+            shade = shade.lit(lamps.at(front()));
         }
-        wall_stripe(scene.world, hit, span, x, fb, shade);
+        let side = |s: Shade| {
+            if hit.side == Side::Y {
+                s.scaled(Y_SIDE_SHADE)
+            } else {
+                s
+            }
+        };
+        if !moving.is_empty() && point_light::near(moving, front()) {
+            // Moving lights are measured in 3-D: each row at the height it shows.
+            let at = front();
+            let lamp = lamps.map_or(0, |l| l.at(at));
+            let base = table.at(hit.perp_dist);
+            let per_row = hit.perp_dist / focal;
+            let eye = view.eye();
+            wall_stripe(scene.world, hit, span, x, fb, |y| {
+                let z = eye - (y as f64 + 0.5 - horizon) * per_row;
+                side(base.lit(point_light::add(lamp, point_light::level(moving, at, z))))
+            });
+        } else {
+            let shade = side(shade);
+            wall_stripe(scene.world, hit, span, x, fb, |_| shade);
+        }
         wall_phases(hits, span, x, fb);
     }
     draw_sprites(scene, Occluders::Columns(hits), fb, &table)
 }
 
-/// Draws one wall column from its texture column, top to bottom.
+/// Draws one wall column from its texture column, top to bottom, row `y` lit by `shade(y)`
+/// (side shading included).
 fn wall_stripe(
     world: &World,
     hit: &ColumnHit,
     span: &WallSpan,
     x: usize,
     fb: &mut Framebuffer,
-    shade: Shade,
+    shade: impl Fn(usize) -> Shade,
 ) {
     let tex = world.wall_texture_at(hit.what, hit.cell, heading(hit));
     let column = tex.column(texture_x(hit, tex.width()));
     let th = tex.height();
     let scale = th as f64 / span.height;
-    let shade = if hit.side == Side::Y {
-        shade.scaled(Y_SIDE_SHADE)
-    } else {
-        shade
-    };
     for y in span.rows.0..span.rows.1 {
         let v = ((y as f64 + 0.5 - span.top) * scale) as usize;
         let c = column[v.min(th - 1)];
-        fb.set(x, y, shade.apply(c));
+        fb.set(x, y, shade(y).apply(c));
     }
 }
 
@@ -203,6 +224,7 @@ fn floor_and_ceiling(
     let left = cam.dir - cam.plane;
     let across = cam.plane * (2.0 / w as f64);
     let lamps = scene.lamp_light();
+    let moving = scene.point_lights();
     for y in 0..h {
         let p = y as f64 + 0.5 - horizon;
         let is_floor = p > 0.0;
@@ -233,8 +255,14 @@ fn floor_and_ceiling(
                 world.ceiling_paint(zone)
             };
             let shade = match lamps {
-                Some(lamps) => shade.lit(lamps.at(Vec2::new(fx, fy))),
-                None => shade,
+                Some(lamps) if moving.is_empty() => shade.lit(lamps.at(Vec2::new(fx, fy))),
+                None if moving.is_empty() => shade,
+                _ => {
+                    let at = Vec2::new(fx, fy);
+                    let lamp = lamps.map_or(0, |l| l.at(at));
+                    let z = if is_floor { 0.0 } else { 1.0 };
+                    shade.lit(point_light::add(lamp, point_light::level(moving, at, z)))
+                }
             };
             *px = shade.apply(match paint {
                 Paint::Colour(c) => c,

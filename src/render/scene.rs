@@ -27,6 +27,7 @@
 use crate::camera::Camera;
 use crate::render::light::Lighting;
 use crate::render::lightmap::LightMap;
+use crate::render::point_light::PointLight;
 use crate::render::view::View;
 use crate::world::door::DoorState;
 use crate::world::sprite::Sprite;
@@ -50,6 +51,8 @@ pub struct Scene<'a> {
     /// Sprites of this frame only (items, creatures, shots), drawn after and sorted with the
     /// world's own; empty unless [`Scene::with_sprites`] gives some.
     pub sprites: &'a [Sprite],
+    /// Moving lights of this frame (projectiles), shown when the world is dark; none by default.
+    pub lights: &'a [PointLight],
 }
 
 impl<'a> Scene<'a> {
@@ -64,6 +67,7 @@ impl<'a> Scene<'a> {
             doors: None,
             time: 0.0,
             sprites: &[],
+            lights: &[],
         }
     }
 
@@ -120,6 +124,23 @@ impl<'a> Scene<'a> {
     pub fn at_time(mut self, seconds: f64) -> Self {
         self.time = seconds;
         self
+    }
+
+    /// This scene with moving lights (e.g. projectiles) that brighten what is near them at night.
+    #[must_use]
+    pub fn with_lights(mut self, lights: &'a [PointLight]) -> Self {
+        self.lights = lights;
+        self
+    }
+
+    /// The moving lights that show in this frame: all of them when the world is dark, else none.
+    #[must_use]
+    pub fn point_lights(&self) -> &'a [PointLight] {
+        if self.light.is_dark() {
+            self.lights
+        } else {
+            &[]
+        }
     }
 
     /// The lamp light map, when this scene is dark enough for lamps to show (night or falloff).
