@@ -234,7 +234,9 @@ fn shown(palette: &Palette, fb: &Framebuffer) -> Framebuffer {
 #[test]
 fn surface_dithering_brings_the_default_maps_views_closer_at_256_colours() {
     // One fixed pair per cell kept ΔE 1.46 and chroma 0.89 over these views; alternating two
-    // pairs by the surfaces' dither phases brings them to about 1.35 and 0.94.
+    // pairs by the surfaces' dither phases brought them to 1.35 and 0.94, and a lattice within
+    // 1.19 pixels (quarter-octave levels) with a noise weight for a surface's partial pattern
+    // coverage to about 1.21 and 0.94.
     let world = World::default_world();
     let palette = Palette::new(ColorLevel::Ansi256, false);
     let mut dithered = Vec::new();
@@ -250,7 +252,7 @@ fn surface_dithering_brings_the_default_maps_views_closer_at_256_colours() {
     let d = halfcast::bench::fidelity::mean(&dithered).unwrap();
     let s = halfcast::bench::fidelity::mean(&single).unwrap();
     let (dc, sc) = (d.chroma_kept.unwrap(), s.chroma_kept.unwrap());
-    assert!(d.oklab_de_blur <= 1.40, "dithered {d:?}");
+    assert!(d.oklab_de_blur <= 1.25, "dithered {d:?}");
     assert!(dc >= 0.9, "dithered {d:?}");
     assert!(
         d.oklab_de_blur < s.oklab_de_blur - 0.05 && dc > sc,

@@ -210,12 +210,32 @@ pub fn choose(
 /// phases of [`crate::render::dither_phase`]).
 pub const SHARES: u8 = 16;
 
+/// The smallest share (in sixteenths) worth a second pair. One cell in sixteen buys a sixteenth
+/// of the way between the two mixes, but each such cell costs a colour change in and one out, and
+/// a surface's lattice shows it in some 4×4-pixel patches and not in others. Measured (256
+/// colours, default map's eight views; `halfcast bench`): 1 → ΔE 1.214, 15.78 %; 2 → 1.212,
+/// 15.78 % (at a split cost of 0.001: 1 → 1.200, 16.02 %; 2 → 1.199, 16.00 %; 3 → 1.200, 16.12 %).
+/// 16 colours: blurred ΔE 4.82 → 4.81.
+const MIN_SHARE: u8 = 2;
+
 /// Weight of the alternation's own noise (the spread between the two pairs' mixes, which a
-/// pattern about a cell fine mostly blurs away) against the mix error.
+/// pattern about a cell fine mostly blurs away) against the mix error, at 16 colours.
 const NOISE_WEIGHT: f32 = 0.05;
 
-/// Extra cost per colour the two pairs use beyond the two one fg/bg setting draws: each switch
-/// between them is then another colour change on the wire.
+/// [`NOISE_WEIGHT`] at 256 colours. A surface's lattice is not the screen's: a 4×4-pixel patch
+/// sees only some of the pattern's thresholds, so a share shows with some spread and a second pair
+/// far from the first leaves visible error. Measured (default map's eight views, blurred ΔE and
+/// chroma kept): with the quarter-octave lattice (Bayer pattern, split cost 0.0012, best pair kept
+/// alone within ΔE 1) 0.02 → 1.22, 0.1 → 1.21, 0.2 → 1.19 (0.89), 0.3 → 1.31 (0.77); with the dash
+/// pattern at split cost 0.001, 0.1 → 1.21 (0.96), 0.15 → 1.20 (0.94); at 0.0008, 0.1 → 1.19,
+/// 0.2 → 1.17.
+const NOISE_WEIGHT_256: f32 = 0.15;
+
+/// Extra cost per colour the two pairs use beyond the two one fg/bg setting draws, at 16 colours:
+/// each switch between them is then another colour change on the wire. At 256 colours a dash of
+/// the pattern ([`crate::render::dither_phase::DASH4`]) already keeps switches few, and any cost
+/// here bought fewer bytes than the same ΔE spent on [`DITHERED_SPLIT_COST`] (0.000 05: ΔE 1.215,
+/// 15.8 %; none at a split cost of 0.0011: 1.214, 15.8 %).
 const SWITCH_COST: f32 = 0.000_2;
 
 /// Weight of the a/b (hue and chroma) part of a 16-colour alternation's error against its
@@ -225,10 +245,15 @@ const SWITCH_COST: f32 = 0.000_2;
 const HUE_WEIGHT_16: f32 = 10.0;
 
 /// [`SPLIT_COST`] in frames with dither phases. Alternating pairs sends more colour changes, so
-/// single cells pay more for splitting; measured (256 colours, default map's eight views at
-/// 120×40; `halfcast bench` 30 diff frames per path, vs ratatui truecolor): 0.0004 → ΔE 1.27,
-/// 16.8 %; 0.0008 → 1.30, 16.1 %; 0.001 → 1.32, 15.7 %; 0.0012 → 1.34, 15.3 %; 0.002 → 1.43, 14.0 %.
-const DITHERED_SPLIT_COST: f32 = 0.001_2;
+/// single cells pay more for splitting. This is the knob between blurred ΔE and bytes; measured
+/// (256 colours, default map's eight views at 120×40; `halfcast bench` mean of its six runs vs
+/// ratatui truecolor; quarter-octave lattice, dash pattern, [`NOISE_WEIGHT_256`]): 0.0008 → ΔE
+/// 1.17, 16.5 %; 0.0009 → 1.19, 16.3 %; 0.001 → 1.200, 16.0 %; 0.00105 → 1.212, 15.9 %;
+/// 0.0011 → 1.214, 15.8 %; 0.0012 → 1.22, 15.6 %. (Before both: 0.0008 → 1.30, 16.1 %; 0.0012 →
+/// 1.34, 15.3 %.) With [`MIN_SHARE`] 2: 0.001 → 1.1992, 16.004 %; 0.00101 → 1.1998, 15.981 %;
+/// 0.00102 → 1.2007, 15.95 %; 0.0011 → 1.212, 15.78 %. The setting is the lowest within the 16 %
+/// budget, where blurred ΔE just reaches 1.2: both hold, with no margin.
+const DITHERED_SPLIT_COST: f32 = 0.001_01;
 
 /// A best pair whose mix is this close to the pixels' (squared OKLab, ΔE 2) is kept alone: an
 /// alternation would gain little and cost bytes and time.
@@ -276,7 +301,8 @@ fn extra_colours(a: [u8; 2], b: [u8; 2]) -> u8 {
 /// The first pair is [`choose`]'s. Every other candidate is tried as the second: the share is the
 /// pixels' mix projected on the line between the two pairs' mixes (in OKLab, where nearby mixes
 /// combine almost linearly), in sixteenths; the cost adds the alternation's noise
-/// ([`NOISE_WEIGHT`]) and [`SWITCH_COST`] per colour changed to [`choose`]'s terms, weighted by
+/// ([`NOISE_WEIGHT`], [`NOISE_WEIGHT_256`]) and at 16 colours [`SWITCH_COST`] per colour changed
+/// to [`choose`]'s terms, weighted by
 /// share. Ties keep the first found (deterministic).
 #[must_use]
 pub fn choose_alternating(
@@ -375,7 +401,7 @@ pub fn choose_alternating(
         }
         let along = (md[0] * d[0] + md[1] * d[1] + md[2] * d[2]) / dd;
         let share = (along.clamp(0.0, 1.0) * steps).round() as u8;
-        if share == 0 {
+        if share < MIN_SHARE {
             continue;
         }
         let s = f32::from(share) / steps;
@@ -392,11 +418,16 @@ pub fn choose_alternating(
             (l[0] - lab_m[0]).powi(2)
                 + HUE_WEIGHT_16 * ((l[1] - lab_m[1]).powi(2) + (l[2] - lab_m[2]).powi(2))
         };
+        let (noise, switch) = if t.wide {
+            (NOISE_WEIGHT_256, 0.0)
+        } else {
+            (NOISE_WEIGHT, SWITCH_COST * f32::from(changed))
+        };
         let c = miss
             + (1.0 - s) * own_a
             + s * own(b[0], b[1])
-            + NOISE_WEIGHT * s * (1.0 - s) * lab_dist2(la, mix(b))
-            + SWITCH_COST * f32::from(changed);
+            + noise * s * (1.0 - s) * lab_dist2(la, mix(b))
+            + switch;
         if c < out.1 {
             out = (Alternating { a, b, share }, c);
         }
@@ -474,6 +505,26 @@ mod tests {
         // The phase decides: low phases show the second pair, high ones the first.
         assert_eq!(alt.resolve(0), alt.b);
         assert_eq!(alt.resolve(255), alt.a);
+    }
+
+    #[test]
+    fn a_second_pair_shows_on_at_least_two_cells_in_sixteen() {
+        // A single cell in sixteen buys little and costs two colour changes: no share of 1.
+        let mut alternating = 0;
+        for level in [ColorLevel::Ansi256, ColorLevel::Ansi16] {
+            let p = Palette::new(level, false);
+            for r in (0..=255u8).step_by(17) {
+                for g in (0..=255u8).step_by(17) {
+                    for b in (0..=255u8).step_by(51) {
+                        let c = Rgb::new(r, g, b);
+                        let alt = p.cell_dithered(c, c).unwrap();
+                        assert!(alt.share != 1, "{level}: {c:?} → {alt:?}");
+                        alternating += usize::from(alt.share >= super::MIN_SHARE);
+                    }
+                }
+            }
+        }
+        assert!(alternating > 100, "only {alternating} colours alternate");
     }
 
     #[test]
