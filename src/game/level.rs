@@ -5,10 +5,12 @@
 use std::collections::BTreeMap;
 
 use super::creature::{Creature, Ground};
-use super::projectile::{Flight, Projectile, RELOAD_SECONDS, SHOT_COLOUR, SHOT_LIGHT_RADIUS};
+use super::projectile::{
+    Flight, Projectile, RELOAD_SECONDS, SHOT_LIGHT_RADIUS, SHOT_LIGHT_STRENGTH,
+};
+use crate::render::point_light::PointLight;
 use super::rng::Rng;
 use super::score::Score;
-use crate::color::Rgb;
 use crate::map::{Blend, ColourKey, Map, SpriteDef, DEFAULT_SOLID_RADIUS};
 use crate::render::view::STANDING_EYE;
 use crate::vec2::Vec2;
@@ -416,12 +418,18 @@ impl Level {
         out
     }
 
-    /// Shots in flight as point lights: (position, height, radius in cells, colour).
+    /// Shots in flight as moving lights (they light the walls near them at night), for
+    /// [`crate::Scene::with_lights`].
     #[must_use]
-    pub fn lights(&self) -> Vec<(Vec2, f64, f64, Rgb)> {
+    pub fn lights(&self) -> Vec<PointLight> {
         self.projectiles
             .iter()
-            .map(|s| (s.pos, s.z, SHOT_LIGHT_RADIUS, SHOT_COLOUR))
+            .map(|s| PointLight {
+                pos: s.pos,
+                z: s.z,
+                radius: SHOT_LIGHT_RADIUS,
+                strength: SHOT_LIGHT_STRENGTH,
+            })
             .collect()
     }
 

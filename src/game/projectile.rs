@@ -3,7 +3,6 @@
 
 use super::creature::{Creature, CREATURE_RADIUS};
 use super::sight::first_block;
-use crate::color::Rgb;
 use crate::map::Map;
 use crate::vec2::Vec2;
 use crate::world::door::DoorState;
@@ -23,8 +22,8 @@ pub const RELOAD_SECONDS: f64 = 0.4;
 /// The light a shot gives, as [`super::level::Level::lights`] reports it: radius in cells.
 pub const SHOT_LIGHT_RADIUS: f64 = 2.5;
 
-/// The colour of a shot's glow and light.
-pub const SHOT_COLOUR: Rgb = Rgb::new(255, 190, 90);
+/// How bright a shot is at its centre (0–1, 1 = daylight).
+pub const SHOT_LIGHT_STRENGTH: f64 = 0.9;
 
 /// One shot in flight.
 #[derive(Debug, Clone, PartialEq)]

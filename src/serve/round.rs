@@ -379,7 +379,8 @@ mod tests {
         let board = r.board(&near);
         assert_eq!(board[0].name, "bob", "fewest seconds as it first");
         assert!(board[0].it && !board[1].it);
-        assert!(r.header(&near).starts_with("tag: it is bob, 2:5"));
+        let header = r.header(&near);
+        assert!(header.starts_with("tag: it is bob, 3:00 left | *bob 0s it, ann 5s it"), "{header}");
     }
 
     #[test]

@@ -15,10 +15,12 @@ const MARK: Rgb = Rgb::new(255, 230, 60);
 pub fn render_view(state: &GameState, fb: &mut Framebuffer) -> Cast {
     let column = state.debug_column();
     let sprites = state.level.sprites(&state.world);
+    let lights = state.level.lights();
     let mut scene = Scene::new(&state.world, state.camera)
         .with_view(state.view)
         .with_doors(&state.doors)
         .with_sprites(&sprites)
+        .with_lights(&lights)
         .at_time(state.time);
     scene.light.night = state.night;
     let cast = scene.render_into(fb, Some(column));

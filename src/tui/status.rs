@@ -264,26 +264,55 @@ mod tests {
             None,
         ));
         // Also at 80 columns, the size most people play at (the pane beside the view takes
-        // none of the status row).
+        // none of the status row); there the game's figures take the position's place.
         for width in [200, 100, 80] {
             let t = status_line(&state, &stats, InputMode::Emulated, None, width).to_string();
             assert!(t.contains("256 (TERM)"), "{width}: {t}");
-            assert!(
-                t.contains("pos 15.50,5.50") && t.contains("q quit"),
-                "{width}: {t}"
-            );
+            assert!(t.contains(" 0 pts") && t.contains("q quit"), "{width}: {t}");
+            assert_eq!(t.contains("pos 15.50,5.50"), width > 80, "{width}: {t}");
         }
     }
 
     #[test]
-    fn narrow_rows_keep_fps_position_and_the_quit_hint() {
+    fn narrow_rows_keep_the_game_fps_and_the_quit_hint() {
         let t = text(60, false);
         assert!(t.chars().count() <= 60, "{t}");
-        for part in ["fps", "pos 15.50,5.50", "q quit"] {
+        for part in [" 0 pts", "13 left", "fps", "q quit"] {
             assert!(t.contains(part), "{part}: {t}");
         }
         assert!(!t.contains("kitty"));
         let t = text(70, true);
         assert!(t.contains("PAUSED") && t.contains("q quit"), "{t}");
+    }
+
+    #[test]
+    fn the_game_hud_shows_points_keys_items_left_and_time_only_on_maps_with_a_game() {
+        let world = Arc::new(World::default_world());
+        let cam = Camera::from_angle(world.map.start.pos(), 90.0, 66.0);
+        let mut state = GameState::new(world, cam, 80);
+        state.score.points = 120;
+        state.score.keys.insert("gold".into());
+        state.time = 83.4;
+        let line = status_line(&state, &FrameStats::default(), InputMode::Emulated, None, 200);
+        let t = line.to_string();
+        for part in [" 120 pts", "keys gold", "13 left", "1:23"] {
+            assert!(t.contains(part), "{part}: {t}");
+        }
+        // The key is written in its own colour.
+        let gold = crate::game::key_colour::key_colour("gold");
+        let span = line.spans.iter().find(|s| s.content == "gold").expect("key span");
+        assert_eq!(span.style.fg, Some(Color::Rgb(gold.r, gold.g, gold.b)));
+        // A map without game lines keeps the old status line (position at 60 columns).
+        let (plain, _) = World::load(
+            crate::map::grid_map("111\n1N1\n111\n"),
+            &crate::world::TextureSource::Embedded,
+            false,
+        )
+        .expect("plain world");
+        let cam = Camera::from_angle(plain.map.start.pos(), 90.0, 66.0);
+        let state = GameState::new(Arc::new(plain), cam, 80);
+        let t = status_line(&state, &FrameStats::default(), InputMode::Emulated, None, 60)
+            .to_string();
+        assert!(t.contains("pos 1.50,1.50") && !t.contains("pts"), "{t}");
     }
 }
