@@ -169,7 +169,7 @@ fn help_is_visible_over_the_view_at_80x24_and_lists_every_key() {
         "look straight ahead again",
         "jump",
         "crouch (hold)",
-        "open / close the door ahead",
+        "open / close a door / throw a tag",
         "night mode on / off",
         "pause / resume the world",
         "single-step the DDA",
@@ -225,11 +225,26 @@ fn mono_screens_are_plain_ascii_with_a_readable_map() {
         assert!(joined.contains(c), "{c} not on the map:\n{joined}");
     }
     assert!(text.contains("deltaDist (inf, 1.0000)"), "{text}");
-    assert!(status(run.screen()).contains("90.0 deg"), "{text}");
+    // At 80 columns the game's figures and the position fill the status line (ASCII too).
+    let line = status(run.screen());
+    assert!(
+        line.contains(" 0 pts  13 left") && line.contains("pos 15.50,5.50"),
+        "{line}"
+    );
     run.send(b"?");
     run.wait_for_screen("the help", |s| s.contents().contains("walk forward"));
     run.send(b"q");
     run.wait_exit();
+    // Wider, the angle shows too, in ASCII.
+    let mut wide = start((120, 30), &["--colors", "mono"]);
+    wide.wait_for_screen("the status line", |s| s.contents().contains("q quit"));
+    assert!(
+        status(wide.screen()).contains("90.0 deg"),
+        "{}",
+        wide.screen().contents()
+    );
+    wide.send(b"q");
+    wide.wait_exit();
     let bytes_after = run.bytes();
     assert!(bytes.len() <= bytes_after.len());
     let odd: Vec<u8> = bytes_after

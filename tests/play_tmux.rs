@@ -191,23 +191,31 @@ fn a_closed_terminal_ends_the_game() {
     );
 }
 
-/// (x, y, angle) from the status line ("pos 15.50,5.50 │ angle 90.0°").
+/// (x, y, angle): the position from the status line ("pos 15.50,5.50"), the facing from the
+/// ray pane's centre ray ("rayDir (+0.0000, -1.0000)"), since at 80 columns the game's figures
+/// leave no room for the angle on the status line.
 fn pose(screen: &str) -> (f64, f64, f64) {
     let line = status(screen);
-    let field = |key: &str| -> String {
-        let i = line.find(key).unwrap_or_else(|| panic!("no {key}: {line}"));
-        line[i + key.len()..]
-            .chars()
-            .take_while(|c| c.is_ascii_digit() || matches!(c, '.' | ','))
-            .collect()
-    };
-    let pos = field("pos ");
+    let i = line
+        .find("pos ")
+        .unwrap_or_else(|| panic!("no pos: {line}"));
+    let pos: String = line[i + 4..]
+        .chars()
+        .take_while(|c| c.is_ascii_digit() || matches!(c, '.' | ','))
+        .collect();
     let (x, y) = pos.split_once(',').expect("x,y");
-    (
-        x.parse().unwrap(),
-        y.parse().unwrap(),
-        field("angle ").parse().unwrap(),
-    )
+    let ray = screen
+        .lines()
+        .find_map(|l| {
+            let (_, r) = l.split_once("rayDir")?;
+            r.split_once('(').map(|(_, r)| r.to_owned())
+        })
+        .unwrap_or_else(|| panic!("no rayDir:\n{screen}"));
+    let (dx, rest) = ray.split_once(", ").expect("dx, dy");
+    let dy: String = rest.chars().take_while(|c| *c != ')').collect();
+    let (dx, dy): (f64, f64) = (dx.trim().parse().unwrap(), dy.trim().parse().unwrap());
+    let angle = (-dy).atan2(dx).to_degrees().rem_euclid(360.0);
+    (x.parse().unwrap(), y.parse().unwrap(), angle)
 }
 
 /// The setting: 80×24 in tmux with TERM=xterm-256color (tmux sends no key releases).

@@ -8,10 +8,10 @@ use super::creature::{Creature, Ground};
 use super::projectile::{
     Flight, Projectile, RELOAD_SECONDS, SHOT_LIGHT_RADIUS, SHOT_LIGHT_STRENGTH,
 };
-use crate::render::point_light::PointLight;
 use super::rng::Rng;
 use super::score::Score;
 use crate::map::{Blend, ColourKey, Map, SpriteDef, DEFAULT_SOLID_RADIUS};
+use crate::render::point_light::PointLight;
 use crate::render::view::STANDING_EYE;
 use crate::vec2::Vec2;
 use crate::world::door::DoorState;
@@ -113,6 +113,7 @@ impl Event {
             Event::Picked { points, .. } => format!("Treasure! +{points} points"),
             Event::KeyFound { key, .. } => format!("You found the {key} key"),
             Event::Locked { key, .. } => locked_message(key),
+            Event::Caught { lost: 0, .. } => "Caught by a creature!".to_owned(),
             Event::Caught { lost, .. } => format!("Caught by a creature! -{lost} points"),
             Event::Tagged { .. } => "Tagged a creature! It is out for a while".to_owned(),
             Event::Exit { .. } => "You reached the exit!".to_owned(),

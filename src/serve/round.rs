@@ -380,7 +380,10 @@ mod tests {
         assert_eq!(board[0].name, "bob", "fewest seconds as it first");
         assert!(board[0].it && !board[1].it);
         let header = r.header(&near);
-        assert!(header.starts_with("tag: it is bob, 3:00 left | *bob 0s it, ann 5s it"), "{header}");
+        assert!(
+            header.starts_with("tag: it is bob, 3:00 left | *bob 0s it, ann 5s it"),
+            "{header}"
+        );
     }
 
     #[test]

@@ -390,16 +390,21 @@ impl State {
         let map = self.screen.map();
         let has_goal = !map.items.is_empty() || !map.exits.is_empty();
         let game = has_goal && !snap.scoreboard.is_empty();
-        let here = if game {
-            snap.scoreboard.clone()
+        // O is the key map's default colour key (sessions use the default keys).
+        let mut line = if game {
+            format!(
+                " halfcast | {who} | {} | {} | O colours",
+                self.screen.colour(),
+                snap.scoreboard
+            )
         } else {
-            format!("{} here: {}", names.len(), names.join(", "))
+            format!(
+                " halfcast | {who} | {} here: {} | {} | O colours",
+                names.len(),
+                names.join(", "),
+                self.screen.colour(),
+            )
         };
-        let mut line = format!(
-            // O is the key map's default colour key (sessions use the default keys).
-            " halfcast | {who} | {here} | {} | O colours",
-            self.screen.colour(),
-        );
         if self.clamped {
             let _ = write!(line, " | clamped to {}x{}", self.size.0, self.size.1);
         }

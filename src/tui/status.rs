@@ -136,9 +136,9 @@ pub fn status_line(
         0,
         vec![l("FOV "), v(format!("{:.0}{deg}", cam.fov_deg()))],
     ));
-    segs.push(seg(2, vec![v(state.world.map.name.clone())]));
-    // Above the FOV (which never changes in play): room for the colour level's reason.
-    segs.push(seg(1, vec![l(mode.label())]));
+    // The map's name goes before the input mode (which says whether taps are exact).
+    segs.push(seg(1, vec![v(state.world.map.name.clone())]));
+    segs.push(seg(3, vec![l(mode.label())]));
     segs.push(seg(
         10,
         vec![
@@ -159,34 +159,39 @@ pub fn status_line(
     Line::from(spans).style(BAR)
 }
 
-/// The game's figures (on maps with something to find): points, keys held (each in its
-/// colour), items left and the time; kept before the speed figures at 80 columns.
+/// The game's figures (on maps with something to find), as one segment kept before the speed
+/// figures: points, keys held (each in its colour) and items left; then the time, which yields
+/// to the position on a short row.
 fn hud(state: &GameState) -> Vec<Segment> {
     let (level, map) = (&state.level, &state.world.map);
     if map.items.is_empty() && map.exits.is_empty() {
         return Vec::new();
     }
     let score = &state.score;
-    let mut out = vec![seg(9, vec![v(format!(" {}", score.points)), l(" pts")])];
+    let mut spans = vec![v(format!(" {}", score.points)), l(" pts")];
     if !score.keys.is_empty() {
-        let mut keys = vec![l("keys")];
+        spans.push(l("  keys"));
         for k in &score.keys {
             let c = crate::game::key_colour::key_colour(k);
-            keys.push(l(" "));
-            keys.push(Span::styled(
+            spans.push(l(" "));
+            spans.push(Span::styled(
                 k.clone(),
                 Style::new()
                     .fg(Color::Rgb(c.r, c.g, c.b))
                     .add_modifier(Modifier::BOLD),
             ));
         }
-        out.push(seg(9, keys));
     }
     if level.items_total() > 0 {
-        out.push(seg(8, vec![v(level.items_left().to_string()), l(" left")]));
+        spans.push(l("  "));
+        spans.push(v(level.items_left().to_string()));
+        spans.push(l(" left"));
     }
-    out.push(seg(7, vec![v(super::results::clock(state.time))]));
-    out
+    // The time goes before the position when the row is short (the results show it too).
+    vec![
+        seg(9, spans),
+        seg(2, vec![v(super::results::clock(state.time))]),
+    ]
 }
 
 /// Drops the least useful segments until the line (with separators) fits.
@@ -264,12 +269,16 @@ mod tests {
             None,
         ));
         // Also at 80 columns, the size most people play at (the pane beside the view takes
-        // none of the status row); there the game's figures take the position's place.
+        // none of the status row), with the game's figures.
         for width in [200, 100, 80] {
             let t = status_line(&state, &stats, InputMode::Emulated, None, width).to_string();
             assert!(t.contains("256 (TERM)"), "{width}: {t}");
-            assert!(t.contains(" 0 pts") && t.contains("q quit"), "{width}: {t}");
-            assert_eq!(t.contains("pos 15.50,5.50"), width > 80, "{width}: {t}");
+            assert!(
+                t.contains(" 0 pts  13 left │ ")
+                    && t.contains("pos 15.50,5.50")
+                    && t.contains("q quit"),
+                "{width}: {t}"
+            );
         }
     }
 
@@ -293,14 +302,24 @@ mod tests {
         state.score.points = 120;
         state.score.keys.insert("gold".into());
         state.time = 83.4;
-        let line = status_line(&state, &FrameStats::default(), InputMode::Emulated, None, 200);
+        let line = status_line(
+            &state,
+            &FrameStats::default(),
+            InputMode::Emulated,
+            None,
+            200,
+        );
         let t = line.to_string();
-        for part in [" 120 pts", "keys gold", "13 left", "1:23"] {
+        for part in [" 120 pts  keys gold  13 left │ 1:23"] {
             assert!(t.contains(part), "{part}: {t}");
         }
         // The key is written in its own colour.
         let gold = crate::game::key_colour::key_colour("gold");
-        let span = line.spans.iter().find(|s| s.content == "gold").expect("key span");
+        let span = line
+            .spans
+            .iter()
+            .find(|s| s.content == "gold")
+            .expect("key span");
         assert_eq!(span.style.fg, Some(Color::Rgb(gold.r, gold.g, gold.b)));
         // A map without game lines keeps the old status line (position at 60 columns).
         let (plain, _) = World::load(
@@ -311,8 +330,14 @@ mod tests {
         .expect("plain world");
         let cam = Camera::from_angle(plain.map.start.pos(), 90.0, 66.0);
         let state = GameState::new(Arc::new(plain), cam, 80);
-        let t = status_line(&state, &FrameStats::default(), InputMode::Emulated, None, 60)
-            .to_string();
+        let t = status_line(
+            &state,
+            &FrameStats::default(),
+            InputMode::Emulated,
+            None,
+            60,
+        )
+        .to_string();
         assert!(t.contains("pos 1.50,1.50") && !t.contains("pts"), "{t}");
     }
 }

@@ -20,16 +20,42 @@ use tempfile::TempDir;
 /// Upper bound on any wait in these tests, so a broken server fails a test instead of hanging it.
 pub const PATIENCE: Duration = Duration::from_secs(20);
 
-/// Starts a server on 127.0.0.1:0 with the default world; `tweak` may change the config.
+/// Starts a server on 127.0.0.1:0 with the default world without its game (no items,
+/// creatures or exit: the session tests check the plain header and screens); `tweak` may
+/// change the config.
 pub async fn server(tweak: impl FnOnce(&mut ServeConfig)) -> (RunningServer, TempDir) {
+    server_with(tweak, plain_default_world()).await
+}
+
+/// [`server`] serving `world`.
+pub async fn server_with(
+    tweak: impl FnOnce(&mut ServeConfig),
+    world: World,
+) -> (RunningServer, TempDir) {
     let dir = tempfile::tempdir().expect("tempdir");
     let mut cfg = ServeConfig::local("127.0.0.1:0".parse().expect("addr"), dir.path().join("hk"));
     cfg.quiet = true;
     tweak(&mut cfg);
-    let s = start(cfg, World::default_world())
-        .await
-        .expect("server starts");
+    let s = start(cfg, world).await.expect("server starts");
     (s, dir)
+}
+
+/// The embedded default map without its game lines (`ITEM`, `DOORLOCK`, `EXIT`, `CREATURE`).
+pub fn plain_default_world() -> World {
+    let text: String = halfcast::world::DEFAULT_MAP
+        .lines()
+        .filter(|l| {
+            !["ITEM ", "DOORLOCK ", "EXIT ", "CREATURE "]
+                .iter()
+                .any(|w| l.starts_with(w))
+        })
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let map = halfcast::map::parse_map(halfcast::world::DEFAULT_MAP_NAME, text.as_bytes())
+        .expect("the default map parses without its game");
+    World::load(map, &halfcast::world::TextureSource::Embedded, true)
+        .expect("embedded textures")
+        .0
 }
 
 pub struct Trusting;
