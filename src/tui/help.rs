@@ -5,7 +5,7 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Clear, Paragraph, Widget};
+use ratatui::widgets::{Block, Paragraph, Widget};
 
 use super::keymap::KeyMap;
 use super::keys::InputMode;
@@ -126,26 +126,16 @@ impl Widget for HelpOverlay<'_> {
             .max()
             .unwrap_or(0);
         let lines = self.lines(key_width);
-        let w = (text_width as u16 + 2).min(area.width);
-        let h = (lines.len() as u16 + 2).min(area.height);
-        if w < 4 || h < 3 {
-            return;
-        }
-        let r = Rect::new(
-            area.x + (area.width - w) / 2,
-            area.y + (area.height - h) / 2,
-            w,
-            h,
-        );
-        Clear.render(r, buf);
         let block = Block::bordered()
             .border_set(ratatui::symbols::border::PLAIN)
             .border_style(Style::new().fg(Color::Rgb(110, 200, 230)))
             .title(" halfcast keys ")
             .title_bottom(Line::from(" ? or esc closes ").right_aligned())
             .style(Style::new().bg(Color::Rgb(22, 24, 32)));
-        let inner = block.inner(r);
-        block.render(r, buf);
+        let size = (text_width as u16 + 2, lines.len() as u16 + 2);
+        let Some(inner) = super::centred_box::draw(area, size, block, buf) else {
+            return;
+        };
         Paragraph::new(lines).render(inner, buf);
     }
 }

@@ -5,6 +5,7 @@
 //! every pane into a ratatui buffer. Only [`terminal`] and [`app`] touch the real terminal.
 
 pub mod app;
+pub mod centred_box;
 pub mod colour_query;
 pub mod config;
 pub mod events;

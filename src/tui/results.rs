@@ -6,7 +6,7 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Clear, Paragraph, Widget};
+use ratatui::widgets::{Block, Paragraph, Widget};
 
 /// What follows the results.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -141,26 +141,26 @@ impl Widget for &Results {
         let lines = self.lines();
         let text_width = lines.iter().map(Line::width).max().unwrap_or(0);
         let title = format!(" {} ", self.level);
-        let w = (text_width.max(title.len()) as u16 + 4).min(area.width);
-        let h = (lines.len() as u16 + 2).min(area.height);
-        if w < 4 || h < 3 {
-            return;
-        }
-        let r = Rect::new(
-            area.x + (area.width - w) / 2,
-            area.y + (area.height - h) / 2,
-            w,
-            h,
-        );
-        Clear.render(r, buf);
         let block = Block::bordered()
             .border_set(ratatui::symbols::border::PLAIN)
             .border_style(Style::new().fg(Color::Rgb(120, 255, 150)))
-            .title(title)
+            .title(title.clone())
             .style(Style::new().bg(Color::Rgb(22, 24, 32)));
-        let inner = block.inner(r);
-        block.render(r, buf);
-        Paragraph::new(lines).centered().render(inner, buf);
+        let size = (
+            text_width.max(title.len()) as u16 + 4,
+            lines.len() as u16 + 2,
+        );
+        let Some(inner) = super::centred_box::draw(area, size, block, buf) else {
+            return;
+        };
+        // A column of padding inside the border; the figures line up on the left.
+        let inner = Rect::new(
+            inner.x + 1,
+            inner.y,
+            inner.width.saturating_sub(1),
+            inner.height,
+        );
+        Paragraph::new(lines).render(inner, buf);
     }
 }
 
