@@ -388,7 +388,8 @@ impl State {
         // On maps with something to play for, the game's scoreboard (which names everyone)
         // takes the place of the list of who is here; spectators see it too.
         let map = self.screen.map();
-        let game = !snap.scoreboard.is_empty() && !(map.items.is_empty() && map.exits.is_empty());
+        let has_objects = !map.items.is_empty() || !map.exits.is_empty();
+        let game = !snap.scoreboard.is_empty() && has_objects;
         let here = if game {
             snap.scoreboard.clone()
         } else {
