@@ -145,6 +145,8 @@ fn a_campaign_shows_the_results_at_the_exit_and_enter_plays_the_next_map() {
             "{want:?} missing from the results:\n{text}"
         );
     }
+    // Let the emulated key hold of the last `w` run out, so it cannot walk the next map.
+    thread::sleep(Duration::from_millis(1000));
     run.send(b"\r");
     run.wait_for_screen("the second map", |sc| {
         top_row(sc).contains("Find the exit. 0/2 treasures.")

@@ -200,7 +200,7 @@ fn the_next_round_starts_after_the_results_with_the_scoreboard_reset() {
         snap.scoreboard
     );
     assert!(
-        snap.scoreboard.contains("1 items left"),
+        snap.scoreboard.contains("1 item left"),
         "{}",
         snap.scoreboard
     );

@@ -328,6 +328,7 @@ mod tests {
                 state: other.clone(),
                 walking: false,
             }],
+            ..Snapshot::default()
         };
         let (w, h) = (80, 96);
         let mut fb = Framebuffer::new(w, h);
