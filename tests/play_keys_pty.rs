@@ -169,7 +169,7 @@ fn help_is_visible_over_the_view_at_80x24_and_lists_every_key() {
         "look straight ahead again",
         "jump",
         "crouch (hold)",
-        "open / close the door ahead",
+        "open / close a door / throw a tag",
         "night mode on / off",
         "pause / resume the world",
         "single-step the DDA",
