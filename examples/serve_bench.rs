@@ -3,7 +3,10 @@
 //! named threads, so its CPU time can be read apart from the clients'.
 //!
 //! `cargo run --release --example serve_bench -- --clients 32 --secs 10 --term xterm-direct \
-//!     --compression none --cols 80 --rows 24 --server-threads 1`
+//!     --compression none --cols 80 --rows 24 --server-threads 1 [--map PATH]`
+//!
+//! `--map` serves that map file (e.g. one with creatures, to see what game logic costs)
+//! instead of the embedded default.
 //!
 //! Prints one JSON object: server CPU, frames/s and bytes/s per client (payload and on the wire),
 //! frames the server sent and frame ticks it skipped (slow readers), connections refused.
@@ -32,6 +35,7 @@ struct Opts {
     compression: String,
     fps: u32,
     server_threads: usize,
+    map: Option<String>,
 }
 
 fn opts() -> Opts {
@@ -44,6 +48,7 @@ fn opts() -> Opts {
         compression: "none".into(),
         fps: 30,
         server_threads: 1,
+        map: None,
     };
     let args: Vec<String> = std::env::args().skip(1).collect();
     for pair in args.chunks(2) {
@@ -59,6 +64,7 @@ fn opts() -> Opts {
             "--compression" => o.compression = v,
             "--fps" => o.fps = num(&v) as u32,
             "--server-threads" => o.server_threads = num(&v).clamp(1, 8) as usize,
+            "--map" => o.map = Some(v),
             other => panic!("unknown option {other}"),
         }
     }
@@ -113,9 +119,16 @@ fn main() {
     cfg.max_startups = o.clients.to_string().parse().expect("startups");
     cfg.max_startups_per_ip = o.clients;
     cfg.fps = o.fps;
-    let server = server_rt
-        .block_on(start(cfg, World::default_world()))
-        .expect("server");
+    let world = match &o.map {
+        Some(path) => {
+            World::from_file(std::path::Path::new(path), false)
+                .unwrap_or_else(|e| panic!("{path}: {e}"))
+                .0
+        }
+        None => World::default_world(),
+    };
+    let creatures = world.map.creatures.len();
+    let server = server_rt.block_on(start(cfg, world)).expect("server");
     let addr = server.local_addr();
 
     let client_rt = tokio::runtime::Builder::new_multi_thread()
@@ -214,11 +227,13 @@ fn main() {
     // Frames the server sent (every level); the client-side count needs the sync markers.
     let mean_fps = stats.frames_sent as f64 / n / elapsed;
     println!(
-        "{{\"clients\":{},\"secs\":{:.1},\"cols\":{},\"rows\":{},\"term\":\"{}\",\"compression\":\"{}\",\
+        "{{\"map\":\"{}\",\"creatures\":{},\"clients\":{},\"secs\":{:.1},\"cols\":{},\"rows\":{},\"term\":\"{}\",\"compression\":\"{}\",\
 \"target_fps\":{},\"server_threads\":{},\"server_cpu_percent\":{:.1},\"client_cpu_percent\":{:.1},\"fps_per_client_mean\":{:.1},\
 \"fps_per_client_min_seen\":{:.1},\"payload_bytes_per_s_per_client\":{:.0},\"wire_bytes_per_s_per_client\":{:.0},\
 \"server_frames_sent\":{},\"server_frame_ticks_skipped\":{},\"refused\":{},\
 \"clients_per_core_at_target_fps\":{:.1}}}",
+        o.map.as_deref().unwrap_or("(embedded)"),
+        creatures,
         o.clients,
         elapsed,
         o.cols,

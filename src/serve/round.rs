@@ -287,8 +287,9 @@ impl Round {
         let left = self.level.items_left();
         match self.mode {
             Mode::Coop => format!(
-                "coop: team {} pts, {left} items left | {}",
+                "coop: team {} pts, {left} {} left | {}",
                 self.team.points,
+                if left == 1 { "item" } else { "items" },
                 board.join(", ")
             ),
             Mode::Tag => {
@@ -379,9 +380,11 @@ mod tests {
         let board = r.board(&near);
         assert_eq!(board[0].name, "bob", "fewest seconds as it first");
         assert!(board[0].it && !board[1].it);
+        // The round's clock is Players::tick's (tag_tick leaves it alone): 4.6 s played.
+        r.elapsed = 4.6;
         let header = r.header(&near);
         assert!(
-            header.starts_with("tag: it is bob, 3:00 left | *bob 0s it, ann 5s it"),
+            header.starts_with("tag: it is bob, 2:55 left | *bob 0s it, ann 5s it"),
             "{header}"
         );
     }
