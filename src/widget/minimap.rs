@@ -590,22 +590,8 @@ impl Minimap<'_> {
                 buf[(area.x + cx, area.y + cy)].set_symbol(c);
             }
         }
-        for e in &map.exits {
-            put(Vec2::new(e.cell.0 as f64, e.cell.1 as f64 + 0.5), "E", buf);
-            put(
-                Vec2::new(e.cell.0 as f64 + 0.5, e.cell.1 as f64 + 0.5),
-                "E",
-                buf,
-            );
-        }
         for s in &self.world.sprites {
             put(s.def.pos, "o", buf);
-        }
-        for t in self.things {
-            put(t.pos, t.glyph, buf);
-        }
-        for m in self.markers {
-            put(m.pos, "&", buf);
         }
         if let (Some(d), Some(e)) = (&self.debug, end) {
             let len = (e - pos).length();
@@ -617,6 +603,18 @@ impl Minimap<'_> {
             let hit = Vec2::new(i as f64 + 0.25, j as f64 + 0.5);
             put(hit, "X", buf);
             put(hit + Vec2::new(0.5, 0.0), "X", buf);
+        }
+        // The game's marks and other players over the ray, so its path never hides them.
+        for e in &map.exits {
+            let row = e.cell.1 as f64 + 0.5;
+            put(Vec2::new(e.cell.0 as f64, row), "E", buf);
+            put(Vec2::new(e.cell.0 as f64 + 0.5, row), "E", buf);
+        }
+        for t in self.things {
+            put(t.pos, t.glyph, buf);
+        }
+        for m in self.markers {
+            put(m.pos, "&", buf);
         }
         put(pos, "@", buf);
     }
@@ -759,6 +757,40 @@ mod tests {
         let map = Minimap::new(&world, &cam, &[]);
         let (fb, view) = painted(&map, (224, 176));
         assert_eq!(pixel(&fb, &view, on_panel(0.1)), DOOR);
+    }
+
+    #[test]
+    fn on_the_ascii_map_game_things_and_the_exit_show_over_the_debugged_ray() {
+        let world = World::default_world();
+        // From the west room's middle, looking east along row 5 towards the start room.
+        let cam = Camera::from_angle(Vec2::new(5.5, 5.5), 0.0, 66.0);
+        let trace = crate::render::cast::trace_column(&world.map, &cam, 20, 40);
+        let things = [Thing {
+            pos: Vec2::new(7.5, 5.5),
+            colour: Rgb::new(255, 200, 60),
+            glyph: "$",
+        }];
+        let map = Minimap::new(&world, &cam, &[])
+            .ascii(true)
+            .things(&things)
+            .debug_ray(RevealedTrace::full(&trace));
+        let area = Rect::new(0, 0, 40, 20);
+        let mut buf = Buffer::empty(area);
+        map.render(area, &mut buf);
+        let text: String = (0..area.height)
+            .map(|y| {
+                (0..area.width)
+                    .map(|x| buf[(x, y)].symbol().to_owned())
+                    .collect::<String>()
+            })
+            .collect::<Vec<_>>()
+            .join("\n");
+        let row = text.lines().find(|l| l.contains('@')).expect("player row");
+        assert!(row.contains('$') && row.contains('*'), "{text}");
+        assert!(
+            row.find('$') > row.find('@'),
+            "the $ on the ray east of @: {text}"
+        );
     }
 
     #[test]
