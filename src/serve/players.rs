@@ -220,8 +220,12 @@ impl Players {
             }
             return;
         }
-        self.round.elapsed += dt;
         self.doors.update(dt);
+        if self.players.is_empty() {
+            // Nobody to play for: the round's clock and its creatures wait.
+            return;
+        }
+        self.round.elapsed += dt;
         let ids: Vec<PlayerId> = self.players.keys().copied().collect();
         for (index, &id) in ids.iter().enumerate() {
             let bodies: Vec<SolidDisc> = self
@@ -507,6 +511,22 @@ mod tests {
         let turned = s2.players[0].state.camera.angle_deg() - a.angle_deg();
         assert!(turned.abs() > 1.0, "{turned}");
         assert!(!s2.players[0].walking, "turning on the spot is not walking");
+    }
+
+    #[test]
+    fn an_empty_world_keeps_its_round_waiting() {
+        let mut ps = Players::with_mode(Arc::new(World::default_world()), Mode::Tag, 3);
+        for _ in 0..400 {
+            ps.tick(0.5);
+        }
+        ps.join(1, "ann");
+        let s = ps.snapshot();
+        assert!(s.ended.is_none());
+        assert!(
+            s.scoreboard.starts_with("tag: it is nobody, 3:00 left"),
+            "{}",
+            s.scoreboard
+        );
     }
 
     #[test]
