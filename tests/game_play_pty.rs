@@ -161,6 +161,13 @@ fn a_campaign_shows_the_results_at_the_exit_and_enter_plays_the_next_map() {
     let text = run.screen().contents();
     assert!(text.contains("2 of 2") && text.contains("35"), "{text}");
     assert!(text.contains("play this level again"), "{text}");
+    // And Enter does that: the second map again, not the first.
+    thread::sleep(Duration::from_millis(1000));
+    run.send(b"\r");
+    run.wait_for_screen("the second map again", |sc| {
+        top_row(sc).contains("Find the exit. 0/2 treasures.")
+            && !sc.contents().contains("Level complete!")
+    });
     run.send(b"q");
     assert!(run.wait_exit().success());
 }

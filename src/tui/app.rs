@@ -242,9 +242,12 @@ pub fn run_loop(
         }
         let input = app.controls.take_input(now);
         if app.results.is_some() {
-            // Enter (the run-to-hit key) on the results screen: the next level, or this one again.
+            // Enter (the run-to-hit key) on the results screen: the next level, or the last one
+            // again (as the results screen says).
             if input.commands.contains(&Command::RunToHit) {
-                app.stage = (app.stage + 1) % app.campaign.stages.len();
+                if app.stage + 1 < app.campaign.stages.len() {
+                    app.stage += 1;
+                }
                 app.state = app.campaign.start(app.stage, app.state.speeds);
                 app.state.view_width = usize::from(view.width);
                 app.results = None;
