@@ -104,11 +104,6 @@ pub struct SolidDisc {
     pub radius: f64,
 }
 
-/// A built-in sprite sheet the game draws with (always embedded).
-fn builtin_sheet(stem: &str) -> SpriteSheet {
-    builtin::sheet_by_name(stem).expect("the game's sheets are built in")
-}
-
 /// The warnings printed while loading (one line per texture that fell back).
 pub type Warnings = Vec<String>;
 
@@ -148,7 +143,6 @@ impl World {
             warned: HashSet::new(),
             sheets: Vec::new(),
             loaded: HashMap::new(),
-            loaded_sheets: HashMap::new(),
             budget: MAX_MAP_TEXELS,
         };
         let faces: Vec<usize> = map
@@ -230,8 +224,8 @@ impl World {
             .iter()
             .map(|c| loader.sheet(&c.texture, ColourKey::Auto, CREATURE_FALLBACK))
             .collect::<Result<Vec<_>, _>>()?;
-        let glow_sheet = loader.push_sheet(builtin_sheet("orb"));
-        let exit_sheet = loader.push_sheet(builtin_sheet("exit"));
+        let glow_sheet = loader.builtin_sheet("orb");
+        let exit_sheet = loader.builtin_sheet("exit");
         let mut door_tints: Vec<((i64, i64), usize)> = map
             .locks
             .iter()
@@ -417,7 +411,6 @@ impl World {
     }
 }
 
-/// Loads textures once each, remembering warnings.
 /// The index of `t` in `items`, added at the end if no equal one is there (one decoded copy per
 /// image, however many map lines name it).
 fn intern<T: PartialEq>(items: &mut Vec<T>, t: T) -> usize {
@@ -428,6 +421,7 @@ fn intern<T: PartialEq>(items: &mut Vec<T>, t: T) -> usize {
     items.len() - 1
 }
 
+/// Loads textures once each, remembering warnings.
 struct Loader<'a> {
     map_file: &'a str,
     source: &'a TextureSource,
@@ -436,10 +430,9 @@ struct Loader<'a> {
     warnings: Warnings,
     warned: HashSet<String>,
     sheets: Vec<SpriteSheet>,
-    /// Each texture path's outcome, so a file named by many lines is read and decoded once.
-    loaded: HashMap<String, Result<usize, String>>,
-    /// The same for sprite sheets (the colour key is part of the result).
-    loaded_sheets: HashMap<(String, ColourKey), Result<usize, String>>,
+    /// Each file's outcome, so a file named by many lines is read and decoded once: keyed by
+    /// path and, for a sprite sheet, its colour key (part of the result); `None` for a texture.
+    loaded: HashMap<(String, Option<ColourKey>), Result<usize, String>>,
     /// Texels the map's own image files may still add (see [`MAX_MAP_TEXELS`]).
     budget: usize,
 }
@@ -486,16 +479,9 @@ impl Loader<'_> {
         key: ColourKey,
         fallback: &str,
     ) -> Result<usize, TextureError> {
-        let cache_key = (r.path.clone(), key);
-        let outcome = match self.loaded_sheets.get(&cache_key) {
-            Some(known) => known.clone(),
-            None => {
-                let read = read_sheet(self.source, &r.path, key, &mut self.budget);
-                let outcome = read.map(|t| self.push_sheet(t));
-                self.loaded_sheets.insert(cache_key, outcome.clone());
-                outcome
-            }
-        };
+        let outcome = self.cached((r.path.clone(), Some(key)), |l| {
+            read_sheet(l.source, &r.path, key, &mut l.budget).map(|t| l.push_sheet(t))
+        });
         match outcome {
             Ok(i) => Ok(i),
             Err(reason) => {
@@ -513,15 +499,9 @@ impl Loader<'_> {
     }
 
     fn load(&mut self, r: &TextureRef, fallback: &str) -> Result<usize, TextureError> {
-        let outcome = match self.loaded.get(&r.path) {
-            Some(known) => known.clone(),
-            None => {
-                let read = read_texture(self.source, &r.path, &mut self.budget);
-                let outcome = read.map(|t| self.push(t));
-                self.loaded.insert(r.path.clone(), outcome.clone());
-                outcome
-            }
-        };
+        let outcome = self.cached((r.path.clone(), None), |l| {
+            read_texture(l.source, &r.path, &mut l.budget).map(|t| l.push(t))
+        });
         match outcome {
             Ok(i) => Ok(i),
             Err(reason) => {
@@ -529,6 +509,20 @@ impl Loader<'_> {
                 Ok(self.builtin(fallback))
             }
         }
+    }
+
+    /// The outcome of reading the file `key` names: remembered from the first time, else `read`.
+    fn cached(
+        &mut self,
+        key: (String, Option<ColourKey>),
+        read: impl FnOnce(&mut Self) -> Result<usize, String>,
+    ) -> Result<usize, String> {
+        if let Some(known) = self.loaded.get(&key) {
+            return known.clone();
+        }
+        let outcome = read(self);
+        self.loaded.insert(key, outcome.clone());
+        outcome
     }
 
     /// A file that could not be read: the error under `strict`, else one warning per path (the
