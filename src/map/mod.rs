@@ -234,6 +234,13 @@ impl Map {
         self.zones.iter().any(|z| z.heights.is_some())
     }
 
+    /// Whether the map is a game level (something to pick up or an exit to reach): the HUD and
+    /// the SSH scoreboard show only then.
+    #[must_use]
+    pub fn has_game(&self) -> bool {
+        !self.items.is_empty() || !self.exits.is_empty()
+    }
+
     /// Whether a point stands in a walkable cell (used by collision and pose checks).
     /// Door cells are not walkable here; whether one is open is dynamic (see [`crate::world::door`]).
     #[must_use]

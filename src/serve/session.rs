@@ -387,9 +387,7 @@ impl State {
         };
         // On maps with something to play for, the game's scoreboard (which names everyone)
         // takes the place of the list of who is here; spectators see it too.
-        let map = self.screen.map();
-        let has_goal = !map.items.is_empty() || !map.exits.is_empty();
-        let game = has_goal && !snap.scoreboard.is_empty();
+        let game = self.screen.map().has_game() && !snap.scoreboard.is_empty();
         // O is the key map's default colour key (sessions use the default keys).
         let mut line = if game {
             format!(

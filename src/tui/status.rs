@@ -163,8 +163,8 @@ pub fn status_line(
 /// figures: points, keys held (each in its colour) and items left; then the time, which yields
 /// to the position on a short row.
 fn hud(state: &GameState) -> Vec<Segment> {
-    let (level, map) = (&state.level, &state.world.map);
-    if map.items.is_empty() && map.exits.is_empty() {
+    let level = &state.level;
+    if !state.world.map.has_game() {
         return Vec::new();
     }
     let score = &state.score;
