@@ -146,10 +146,7 @@ impl Players {
             return;
         }
         let taken: Vec<Vec2> = self.players.values().map(|p| p.state.camera.pos).collect();
-        let pos = self.spawn_point(&taken);
-        let camera = Camera::from_angle(pos, self.world.map.start.angle_deg(), DEFAULT_FOV_DEG);
-        let mut state = GameState::new(Arc::clone(&self.world), camera, 0);
-        state.time = self.time;
+        let state = self.arrival(self.spawn_point(&taken));
         let color = PALETTE[(self.joined % PALETTE.len() as u64) as usize];
         self.joined += 1;
         let name = self.unique_name(name);
@@ -370,17 +367,25 @@ impl Players {
         for id in ids {
             let pos = self.spawn_point(&taken);
             taken.push(pos);
+            let mut state = self.arrival(pos);
             if let Some(p) = self.players.get_mut(&id) {
-                let camera =
-                    Camera::from_angle(pos, self.world.map.start.angle_deg(), DEFAULT_FOV_DEG);
-                let mut state = GameState::new(Arc::clone(&self.world), camera, 0);
-                state.time = self.time;
                 state.speeds = p.state.speeds;
                 state.view_width = p.state.view_width;
                 p.state = state;
                 p.own = Score::default();
             }
         }
+    }
+
+    /// A player's state as they appear at `pos`, facing the map's start direction, at the
+    /// world's time. Its own level stays empty: the shared one stands in while it steps, and
+    /// an empty one costs nothing to copy into every snapshot.
+    fn arrival(&self, pos: Vec2) -> GameState {
+        let camera = Camera::from_angle(pos, self.world.map.start.angle_deg(), DEFAULT_FOV_DEG);
+        let mut state = GameState::new(Arc::clone(&self.world), camera, 0);
+        state.time = self.time;
+        state.level = Level::default();
+        state
     }
 
     /// The players as the round's rules see them.
