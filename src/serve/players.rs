@@ -385,6 +385,10 @@ impl Players {
         let mut state = GameState::new(Arc::clone(&self.world), camera, 0);
         state.time = self.time;
         state.level = Level::default();
+        // The level's start message ("Find the exit…") is said now, on the world's clock.
+        if let Some(m) = state.message.as_mut() {
+            m.at = self.time;
+        }
         state
     }
 
@@ -516,6 +520,22 @@ mod tests {
         let turned = s2.players[0].state.camera.angle_deg() - a.angle_deg();
         assert!(turned.abs() > 1.0, "{turned}");
         assert!(!s2.players[0].walking, "turning on the spot is not walking");
+    }
+
+    #[test]
+    fn a_player_joining_late_is_told_the_goal_on_the_worlds_clock() {
+        let mut ps = Players::new(Arc::new(World::default_world()));
+        ps.join(1, "ann");
+        for _ in 0..100 {
+            ps.tick(0.1);
+        }
+        ps.join(2, "bob");
+        let s = ps.snapshot();
+        let bob = s.player(2).expect("bob");
+        assert_eq!(
+            crate::tui::screen::message_now(&bob.state),
+            Some("Find the exit. 0/12 treasures.")
+        );
     }
 
     #[test]
