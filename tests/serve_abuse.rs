@@ -22,7 +22,7 @@ async fn frames_while_turning(c: &mut Client, d: Duration) -> usize {
             next_key = Instant::now() + Duration::from_millis(40);
         }
         if let Ok(Some(ChannelMsg::Data { data })) =
-            tokio::time::timeout(Duration::from_millis(20), c.channel.wait()).await
+            tokio::time::timeout(Duration::from_millis(20), c.wait()).await
         {
             c.bytes += data.len();
             c.screen.process(&data);
@@ -79,7 +79,8 @@ async fn garbage_escape_and_resize_storms_do_not_starve_another_session() {
             // 1 000 window changes a second, sizes all over (including absurd ones).
             while next_resize <= Instant::now() {
                 let (c, r) = (20 + (resizes % 400) as u32, 5 + (resizes % 90) as u32);
-                let _ = flooder.channel.window_change(c, r, 0, 0).await;
+                let change = flooder.channel.window_change(c, r, 0, 0);
+                let _ = tokio::time::timeout(Duration::from_millis(100), change).await;
                 resizes += 1;
                 next_resize += Duration::from_millis(1);
             }

@@ -13,12 +13,14 @@ const AT_ONCE: usize = 25;
 
 /// Connects, waits for the first bytes of a frame, and cuts the socket in the middle of it.
 async fn vanish_mid_frame(addr: std::net::SocketAddr, n: usize) -> bool {
-    let Ok((mut c, tap)) = connect_tapped(addr, &format!("ghost{n}"), 120, 40).await else {
+    let Ok((mut c, tap)) =
+        connect_tapped(addr, &format!("ghost{n}"), "xterm-256color", 120, 40).await
+    else {
         return false;
     };
     let got = tokio::time::timeout(Duration::from_secs(10), async {
         loop {
-            match c.channel.wait().await {
+            match c.wait().await {
                 Some(ChannelMsg::Data { .. }) => return true,
                 None => return false,
                 Some(_) => {}

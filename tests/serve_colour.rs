@@ -38,19 +38,13 @@ async fn connect_answering(
         .await
         .expect("pty");
     channel.request_shell(true).await.expect("shell");
-    let mut c = Client {
-        handle,
-        channel,
-        screen: vt100::Parser::new(rows as u16, cols as u16, 0),
-        bytes: 0,
-        closed: false,
-    };
+    let mut c = Client::new(handle, channel, cols as u16, rows as u16);
     let mut seen = Vec::new();
     let mut queried = false;
     let deadline = tokio::time::Instant::now() + PATIENCE;
     // Until the first header: answer the query (once) the moment it arrives.
     while !header_has(c.screen.screen(), "halfcast |") {
-        match tokio::time::timeout_at(deadline, c.channel.wait()).await {
+        match tokio::time::timeout_at(deadline, c.wait()).await {
             Ok(Some(ChannelMsg::Data { data })) => {
                 seen.extend_from_slice(&data);
                 c.screen.process(&data);

@@ -6,8 +6,8 @@ mod serve_support;
 use std::time::Duration;
 
 use serve_support::{
-    colours, full_view, half_block_cells, header_has, row_text, server, status_has, view_rect,
-    Client,
+    colours, connect_tapped, full_view, half_block_cells, header_has, row_text, server, status_has,
+    view_rect, Client, TapMode,
 };
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -198,13 +198,7 @@ async fn a_shell_without_a_pty_request_gets_the_default_size() {
     assert!(h.authenticate_none("ann").await.expect("auth").success());
     let ch = h.channel_open_session().await.expect("session");
     ch.request_shell(true).await.expect("shell");
-    let mut c = Client {
-        handle: h,
-        channel: ch,
-        screen: vt100::Parser::new(24, 80, 0),
-        bytes: 0,
-        closed: false,
-    };
+    let mut c = Client::new(h, ch, 80, 24);
     // No TERM: mono, plain ASCII at the default 80x24: header on top, status line at the bottom.
     assert!(
         c.until(|s| header_has(s, "you are ann") && status_has(s, "help"))
@@ -223,9 +217,12 @@ async fn a_client_that_stops_reading_gets_frames_dropped_then_the_latest_state()
     let addr = srv.local_addr();
     // A big truecolor view (about 1 MB a frame) that changes every tick: ann holds "turn right"
     // (a kitty-protocol press with no release).
-    let mut ann = Client::connect(addr, "ann", 300, 100, "xterm-direct").await;
+    let (mut ann, tap) = connect_tapped(addr, "ann", "xterm-direct", 300, 100)
+        .await
+        .expect("connect");
     assert!(ann.until(|s| header_has(s, "you are ann")).await);
     ann.keys(b"\x1b[?11u\x1b[100u").await;
+    tap.set(TapMode::Stalled);
     // Ann stops reading (her terminal keeps sending the held key's repeats); bob joins meanwhile.
     for _ in 0..10 {
         tokio::time::sleep(Duration::from_millis(200)).await;
@@ -239,6 +236,7 @@ async fn a_client_that_stops_reading_gets_frames_dropped_then_the_latest_state()
         // Bounded: a client that does not read may stop taking what it sends, too.
         let _ = tokio::time::timeout(Duration::from_millis(50), ann.keys(b"\x1b[100;1:2u")).await;
     }
+    tap.set(TapMode::Open);
     // When ann reads again she catches up to the present rather than replaying a backlog.
     assert!(ann.until(|s| header_has(s, "2 here: ann, bob")).await);
     ann.keys(b"\x03").await;

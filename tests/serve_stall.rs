@@ -21,7 +21,7 @@ async fn a_client_that_stops_reading_is_disconnected_and_its_place_freed() {
     .await;
     let addr = srv.local_addr();
     // The biggest screen a client may have, so that frames are large.
-    let (mut c, tap) = connect_tapped(addr, "sloth", 500, 200)
+    let (mut c, tap) = connect_tapped(addr, "sloth", "xterm-256color", 500, 200)
         .await
         .expect("connect");
     assert!(c.until(|s| header_has(s, "you are sloth")).await);

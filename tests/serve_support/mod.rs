@@ -69,9 +69,16 @@ impl client::Handler for Trusting {
 }
 
 /// A connected client with a pty-backed shell channel and a terminal model of its screen.
+///
+/// What the server sends is read off the channel at once by a task of its own and queued
+/// (unbounded) for [`Client::wait`]. russh hands a channel's messages to it through a queue of
+/// 100; a test that sends (keys, window changes) without reading for a while would otherwise
+/// fill it, block the client's connection task, and hang its own next send for ever.
 pub struct Client {
     pub handle: client::Handle<Trusting>,
-    pub channel: russh::Channel<client::Msg>,
+    /// The writing half: keys, window changes.
+    pub channel: russh::ChannelWriteHalf<client::Msg>,
+    inbox: tokio::sync::mpsc::UnboundedReceiver<ChannelMsg>,
     pub screen: vt100::Parser,
     pub bytes: usize,
     pub closed: bool,
@@ -122,38 +129,45 @@ impl Client {
     /// Logs in as `user` over a connected `handle` (no auth), asks for a `cols`×`rows` pty with
     /// `term` and starts the shell; the error says which step failed.
     pub async fn start(
-        mut handle: client::Handle<Trusting>,
+        handle: client::Handle<Trusting>,
         user: &str,
         term: &str,
         cols: u16,
         rows: u16,
     ) -> Result<Self, String> {
-        let auth = handle
-            .authenticate_none(user)
-            .await
-            .map_err(|e| format!("auth: {e}"))?;
-        if !auth.success() {
-            return Err("auth refused".into());
-        }
-        let channel = handle
-            .channel_open_session()
-            .await
-            .map_err(|e| format!("session: {e}"))?;
-        channel
-            .request_pty(true, term, u32::from(cols), u32::from(rows), 0, 0, &[])
-            .await
-            .map_err(|e| format!("pty: {e}"))?;
-        channel
-            .request_shell(true)
-            .await
-            .map_err(|e| format!("shell: {e}"))?;
-        Ok(Self {
+        let (handle, channel) = open_shell(handle, user, term, cols, rows).await?;
+        Ok(Self::new(handle, channel, cols, rows))
+    }
+
+    /// Wraps an open shell `channel` whose terminal is `cols`×`rows`, and starts reading it.
+    pub fn new(
+        handle: client::Handle<Trusting>,
+        channel: russh::Channel<client::Msg>,
+        cols: u16,
+        rows: u16,
+    ) -> Self {
+        let (mut read, write) = channel.split();
+        let (tx, inbox) = tokio::sync::mpsc::unbounded_channel();
+        tokio::spawn(async move {
+            while let Some(msg) = read.wait().await {
+                if tx.send(msg).is_err() {
+                    break;
+                }
+            }
+        });
+        Self {
             handle,
-            channel,
+            channel: write,
+            inbox,
             screen: vt100::Parser::new(rows, cols, 0),
             bytes: 0,
             closed: false,
-        })
+        }
+    }
+
+    /// The next message from the server; `None` once the channel is closed.
+    pub async fn wait(&mut self) -> Option<ChannelMsg> {
+        self.inbox.recv().await
     }
 
     /// Reads output into the screen model until `done(screen)` holds; false on close or timeout.
@@ -166,7 +180,7 @@ impl Client {
             if self.closed {
                 return false;
             }
-            match tokio::time::timeout_at(deadline, self.channel.wait()).await {
+            match tokio::time::timeout_at(deadline, self.wait()).await {
                 Err(_) => return false,
                 Ok(None) => self.closed = true,
                 Ok(Some(ChannelMsg::Data { data })) => {
@@ -182,7 +196,7 @@ impl Client {
     /// Reads whatever arrives for `d` (to measure or to let the server act).
     pub async fn drain_for(&mut self, d: Duration) {
         let end = tokio::time::Instant::now() + d;
-        while let Ok(Some(msg)) = tokio::time::timeout_at(end, self.channel.wait()).await {
+        while let Ok(Some(msg)) = tokio::time::timeout_at(end, self.wait()).await {
             if let ChannelMsg::Data { data } = msg {
                 self.bytes += data.len();
                 self.screen.process(&data);
@@ -192,17 +206,54 @@ impl Client {
 
     /// Sends key bytes.
     pub async fn keys(&self, bytes: &[u8]) {
-        self.channel.data(bytes).await.expect("send keys");
+        tokio::time::timeout(PATIENCE, self.channel.data(bytes))
+            .await
+            .expect("sending keys timed out")
+            .expect("send keys");
     }
 
     /// Tells the server the terminal changed size, and resizes the model.
     pub async fn resize(&mut self, cols: u16, rows: u16) {
-        self.channel
-            .window_change(u32::from(cols), u32::from(rows), 0, 0)
+        let change = self
+            .channel
+            .window_change(u32::from(cols), u32::from(rows), 0, 0);
+        tokio::time::timeout(PATIENCE, change)
             .await
+            .expect("a window change timed out")
             .expect("window change");
         self.screen.set_size(rows, cols);
     }
+}
+
+/// Logs in as `user` over `handle` (no auth), asks for a `cols`×`rows` pty with `term` and
+/// starts the shell; the error says which step failed.
+async fn open_shell(
+    mut handle: client::Handle<Trusting>,
+    user: &str,
+    term: &str,
+    cols: u16,
+    rows: u16,
+) -> Result<(client::Handle<Trusting>, russh::Channel<client::Msg>), String> {
+    let auth = handle
+        .authenticate_none(user)
+        .await
+        .map_err(|e| format!("auth: {e}"))?;
+    if !auth.success() {
+        return Err("auth refused".into());
+    }
+    let channel = handle
+        .channel_open_session()
+        .await
+        .map_err(|e| format!("session: {e}"))?;
+    channel
+        .request_pty(true, term, u32::from(cols), u32::from(rows), 0, 0, &[])
+        .await
+        .map_err(|e| format!("pty: {e}"))?;
+    channel
+        .request_shell(true)
+        .await
+        .map_err(|e| format!("shell: {e}"))?;
+    Ok((handle, channel))
 }
 
 /// The text of screen row `r`.
@@ -290,8 +341,11 @@ pub async fn open_counting(
     russh::Channel<client::Msg>,
     Arc<std::sync::atomic::AtomicU64>,
 ) {
-    let (c, read) = connect_counting(addr, user, cols, rows, term, compression).await;
-    (c.handle, c.channel, read)
+    let (handle, read) = connect_counting_raw(addr, compression).await;
+    let (handle, channel) = open_shell(handle, user, term, cols, rows)
+        .await
+        .unwrap_or_else(|e| panic!("{e}"));
+    (handle, channel, read)
 }
 
 /// Like [`Client::connect_with`], over a stream that counts wire bytes received.
@@ -303,6 +357,18 @@ pub async fn connect_counting(
     term: &str,
     compression: russh::compression::Name,
 ) -> (Client, Arc<std::sync::atomic::AtomicU64>) {
+    let (handle, read) = connect_counting_raw(addr, compression).await;
+    let c = Client::start(handle, user, term, cols, rows)
+        .await
+        .unwrap_or_else(|e| panic!("{e}"));
+    (c, read)
+}
+
+/// An SSH connection (not logged in) over a stream that counts wire bytes received.
+async fn connect_counting_raw(
+    addr: std::net::SocketAddr,
+    compression: russh::compression::Name,
+) -> (client::Handle<Trusting>, Arc<std::sync::atomic::AtomicU64>) {
     let stream = Tap::new(tokio::net::TcpStream::connect(addr).await.expect("tcp"));
     let read = Arc::clone(&stream.read);
     let cfg = client::Config {
@@ -315,10 +381,7 @@ pub async fn connect_counting(
     let handle = client::connect_stream(Arc::new(cfg), stream, Trusting)
         .await
         .expect("connect");
-    let c = Client::start(handle, user, term, cols, rows)
-        .await
-        .unwrap_or_else(|e| panic!("{e}"));
-    (c, read)
+    (handle, read)
 }
 
 /// Tries once to get a playing session as `user` (no auth, `cols`×`rows` xterm pty, shell);
@@ -466,10 +529,13 @@ impl tokio::io::AsyncWrite for Tap {
     }
 }
 
-/// Like [`Client::connect`] (no auth, `cols`×`rows` xterm pty, shell), over a [`Tap`] stream.
+/// Like [`Client::connect`] (no auth, `cols`×`rows` pty with `term`, shell), over a [`Tap`]
+/// stream: the way to play a client that stops reading (its messages are otherwise read off
+/// the channel as they come).
 pub async fn connect_tapped(
     addr: std::net::SocketAddr,
     user: &str,
+    term: &str,
     cols: u16,
     rows: u16,
 ) -> Result<(Client, TapControl), String> {
@@ -482,7 +548,7 @@ pub async fn connect_tapped(
     let handle = client::connect_stream(Arc::new(client::Config::default()), stream, Trusting)
         .await
         .map_err(|e| format!("connect: {e}"))?;
-    let c = Client::start(handle, user, "xterm-256color", cols, rows).await?;
+    let c = Client::start(handle, user, term, cols, rows).await?;
     Ok((c, TapControl(ctl)))
 }
 
