@@ -167,7 +167,7 @@ fn the_next_round_starts_after_the_results_with_the_scoreboard_reset() {
     let mut ps = Players::with_mode(Arc::new(room()), Mode::Coop, 5);
     ps.join(1, "ann");
     ps.join(2, "bob");
-    assert!(ps.snapshot().scoreboard.contains("team 0 pts"));
+    assert!(ps.snapshot().scoreboard.summary.contains("team 0 pts"));
     // Bob walks over the treasure and on to the exit.
     walk(&mut ps, 2, |ps| ps.snapshot().ended.is_some());
     let snap = ps.snapshot();
@@ -175,7 +175,7 @@ fn the_next_round_starts_after_the_results_with_the_scoreboard_reset() {
     assert_eq!(end.by.as_deref(), Some("bob"));
     assert_eq!((end.points, end.treasures), (10, (1, 1)));
     assert!(
-        snap.scoreboard.contains("team 10 pts"),
+        snap.scoreboard.summary.contains("team 10 pts"),
         "{}",
         snap.scoreboard
     );
@@ -195,12 +195,12 @@ fn the_next_round_starts_after_the_results_with_the_scoreboard_reset() {
     let snap = ps.snapshot();
     assert!(snap.ended.is_none(), "no new round after the results");
     assert!(
-        snap.scoreboard.contains("team 0 pts"),
+        snap.scoreboard.summary.contains("team 0 pts"),
         "{}",
         snap.scoreboard
     );
     assert!(
-        snap.scoreboard.contains("1 item left"),
+        snap.scoreboard.summary.contains("1 item left"),
         "{}",
         snap.scoreboard
     );
@@ -208,4 +208,43 @@ fn the_next_round_starts_after_the_results_with_the_scoreboard_reset() {
     let bob = snap.player(2).expect("bob is still here");
     assert!(bob.state.camera.pos.x < 3.0, "{:?}", bob.state.camera.pos);
     assert_eq!(bob.state.score.points, 0);
+}
+
+/// At 80 columns (the size most people have) the header keeps the whole coop scoreboard for
+/// four players by dropping the key hint, the program's name and the colour level first; the
+/// row stays one line, and narrower the board's tail shortens to "+N more".
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn at_80_columns_the_header_keeps_the_scoreboard() {
+    let (srv, _dir) = serve(Mode::Coop).await;
+    let mut players = Vec::new();
+    for name in ["ann", "bob", "cyd"] {
+        players.push(join(&srv, name).await);
+    }
+    let mut small = Client::connect(srv.local_addr(), "eve", 80, 24, "xterm-256color").await;
+    // The board: what follows the coop summary ("coop: team N pts, N items left | ...").
+    let board = |s: &vt100::Screen| {
+        let top = serve_support::row_text(s, 0);
+        top.split_once("left | ")
+            .map(|(_, b)| b.trim_end().to_owned())
+    };
+    see(&mut small, "the whole scoreboard at 80 columns", |s| {
+        board(s).is_some_and(|b| ["ann", "bob", "cyd", "eve"].iter().all(|n| b.contains(n)))
+    })
+    .await;
+    let top = serve_support::row_text(small.screen.screen(), 0);
+    assert!(top.starts_with(" you are eve | coop: team "), "{top}");
+    assert!(!top.contains("O colours") && !top.contains("more"), "{top}");
+    small.resize(64, 20).await;
+    see(&mut small, "a shortened scoreboard at 64 columns", |s| {
+        board(s).is_some_and(|b| b.ends_with(" more"))
+    })
+    .await;
+    let b = board(small.screen.screen()).expect("a board");
+    let shown = b.split(", ").count() - 1;
+    assert!(
+        (1..4).contains(&shown) && b.ends_with(&format!("+{} more", 4 - shown)),
+        "{b}"
+    );
+    drop(players);
+    srv.shutdown().await;
 }

@@ -10,14 +10,16 @@
 //!   player, moved by `game::step_shared`, and the doors they share); sessions send it the
 //!   `game::Input` of their keys and read its snapshots.
 //! - [`input`]: the raw key byte parser; [`keys`]: server keys, the rest to the TUI's key map.
-//! - [`screen`]: the TUI's panes under a header, through the `Presenter`; [`avatars`]: other
-//!   players as the world's 8-view sprite, and their names on the minimap.
+//! - [`screen`]: the TUI's panes under a header ([`header`] fits it to the width), through the
+//!   `Presenter`; [`avatars`]: other players as the world's 8-view sprite, and their names on
+//!   the minimap.
 
 pub mod ask_colour;
 pub mod auth;
 pub mod avatars;
 pub mod config;
 pub mod handler;
+pub mod header;
 pub mod hostkey;
 pub mod input;
 pub mod keys;

@@ -13,7 +13,7 @@ use crate::game::Body;
 use crate::game::Player as LevelPlayer;
 use crate::game::{step_shared, Command, GameState, Held, Input, Level, Message, Score};
 
-use super::round::{self, Here, Mode, Round, RoundEnd};
+use super::round::{self, Here, Mode, Round, RoundEnd, Scoreboard};
 use crate::render::view::STANDING_EYE;
 use crate::vec2::Vec2;
 use crate::world::door::DoorState;
@@ -61,7 +61,7 @@ pub struct Snapshot {
     /// The level everybody plays (items left, creatures, shots).
     pub level: Level,
     /// The header's game part: mode, team score or who is "it", the scoreboard.
-    pub scoreboard: String,
+    pub scoreboard: Scoreboard,
     /// Who is "it" (tag).
     pub it: Option<PlayerId>,
     /// The round's results while they show.
@@ -75,7 +75,7 @@ impl Default for Snapshot {
             doors: DoorState::none(),
             players: Vec::new(),
             level: Level::default(),
-            scoreboard: String::new(),
+            scoreboard: Scoreboard::default(),
             it: None,
             ended: None,
         }
@@ -548,7 +548,7 @@ mod tests {
         let s = ps.snapshot();
         assert!(s.ended.is_none());
         assert!(
-            s.scoreboard.starts_with("tag: it is nobody, 3:00 left"),
+            s.scoreboard.summary == "tag: it is nobody, 3:00 left",
             "{}",
             s.scoreboard
         );

@@ -81,6 +81,8 @@ pub struct BoardRow {
     pub colour: Rgb,
     /// Their figure as shown ("120 pts", "12s it").
     pub figure: String,
+    /// The same for the header, where the mode already says what it counts ("120", "12s").
+    pub short: String,
     /// Whether they are "it" now (tag).
     pub it: bool,
 }
@@ -252,6 +254,7 @@ impl Round {
                         name: h.name.to_owned(),
                         colour: h.colour,
                         figure: format!("{} pts", h.score.points),
+                        short: h.score.points.to_string(),
                         it: false,
                     },
                 ),
@@ -263,6 +266,7 @@ impl Round {
                             name: h.name.to_owned(),
                             colour: h.colour,
                             figure: format!("{s:.0}s it"),
+                            short: format!("{s:.0}s"),
                             it: self.it == Some(h.id),
                         },
                     )
@@ -275,22 +279,21 @@ impl Round {
 
     /// The header's game part: the mode, the team's score or who is "it", and the board.
     #[must_use]
-    pub fn header(&self, here: &[Here]) -> String {
-        let board: Vec<String> = self
+    pub fn header(&self, here: &[Here]) -> Scoreboard {
+        let rows = self
             .board(here)
             .into_iter()
             .map(|r| {
                 let star = if r.it { "*" } else { "" };
-                format!("{star}{} {}", r.name, r.figure)
+                format!("{star}{} {}", r.name, r.short)
             })
             .collect();
         let left = self.level.items_left();
-        match self.mode {
+        let summary = match self.mode {
             Mode::Coop => format!(
-                "coop: team {} pts, {left} {} left | {}",
+                "coop: team {} pts, {left} {} left",
                 self.team.points,
                 if left == 1 { "item" } else { "items" },
-                board.join(", ")
             ),
             Mode::Tag => {
                 let it = self
@@ -299,13 +302,37 @@ impl Round {
                     .map_or("nobody", |h| h.name);
                 let clock = (TAG_ROUND_SECONDS - self.elapsed).max(0.0);
                 format!(
-                    "tag: it is {it}, {}:{:02} left | {}",
+                    "tag: it is {it}, {}:{:02} left",
                     clock as u64 / 60,
                     clock as u64 % 60,
-                    board.join(", ")
                 )
             }
-        }
+        };
+        Scoreboard { summary, rows }
+    }
+}
+
+/// The header's game part in two pieces, so a narrow header can shorten the board's rows
+/// (", +N more") instead of cutting the line.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Scoreboard {
+    /// The mode and the team's points or who is "it" and the time left.
+    pub summary: String,
+    /// One "name figure" per player ("ann 120", "*bob 12s"), best first ("*" marks who is "it").
+    pub rows: Vec<String>,
+}
+
+impl Scoreboard {
+    /// Whether there is no game to show (a map without one).
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.summary.is_empty()
+    }
+}
+
+impl std::fmt::Display for Scoreboard {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} | {}", self.summary, self.rows.join(", "))
     }
 }
 
@@ -382,9 +409,9 @@ mod tests {
         assert!(board[0].it && !board[1].it);
         // The round's clock is Players::tick's (tag_tick leaves it alone): 4.6 s played.
         r.elapsed = 4.6;
-        let header = r.header(&near);
+        let header = r.header(&near).to_string();
         assert!(
-            header.starts_with("tag: it is bob, 2:55 left | *bob 0s it, ann 5s it"),
+            header.starts_with("tag: it is bob, 2:55 left | *bob 0s, ann 5s"),
             "{header}"
         );
     }

@@ -10,7 +10,6 @@
 //! it waits, frame ticks pass and are skipped, so a slow client gets fewer, newer frames — the
 //! latest frame wins — and nothing queues without bound.
 
-use std::fmt::Write as _;
 use std::net::SocketAddr;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -22,6 +21,7 @@ use tokio::time::MissedTickBehavior;
 
 use super::ask_colour::{ask_truecolor, SSH_QUERY_PATIENCE};
 use super::config::clamp_size;
+use super::header::{self, Piece};
 use super::input::{InputEvent, InputParser};
 use super::keys::{route, Routed};
 use super::log::Log;
@@ -386,27 +386,36 @@ impl State {
             (None, false) => "joining...".to_string(),
         };
         // On maps with something to play for, the game's scoreboard (which names everyone)
-        // takes the place of the list of who is here; spectators see it too.
+        // takes the place of the list of who is here; spectators see it too. When the line is
+        // too narrow the key hint, the name and the colour level go before the scoreboard's
+        // tail (or the list of who is here) shortens to ", +N more".
         let game = self.screen.map().has_game() && !snap.scoreboard.is_empty();
-        // O is the key map's default colour key (sessions use the default keys).
-        let mut line = if game {
-            format!(
-                " halfcast | {who} | {} | {} | O colours",
-                self.screen.colour(),
-                snap.scoreboard
-            )
-        } else {
-            format!(
-                " halfcast | {who} | {} here: {} | {} | O colours",
-                names.len(),
-                names.join(", "),
-                self.screen.colour(),
-            )
-        };
-        if self.clamped {
-            let _ = write!(line, " | clamped to {}x{}", self.size.0, self.size.1);
+        let mut pieces = vec![Piece::text(1, "halfcast"), Piece::text(8, who)];
+        if !game {
+            pieces.push(Piece::List {
+                keep: 5,
+                prefix: format!("{} here: ", names.len()),
+                items: names.iter().map(|n| (*n).to_owned()).collect(),
+            });
         }
-        line.chars().take(usize::from(self.size.0)).collect()
+        pieces.push(Piece::text(3, self.screen.colour().to_string()));
+        if game {
+            pieces.push(Piece::text(6, snap.scoreboard.summary.clone()));
+            pieces.push(Piece::List {
+                keep: 5,
+                prefix: String::new(),
+                items: snap.scoreboard.rows.clone(),
+            });
+        }
+        // O is the key map's default colour key (sessions use the default keys).
+        pieces.push(Piece::text(0, "O colours"));
+        if self.clamped {
+            pieces.push(Piece::text(
+                4,
+                format!("clamped to {}x{}", self.size.0, self.size.1),
+            ));
+        }
+        header::fit(&pieces, usize::from(self.size.0))
     }
 
     /// Appends the bytes of the next frame to `out` (nothing if the screen would not change).
