@@ -3,15 +3,20 @@
 //! straight to bytes, with the glyph choice per cell), one synchronized update. The TUI, replays
 //! and the SSH server all use it.
 //!
-//! An overlay (the help box) drawn over the view must stay on top, but the encoder paints the
-//! whole view region. So while the screen buffer shows anything but the view inside the view's
-//! area, the view goes through the cell diff like the panes (around the overlay), and the
-//! encoder starts afresh once the overlay is gone.
+//! Anything drawn over the view must stay on top, but the encoder paints the whole view region.
+//! - A few cells (a game message's banner, at most two rows' worth): the encoder sends the view
+//!   with those cells painted in their own colours (so it resends the scene once they go), and
+//!   the cells themselves follow its bytes in every frame. The view keeps the encoder's bytes and
+//!   look while a message shows.
+//! - More (the help box, the results): while the screen buffer shows them, the view goes through
+//!   the cell diff like the panes (around the overlay), and the encoder starts afresh once the
+//!   overlay is gone.
 
 use ratatui::buffer::{Buffer, CellDiffOption};
 use ratatui::layout::Rect;
 use ratatui::style::Modifier;
 
+use crate::color::Rgb;
 use crate::encode::cells::CellWriter;
 use crate::encode::{ColorLevel, EncodeOptions, Encoder, SYNC_BEGIN, SYNC_END};
 use crate::render::framebuffer::Framebuffer;
@@ -26,7 +31,13 @@ pub struct Presenter {
     out: Vec<u8>,
     /// Whether the last frame had an overlay over the view (drawn without the encoder).
     overlaid: bool,
+    /// The view with a few cells painted over (see the module notes); reused between frames.
+    painted: Framebuffer,
 }
+
+/// The most cells over the view, in rows of the view's width, that still go after the
+/// encoder's bytes (a banner); more switch the view to the cell diff.
+const FEW_ROWS: usize = 2;
 
 impl Presenter {
     /// A presenter for a terminal that shows nothing known yet (the first frame redraws all).
@@ -41,6 +52,7 @@ impl Presenter {
             previous: None,
             out: Vec::new(),
             overlaid: false,
+            painted: Framebuffer::new(0, 0),
         }
     }
 
@@ -72,7 +84,13 @@ impl Presenter {
         let level = self.level();
         let view_area = view_area.intersection(area);
         let usable = view_area.area() > 0 && view.width() == usize::from(view_area.width);
-        let overlaid = usable && covered(screen, view, view_area);
+        let over = if usable {
+            covering(screen, view, view_area)
+        } else {
+            Vec::new()
+        };
+        let few = over.len() <= usize::from(view_area.width) * FEW_ROWS;
+        let overlaid = !few;
         if overlaid != self.overlaid {
             // The terminal holds the other path's drawing: start both afresh.
             self.previous = None;
@@ -125,8 +143,33 @@ impl Presenter {
             }
         }
         if usable && !overlaid {
-            let bytes = self.encoder.encode(view, view_area.x, view_area.y);
+            let shown = if over.is_empty() {
+                view
+            } else {
+                // The covered cells in their own colours: what the encoder believes the
+                // terminal shows there (they are written over it right after).
+                self.painted.clone_from(view);
+                for &(x, y) in &over {
+                    let c = &screen[(x, y)];
+                    let (cx, cy) = (usize::from(x - view_area.x), usize::from(y - view_area.y));
+                    let top = from_color(c.fg).unwrap_or(Rgb::new(0, 0, 0));
+                    let bottom = from_color(c.bg).unwrap_or(Rgb::new(0, 0, 0));
+                    self.painted.set(cx, 2 * cy, top);
+                    self.painted.set(cx, 2 * cy + 1, bottom);
+                }
+                &self.painted
+            };
+            let bytes = self.encoder.encode(shown, view_area.x, view_area.y);
             self.out.extend_from_slice(bytes);
+            if !over.is_empty() {
+                // After the encoder's bytes, which end with the default colours (the cell
+                // writer's plain pen) but leave the cursor anywhere.
+                self.cells.forget_cursor();
+                self.cells.draw(
+                    &mut self.out,
+                    over.iter().map(|&(x, y)| (x, y, &next[(x, y)])),
+                );
+            }
         }
         if level != ColorLevel::Mono {
             self.out.extend_from_slice(SYNC_END);
@@ -162,20 +205,33 @@ fn plain_ascii(buf: &mut Buffer) {
     }
 }
 
-/// Whether something is drawn over the view: a cell of the view area that is neither the
+/// The cells drawn over the view, row by row: cells of the view area that are neither the
 /// view's own half-block nor left empty (callers may leave the view's cells blank).
-fn covered(screen: &Buffer, view: &Framebuffer, at: Rect) -> bool {
+fn covering(screen: &Buffer, view: &Framebuffer, at: Rect) -> Vec<(u16, u16)> {
     let rows = usize::from(at.height).min(view.cell_rows());
     let blank = ratatui::buffer::Cell::default();
-    (0..rows).any(|cy| {
-        (0..usize::from(at.width)).any(|cx| {
+    let mut out = Vec::new();
+    for cy in 0..rows {
+        for cx in 0..usize::from(at.width) {
             let (top, bottom) = view.cell(cx, cy);
-            let c = &screen[(at.x + cx as u16, at.y + cy as u16)];
+            let (x, y) = (at.x + cx as u16, at.y + cy as u16);
+            let c = &screen[(x, y)];
             let is_view =
                 c.symbol() == UPPER_HALF && c.fg == to_color(top) && c.bg == to_color(bottom);
-            !is_view && *c != blank
-        })
-    })
+            if !is_view && *c != blank {
+                out.push((x, y));
+            }
+        }
+    }
+    out
+}
+
+/// The colour of a cell's pen, when it is an RGB one.
+fn from_color(c: ratatui::style::Color) -> Option<Rgb> {
+    match c {
+        ratatui::style::Color::Rgb(r, g, b) => Some(Rgb::new(r, g, b)),
+        _ => None,
+    }
 }
 
 #[cfg(test)]
@@ -261,7 +317,12 @@ mod tests {
 
     #[test]
     fn an_overlay_over_the_view_stays_visible_and_the_view_returns_after_it() {
-        for level in [ColorLevel::TrueColor, ColorLevel::Ansi256, ColorLevel::Mono] {
+        // A banner (a few cells, sent after the encoder) and a box of three rows (more than
+        // FEW_ROWS: the view goes through the cell diff meanwhile).
+        for (level, tall) in [ColorLevel::TrueColor, ColorLevel::Ansi256, ColorLevel::Mono]
+            .into_iter()
+            .flat_map(|l| [(l, false), (l, true)])
+        {
             let mut p = Presenter::new(EncodeOptions::new(level));
             let at = Rect::new(3, 1, 10, 4);
             let mut term = vt100::Parser::new(6, 20, 0);
@@ -271,6 +332,11 @@ mod tests {
                 let v = view(shade);
                 let mut b = with_view("s", &v, at);
                 b.set_string(5, 2, "HELP", Style::new());
+                if tall {
+                    for y in [1, 3] {
+                        b.set_string(3, y, "==========", Style::new());
+                    }
+                }
                 term.process(p.frame(&b, &v, at));
                 let row: Vec<char> = (0..20)
                     .map(|x| {
@@ -312,6 +378,82 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The player's view under a game message: one row of text on the top row.
+    fn with_banner(v: &Framebuffer, at: Rect) -> Buffer {
+        let mut b = with_view("s", v, at);
+        let style = Style::new()
+            .fg(Color::Rgb(255, 226, 140))
+            .bg(Color::Rgb(22, 24, 32));
+        b.set_string(at.x + 1, at.y, " got it ", style);
+        b
+    }
+
+    #[test]
+    fn a_banner_over_a_moving_view_keeps_the_encoder_and_is_on_the_screen_every_frame() {
+        for level in [ColorLevel::TrueColor, ColorLevel::Ansi256, ColorLevel::Mono] {
+            let at = Rect::new(3, 1, 10, 4);
+            let (mut with, mut without) = (
+                Presenter::new(EncodeOptions::new(level)),
+                Presenter::new(EncodeOptions::new(level)),
+            );
+            let mut term = vt100::Parser::new(6, 20, 0);
+            let v = view(0);
+            let _ = without.frame(&with_view("s", &v, at), &v, at);
+            term.process(with.frame(&with_view("s", &v, at), &v, at));
+            let (mut bytes_with, mut bytes_without) = (0, 0);
+            // The banner comes, stays while the view changes under it, then goes.
+            for (i, shown) in [true, true, true, true, false, false]
+                .into_iter()
+                .enumerate()
+            {
+                let v = view(30 * (i as u8 + 1));
+                let b = if shown {
+                    with_banner(&v, at)
+                } else {
+                    with_view("s", &v, at)
+                };
+                let bytes = with.frame(&b, &v, at).to_vec();
+                // No full redraw to come or go: the view stays on the encoder's path.
+                assert!(!contains(&bytes, b"\x1b[2J"), "{level:?} frame {i}");
+                term.process(&bytes);
+                bytes_with += bytes.len();
+                bytes_without += without.frame(&with_view("s", &v, at), &v, at).len();
+                let seen = from_screen(term.screen(), 20, 6);
+                let top: String = (0..10).map(|x| seen.cell(x + 3, 1).glyph).collect();
+                if shown {
+                    assert!(top.contains(" got it "), "{level:?} frame {i}: {top}");
+                } else {
+                    assert!(!top.contains("got"), "{level:?} frame {i}: {top}");
+                }
+                if level == ColorLevel::TrueColor {
+                    let want = if shown {
+                        TermFrame::from_buffer(&b)
+                    } else {
+                        intended(&b, &v, at)
+                    };
+                    for y in 0..6 {
+                        for x in 0..20 {
+                            assert_eq!(
+                                seen.cell(x, y).appearance(),
+                                want.cell(x, y).appearance(),
+                                "frame {i} cell ({x},{y})"
+                            );
+                        }
+                    }
+                }
+            }
+            // What the banner costs: its own cells each frame, and the scene under it once.
+            assert!(
+                bytes_with < bytes_without + 6 * 40 + 4 * 8 * 40,
+                "{level:?}: {bytes_with} bytes with the banner, {bytes_without} without"
+            );
+        }
+    }
+
+    fn contains(hay: &[u8], needle: &[u8]) -> bool {
+        hay.windows(needle.len()).any(|w| w == needle)
     }
 
     #[test]
