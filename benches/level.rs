@@ -53,7 +53,11 @@ fn level_tick(c: &mut Criterion) {
             let mut ps: Vec<Player> = spots
                 .iter()
                 .zip(scores.iter_mut())
-                .map(|(&pos, score)| Player { pos, score })
+                .map(|(&pos, score)| Player {
+                    pos,
+                    eye: 0.5,
+                    score,
+                })
                 .collect();
             level.tick(&map, &doors, &mut ps, 1.0 / 30.0)
         };

@@ -98,7 +98,11 @@ proptest! {
         let cell = |p: Vec2| (p.x.floor() as i64, p.y.floor() as i64);
         let mut before: Vec<(i64, i64)> = level.creatures().iter().map(|c| cell(c.pos)).collect();
         for _ in 0..240 {
-            let mut players = [Player { pos: points[0], score: &mut score }];
+            let mut players = [Player {
+                pos: points[0],
+                eye: 0.5,
+                score: &mut score,
+            }];
             level.tick(&map, &doors, &mut players, 1.0 / 30.0);
             for (c, was) in level.creatures().iter().zip(&mut before) {
                 prop_assert!(
@@ -375,6 +379,7 @@ fn creatures_keep_off_ledges_too_high_to_step_onto() {
             // The player stands on the dais, in sight: chasers would like to climb it.
             let mut players = [Player {
                 pos: Vec2::new(3.5, 2.5),
+                eye: w.map.span(3, 2).map_or(0.0, |s| s.floor) + 0.5,
                 score: &mut score,
             }];
             level.tick(&w.map, &doors, &mut players, 1.0 / 30.0);

@@ -52,10 +52,12 @@ fn a_treasure_is_picked_up_once_by_the_first_to_reach_it() {
         let mut players = [
             Player {
                 pos: on_it,
+                eye: 0.5,
                 score: &mut a,
             },
             Player {
                 pos: on_it,
+                eye: 0.5,
                 score: &mut b,
             },
         ];
@@ -169,7 +171,14 @@ fn shared_steps_respect_locks_but_leave_the_level_alone() {
         commands: vec![Command::Fire],
     };
     halfcast::game::step_shared(&mut s, &fire, 1.0 / 30.0, &[]);
-    assert_eq!(s.shots, [(s.camera.pos, s.camera.dir)]);
+    assert_eq!(
+        s.shots,
+        [halfcast::game::Shot {
+            from: s.camera.pos,
+            z: s.view.eye(),
+            dir: s.camera.dir
+        }]
+    );
     assert!(s.level.projectiles().is_empty());
     halfcast::game::step_shared(&mut s, &Input::default(), 1.0 / 30.0, &[]);
     assert!(s.shots.is_empty());

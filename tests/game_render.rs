@@ -33,6 +33,7 @@ fn an_item_is_drawn_until_it_is_picked_up() {
     let doors = DoorState::new(&w.map);
     let mut players = [Player {
         pos: Vec2::new(4.4, 1.5),
+        eye: 0.5,
         score: &mut score,
     }];
     level.tick(&w.map, &doors, &mut players, 0.1);

@@ -189,8 +189,9 @@ impl Creature {
         }
     }
 
-    /// One tick: look for players, then walk up to `speed · dt` along its cells.
-    pub fn step(&mut self, ground: &Ground, players: &[Vec2], rng: &mut Rng, dt: f64) {
+    /// One tick: look for players (each a position and the height of their eye), then walk up
+    /// to `speed · dt` along its cells.
+    pub fn step(&mut self, ground: &Ground, players: &[(Vec2, f64)], rng: &mut Rng, dt: f64) {
         if self.is_out() {
             self.tagged = (self.tagged - dt).max(0.0);
             return;
@@ -259,7 +260,7 @@ impl Creature {
     }
 
     /// Updates its chase from what it sees: the nearest player in its line of sight and range.
-    fn look(&mut self, ground: &Ground, players: &[Vec2], dt: f64) {
+    fn look(&mut self, ground: &Ground, players: &[(Vec2, f64)], dt: f64) {
         if self.backing_off > 0.0 {
             self.chase = None;
             return;
@@ -269,11 +270,14 @@ impl Creature {
         } else {
             SIGHT_RANGE
         };
+        // It looks from a standing eye's height over its own floor.
+        let (i, j) = collision::centre_cell(self.pos);
+        let eye = ground.map.span(i, j).map_or(0.0, |s| s.floor) + STANDING_EYE;
         let mut best: Option<(f64, Vec2)> = None;
-        for &p in players {
+        for &(p, p_eye) in players {
             let d = (p - self.pos).length();
             if best.is_none_or(|(bd, _)| d < bd)
-                && sees(ground.map, ground.doors, self.pos, p, range)
+                && sees(ground.map, ground.doors, (self.pos, eye), (p, p_eye), range)
             {
                 best = Some((d, p));
             }
@@ -460,7 +464,7 @@ mod tests {
         let mut rng = Rng::new(3);
         let player = Vec2::new(4.5, 1.5);
         for _ in 0..40 {
-            c.step(&ground, &[player], &mut rng, 0.05);
+            c.step(&ground, &[(player, STANDING_EYE)], &mut rng, 0.05);
         }
         assert!(c.chase.is_some());
         assert!((c.pos - player).length() < 1.0, "{:?}", c.pos);

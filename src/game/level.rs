@@ -12,7 +12,6 @@ use super::rng::Rng;
 use super::score::Score;
 use crate::map::{Blend, ColourKey, Map, SpriteDef, DEFAULT_SOLID_RADIUS};
 use crate::render::point_light::PointLight;
-use crate::render::view::STANDING_EYE;
 use crate::vec2::Vec2;
 use crate::world::door::DoorState;
 use crate::world::sprite::Sprite;
@@ -45,6 +44,8 @@ pub fn start_message(map: &Map) -> Option<String> {
 pub struct Player<'a> {
     /// The player's centre on the map plane.
     pub pos: Vec2,
+    /// The height of their eye in the world (what creatures look at on maps with heights).
+    pub eye: f64,
     /// Their score (points, keys, treasures found).
     pub score: &'a mut Score,
 }
@@ -228,7 +229,7 @@ impl Level {
             doors,
             discs: &self.discs,
         };
-        let positions: Vec<Vec2> = players.iter().map(|p| p.pos).collect();
+        let positions: Vec<(Vec2, f64)> = players.iter().map(|p| (p.pos, p.eye)).collect();
         for c in &mut self.creatures {
             c.step(&ground, &positions, &mut self.rng, dt);
             if !c.can_catch() {
@@ -245,10 +246,8 @@ impl Level {
             }
         }
         let creatures = &mut self.creatures;
-        self.projectiles.retain_mut(|shot| {
-            let (i, j) = (shot.pos.x.floor() as i64, shot.pos.y.floor() as i64);
-            shot.z = map.span(i, j).map_or(0.0, |s| s.floor) + STANDING_EYE;
-            match shot.fly(map, doors, creatures, dt) {
+        self.projectiles
+            .retain_mut(|shot| match shot.fly(map, doors, creatures, dt) {
                 Flight::Flying => true,
                 Flight::Spent => false,
                 Flight::Hit(k) => {
@@ -256,8 +255,7 @@ impl Level {
                     events.push(Event::Tagged { player: shot.owner });
                     false
                 }
-            }
-        });
+            });
         for (k, item) in map.items.iter().enumerate() {
             if self.taken.get(k).is_none_or(|&t| t) {
                 continue;
@@ -299,9 +297,9 @@ impl Level {
         events
     }
 
-    /// Fires a shot for `player` from `from` along `dir` (ignored while that player reloads,
-    /// for a zero direction, or once the level is over).
-    pub fn fire(&mut self, player: usize, from: Vec2, dir: Vec2) {
+    /// Fires a shot for `player` from `from`, at height `z` (their eye), along `dir` (ignored
+    /// while that player reloads, for a zero direction, or once the level is over).
+    pub fn fire(&mut self, player: usize, from: Vec2, z: f64, dir: Vec2) {
         let len = dir.length();
         if self.finished.is_some() || !(len > 0.0 && len.is_finite()) {
             return;
@@ -313,7 +311,7 @@ impl Level {
         self.projectiles.push(Projectile {
             pos: from,
             dir: dir * (1.0 / len),
-            z: STANDING_EYE,
+            z,
             travelled: 0.0,
             owner: player,
         });

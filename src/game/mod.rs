@@ -62,6 +62,17 @@ pub const JUMP_RISE: f64 = 0.25;
 /// Longest frame time one step honours, so a stall (suspend, slow terminal) is not a jump.
 pub const MAX_DT: f64 = 0.25;
 
+/// A tag shot a player asked for: from their eye (position and height), along their view.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Shot {
+    /// The eye's position on the map plane.
+    pub from: Vec2,
+    /// The eye's height in the world.
+    pub z: f64,
+    /// The view direction.
+    pub dir: Vec2,
+}
+
 /// Everything that changes while playing, and the shared world it plays in.
 #[derive(Debug, Clone)]
 pub struct GameState {
@@ -98,9 +109,9 @@ pub struct GameState {
     pub events: Vec<Event>,
     /// The latest event's message and the game time it happened at (the message line).
     pub message: Option<Message>,
-    /// Tag shots asked for in the last [`step_shared`] (eye position, view direction): the
-    /// shared world fires them in its own [`Level`] (a local [`step`] fires at once).
-    pub shots: Vec<(Vec2, Vec2)>,
+    /// Tag shots asked for in the last [`step_shared`]: the shared world fires them in its
+    /// own [`Level`] (a local [`step`] fires at once).
+    pub shots: Vec<Shot>,
     solids: Vec<SolidDisc>,
 }
 
@@ -246,11 +257,15 @@ fn advance(state: &mut GameState, input: &Input, dt: f64, owns_world: bool, bodi
             Command::Turn(radians) if !d.paused && radians.is_finite() => turn += radians,
             Command::UseDoor if !d.paused => use_door(state),
             Command::Fire if !d.paused => {
-                let cam = &state.camera;
+                let (cam, eye) = (&state.camera, state.view.eye());
                 if owns_world {
-                    state.level.fire(0, cam.pos, cam.dir);
+                    state.level.fire(0, cam.pos, eye, cam.dir);
                 } else {
-                    state.shots.push((cam.pos, cam.dir));
+                    state.shots.push(Shot {
+                        from: cam.pos,
+                        z: eye,
+                        dir: cam.dir,
+                    });
                 }
             }
             Command::Jump if !d.paused && state.jump == (0.0, 0.0) => state.jump.1 = JUMP_SPEED,
@@ -310,6 +325,7 @@ fn advance(state: &mut GameState, input: &Input, dt: f64, owns_world: bool, bodi
     if owns_world {
         let mut players = [Player {
             pos: state.camera.pos,
+            eye: state.view.eye(),
             score: &mut state.score,
         }];
         let events = state

@@ -1,8 +1,9 @@
-//! The tag: a short glowing shot from a player's eye that flies straight, stops at the first
-//! wall or shut door on the renderer's DDA, and tags the first creature it meets.
+//! The tag: a short glowing shot from a player's eye that flies straight and level, stops at the
+//! first wall or shut door on the renderer's DDA (on maps with heights also at a step's face, a
+//! lintel or a balcony's side), and tags the first creature it meets at its height.
 
 use super::creature::{Creature, CREATURE_RADIUS};
-use super::sight::first_block;
+use super::sight::first_block_at;
 use crate::map::Map;
 use crate::vec2::Vec2;
 use crate::world::door::DoorState;
@@ -32,7 +33,7 @@ pub struct Projectile {
     pub pos: Vec2,
     /// Which way it flies (unit length).
     pub dir: Vec2,
-    /// Its height: the eye height over the floor it flies over.
+    /// Its height in the world: the eye it was fired from (it flies level).
     pub z: f64,
     /// Cells flown so far.
     pub travelled: f64,
@@ -57,12 +58,12 @@ impl Projectile {
     pub fn fly(&mut self, map: &Map, doors: &DoorState, creatures: &[Creature], dt: f64) -> Flight {
         let dist = (SHOT_SPEED * dt.max(0.0)).min(SHOT_RANGE - self.travelled);
         let end = self.pos + self.dir * dist;
-        let wall = first_block(map, doors, self.pos, end);
+        let wall = first_block_at(map, doors, (self.pos, self.z), (end, self.z));
         let reach = wall.map_or(dist, |(_, t)| dist * t);
         // The hit nearest along the path, if any comes before the wall.
         let mut hit: Option<(f64, usize)> = None;
         for (k, c) in creatures.iter().enumerate() {
-            if c.is_out() {
+            if c.is_out() || !at_body_height(map, c.pos, self.z) {
                 continue;
             }
             let rel = c.pos - self.pos;
@@ -89,6 +90,15 @@ impl Projectile {
             Flight::Flying
         }
     }
+}
+
+/// Whether height `z` is within the body of a creature standing at `pos` (from the floor of
+/// its cell up one wall): a shot over a pit or along a balcony passes creatures below it.
+fn at_body_height(map: &Map, pos: Vec2, z: f64) -> bool {
+    let feet = map
+        .span(pos.x.floor() as i64, pos.y.floor() as i64)
+        .map_or(0.0, |s| s.floor);
+    (feet..=feet + 1.0).contains(&z)
 }
 
 #[cfg(test)]
@@ -152,5 +162,63 @@ mod tests {
         let mut s = shot(Vec2::new(1.5, 1.5), Vec2::new(1.0, 0.0));
         assert_eq!(s.fly(&m, &doors, &creatures, 0.5), Flight::Hit(1));
         assert!((s.pos.x - (3.5 - HIT_RADIUS)).abs() < 1e-9, "{:?}", s.pos);
+    }
+
+    /// One row: the start (floor 0, ceiling 1), then a room two walls tall whose cell 3 is
+    /// `Hs` (e.g. a step with floor 0.8, or a pit with floor -1).
+    fn stepped(step: &str) -> Map {
+        crate::map::parse_map(
+            "t.cub",
+            format!(
+                "NO ./a.png\nSO ./a.png\nWE ./a.png\nEA ./a.png\nF 1,1,1\nC 2,2,2\n\
+                 Hr 0 2\nHs {step}\n\n11111111\n1Nrsrrr1\n11111111\n"
+            )
+            .as_bytes(),
+        )
+        .expect("map")
+    }
+
+    fn creature_at(x: f64, m: &Map) -> Creature {
+        let def = CreatureDef {
+            pos: Vec2::new(x, 1.5),
+            texture: TextureRef {
+                path: "c".into(),
+                line: 1,
+                col: 1,
+            },
+            speed: 1.0,
+            behaviour: Behaviour::Wander,
+            scale: 0.7,
+            frames: 4,
+            at: (1, 1),
+        };
+        Creature::new(&def, m)
+    }
+
+    #[test]
+    fn on_height_maps_a_step_face_stops_a_shot_below_its_top_and_not_one_above() {
+        let m = stepped("0.8 2");
+        let doors = DoorState::none();
+        let mut low = shot(Vec2::new(2.5, 1.5), Vec2::new(1.0, 0.0));
+        assert_eq!(low.fly(&m, &doors, &[], 0.5), Flight::Spent);
+        assert!((low.pos.x - 3.0).abs() < 1e-9, "{:?}", low.pos);
+        let mut high = shot(Vec2::new(2.5, 1.5), Vec2::new(1.0, 0.0));
+        high.z = 0.9;
+        assert_eq!(high.fly(&m, &doors, &[], 0.5), Flight::Flying);
+        assert!((high.pos.x - 6.5).abs() < 1e-9, "{:?}", high.pos);
+    }
+
+    #[test]
+    fn a_shot_passes_over_a_creature_down_in_a_pit_and_tags_one_at_its_height() {
+        let m = stepped("-1.5 2");
+        let doors = DoorState::none();
+        let creatures = vec![creature_at(3.5, &m), creature_at(5.5, &m)];
+        let mut s = shot(Vec2::new(2.5, 1.5), Vec2::new(1.0, 0.0));
+        assert_eq!(s.fly(&m, &doors, &creatures, 0.5), Flight::Hit(1));
+        // Flat maps: every creature is at a shot's height.
+        let flat = grid_map("11111111\n1N000001\n11111111\n");
+        let creatures = vec![creature_at(3.5, &flat), creature_at(5.5, &flat)];
+        let mut s = shot(Vec2::new(2.5, 1.5), Vec2::new(1.0, 0.0));
+        assert_eq!(s.fly(&flat, &doors, &creatures, 0.5), Flight::Hit(0));
     }
 }

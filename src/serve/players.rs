@@ -250,8 +250,8 @@ impl Players {
             std::mem::swap(&mut p.state.level, &mut self.round.level);
             std::mem::swap(&mut p.state.doors, &mut self.doors);
             // Shots belong to the shared level, credited to this player.
-            for (from, dir) in p.state.shots.drain(..) {
-                self.round.level.fire(index, from, dir);
+            for shot in p.state.shots.drain(..) {
+                self.round.level.fire(index, shot.from, shot.z, shot.dir);
             }
             p.state.time = self.time;
             p.walking = p.state.camera.pos != before;
@@ -280,6 +280,7 @@ impl Players {
                 .zip(scores.iter_mut())
                 .map(|(id, score)| LevelPlayer {
                     pos: self.players[id].state.camera.pos,
+                    eye: self.players[id].state.view.eye(),
                     score,
                 })
                 .collect();
