@@ -396,3 +396,27 @@ fn creatures_keep_off_ledges_too_high_to_step_onto() {
         assert!(walked > 10.0, "the creatures did not walk: {walked}");
     }
 }
+
+#[test]
+fn a_creature_below_a_ledge_does_not_catch_a_player_on_it_but_one_on_a_step_is_caught() {
+    let grid = "11111111\n1E000001\n100aa001\n100aa001\n10000001\n11111111\n";
+    for (dais, caught) in [("Ha 1.0 2.0", false), ("Ha 0.2 1.5", true)] {
+        let lines = format!("{dais}\nCREATURE 2.8,2.5 creature speed=0.01 behaviour=chase\n");
+        let w = world(&lines, grid);
+        let doors = DoorState::new(&w.map);
+        let mut level = Level::new(&w.map, 1);
+        let mut score = Score::default();
+        // On the dais, 0.3 from the creature on the hall floor beside it.
+        let mut players = [Player {
+            pos: Vec2::new(3.1, 2.5),
+            eye: w.map.span(3, 2).map_or(0.0, |s| s.floor) + 0.5,
+            score: &mut score,
+        }];
+        let events = level.tick(&w.map, &doors, &mut players, 1.0 / 30.0);
+        assert_eq!(
+            events.iter().any(|e| matches!(e, Event::Caught { .. })),
+            caught,
+            "{dais}: {events:?}"
+        );
+    }
+}

@@ -189,6 +189,15 @@ impl Creature {
         }
     }
 
+    /// Whether height `z` is within its body, from the floor of its cell up one wall: a tag
+    /// over a pit, or a player on a balcony above, passes a creature below.
+    #[must_use]
+    pub fn spans_height(&self, map: &Map, z: f64) -> bool {
+        let (i, j) = (self.pos.x.floor() as i64, self.pos.y.floor() as i64);
+        let feet = map.span(i, j).map_or(0.0, |s| s.floor);
+        (feet..=feet + 1.0).contains(&z)
+    }
+
     /// One tick: look for players (each a position and the height of their eye), then walk up
     /// to `speed · dt` along its cells.
     pub fn step(&mut self, ground: &Ground, players: &[(Vec2, f64)], rng: &mut Rng, dt: f64) {

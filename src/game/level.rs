@@ -235,10 +235,9 @@ impl Level {
             if !c.can_catch() {
                 continue;
             }
-            let caught = players
-                .iter_mut()
-                .enumerate()
-                .find(|(_, p)| (p.pos - c.pos).length() < CATCH_RADIUS);
+            let caught = players.iter_mut().enumerate().find(|(_, p)| {
+                (p.pos - c.pos).length() < CATCH_RADIUS && c.spans_height(map, p.eye)
+            });
             if let Some((player, p)) = caught {
                 let lost = p.score.lose(CATCH_POINTS);
                 events.push(Event::Caught { player, lost });

@@ -63,7 +63,7 @@ impl Projectile {
         // The hit nearest along the path, if any comes before the wall.
         let mut hit: Option<(f64, usize)> = None;
         for (k, c) in creatures.iter().enumerate() {
-            if c.is_out() || !at_body_height(map, c.pos, self.z) {
+            if c.is_out() || !c.spans_height(map, self.z) {
                 continue;
             }
             let rel = c.pos - self.pos;
@@ -90,15 +90,6 @@ impl Projectile {
             Flight::Flying
         }
     }
-}
-
-/// Whether height `z` is within the body of a creature standing at `pos` (from the floor of
-/// its cell up one wall): a shot over a pit or along a balcony passes creatures below it.
-fn at_body_height(map: &Map, pos: Vec2, z: f64) -> bool {
-    let feet = map
-        .span(pos.x.floor() as i64, pos.y.floor() as i64)
-        .map_or(0.0, |s| s.floor);
-    (feet..=feet + 1.0).contains(&z)
 }
 
 #[cfg(test)]
