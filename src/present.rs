@@ -281,6 +281,19 @@ mod tests {
         f
     }
 
+    /// Asserts that every cell of the 20×6 test screen `seen` (frame `i`) looks as `want`'s.
+    fn same_screen(seen: &TermFrame, want: &TermFrame, i: usize) {
+        for y in 0..6 {
+            for x in 0..20 {
+                assert_eq!(
+                    seen.cell(x, y).appearance(),
+                    want.cell(x, y).appearance(),
+                    "frame {i} cell ({x},{y})"
+                );
+            }
+        }
+    }
+
     #[test]
     fn a_sequence_of_frames_reaches_the_screen_exactly() {
         let mut p = Presenter::new(EncodeOptions::new(ColorLevel::TrueColor));
@@ -296,15 +309,7 @@ mod tests {
             term.process(&bytes);
             let seen = from_screen(term.screen(), 20, 6);
             let want = intended(&s, &v, at);
-            for y in 0..6 {
-                for x in 0..20 {
-                    assert_eq!(
-                        seen.cell(x, y).appearance(),
-                        want.cell(x, y).appearance(),
-                        "frame {i} cell ({x},{y})"
-                    );
-                }
-            }
+            same_screen(&seen, &want, i);
         }
     }
 
@@ -433,15 +438,7 @@ mod tests {
                     } else {
                         intended(&b, &v, at)
                     };
-                    for y in 0..6 {
-                        for x in 0..20 {
-                            assert_eq!(
-                                seen.cell(x, y).appearance(),
-                                want.cell(x, y).appearance(),
-                                "frame {i} cell ({x},{y})"
-                            );
-                        }
-                    }
+                    same_screen(&seen, &want, i);
                 }
             }
             // What the banner costs: its own cells each frame, and the scene under it once.

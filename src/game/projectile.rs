@@ -136,37 +136,10 @@ mod tests {
     fn a_shot_tags_the_first_creature_on_its_path() {
         let m = grid_map("11111111\n1N000001\n11111111\n");
         let doors = DoorState::none();
-        let def = |x: f64| CreatureDef {
-            pos: Vec2::new(x, 1.5),
-            texture: TextureRef {
-                path: "c".into(),
-                line: 1,
-                col: 1,
-            },
-            speed: 1.0,
-            behaviour: Behaviour::Wander,
-            scale: 0.7,
-            frames: 4,
-            at: (1, 1),
-        };
-        let creatures = vec![Creature::new(&def(5.5), &m), Creature::new(&def(3.5), &m)];
+        let creatures = vec![creature_at(5.5, &m), creature_at(3.5, &m)];
         let mut s = shot(Vec2::new(1.5, 1.5), Vec2::new(1.0, 0.0));
         assert_eq!(s.fly(&m, &doors, &creatures, 0.5), Flight::Hit(1));
         assert!((s.pos.x - (3.5 - HIT_RADIUS)).abs() < 1e-9, "{:?}", s.pos);
-    }
-
-    /// One row: the start (floor 0, ceiling 1), then a room two walls tall whose cell 3 is
-    /// `Hs` (e.g. a step with floor 0.8, or a pit with floor -1).
-    fn stepped(step: &str) -> Map {
-        crate::map::parse_map(
-            "t.cub",
-            format!(
-                "NO ./a.png\nSO ./a.png\nWE ./a.png\nEA ./a.png\nF 1,1,1\nC 2,2,2\n\
-                 Hr 0 2\nHs {step}\n\n11111111\n1Nrsrrr1\n11111111\n"
-            )
-            .as_bytes(),
-        )
-        .expect("map")
     }
 
     fn creature_at(x: f64, m: &Map) -> Creature {
@@ -188,7 +161,7 @@ mod tests {
 
     #[test]
     fn on_height_maps_a_step_face_stops_a_shot_below_its_top_and_not_one_above() {
-        let m = stepped("0.8 2");
+        let m = crate::game::sight::stepped_row("0.8 2");
         let doors = DoorState::none();
         let mut low = shot(Vec2::new(2.5, 1.5), Vec2::new(1.0, 0.0));
         assert_eq!(low.fly(&m, &doors, &[], 0.5), Flight::Spent);
@@ -201,7 +174,7 @@ mod tests {
 
     #[test]
     fn a_shot_passes_over_a_creature_down_in_a_pit_and_tags_one_at_its_height() {
-        let m = stepped("-1.5 2");
+        let m = crate::game::sight::stepped_row("-1.5 2");
         let doors = DoorState::none();
         let creatures = vec![creature_at(3.5, &m), creature_at(5.5, &m)];
         let mut s = shot(Vec2::new(2.5, 1.5), Vec2::new(1.0, 0.0));

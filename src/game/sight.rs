@@ -35,34 +35,7 @@ pub fn first_block(
     from: Vec2,
     to: Vec2,
 ) -> Option<((i64, i64), f64)> {
-    let target = (to.x.floor() as i64, to.y.floor() as i64);
-    let Setup {
-        mut cell,
-        delta,
-        step,
-        mut side_dist,
-    } = Setup::new(from, to - from);
-    if cell == target {
-        return None;
-    }
-    // A straight segment crosses exactly this many grid lines; a few more absorb rounding.
-    let lines = (target.0 - cell.0).unsigned_abs() + (target.1 - cell.1).unsigned_abs() + 2;
-    for _ in 0..lines {
-        let side = advance(&mut side_dist, delta, &mut cell, step);
-        if blocks_sight(map, doors, cell.0, cell.1) {
-            let t = match side {
-                Side::X => side_dist.0 - delta.0,
-                Side::Y => side_dist.1 - delta.1,
-            };
-            return Some((cell, t.clamp(0.0, 1.0)));
-        }
-        if cell == target {
-            return None;
-        }
-    }
-    // Rounding walked the ray past the target's cell without entering it: the way there was
-    // clear (every cell on it was checked), so count it as reached.
-    None
+    walk(map, doors, from, to, |_, _, _| None)
 }
 
 /// Where the straight line from (`from`, `from_z`) to (`to`, `to_z`) is first stopped: as
@@ -100,6 +73,19 @@ pub fn first_block_at(
         // z is linear and crosses `bound` between t0 and t1 (z0 is inside, z1 beyond).
         Some(t0 + (t1 - t0) * (bound - z0) / (z1 - z0))
     };
+    walk(map, doors, from, to, leaves)
+}
+
+/// The DDA walk both share: each cell from `from`'s to `to`'s is checked for walls and shut
+/// doors as it is entered, and `leaves(cell, t_in, t_out)` says where within the part of the
+/// segment in `cell` (fractions of it) the line leaves its open air, if it does.
+fn walk(
+    map: &Map,
+    doors: &DoorState,
+    from: Vec2,
+    to: Vec2,
+    leaves: impl Fn((i64, i64), f64, f64) -> Option<f64>,
+) -> Option<((i64, i64), f64)> {
     let target = (to.x.floor() as i64, to.y.floor() as i64);
     let Setup {
         mut cell,
@@ -107,10 +93,11 @@ pub fn first_block_at(
         step,
         mut side_dist,
     } = Setup::new(from, to - from);
-    let mut entered = 0.0;
     if cell == target {
         return leaves(cell, 0.0, 1.0).map(|t| (cell, t));
     }
+    let mut entered = 0.0;
+    // A straight segment crosses exactly this many grid lines; a few more absorb rounding.
     let lines = (target.0 - cell.0).unsigned_abs() + (target.1 - cell.1).unsigned_abs() + 2;
     for _ in 0..lines {
         let before = cell;
@@ -119,18 +106,20 @@ pub fn first_block_at(
             Side::X => side_dist.0 - delta.0,
             Side::Y => side_dist.1 - delta.1,
         }
-        .clamp(entered, 1.0);
-        if let Some(at) = leaves(before, entered, t) {
+        .clamp(0.0, 1.0);
+        if let Some(at) = leaves(before, entered, t.max(entered)) {
             return Some((before, at));
         }
         if blocks_sight(map, doors, cell.0, cell.1) {
             return Some((cell, t));
         }
-        entered = t;
+        entered = t.max(entered);
         if cell == target {
             return leaves(cell, entered, 1.0).map(|t| (cell, t));
         }
     }
+    // Rounding walked the ray past the target's cell without entering it: the way there was
+    // clear (every cell on it was checked), so count it as reached.
     leaves(cell, entered, 1.0).map(|t| (cell, t))
 }
 
@@ -146,6 +135,21 @@ pub fn line_of_sight(map: &Map, doors: &DoorState, from: Vec2, to: Vec2) -> bool
 #[must_use]
 pub fn sees(map: &Map, doors: &DoorState, from: (Vec2, f64), to: (Vec2, f64), range: f64) -> bool {
     (to.0 - from.0).length() <= range && first_block_at(map, doors, from, to).is_none()
+}
+
+/// A test map of one row: the start (floor 0, ceiling 1) at x 1, then a room two walls tall
+/// from x 2 to 6 whose cell 3 is `Hs step` (e.g. "0.8 2": a step; "-1.5 2": a pit).
+#[cfg(test)]
+pub(crate) fn stepped_row(step: &str) -> Map {
+    crate::map::parse_map(
+        "t.cub",
+        format!(
+            "NO ./a.png\nSO ./a.png\nWE ./a.png\nEA ./a.png\nF 1,1,1\nC 2,2,2\n\
+             Hr 0 2\nHs {step}\n\n11111111\n1Nrsrrr1\n11111111\n"
+        )
+        .as_bytes(),
+    )
+    .expect("map")
 }
 
 #[cfg(test)]
@@ -185,23 +189,9 @@ mod tests {
         assert!((t - 3.5 / 6.0).abs() < 1e-12, "{t}");
     }
 
-    /// A map of one row: the start (floor 0, ceiling 1), a room two walls tall with a step
-    /// (`Hs`, e.g. floor 0.8) in cell 3.
-    fn stepped(step: &str) -> Map {
-        crate::map::parse_map(
-            "t.cub",
-            format!(
-                "NO ./a.png\nSO ./a.png\nWE ./a.png\nEA ./a.png\nF 1,1,1\nC 2,2,2\n\
-                 Hr 0 2\nHs {step}\n\n1111111\n1Nrsrr1\n1111111\n"
-            )
-            .as_bytes(),
-        )
-        .expect("map")
-    }
-
     #[test]
     fn on_height_maps_a_step_face_stops_lines_below_its_top_but_not_above() {
-        let m = stepped("0.8 2");
+        let m = stepped_row("0.8 2");
         let doors = DoorState::none();
         let (a, b) = (Vec2::new(1.5, 1.5), Vec2::new(5.5, 1.5));
         // Eye to eye at 0.5: the step's face (0 to 0.8) is in the way, entered at x = 3.
@@ -231,7 +221,7 @@ mod tests {
 
     #[test]
     fn a_lowered_ceiling_stops_lines_above_it_and_flat_maps_ignore_heights() {
-        let m = stepped("0 0.4");
+        let m = stepped_row("0 0.4");
         let doors = DoorState::none();
         let (a, b) = (Vec2::new(1.5, 1.5), Vec2::new(5.5, 1.5));
         assert!(!sees(&m, &doors, (a, 0.5), (b, 0.5), 8.0));
