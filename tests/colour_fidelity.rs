@@ -345,3 +345,108 @@ fn bytes_at_256_colours_stay_within_sixteen_percent_of_ratatui_truecolor() {
     let mean = ratios.iter().sum::<f64>() / ratios.len() as f64;
     assert!(mean <= 0.16, "256 colours: {ratios:?} of ratatui truecolor");
 }
+
+/// `maps/heights.cub`, textures and all.
+fn heights_world() -> World {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("maps/heights.cub");
+    World::from_file(&path, true).expect("heights.cub loads").0
+}
+
+#[test]
+fn on_height_maps_faces_carry_the_pattern_and_bring_views_closer_at_256_colours() {
+    // Steps, ledges and walls of an `Hz` map write their surface phases as flat maps' walls do
+    // (floors and ceilings stay neutral): over these views of heights.cub blurred ΔE went from
+    // about 1.57 to 1.50 when they did.
+    let world = heights_world();
+    let palette = Palette::new(ColorLevel::Ansi256, false);
+    let (mut dithered, mut single) = (Vec::new(), Vec::new());
+    for (x, y, a) in [
+        (14.5, 4.5, 303.0),
+        (20.5, 7.5, 309.0),
+        (14.5, 14.5, 33.0),
+        (17.5, 14.5, 6.0),
+        (22.5, 8.5, 132.0),
+        (21.5, 13.5, 119.0),
+    ] {
+        let cam = Camera::from_angle(halfcast::Vec2::new(x, y), a, 66.0);
+        let mut fb = Scene::new(&world, cam).render(120, 40);
+        let phases = fb.phases().expect("faces write phases");
+        let patterned = phases.iter().filter(|&&p| p != 128).count();
+        assert!(
+            patterned > 120 * 80 / 10,
+            "({x}, {y}, {a}): {patterned} pixels"
+        );
+        dithered.push(compare(&fb, &shown(&palette, &fb)));
+        fb.clear_phases();
+        single.push(compare(&fb, &shown(&palette, &fb)));
+    }
+    let d = halfcast::bench::fidelity::mean(&dithered).unwrap();
+    let s = halfcast::bench::fidelity::mean(&single).unwrap();
+    assert!(
+        d.oklab_de_blur < s.oklab_de_blur - 0.03,
+        "dithered {d:?} vs single pairs {s:?}"
+    );
+}
+
+#[test]
+fn on_height_maps_the_pattern_moves_with_a_face_when_strafing() {
+    // Facing a face of heights.cub square on and stepping sideways by exactly three columns'
+    // worth of its distance, its pixels and phases are the old ones moved three columns.
+    use halfcast::render::height_cast::Band;
+    // Without its sprites (a plant nearer than the face moves by more than the face).
+    let mut world = heights_world();
+    world.sprites.clear();
+    let (cols, rows) = (120u16, 40u16);
+    let w = usize::from(cols);
+    let k = 3;
+    let face_at = |cast: &halfcast::render::cast::Cast, x: usize| {
+        cast.heights[x].bands.iter().find_map(|b| match b {
+            Band::Face(f) if f.rows.1 >= f.rows.0 + 8 => Some(*f),
+            _ => None,
+        })
+    };
+    let mut tried = 0;
+    for j in 1..world.map.height as i64 - 1 {
+        for i in 1..world.map.width as i64 - 1 {
+            if world.map.span(i, j).is_none() {
+                continue;
+            }
+            for angle in [0.0, 90.0, 180.0, 270.0] {
+                // Off the cell's centre, so no ray meets a face exactly on a lattice line.
+                let pos = halfcast::Vec2::new(i as f64 + 0.537, j as f64 + 0.471);
+                let cam = Camera::from_angle(pos, angle, 66.0);
+                let mut a = Framebuffer::for_cells(cols, rows);
+                let cast = Scene::new(&world, cam).render_into(&mut a, None);
+                let Some(f) = face_at(&cast, w / 2) else {
+                    continue;
+                };
+                let right = cam.plane * (1.0 / cam.plane.length());
+                let shift = k as f64 * f.perp_dist / cam.focal_length(w);
+                let moved = Camera::from_angle(pos + right * shift, angle, 66.0);
+                let mut b = Framebuffer::for_cells(cols, rows);
+                let cast_b = Scene::new(&world, moved).render_into(&mut b, None);
+                let same = |g: Option<halfcast::render::height_cast::FaceSpan>| {
+                    g.is_some_and(|g| g.cell == f.cell && g.side == f.side && g.rows == f.rows)
+                };
+                let columns: Vec<usize> = (0..w - k)
+                    .filter(|&x| same(face_at(&cast, x + k)) && same(face_at(&cast_b, x)))
+                    .collect();
+                if columns.len() < 12 {
+                    continue;
+                }
+                tried += 1;
+                let (pa, pb) = (a.phases().unwrap(), b.phases().unwrap());
+                let mut seen = std::collections::HashSet::new();
+                for &x in &columns {
+                    for y in f.rows.0..f.rows.1 {
+                        assert_eq!(b.get(x, y), a.get(x + k, y), "pixel ({x}, {y}) {pos:?}");
+                        assert_eq!(pb[y * w + x], pa[y * w + x + k], "phase ({x}, {y}) {pos:?}");
+                        seen.insert(pa[y * w + x + k]);
+                    }
+                }
+                assert!(seen.len() >= 8, "the face carries a pattern");
+            }
+        }
+    }
+    assert!(tried >= 3, "only {tried} square-on faces found");
+}

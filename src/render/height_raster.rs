@@ -7,6 +7,7 @@
 use crate::map::Cell;
 use crate::render::billboard::{draw_sprites, Occluders, SpriteOutcome};
 use crate::render::cast::{Cast, Side};
+use crate::render::dither_phase;
 use crate::render::framebuffer::Framebuffer;
 use crate::render::height_cast::{Band, FaceKind, FaceSpan, FlatSpan, Projection};
 use crate::render::light::{Shade, ShadeTable};
@@ -26,8 +27,8 @@ pub fn rasterize_heights(scene: &Scene, cast: &Cast, fb: &mut Framebuffer) -> Ve
     let proj = Projection::new(&scene.camera, &scene.view, w, h);
     let table = ShadeTable::new(&scene.light);
     let lamps = scene.lamp_light();
-    // Surfaces here carry no dither pattern (only sprites write phases): none may be left over
-    // from a previous frame in this buffer.
+    // Faces write their dither phases (floors and ceilings carry none, as on flat maps), and
+    // none may be left over from a previous frame in this buffer.
     fb.clear_phases();
     // Sprites are hidden by the distance of whatever was drawn at each pixel.
     let mut depth = if scene.world.sprites.is_empty() && scene.sprites.is_empty() {
@@ -52,7 +53,10 @@ pub fn rasterize_heights(scene: &Scene, cast: &Cast, fb: &mut Framebuffer) -> Ve
         for band in &col.bands {
             match band {
                 Band::Flat(f) => painter.flat(f, x, ray, fb, &mut depth),
-                Band::Face(f) => painter.face(f, x, ray, fb, &mut depth),
+                Band::Face(f) => {
+                    painter.face(f, x, ray, fb, &mut depth);
+                    painter.face_phases(f, x, ray, fb);
+                }
             }
         }
     }
@@ -125,6 +129,45 @@ impl Painter<'_> {
             if keep_depth {
                 depth[y * w + x] = dist as f32;
             }
+        }
+    }
+
+    /// Writes a face's dither phases: the face's own coordinates (along it, and its height in
+    /// the world) on a lattice about a pixel fine, as flat maps' walls get
+    /// ([`crate::render::dither_phase`]), so the 256- and 16-colour patterns lie on the faces.
+    fn face_phases(&self, f: &FaceSpan, x: usize, ray: Vec2, fb: &mut Framebuffer) {
+        let t = f.perp_dist;
+        if !(t > 0.0 && t.is_finite()) {
+            return;
+        }
+        // Pixels per unit along the face: where the next column's ray meets the face's line.
+        let pos = self.scene.camera.pos;
+        let next = ray + self.scene.camera.plane * (2.0 / fb.width() as f64);
+        let hit = pos + ray * t;
+        let du = match f.side {
+            Side::X if next.x.abs() > 1e-12 => {
+                (pos.y + next.y * (hit.x - pos.x) / next.x - hit.y).abs()
+            }
+            Side::Y if next.y.abs() > 1e-12 => {
+                (pos.x + next.x * (hit.y - pos.y) / next.y - hit.x).abs()
+            }
+            _ => 0.0,
+        };
+        let px_per_unit = self.proj.focal / t;
+        let along = if du > 0.0 && du.is_finite() {
+            1.0 / du
+        } else {
+            px_per_unit
+        };
+        let u = dither_phase::index(f.wall_x, dither_phase::lattice(along));
+        // Upright, a lattice step of at least a cell (two pixel rows), down from the top of a
+        // unit wall (1 − z) as the texture rows are.
+        let per_v = dither_phase::lattice(px_per_unit / 2.0);
+        let per_row = t / self.proj.focal;
+        for y in f.rows.0..f.rows.1 {
+            let down = 1.0 - self.proj.eye + (y as f64 + 0.5 - self.proj.horizon) * per_row;
+            let v = dither_phase::index(down, per_v);
+            fb.set_phase(x, y, dither_phase::at(u, v));
         }
     }
 
