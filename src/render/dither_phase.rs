@@ -31,23 +31,64 @@ pub fn at(u: i64, v: i64) -> u8 {
     DASH4[(v & 3) as usize][(u & 3) as usize] * 16 + 8
 }
 
+/// 2^(q/4) for q = 1..4: where the quarter-octave levels start within one doubling.
+const QUARTERS: [f64; 3] = [
+    1.189_207_115_002_721,
+    std::f64::consts::SQRT_2,
+    1.681_792_830_507_429,
+];
+
+/// The lowest and highest lattice levels (2⁻²⁰ and 2²⁰ in quarter octaves).
+const LEVEL_RANGE: (i64, i64) = (-80, 80);
+
 /// Lattice points per surface unit for a unit spanning `px_per_unit` pixels on screen: the largest
-/// power of 2^¼ whose lattice step is still at least one pixel (between 2⁻²⁰ and 2²⁰).
+/// power of 2^¼ whose lattice step is still at least one pixel (between 2⁻²⁰ and 2²⁰), i.e.
+/// 2^(⌊4·log2 px⌋ / 4).
+///
+/// Every face of every column asks (several per column on maps with heights), so the level is read
+/// off the float's exponent and mantissa and its power from a table, with `log2` only where the
+/// mantissa is within rounding of a level's start: the results are those of the formula, bit for bit.
 #[must_use]
 #[inline]
 pub fn lattice(px_per_unit: f64) -> f64 {
     if !(px_per_unit.is_finite() && px_per_unit > 0.0) {
         return 1.0;
     }
-    let k = (px_per_unit.log2() * LEVELS_PER_OCTAVE).floor() / LEVELS_PER_OCTAVE;
-    k.clamp(-20.0, 20.0).exp2()
+    let level = if px_per_unit < f64::MIN_POSITIVE {
+        LEVEL_RANGE.0
+    } else {
+        let bits = px_per_unit.to_bits();
+        let exponent = ((bits >> 52) & 0x7ff) as i64 - 1023;
+        // The mantissa as a number in [1, 2).
+        let m = f64::from_bits((bits & ((1 << 52) - 1)) | (1023 << 52));
+        let near = |edge: f64| (m - edge).abs() < 1e-9;
+        if near(1.0) || near(2.0) || QUARTERS.iter().any(|&q| near(q)) {
+            (px_per_unit.log2() * LEVELS_PER_OCTAVE).floor() as i64
+        } else {
+            exponent * LEVELS_PER_OCTAVE as i64
+                + QUARTERS.iter().filter(|&&q| m >= q).count() as i64
+        }
+    };
+    let level = level.clamp(LEVEL_RANGE.0, LEVEL_RANGE.1);
+    level_powers()[(level - LEVEL_RANGE.0) as usize]
+}
+
+/// 2^(level / 4) for every level in [`LEVEL_RANGE`], computed once with `exp2`.
+fn level_powers() -> &'static [f64] {
+    static POWERS: std::sync::OnceLock<Vec<f64>> = std::sync::OnceLock::new();
+    POWERS.get_or_init(|| {
+        (LEVEL_RANGE.0..=LEVEL_RANGE.1)
+            .map(|l| (l as f64 / LEVELS_PER_OCTAVE).exp2())
+            .collect()
+    })
 }
 
 /// The lattice index of surface coordinate `coord` at `per_unit` lattice points per unit.
 #[must_use]
 #[inline]
 pub fn index(coord: f64, per_unit: f64) -> i64 {
-    (coord * per_unit).floor() as i64
+    // `floor` without the libm call (baseline x86-64 has no rounding instruction).
+    crate::render::raster::fast_floor(coord * per_unit)
 }
 
 #[cfg(test)]
@@ -63,6 +104,36 @@ mod tests {
             seen.sort_unstable();
             assert_eq!(seen, (0..16).map(|k| k * 16 + 8).collect::<Vec<u8>>());
         }
+    }
+
+    #[test]
+    fn the_lattice_is_the_largest_quarter_power_of_two_at_most_the_pixels_per_unit() {
+        // Against the definition: 2^(floor(4·log2 px) / 4).
+        let mut px = 1e-7;
+        while px < 1e7 {
+            let k = (f64::log2(px) * 4.0).floor() / 4.0;
+            let want = k.clamp(-20.0, 20.0).exp2();
+            assert_eq!(lattice(px).to_bits(), want.to_bits(), "{px}");
+            // Right at and beside the levels' starts, where rounding decides.
+            let edge = k.exp2();
+            for p in [
+                edge,
+                f64::from_bits(edge.to_bits() - 1),
+                f64::from_bits(edge.to_bits() + 1),
+            ] {
+                let k = (f64::log2(p) * 4.0).floor() / 4.0;
+                assert_eq!(
+                    lattice(p).to_bits(),
+                    k.clamp(-20.0, 20.0).exp2().to_bits(),
+                    "{p}"
+                );
+            }
+            px *= 1.013;
+        }
+        assert_eq!(lattice(1.0), 1.0);
+        assert_eq!(lattice(64.0), 64.0);
+        assert_eq!(lattice(1e-300), 2f64.powi(-20));
+        assert_eq!(lattice(1e300), 2f64.powi(20));
     }
 
     #[test]

@@ -110,6 +110,13 @@ impl Framebuffer {
         &mut phases[y * self.width..(y + 1) * self.width]
     }
 
+    /// The whole plane of phases, row-major, created (all [`NEUTRAL_PHASE`]) on first use: for
+    /// renderers that write down a column.
+    pub fn phases_mut(&mut self) -> &mut [u8] {
+        let n = self.width * self.height;
+        self.phases.get_or_insert_with(|| vec![NEUTRAL_PHASE; n])
+    }
+
     /// Sets the phase at (x, y) (creating the plane on first use).
     #[inline]
     pub fn set_phase(&mut self, x: usize, y: usize, phase: u8) {

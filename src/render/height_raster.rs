@@ -164,10 +164,12 @@ impl Painter<'_> {
         // unit wall (1 − z) as the texture rows are.
         let per_v = dither_phase::lattice(px_per_unit / 2.0);
         let per_row = t / self.proj.focal;
+        let w = fb.width();
+        let phases = fb.phases_mut();
         for y in f.rows.0..f.rows.1 {
             let down = 1.0 - self.proj.eye + (y as f64 + 0.5 - self.proj.horizon) * per_row;
             let v = dither_phase::index(down, per_v);
-            fb.set_phase(x, y, dither_phase::at(u, v));
+            phases[y * w + x] = dither_phase::at(u, v);
         }
     }
 

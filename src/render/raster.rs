@@ -277,7 +277,7 @@ fn floor_and_ceiling(
 pub(crate) fn fast_floor(v: f64) -> i64 {
     let i = v as i64;
     if (i as f64) > v {
-        i - 1
+        i.saturating_sub(1)
     } else {
         i
     }
