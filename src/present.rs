@@ -20,6 +20,7 @@ use crate::color::Rgb;
 use crate::encode::cells::CellWriter;
 use crate::encode::{ColorLevel, EncodeOptions, Encoder, SYNC_BEGIN, SYNC_END};
 use crate::render::framebuffer::Framebuffer;
+use crate::termframe::ratatui_rgb;
 use crate::widget::half_block::{to_color, UPPER_HALF};
 
 /// Turns whole screens into the bytes that update a terminal from the previous screen.
@@ -152,8 +153,8 @@ impl Presenter {
                 for &(x, y) in &over {
                     let c = &screen[(x, y)];
                     let (cx, cy) = (usize::from(x - view_area.x), usize::from(y - view_area.y));
-                    let top = from_color(c.fg).unwrap_or(Rgb::new(0, 0, 0));
-                    let bottom = from_color(c.bg).unwrap_or(Rgb::new(0, 0, 0));
+                    let top = ratatui_rgb(c.fg).unwrap_or(Rgb::new(0, 0, 0));
+                    let bottom = ratatui_rgb(c.bg).unwrap_or(Rgb::new(0, 0, 0));
                     self.painted.set(cx, 2 * cy, top);
                     self.painted.set(cx, 2 * cy + 1, bottom);
                 }
@@ -224,14 +225,6 @@ fn covering(screen: &Buffer, view: &Framebuffer, at: Rect) -> Vec<(u16, u16)> {
         }
     }
     out
-}
-
-/// The colour of a cell's pen, when it is an RGB one.
-fn from_color(c: ratatui::style::Color) -> Option<Rgb> {
-    match c {
-        ratatui::style::Color::Rgb(r, g, b) => Some(Rgb::new(r, g, b)),
-        _ => None,
-    }
 }
 
 #[cfg(test)]
