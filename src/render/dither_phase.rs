@@ -91,6 +91,26 @@ pub fn index(coord: f64, per_unit: f64) -> i64 {
     crate::render::raster::fast_floor(coord * per_unit)
 }
 
+/// Writes the phases of an upright surface (a wall, a step's or a lintel's face) in column `x`
+/// of a `width`-wide phase plane, rows `rows.0..rows.1`: the lattice column of `along` (the
+/// fraction across the surface) at `px_along` pixels per unit, and the lattice row of `down(y)`
+/// (the fraction down it at pixel row `y`) at `px_up` pixels per unit, a lattice step being at
+/// least a cell (two pixel rows) upright, so a cell reads its upper pixel's phase.
+pub fn write_upright(
+    phases: &mut [u8],
+    (width, x): (usize, usize),
+    rows: (usize, usize),
+    (along, px_along): (f64, f64),
+    px_up: f64,
+    down: impl Fn(usize) -> f64,
+) {
+    let u = index(along, lattice(px_along));
+    let per_v = lattice(px_up / 2.0);
+    for y in rows.0..rows.1 {
+        phases[y * width + x] = at(u, index(down(y), per_v));
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

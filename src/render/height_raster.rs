@@ -159,18 +159,17 @@ impl Painter<'_> {
         } else {
             px_per_unit
         };
-        let u = dither_phase::index(f.wall_x, dither_phase::lattice(along));
-        // Upright, a lattice step of at least a cell (two pixel rows), down from the top of a
-        // unit wall (1 − z) as the texture rows are.
-        let per_v = dither_phase::lattice(px_per_unit / 2.0);
         let per_row = t / self.proj.focal;
         let w = fb.width();
-        let phases = fb.phases_mut();
-        for y in f.rows.0..f.rows.1 {
-            let down = 1.0 - self.proj.eye + (y as f64 + 0.5 - self.proj.horizon) * per_row;
-            let v = dither_phase::index(down, per_v);
-            phases[y * w + x] = dither_phase::at(u, v);
-        }
+        // Down from the top of a unit wall (1 − z), as the texture rows are.
+        dither_phase::write_upright(
+            fb.phases_mut(),
+            (w, x),
+            f.rows,
+            (f.wall_x, along),
+            px_per_unit,
+            |y| 1.0 - self.proj.eye + (y as f64 + 0.5 - self.proj.horizon) * per_row,
+        );
     }
 
     /// A wall, step or lintel face: one texture column, rows by world height.

@@ -198,13 +198,15 @@ fn wall_phases(hits: &[ColumnHit], span: &WallSpan, x: usize, fb: &mut Framebuff
         _ => 0.0,
     };
     let along = if du > 0.0 { 1.0 / du } else { span.height };
-    let u = dither_phase::index(hit.wall_x, dither_phase::lattice(along));
-    // Upright, a lattice step of at least a cell (two pixel rows): a cell reads its upper pixel's phase.
-    let per_v = dither_phase::lattice(span.height / 2.0);
-    for y in span.rows.0..span.rows.1 {
-        let v = dither_phase::index((y as f64 + 0.5 - span.top) / span.height, per_v);
-        fb.set_phase(x, y, dither_phase::at(u, v));
-    }
+    let w = fb.width();
+    dither_phase::write_upright(
+        fb.phases_mut(),
+        (w, x),
+        span.rows,
+        (hit.wall_x, along),
+        span.height,
+        |y| (y as f64 + 0.5 - span.top) / span.height,
+    );
 }
 
 /// Horizontal scanline floor/ceiling casting (Lode's method with the shared focal length),
