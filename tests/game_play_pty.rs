@@ -4,6 +4,7 @@
 //! campaign going from one map's exit to the next.
 #![cfg(unix)]
 
+mod common;
 mod pty_support;
 
 use std::thread;
@@ -174,18 +175,13 @@ fn a_campaign_shows_the_results_at_the_exit_and_enter_plays_the_next_map() {
 
 #[test]
 fn record_refuses_a_campaign() {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_halfcast"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args([
-            "record",
-            "-o",
-            "/dev/null",
-            "tests/fixtures/game_tiny_a.cub",
-            "tests/fixtures/game_tiny_b.cub",
-        ])
-        .stdin(std::process::Stdio::null())
-        .output()
-        .unwrap();
+    let out = common::halfcast(&[
+        "record",
+        "-o",
+        "/dev/null",
+        "tests/fixtures/game_tiny_a.cub",
+        "tests/fixtures/game_tiny_b.cub",
+    ]);
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("record plays one map, got 2"), "{err}");
