@@ -379,7 +379,7 @@ fn creatures_keep_off_ledges_too_high_to_step_onto() {
             // The player stands on the dais, in sight: chasers would like to climb it.
             let mut players = [Player {
                 pos: Vec2::new(3.5, 2.5),
-                eye: w.map.span(3, 2).map_or(0.0, |s| s.floor) + 0.5,
+                eye: w.map.floor_height(3, 2) + 0.5,
                 score: &mut score,
             }];
             level.tick(&w.map, &doors, &mut players, 1.0 / 30.0);
@@ -409,7 +409,7 @@ fn a_creature_below_a_ledge_does_not_catch_a_player_on_it_but_one_on_a_step_is_c
         // On the dais, 0.3 from the creature on the hall floor beside it.
         let mut players = [Player {
             pos: Vec2::new(3.1, 2.5),
-            eye: w.map.span(3, 2).map_or(0.0, |s| s.floor) + 0.5,
+            eye: w.map.floor_height(3, 2) + 0.5,
             score: &mut score,
         }];
         let events = level.tick(&w.map, &doors, &mut players, 1.0 / 30.0);

@@ -93,8 +93,7 @@ pub(crate) fn render(args: &RenderArgs) -> Result<(), Failure> {
     }
     let ground = world
         .map
-        .span(camera.pos.x.floor() as i64, camera.pos.y.floor() as i64)
-        .map_or(0.0, |s| s.floor);
+        .floor_height(camera.pos.x.floor() as i64, camera.pos.y.floor() as i64);
     // The game's items and creatures as the level starts (what a player sees on the first frame).
     let level_sprites = halfcast::game::Level::new(&world.map, 0).sprites(&world);
     let mut scene = Scene::new(&world, camera)

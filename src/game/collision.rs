@@ -188,7 +188,7 @@ fn move_axis(obstacles: &Obstacles, p: Vec2, d: f64, r: f64, along_x: bool) -> f
 pub fn settle(map: &Map, p: Vec2, r: f64) -> Vec2 {
     let (i, j) = centre_cell(p);
     let standing = Body {
-        feet: map.span(i, j).map_or(0.0, |s| s.floor),
+        feet: map.floor_height(i, j),
         eye: crate::render::view::STANDING_EYE,
     };
     let ((i0, i1), (j0, j1)) = covered(p, r);

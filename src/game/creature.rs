@@ -56,7 +56,7 @@ impl Ground<'_> {
         if blocks_sight(self.map, self.doors, to.0, to.1) {
             return false;
         }
-        let feet = self.map.span(from.0, from.1).map_or(0.0, |s| s.floor);
+        let feet = self.map.floor_height(from.0, from.1);
         let body = Body {
             feet,
             eye: STANDING_EYE,
@@ -194,7 +194,7 @@ impl Creature {
     #[must_use]
     pub fn spans_height(&self, map: &Map, z: f64) -> bool {
         let (i, j) = (self.pos.x.floor() as i64, self.pos.y.floor() as i64);
-        let feet = map.span(i, j).map_or(0.0, |s| s.floor);
+        let feet = map.floor_height(i, j);
         (feet..=feet + 1.0).contains(&z)
     }
 
@@ -215,7 +215,7 @@ impl Creature {
         let mut budget = speed * dt;
         let feet = |p: Vec2| {
             let c = collision::centre_cell(p);
-            ground.map.span(c.0, c.1).map_or(0.0, |s| s.floor)
+            ground.map.floor_height(c.0, c.1)
         };
         for _ in 0..4 {
             if budget <= 0.0 {
@@ -281,7 +281,7 @@ impl Creature {
         };
         // It looks from a standing eye's height over its own floor.
         let (i, j) = collision::centre_cell(self.pos);
-        let eye = ground.map.span(i, j).map_or(0.0, |s| s.floor) + STANDING_EYE;
+        let eye = ground.map.floor_height(i, j) + STANDING_EYE;
         let mut best: Option<(f64, Vec2)> = None;
         for &(p, p_eye) in players {
             let d = (p - self.pos).length();

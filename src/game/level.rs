@@ -406,7 +406,7 @@ impl Level {
             if map.has_heights() {
                 // sprite_base adds the cell's floor on Hz maps; z already includes it.
                 let (i, j) = (shot.pos.x.floor() as i64, shot.pos.y.floor() as i64);
-                def.offset -= map.span(i, j).map_or(0.0, |s| s.floor);
+                def.offset -= map.floor_height(i, j);
             }
             out.push(Sprite {
                 def,

@@ -139,7 +139,7 @@ impl GameState {
         let map = &world.map;
         camera.pos = collision::settle(map, camera.pos, collision::PLAYER_RADIUS);
         let (i, j) = collision::centre_cell(camera.pos);
-        let floor = map.span(i, j).map_or(0.0, |s| s.floor);
+        let floor = map.floor_height(i, j);
         let standing = Body {
             feet: floor,
             eye: STANDING_EYE,

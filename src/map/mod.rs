@@ -227,6 +227,14 @@ impl Map {
         }
     }
 
+    /// The height of the floor in cell (`i`, `j`): what a body there stands on (its span's floor;
+    /// 0 for walls and the void, and on flat maps).
+    #[must_use]
+    #[inline]
+    pub fn floor_height(&self, i: i64, j: i64) -> f64 {
+        self.span(i, j).map_or(0.0, |s| s.floor)
+    }
+
     /// Whether any zone has an `Hz` line: without one the world is flat and renders exactly as
     /// Wolfenstein-style maps always have (renderers take the flat path).
     #[must_use]

@@ -306,7 +306,7 @@ impl<'a> Minimap<'a> {
                     Cell::Door(_) if self.doors.is_some() => Cell::Floor { zone: 0 },
                     c => c,
                 };
-                let height = map.span(i, j).map_or(0.0, |s| s.floor);
+                let height = map.floor_height(i, j);
                 let lip = heights && on_ledge_lip(map, &view, (px, py), (i, j), height);
                 let colour = if lip {
                     LEDGE
@@ -581,7 +581,7 @@ impl Minimap<'_> {
                 let c = match map.cell(i, j) {
                     Cell::Void => " ",
                     Cell::Wall(_) => "#",
-                    Cell::Floor { .. } => level_glyph(map.span(i, j).map_or(0.0, |s| s.floor)),
+                    Cell::Floor { .. } => level_glyph(map.floor_height(i, j)),
                     Cell::Door(_) => match self.doors {
                         Some(d) if d.open_amount((i, j)) >= 0.5 => "/",
                         _ => "+",
