@@ -193,7 +193,7 @@ impl Creature {
     /// over a pit, or a player on a balcony above, passes a creature below.
     #[must_use]
     pub fn spans_height(&self, map: &Map, z: f64) -> bool {
-        let (i, j) = (self.pos.x.floor() as i64, self.pos.y.floor() as i64);
+        let (i, j) = collision::centre_cell(self.pos);
         let feet = map.floor_height(i, j);
         (feet..=feet + 1.0).contains(&z)
     }
