@@ -9,12 +9,12 @@ use ratatui::style::{Color, Modifier, Style};
 
 use super::players::{PlayerId, Snapshot};
 use crate::color::Rgb;
-use crate::encode::{ColorLevel, Palette};
 use crate::game::GameState;
 use crate::map::{Blend, ColourKey, SpriteDef, TextureRef};
 use crate::render::cast::Cast;
 use crate::render::framebuffer::Framebuffer;
 use crate::texture::builtin;
+use crate::widget::half_block::UPPER_HALF;
 use crate::widget::minimap::MapView;
 use crate::world::sprite::{project, Sprite};
 use crate::world::World;
@@ -88,8 +88,7 @@ pub struct Tag {
 /// Marks every other player visible in `fb` (just rendered through `eye`'s camera; `cast` has
 /// the wall depth per column): a downward triangle in the player's minimap colour over its
 /// head, hidden where a wall is nearer. Returns the name tags of those within
-/// [`TAG_DISTANCE`] (their cells are painted in the player's colour over [`TAG_BG`], so the
-/// encoder sends them as a plain backing, and resends the scene once the tag moves on).
+/// [`TAG_DISTANCE`], for [`draw_tags`].
 pub fn mark_players(
     fb: &mut Framebuffer,
     eye: &GameState,
@@ -165,10 +164,6 @@ pub fn mark_players(
         let name: String = label.chars().take(w).collect();
         let n = name.chars().count() as i64;
         let col = (centre - n / 2).clamp(0, w as i64 - n);
-        for x in col..col + n {
-            fb.set(x as usize, 2 * row as usize, p.color);
-            fb.set(x as usize, 2 * row as usize + 1, TAG_BG);
-        }
         tags.push(Tag {
             col: col as u16,
             row: row as u16,
@@ -179,29 +174,27 @@ pub fn mark_players(
     tags
 }
 
-/// The bytes that write `tags` over a view whose top-left cell is `origin`, after the
-/// encoder's own bytes (ending with the default colours, as every frame does).
-#[must_use]
-pub fn tag_bytes(tags: &[Tag], origin: (u16, u16), level: ColorLevel) -> Vec<u8> {
-    let mut out = Vec::new();
-    let palette = Palette::new(level, false);
-    let sgr = |c: Rgb, ground: u8| -> String {
-        match level {
-            ColorLevel::TrueColor => format!("{ground}8;2;{};{};{}", c.r, c.g, c.b),
-            _ => format!("{ground}8;5;{}", palette.code(c, 0, 0)),
-        }
-    };
+/// Writes `tags` in the screen buffer over the view whose area is `view` (bold, in the player's
+/// colour on a dark backing), on the view's own cells only: an overlay drawn over the view (the
+/// help, a message) stays on top. The presenter sends such cells after the view's own bytes.
+pub fn draw_tags(buf: &mut Buffer, view: Rect, tags: &[Tag]) {
     for t in tags {
-        let (x, y) = (origin.0 + t.col + 1, origin.1 + t.row + 1);
-        out.extend_from_slice(format!("\x1b[{y};{x}H").as_bytes());
-        if level != ColorLevel::Mono {
-            let colours = format!("\x1b[1;{};{}m", sgr(t.color, 3), sgr(TAG_BG, 4));
-            out.extend_from_slice(colours.as_bytes());
+        let style = Style::new()
+            .fg(Color::Rgb(t.color.r, t.color.g, t.color.b))
+            .bg(Color::Rgb(TAG_BG.r, TAG_BG.g, TAG_BG.b))
+            .add_modifier(Modifier::BOLD);
+        let y = view.y + t.row;
+        for (k, ch) in t.name.chars().enumerate() {
+            let x = view.x + t.col + k as u16;
+            if !view.contains(ratatui::layout::Position::new(x, y)) {
+                break;
+            }
+            let cell = &mut buf[(x, y)];
+            if cell.symbol() == UPPER_HALF {
+                cell.set_char(ch).set_style(style);
+            }
         }
-        out.extend_from_slice(t.name.as_bytes());
-        out.extend_from_slice(b"\x1b[m");
     }
-    out
 }
 
 /// Sets `world`'s sprites to its first `base` ones (the map's) plus every player but `eye`.

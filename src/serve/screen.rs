@@ -14,7 +14,7 @@ use ratatui::widgets::{Block, Paragraph, Widget, Wrap};
 use super::avatars;
 use super::players::{PlayerId, Snapshot};
 use super::round::RoundEnd;
-use crate::encode::{ColorLevel, ColourChoice, ColourReason, EncodeOptions, SYNC_END};
+use crate::encode::{ColorLevel, ColourChoice, ColourReason, EncodeOptions};
 use crate::present::Presenter;
 use crate::render::framebuffer::Framebuffer;
 use crate::tui::keys::InputMode;
@@ -163,7 +163,6 @@ impl SessionScreen {
         let mut view = view_rect(&panes);
         let started = Instant::now();
         let mut render_time = std::time::Duration::ZERO;
-        let mut tags = Vec::new();
         match eye.and_then(|id| snap.player(id).map(|p| (id, p))) {
             Some((id, p)) => {
                 if let Some(world) = Arc::get_mut(&mut self.world) {
@@ -177,7 +176,7 @@ impl SessionScreen {
                 self.fb
                     .resize(usize::from(view.width), usize::from(view.height) * 2);
                 let cast = render_view(&state, &mut self.fb);
-                tags = avatars::mark_players(&mut self.fb, &state, &cast, snap, id);
+                let tags = avatars::mark_players(&mut self.fb, &state, &cast, snap, id);
                 render_time = started.elapsed();
                 let results = snap.ended.as_ref().map(|end| round_results(&state, end));
                 let screen = Screen {
@@ -197,6 +196,7 @@ impl SessionScreen {
                     let inner = Block::bordered().inner(r);
                     avatars::label_minimap(&mut buf, inner, &state, &cast, snap, id);
                 }
+                avatars::draw_tags(&mut buf, view, &tags);
             }
             None => {
                 view = Rect::default();
@@ -213,20 +213,9 @@ impl SessionScreen {
             buf.set_style(row, BAR);
             Paragraph::new(Line::raw(header)).render(row, &mut buf);
         }
-        let level = self.presenter.level();
         let bytes = self.presenter.frame(&buf, &self.fb, view);
         self.out.clear();
         self.out.extend_from_slice(bytes);
-        if !tags.is_empty() {
-            // Inside the synchronized update, when there is one.
-            let at = if self.out.ends_with(SYNC_END) {
-                self.out.len() - SYNC_END.len()
-            } else {
-                self.out.len()
-            };
-            let overlay = avatars::tag_bytes(&tags, (view.x, view.y), level);
-            self.out.splice(at..at, overlay);
-        }
         self.stats.record_bytes(self.out.len());
         self.stats
             .record(Instant::now(), render_time, started.elapsed() - render_time);
@@ -408,5 +397,22 @@ mod tests {
                 "{level}: {text}"
             );
         }
+    }
+
+    #[test]
+    fn a_name_tag_stays_under_the_help_box() {
+        let size = (100, 30);
+        let Panes::Game { view, .. } = panes_for(size, Toggles::default()) else {
+            panic!("too small")
+        };
+        let (world, sheet, near) = facing(2.5);
+        let mut s = SessionScreen::new(&world, sheet, ColorLevel::TrueColor);
+        let mut p = vt100::Parser::new(size.1, size.0, 0);
+        p.process(s.frame(&near, Some(1), "", size, InputMode::Emulated));
+        assert!(view_text(&p, view).contains("bob"));
+        s.toggles.help = true;
+        p.process(s.frame(&near, Some(1), "", size, InputMode::Emulated));
+        let text = view_text(&p, view);
+        assert!(text.contains("help") && !text.contains("bob"), "{text}");
     }
 }
