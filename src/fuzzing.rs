@@ -7,8 +7,8 @@
 
 use crate::map::parse_map;
 use crate::replay::Replay;
-use crate::serve::input::{InputParser, MAX_SEQUENCE};
 use crate::termframe::{parse_frame, TermFrame, MAX_FRAME};
+use crate::ui::key_bytes::{InputParser, MAX_SEQUENCE};
 use crate::world::{TextureSource, World};
 
 /// The file name the map and replay targets parse under; every error must name it.

@@ -145,7 +145,7 @@ pub mod encode;
 // not part of the library API (hidden from its docs, and absent without their feature).
 #[doc(hidden)]
 #[allow(missing_docs)]
-#[cfg(feature = "serve")]
+#[cfg(feature = "ui")]
 pub mod fuzzing;
 pub mod game;
 pub mod input_file;
@@ -170,6 +170,12 @@ pub mod texture;
 #[allow(missing_docs)]
 #[cfg(feature = "tui")]
 pub mod tui;
+// The game screen shared by the local terminal, SSH sessions and replays: public only because
+// tests/ and the binary drive it; not part of the library API.
+#[doc(hidden)]
+#[allow(missing_docs)]
+#[cfg(feature = "ui")]
+pub mod ui;
 mod vec2;
 pub mod widget;
 pub mod world;

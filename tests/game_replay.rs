@@ -10,8 +10,8 @@ mod pty_support;
 use std::sync::Arc;
 
 use common::{replay_cast, root};
-use halfcast::replay::player::{play_all, Frame, Player};
 use halfcast::replay::Replay;
+use halfcast::ui::replay_player::{play_all, Frame, Player};
 use halfcast::World;
 
 const TO_EXIT: &str = "tests/fixtures/game_to_exit.hcr";

@@ -10,9 +10,9 @@ mod serve_support;
 use std::sync::Arc;
 use std::time::Duration;
 
+use halfcast::game::multi::players::Players;
+use halfcast::game::multi::round::{Mode, RESULTS_SECONDS};
 use halfcast::game::{Action, Held, Input};
-use halfcast::serve::players::Players;
-use halfcast::serve::round::{Mode, RESULTS_SECONDS};
 use halfcast::serve::{start, RunningServer, ServeConfig};
 use halfcast::World;
 use serve_support::{header_has, Client};

@@ -7,8 +7,8 @@ mod common;
 use std::sync::Arc;
 
 use common::{halfcast_ok, root};
-use halfcast::replay::player::Player;
 use halfcast::replay::Replay;
+use halfcast::ui::replay_player::Player;
 use halfcast::World;
 
 const FIXTURE: &str = "tests/fixtures/heights_stairs.hcr";

@@ -4,11 +4,11 @@ use std::sync::Arc;
 
 use halfcast::camera::Camera;
 use halfcast::game::GameState;
-use halfcast::tui::keys::InputMode;
-use halfcast::tui::layout::{Panes, Toggles};
-use halfcast::tui::render::render_view;
-use halfcast::tui::screen::{draw, Screen};
 use halfcast::tui::FrameStats;
+use halfcast::ui::keys::InputMode;
+use halfcast::ui::layout::{Panes, Toggles};
+use halfcast::ui::render::render_view;
+use halfcast::ui::screen::{draw, Screen};
 use halfcast::{Framebuffer, World};
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;

@@ -48,11 +48,11 @@ struct Cli {
 
 /// The keys, for `--help` (from the same table as the in-game `?` help).
 fn keys_help() -> String {
-    use halfcast::tui::help::HelpOverlay;
-    use halfcast::tui::keymap::KeyMap;
+    use halfcast::ui::help::HelpOverlay;
+    use halfcast::ui::keymap::KeyMap;
     let keys = KeyMap::default();
     let help = HelpOverlay {
-        mode: halfcast::tui::keys::InputMode::Emulated,
+        mode: halfcast::ui::keys::InputMode::Emulated,
         keys: &keys,
     };
     let mut out = String::from("Keys while playing (defaults; a config file can rebind them):\n");

@@ -8,8 +8,8 @@ use halfcast::camera::Camera;
 use halfcast::encode::{ColorLevel, ColourChoice, EncodeOptions};
 use halfcast::game::Speeds;
 use halfcast::tui::config::Config;
-use halfcast::tui::layout::Toggles;
 use halfcast::tui::{self, Ending, LoopOptions, PlayOptions, Setup, Stage, TerminalError};
+use halfcast::ui::layout::Toggles;
 
 use super::options::{MapArgs, PoseArgs};
 use super::{camera_for, detect_colours, load_world, parse_level, write_output, Failure};

@@ -8,9 +8,9 @@ use halfcast::encode::{ColorLevel, EncodeOptions};
 use halfcast::input_file::read_capped;
 use halfcast::output::{json::RayReport, text};
 use halfcast::present::Presenter;
-use halfcast::replay::player::{Frame, Player};
 use halfcast::replay::{MapSource, Replay, MAX_FRAMES, MAX_REPLAY_BYTES};
 use halfcast::termframe::{to_cells_text, TermFrame};
+use halfcast::ui::replay_player::{Frame, Player};
 use halfcast::world::World;
 
 /// What a replayed frame is written as.

@@ -67,10 +67,10 @@ pub(crate) struct ServeArgs {
     /// The game: coop (shared points, anyone's exit ends the round) or tag (one player is
     /// "it"; touching passes it on; the least time as "it" wins).
     #[arg(long, default_value = "coop", value_parser = parse_mode)]
-    pub(crate) mode: halfcast::serve::round::Mode,
+    pub(crate) mode: halfcast::game::multi::round::Mode,
 }
 
-fn parse_mode(s: &str) -> Result<halfcast::serve::round::Mode, String> {
+fn parse_mode(s: &str) -> Result<halfcast::game::multi::round::Mode, String> {
     s.parse()
 }
 

@@ -11,6 +11,7 @@ pub mod footing;
 pub mod input;
 pub mod key_colour;
 pub mod level;
+pub mod multi;
 pub mod pose;
 pub mod projectile;
 pub mod rng;

@@ -1,11 +1,6 @@
 //! Deterministic recordings: the `.hcr` file format and the fixed-timestep player.
 
 pub mod format;
-// Plays a recording through the TUI's screens (the binary's `replay` commands).
-#[doc(hidden)]
-#[allow(missing_docs)]
-#[cfg(feature = "tui")]
-pub mod player;
 
 pub use format::{
     FrameInput, Header, MapSource, Replay, ReplayError, MAX_FRAMES, MAX_REPLAY_BYTES,

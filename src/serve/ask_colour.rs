@@ -1,5 +1,5 @@
 //! Asking an SSH client's terminal whether it shows 24-bit colour, over the channel, before the
-//! first frame: the same queries as the local game ([`crate::tui::colour_query`]), answered
+//! first frame: the same queries as the local game ([`crate::ui::colour_query`]), answered
 //! through the channel's data.
 
 use std::time::Duration;
@@ -8,7 +8,7 @@ use russh::server::Handle;
 use russh::ChannelId;
 use tokio::sync::mpsc;
 
-use crate::tui::colour_query::{ReplyScanner, QUERY, QUERY_PATIENCE};
+use crate::ui::colour_query::{ReplyScanner, QUERY, QUERY_PATIENCE};
 
 /// Sends `before` (the session's terminal set-up) and the query, and reads the client's input until the DA1 reply or `patience` (the round
 /// trip is longer than a local terminal's, so the caller may allow more).

@@ -7,8 +7,8 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Modifier, Style};
 
-use super::players::{PlayerId, Snapshot};
 use crate::color::Rgb;
+use crate::game::multi::players::{PlayerId, Snapshot};
 use crate::game::GameState;
 use crate::map::{Blend, ColourKey, SpriteDef, TextureRef};
 use crate::render::cast::Cast;
@@ -253,7 +253,7 @@ pub fn label_minimap(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::serve::players::Players;
+    use crate::game::multi::players::Players;
     use std::sync::Arc;
 
     #[test]
@@ -314,7 +314,7 @@ mod tests {
         let snap = Snapshot {
             version: 1,
             doors: crate::world::door::DoorState::none(),
-            players: vec![super::super::players::PlayerView {
+            players: vec![crate::game::multi::players::PlayerView {
                 id: 7,
                 name: "ada".into(),
                 color: colour,

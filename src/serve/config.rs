@@ -59,7 +59,7 @@ pub struct ServeConfig {
     /// Silence the connect/disconnect log on stderr.
     pub quiet: bool,
     /// The game everybody plays: coop or tag.
-    pub mode: super::round::Mode,
+    pub mode: crate::game::multi::round::Mode,
 }
 
 impl ServeConfig {
@@ -83,7 +83,7 @@ impl ServeConfig {
             tick_hz: 30,
             fps: 30,
             quiet: false,
-            mode: super::round::Mode::Coop,
+            mode: crate::game::multi::round::Mode::Coop,
         }
     }
 }

@@ -12,18 +12,18 @@ use ratatui::text::Line;
 use ratatui::widgets::{Block, Paragraph, Widget, Wrap};
 
 use super::avatars;
-use super::players::{PlayerId, Snapshot};
-use super::round::RoundEnd;
 use crate::encode::{ColorLevel, ColourChoice, ColourReason, EncodeOptions};
+use crate::game::multi::players::{PlayerId, Snapshot};
+use crate::game::multi::round::RoundEnd;
 use crate::present::Presenter;
 use crate::render::framebuffer::Framebuffer;
-use crate::tui::keys::InputMode;
-use crate::tui::layout::{Panes, Toggles};
-use crate::tui::render::render_view;
-use crate::tui::results::{Results, Then};
-use crate::tui::screen::{draw, Screen};
-use crate::tui::stats::FrameStats;
-use crate::tui::status::BAR;
+use crate::ui::keys::InputMode;
+use crate::ui::layout::{Panes, Toggles};
+use crate::ui::render::render_view;
+use crate::ui::results::{Results, Then};
+use crate::ui::screen::{draw, Screen};
+use crate::ui::stats::FrameStats;
+use crate::ui::status::BAR;
 use crate::world::World;
 
 /// Rows above the TUI's panes: the header.
@@ -226,7 +226,7 @@ impl SessionScreen {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::serve::players::Players;
+    use crate::game::multi::players::Players;
     use crate::termframe::from_screen;
 
     fn served() -> (World, usize) {

@@ -22,17 +22,17 @@ use tokio::time::MissedTickBehavior;
 use super::ask_colour::{ask_truecolor, SSH_QUERY_PATIENCE};
 use super::config::clamp_size;
 use super::header::{self, Piece};
-use super::input::{InputEvent, InputParser};
-use super::keys::{route, Routed};
 use super::log::Log;
-use super::players::{PlayerId, Snapshot};
 use super::screen::{panes_for, view_rect, SessionScreen};
 use super::stats::ServeStats;
 use super::world_task::{WorldHandle, WorldMsg};
 use crate::encode::{ColorLevel, ColourChoice, ColourReason};
+use crate::game::multi::players::{PlayerId, Snapshot};
 use crate::game::Held;
-use crate::tui::keys::{Controls, InputMode, UiCommand};
-use crate::tui::layout::Toggles;
+use crate::ui::key_bytes::{InputEvent, InputParser};
+use crate::ui::key_route::{route, Routed};
+use crate::ui::keys::{Controls, InputMode, UiCommand};
+use crate::ui::layout::Toggles;
 use crate::world::World;
 
 /// Alternate screen, hidden cursor, cleared; kitty keyboard flags pushed (disambiguate, event
@@ -493,7 +493,7 @@ fn cycle(snap: &Snapshot, current: Option<PlayerId>, forward: bool) -> Option<Pl
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::serve::players::Players;
+    use crate::game::multi::players::Players;
 
     #[test]
     fn tab_cycles_through_players_both_ways() {

@@ -9,8 +9,8 @@ use std::time::Duration;
 use tokio::sync::{mpsc, watch};
 use tokio::time::MissedTickBehavior;
 
-use super::players::{PlayerId, Players, SharedSnapshot, Snapshot};
-use super::round::Mode;
+use crate::game::multi::players::{PlayerId, Players, SharedSnapshot, Snapshot};
+use crate::game::multi::round::Mode;
 use crate::game::Input;
 use crate::world::World;
 

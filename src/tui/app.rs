@@ -9,18 +9,18 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 
 use super::events::Events;
-use super::keys::{Controls, UiCommand};
-use super::layout::{Panes, Toggles, COMPACT_MIN_WIDTH};
-use super::render::render_view;
-use super::results::{Results, Then};
-use super::screen::{draw_notice, draw_with_keys, Screen};
-use super::stats::FrameStats;
 use super::terminal::Session;
 use crate::encode::{ColourChoice, ColourReason, EncodeOptions, Pacer};
 use crate::game::{step, Command, GameState};
 use crate::present::Presenter;
 use crate::render::framebuffer::Framebuffer;
 use crate::replay::FrameInput;
+use crate::ui::keys::{Controls, UiCommand};
+use crate::ui::layout::{Panes, Toggles, COMPACT_MIN_WIDTH};
+use crate::ui::render::render_view;
+use crate::ui::results::{Results, Then};
+use crate::ui::screen::{draw_notice, draw_with_keys, Screen};
+use crate::ui::stats::FrameStats;
 
 /// How a play session ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -110,7 +110,7 @@ struct App {
     /// Whether frames are still being recorded (a recording ends at the level's exit).
     recording_open: bool,
     last_size: Option<(u16, u16)>,
-    keys: super::keymap::KeyMap,
+    keys: crate::ui::keymap::KeyMap,
     /// A note for the status line and until when it shows (a pane hidden for lack of room).
     notice: Option<(String, Instant)>,
     /// The wanted panes that did not fit last frame, to notice a change.

@@ -12,9 +12,9 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 use toml::Spanned;
 
-use super::keymap::KeyMap;
 use crate::encode::ColorLevel;
 use crate::game::Speeds;
+use crate::ui::keymap::KeyMap;
 
 /// Everything the config file can set, with the defaults filled in.
 #[derive(Debug, Clone, PartialEq)]
@@ -196,7 +196,7 @@ impl Config {
             spans.push((name.get_ref().clone(), name.span()));
             let mut names = Vec::new();
             for k in keys.get_ref() {
-                super::keymap::Key::parse(k.get_ref())
+                crate::ui::keymap::Key::parse(k.get_ref())
                     .map_err(|m| at(k.span(), format!("keys.{}: {m}", name.get_ref())))?;
                 names.push(k.get_ref().clone());
             }

@@ -1,25 +1,15 @@
-//! The interactive terminal game: session lifecycle, key handling, layout and the frame loop.
+//! The local terminal: taking it over and giving it back, its events and output, the config
+//! file, and the frame loop. The screen itself (panes, keys, help, results) is `ui`'s, shared
+//! with SSH players and replays.
 //!
-//! The loop keeps its stages apart: [`keys`] turns events into a game `Input`, `game::step`
-//! advances the state, [`render`] paints the 3D view into a framebuffer, and [`screen`] lays
+//! The loop keeps its stages apart: `ui::keys` turns events into a game `Input`, `game::step`
+//! advances the state, `ui::render` paints the 3D view into a framebuffer, and `ui::screen` lays
 //! every pane into a ratatui buffer. Only [`terminal`] and [`app`] touch the real terminal.
 
 pub mod app;
-pub mod centred_box;
-pub mod colour_query;
 pub mod config;
 pub mod events;
-pub mod help;
-pub mod keymap;
-pub mod keys;
-pub mod layout;
 pub mod playback;
-pub mod render;
-pub mod repeat;
-pub mod results;
-pub mod screen;
-pub mod stats;
-pub mod status;
 pub mod terminal;
 pub mod tty_out;
 
@@ -30,8 +20,8 @@ use crate::camera::Camera;
 use crate::encode::ColourChoice;
 use crate::world::World;
 
+pub use crate::ui::stats::FrameStats;
 pub use app::{Ending, LoopOptions, Recording};
-pub use stats::FrameStats;
 pub use terminal::TerminalError;
 
 /// What `halfcast play` was asked for.
@@ -62,9 +52,9 @@ pub struct Stage {
 /// The player's choices that the loop starts from.
 #[derive(Debug, Clone, Default)]
 pub struct Setup {
-    pub keys: keymap::KeyMap,
+    pub keys: crate::ui::keymap::KeyMap,
     pub speeds: crate::game::Speeds,
-    pub toggles: layout::Toggles,
+    pub toggles: crate::ui::layout::Toggles,
 }
 
 /// Registers the signals that end a session (SIGTERM, SIGINT; SIGHUP and SIGQUIT on unix)

@@ -21,8 +21,8 @@ use ratatui::widgets::{Paragraph, Widget, Wrap};
 use crate::encode::EncodeOptions;
 use crate::present::Presenter;
 use crate::render::framebuffer::Framebuffer;
-use crate::replay::player::Player;
 use crate::replay::Replay;
+use crate::ui::replay_player::Player;
 use crate::world::World;
 
 /// Whether a key asks to stop watching.

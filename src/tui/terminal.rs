@@ -16,9 +16,9 @@ use crossterm::terminal::{
 };
 use crossterm::{cursor, execute, queue, style};
 
-use super::colour_query::{ReplyScanner, QUERY, QUERY_PATIENCE};
-use super::keys::InputMode;
 use super::tty_out::{write_within, TtyOut};
+use crate::ui::colour_query::{ReplyScanner, QUERY, QUERY_PATIENCE};
+use crate::ui::keys::InputMode;
 
 /// How long restoring the terminal may wait for a terminal that does not take bytes.
 const RESTORE_PATIENCE: Duration = Duration::from_millis(300);
@@ -127,7 +127,7 @@ impl Session {
         self.mode
     }
 
-    /// Asks the terminal whether it shows 24-bit colour ([`super::colour_query`]), before the
+    /// Asks the terminal whether it shows 24-bit colour ([`crate::ui::colour_query`]), before the
     /// first frame. Waits for the DA1 reply that ends the answers, at most
     /// [`QUERY_PATIENCE`]; keys typed meanwhile come back as events, in order, for the game.
     ///
@@ -217,8 +217,8 @@ pub fn restore() {
 
 /// Keys in raw terminal bytes, as the crossterm events the game's key map takes.
 fn keys_from_bytes(bytes: &[u8]) -> Vec<crossterm::event::Event> {
-    use crate::serve::input::{InputEvent, InputParser};
-    use crate::serve::keys::{route, Routed};
+    use crate::ui::key_bytes::{InputEvent, InputParser};
+    use crate::ui::key_route::{route, Routed};
     let mut parsed = Vec::new();
     let mut parser = InputParser::new();
     parser.feed(bytes, &mut parsed);

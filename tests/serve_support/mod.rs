@@ -9,7 +9,7 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use halfcast::serve::{start, RunningServer, ServeConfig};
-use halfcast::tui::layout::Toggles;
+use halfcast::ui::layout::Toggles;
 use halfcast::World;
 use ratatui::layout::Rect;
 use russh::client;

@@ -143,7 +143,7 @@ impl Widget for HelpOverlay<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::tui::keymap::ACTIONS;
+    use crate::ui::keymap::ACTIONS;
 
     #[test]
     fn every_action_is_listed_once_and_fits_80x24() {

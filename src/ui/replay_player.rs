@@ -5,17 +5,17 @@ use std::sync::Arc;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 
-use super::format::{FrameInput, Header, Replay};
 use crate::camera::Camera;
 use crate::game::{step, GameState};
 use crate::render::cast::Cast;
 use crate::render::framebuffer::Framebuffer;
-use crate::tui::keys::{InputMode, UiCommand};
-use crate::tui::layout::{Panes, Toggles};
-use crate::tui::render::render_view;
-use crate::tui::results::{Results, Then};
-use crate::tui::screen::{draw, Screen};
-use crate::tui::stats::FrameStats;
+use crate::replay::format::{FrameInput, Header, Replay};
+use crate::ui::keys::{InputMode, UiCommand};
+use crate::ui::layout::{Panes, Toggles};
+use crate::ui::render::render_view;
+use crate::ui::results::{Results, Then};
+use crate::ui::screen::{draw, Screen};
+use crate::ui::stats::FrameStats;
 use crate::world::World;
 
 /// One replayed frame: the whole screen as cells, the 3D view's pixels and its rays.

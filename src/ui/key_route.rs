@@ -6,7 +6,7 @@ use crossterm::event::{
     Event, KeyCode, KeyEvent as CtKeyEvent, KeyEventKind, KeyEventState, KeyModifiers,
 };
 
-use super::input::{Key, KeyEvent, KeyKind};
+use super::key_bytes::{Key, KeyEvent, KeyKind};
 
 /// Where a key goes.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -72,7 +72,7 @@ pub fn route(ev: KeyEvent) -> Routed {
 mod tests {
     use super::*;
     use crate::game::{Action, Command};
-    use crate::tui::keys::{Controls, InputMode, UiCommand};
+    use crate::ui::keys::{Controls, InputMode, UiCommand};
     use std::time::Instant;
 
     fn press(key: Key) -> KeyEvent {

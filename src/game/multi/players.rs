@@ -40,8 +40,11 @@ const PALETTE: [Rgb; 8] = [
 /// What a session may know about one player when it renders.
 #[derive(Debug, Clone)]
 pub struct PlayerView {
+    /// Who this is, stable for the connection.
     pub id: PlayerId,
+    /// The name shown over their head and on the scoreboard.
     pub name: String,
+    /// Their avatar's colour.
     pub color: Rgb,
     /// The player's game state (its `doors` are stale: the world's are in [`Snapshot::doors`]).
     pub state: GameState,
@@ -534,7 +537,7 @@ mod tests {
         let s = ps.snapshot();
         let bob = s.player(2).expect("bob");
         assert_eq!(
-            crate::tui::screen::message_now(&bob.state),
+            crate::ui::screen::message_now(&bob.state),
             Some("Find the exit. 0/12 treasures.")
         );
     }

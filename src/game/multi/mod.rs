@@ -1,0 +1,6 @@
+//! The rules of a shared level: several players in one world ([`players`]) and the round they
+//! play ([`round`]: coop or tag, its clock and scoreboard). Pure, with no clock or async runtime:
+//! the SSH server's world task drives them once per tick.
+
+pub mod players;
+pub mod round;

@@ -1,0 +1,32 @@
+//! The game screen, with no transport in it: the local terminal (`tui`), the SSH server
+//! (`serve`) and on-screen replays all draw and read keys through this one room, so a change here
+//! shows the same for every player.
+//!
+//! - Drawing: [`layout`] splits the screen into panes, [`render`] paints the 3D view, [`screen`]
+//!   lays every pane into a ratatui buffer, with the [`status`] line, the [`help`] and
+//!   [`results`] boxes ([`centred_box`]) and the frame figures ([`stats`]).
+//! - Keys: [`key_bytes`] reads keystrokes from a raw byte stream (an SSH channel, or a terminal's
+//!   bytes), [`key_route`] sends them to the session or the game, [`keymap`] binds keys to
+//!   actions, [`keys`] turns key events into a game `Input` and [`UiCommand`]s, [`repeat`] tells
+//!   a held key from a tapped one where the terminal sends no releases.
+//! - [`colour_query`]: asking a terminal whether it shows 24-bit colour, over any byte stream.
+//! - [`replay_player`]: a recording played headlessly through these same screens.
+
+pub mod centred_box;
+pub mod colour_query;
+pub mod help;
+pub mod key_bytes;
+pub mod key_route;
+pub mod keymap;
+pub mod keys;
+pub mod layout;
+pub mod render;
+pub mod repeat;
+pub mod replay_player;
+pub mod results;
+pub mod screen;
+pub mod stats;
+pub mod status;
+
+pub use crate::replay::format::UiCommand;
+pub use stats::FrameStats;
