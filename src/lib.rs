@@ -152,6 +152,7 @@ pub mod input_file;
 mod lean_backend;
 pub mod map;
 pub mod output;
+mod png;
 pub mod present;
 pub mod render;
 pub mod replay;

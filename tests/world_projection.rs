@@ -2,7 +2,7 @@
 //! draw order is far to near.
 
 use halfcast::camera::Camera;
-use halfcast::world::sprite::{far_to_near, project, to_camera_space, Culled};
+use halfcast::render::sprite_projection::{far_to_near, project, to_camera_space, Culled};
 use halfcast::{Vec2, View};
 use proptest::prelude::*;
 

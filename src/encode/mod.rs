@@ -19,6 +19,7 @@ pub mod palette;
 mod plan;
 pub mod quantize;
 mod sgr;
+pub mod shade;
 
 pub use encoder::{EncodeOptions, Encoder, SYNC_BEGIN, SYNC_END};
 pub use inline::full_frame;

@@ -3,7 +3,7 @@
 use super::level::ColorLevel;
 use super::pairing::Alternating;
 use super::palette::{Code, Palette};
-use crate::output::text::shade_char;
+use crate::encode::shade::shade_char;
 use crate::render::framebuffer::Framebuffer;
 
 /// The mono glyph of a cell: the shade-ramp character of its two pixels' mean luminance.

@@ -4,8 +4,7 @@
 
 use crate::map::{Map, Span};
 
-/// Highest rise of the floor walked onto without jumping, in wall heights.
-pub const STEP_UP: f64 = 0.25;
+pub use crate::map::STEP_UP;
 
 /// Room a cell must leave above the eye: ceiling − floor ≥ eye + `HEAD_ROOM` to enter it.
 pub const HEAD_ROOM: f64 = 0.1;

@@ -9,7 +9,6 @@ pub mod creature;
 pub mod debugger;
 pub mod footing;
 pub mod input;
-pub mod key_colour;
 pub mod level;
 pub mod multi;
 pub mod pose;

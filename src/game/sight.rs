@@ -7,9 +7,9 @@
 //! or a ceiling, as the renderer draws them.
 
 use crate::map::{Cell, Map};
-use crate::render::cast::{advance, Setup, Side};
 use crate::vec2::Vec2;
 use crate::world::door::DoorState;
+use crate::world::ray::{advance, Setup, Side};
 
 /// Farthest a wandering or patrolling creature sees, in cells.
 pub const SIGHT_RANGE: f64 = 8.0;

@@ -1,6 +1,7 @@
 //! The world's grid and header, as parsed from a `.cub` file (no textures loaded yet).
 
 mod error;
+mod fog;
 mod game_objects;
 mod lamp;
 mod parse;
@@ -8,6 +9,7 @@ mod read;
 mod sprite;
 
 pub use error::{MapError, MapErrorKind};
+pub use fog::Fog;
 pub use game_objects::{
     Behaviour, CreatureDef, DoorLock, ExitDef, ItemDef, DEFAULT_CREATURE_SPEED,
     DEFAULT_TREASURE_POINTS, MAX_CREATURES, MAX_CREATURE_SPEED, MAX_ITEMS, MAX_ITEM_POINTS,
@@ -18,7 +20,7 @@ pub use read::{read_map_file, MAX_MAP_BYTES};
 pub use sprite::{Blend, ColourKey, SpriteDef, DEFAULT_SOLID_RADIUS};
 
 use crate::color::Rgb;
-use crate::render::light::Fog;
+
 use crate::vec2::Vec2;
 
 /// What one grid cell holds; walls carry their digit (1–9), floors their zone (0 = default).
@@ -88,6 +90,10 @@ pub struct Zone {
     /// `Wz VALUE`: the paint of the zone's step and lintel faces (otherwise the NO/SO/WE/EA walls').
     pub wall: Option<Surface>,
 }
+
+/// Highest rise of the floor walked onto without jumping, in wall heights: a step. The game's
+/// bodies climb it and the minimap draws heights in it, so both read one constant.
+pub const STEP_UP: f64 = 0.25;
 
 /// The open air of a walkable cell, between its floor and its ceiling, in wall heights (a plain
 /// cell is 0 to 1); everything above and below it is solid.

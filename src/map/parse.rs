@@ -10,7 +10,7 @@ use super::{
     TextureRef, Zone,
 };
 use crate::color::Rgb;
-use crate::render::light::Fog;
+use crate::map::Fog;
 use crate::vec2::Vec2;
 
 /// More cells than this is refused instead of allocating without bound.

@@ -6,7 +6,7 @@ use crate::camera::Camera;
 use crate::render::billboard::SpriteOutcome;
 use crate::render::cast::{Cast, Side};
 use crate::render::height_cast::{FaceKind, FaceSpan};
-use crate::world::sprite::{to_camera_space, Culled};
+use crate::render::sprite_projection::{to_camera_space, Culled};
 use crate::world::World;
 
 /// The JSON document `render --format json` prints (field order as documented).

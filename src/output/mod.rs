@@ -1,6 +1,7 @@
-//! Headless writers: a rendered frame as PNG, ANSI, plain text or ray JSON.
+//! Headless writers: a rendered frame as PNG, ANSI, plain text or ray JSON, and the
+//! [`Scene`](crate::Scene) methods that hand a frame out in each form.
 
 pub mod ansi;
 pub mod json;
-pub mod png;
+pub mod scene_forms;
 pub mod text;

@@ -1,16 +1,7 @@
 //! A plain-ASCII view: one character per cell from the cell's brightness.
 
+use crate::encode::shade::shade_char;
 use crate::render::framebuffer::Framebuffer;
-
-/// Dark to bright; spaces read as darkness in any terminal or code review.
-pub const SHADE_RAMP: &[u8] = b" .:-=+*#%@";
-
-/// The ramp character for a luminance 0..=255.
-#[must_use]
-pub fn shade_char(luma: u8) -> char {
-    let i = usize::from(luma) * SHADE_RAMP.len() / 256;
-    char::from(SHADE_RAMP[i])
-}
 
 /// One line per cell row, each cell shaded by the mean luminance of its two pixels.
 #[must_use]

@@ -9,7 +9,9 @@ use crate::render::framebuffer::Framebuffer;
 use crate::render::light::{Shade, ShadeTable};
 use crate::render::point_light;
 use crate::render::scene::Scene;
-use crate::world::sprite::{far_to_near, frame_index, project, view_index, Culled, Projection};
+use crate::render::sprite_projection::{
+    far_to_near, frame_index, project, view_index, Culled, Projection,
+};
 
 /// What became of one sprite in a frame (the JSON `sprites` array is built from these).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -88,7 +88,7 @@ fn level_powers() -> &'static [f64] {
 #[inline]
 pub fn index(coord: f64, per_unit: f64) -> i64 {
     // `floor` without the libm call (baseline x86-64 has no rounding instruction).
-    crate::render::raster::fast_floor(coord * per_unit)
+    crate::render::fast_floor::fast_floor(coord * per_unit)
 }
 
 /// Writes the phases of an upright surface (a wall, a step's or a lintel's face) in column `x`

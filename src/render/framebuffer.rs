@@ -146,10 +146,7 @@ impl Framebuffer {
     /// # Errors
     /// The encoder's message if `image` fails.
     pub fn to_png(&self) -> Result<Vec<u8>, String> {
-        let raw: Vec<u8> = self.pixels.iter().flat_map(|p| [p.r, p.g, p.b]).collect();
-        let img = image::RgbImage::from_raw(self.width as u32, self.height as u32, raw)
-            .ok_or("size mismatch")?;
-        crate::output::png::encode(img)
+        crate::png::rgb(self.width, self.height, |x, y| self.get(x, y))
     }
 
     /// Decodes a PNG (or other readable image) into a framebuffer, for diffs and `bench --frames`.

@@ -17,125 +17,14 @@
 
 use crate::camera::Camera;
 use crate::map::{Cell, Map, Span};
-use crate::render::cast::{door_hit, Cast, ColumnHit, DdaStep, DdaTrace, Setup, Side};
+use crate::render::cast::{Cast, DdaTrace};
+pub use crate::render::height_column::{
+    Band, FaceKind, FaceSpan, FlatSpan, HeightColumn, WindowClosed,
+};
 use crate::render::view::View;
 use crate::vec2::Vec2;
 use crate::world::door::DoorState;
-
-/// What kind of vertical face a column drew (the JSON `kind`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum FaceKind {
-    /// A cell solid at every height (a wall, the void) or a door panel.
-    Wall,
-    /// The side of a neighbour's floor that is higher than the ray's cell's.
-    Step,
-    /// The side of a neighbour's ceiling that is lower than the ray's cell's.
-    Lintel,
-}
-
-impl FaceKind {
-    /// "wall", "step" or "lintel", as the JSON and the debug pane print it.
-    #[must_use]
-    pub fn as_str(self) -> &'static str {
-        match self {
-            FaceKind::Wall => "wall",
-            FaceKind::Step => "step",
-            FaceKind::Lintel => "lintel",
-        }
-    }
-}
-
-/// One vertical face drawn in a column on an `Hz` map: a JSON `spans` entry, and a row of the
-/// debug pane's height list.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FaceSpan {
-    /// The cell whose solid part the face is (the cell the ray was entering, or a door's cell).
-    pub cell: (i64, i64),
-    /// What that cell is (its wall type or zone picks the paint).
-    pub what: Cell,
-    /// Which grid line the ray crossed into the face (y-crossed faces are shaded).
-    pub side: Side,
-    /// Distance along the view direction where the ray meets the face.
-    pub perp_dist: f64,
-    /// Where along the face the ray meets it, in [0, 1) (texture column), as [`ColumnHit::wall_x`].
-    pub wall_x: f64,
-    /// A full wall, a step below a raised floor, or a lintel above a lowered ceiling.
-    pub kind: FaceKind,
-    /// The heights the face spans where it borders the ray's cell, low to high: a step from that
-    /// cell's floor up to the neighbour's, a lintel from the neighbour's ceiling up to that
-    /// cell's, a wall or door that cell's whole open span.
-    pub z: (f64, f64),
-    /// Pixel rows drawn, [top, bottom): the part of the face inside the column's open window.
-    pub rows: (usize, usize),
-}
-
-/// A floor or a ceiling drawn in a column: the rows of a cell's horizontal surface that the ray
-/// meets before leaving the cell.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FlatSpan {
-    /// The cell whose floor or ceiling it is.
-    pub cell: (i64, i64),
-    /// That cell's zone (0 = none), which picks the paint.
-    pub zone: u8,
-    /// Ceiling (true) or floor (false).
-    pub ceiling: bool,
-    /// The surface's height.
-    pub z: f64,
-    /// Distances along the view direction where the ray entered and left the cell.
-    pub dist: (f64, f64),
-    /// Pixel rows drawn, [top, bottom).
-    pub rows: (usize, usize),
-}
-
-/// One run of rows of a column's draw list.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Band {
-    /// A floor or ceiling seen through the rows.
-    Flat(FlatSpan),
-    /// A vertical face (wall, step or lintel).
-    Face(FaceSpan),
-}
-
-impl Band {
-    /// The band's pixel rows, [top, bottom).
-    #[must_use]
-    pub fn rows(&self) -> (usize, usize) {
-        match self {
-            Band::Flat(f) => f.rows,
-            Band::Face(f) => f.rows,
-        }
-    }
-}
-
-/// Where a column's window of open rows closed: the crossing the ray had reached.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct WindowClosed {
-    /// The cell the ray was entering (or the door cell whose panel it met).
-    pub cell: (i64, i64),
-    /// Distance along the view direction of that crossing.
-    pub perp_dist: f64,
-}
-
-/// One column's draw list on an `Hz` map, front to back: every pixel row of the column is in
-/// exactly one band (every pixel is written once).
-#[derive(Debug, Clone, PartialEq)]
-pub struct HeightColumn {
-    /// The runs of rows, front to back.
-    pub bands: Vec<Band>,
-    /// Where the column's window of open rows closed (what its `ColumnHit` reports).
-    pub closed: WindowClosed,
-}
-
-impl HeightColumn {
-    /// The vertical faces drawn, front to back (the JSON `spans`).
-    pub fn faces(&self) -> impl Iterator<Item = &FaceSpan> {
-        self.bands.iter().filter_map(|b| match b {
-            Band::Face(f) => Some(f),
-            Band::Flat(_) => None,
-        })
-    }
-}
+use crate::world::ray::{door_hit, ColumnHit, DdaStep, Setup, Side};
 
 /// The vertical projection shared by every column of a frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -364,7 +253,7 @@ pub fn cast_column(
             proj.row_at(span.floor, t_exit),
         );
         // Step into the next cell.
-        let side = crate::render::cast::advance(&mut side_dist, delta, &mut cell, step);
+        let side = crate::world::ray::advance(&mut side_dist, delta, &mut cell, step);
         on_step(DdaStep {
             cell,
             side,

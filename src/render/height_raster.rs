@@ -8,14 +8,15 @@ use crate::map::Cell;
 use crate::render::billboard::{draw_sprites, Occluders, SpriteOutcome};
 use crate::render::cast::{Cast, Side};
 use crate::render::dither_phase;
+use crate::render::fast_floor::fast_floor;
 use crate::render::framebuffer::Framebuffer;
 use crate::render::height_cast::{Band, FaceKind, FaceSpan, FlatSpan, Projection};
 use crate::render::light::{Shade, ShadeTable};
-use crate::render::lightmap::{Corners, LightMap, Probe};
 use crate::render::point_light::{self, PointLight};
-use crate::render::raster::{face_texture_x, fast_floor, heading_of, Y_SIDE_SHADE};
+use crate::render::raster::{face_texture_x, heading_of, Y_SIDE_SHADE};
 use crate::render::scene::Scene;
 use crate::vec2::Vec2;
+use crate::world::lightmap::{Corners, LightMap, Probe};
 use crate::world::Paint;
 
 /// Paints `cast` (from [`crate::render::height_cast::cast_heights`] at `fb`'s size) and the sprites.

@@ -6,14 +6,7 @@
 
 use crate::color::Rgb;
 
-/// Fog: colour things fade toward, and how fast (fraction remaining = e^(−density · distance)).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Fog {
-    /// The colour far things become.
-    pub colour: Rgb,
-    /// Per cell of distance; 0 = no fog.
-    pub density: f64,
-}
+pub use crate::map::Fog;
 
 /// The light of a frame; the default (no fog, day, no falloff) leaves every colour unchanged.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -24,6 +17,18 @@ pub struct Lighting {
     pub night: bool,
     /// Plain distance darkening: brightness = 1 / (1 + falloff · distance); 0 = off.
     pub falloff: f64,
+}
+
+impl crate::world::World {
+    /// The light the map asks for: its `FOG` and `SHADE` lines (day, no night).
+    #[must_use]
+    pub fn lighting(&self) -> Lighting {
+        Lighting {
+            fog: self.map.fog,
+            night: false,
+            falloff: self.map.shade.unwrap_or(0.0),
+        }
+    }
 }
 
 /// Distance at which night light has fallen to half, in cells.

@@ -6,16 +6,17 @@
 pub mod billboard;
 pub mod cast;
 pub mod dither_phase;
+pub(crate) mod fast_floor;
 pub mod frame;
 pub(crate) mod framebuffer;
 pub mod height_cast;
+pub mod height_column;
 pub mod height_raster;
-pub mod lamp_reach;
 pub mod light;
-pub mod lightmap;
 pub mod point_light;
 pub mod raster;
 pub mod scene;
+pub mod sprite_projection;
 pub mod view;
 
 pub use framebuffer::Framebuffer;

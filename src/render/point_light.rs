@@ -2,8 +2,8 @@
 //! the world is dark, measured in 3-D from the surface point, with no shadows (they are small
 //! and short-lived; a wall between one and a surface does not stop it).
 
-use crate::render::lightmap::{falloff, FULL};
 use crate::vec2::Vec2;
+use crate::world::lamp_falloff::{falloff, FULL};
 
 /// A light that exists for one frame, placed by the game (not baked: it moves).
 #[derive(Debug, Clone, Copy, PartialEq)]

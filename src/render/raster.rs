@@ -6,6 +6,7 @@ use crate::map::Cell;
 use crate::render::billboard::{draw_sprites, Occluders, SpriteOutcome};
 use crate::render::cast::{ColumnHit, Side};
 use crate::render::dither_phase;
+use crate::render::fast_floor::fast_floor;
 use crate::render::framebuffer::{Framebuffer, NEUTRAL_PHASE};
 use crate::render::light::{Shade, ShadeTable};
 use crate::render::point_light;
@@ -274,17 +275,6 @@ fn floor_and_ceiling(
     }
 }
 
-/// ⌊v⌋ without a libm call (f64::floor is one on baseline x86-64); saturates far outside i64.
-#[inline]
-pub(crate) fn fast_floor(v: f64) -> i64 {
-    let i = v as i64;
-    if (i as f64) > v {
-        i.saturating_sub(1)
-    } else {
-        i
-    }
-}
-
 /// The colour a column's wall shows at its centre row, for tests and the minimap.
 #[must_use]
 pub fn wall_colour_at(world: &World, hit: &ColumnHit, v: f64) -> Rgb {
@@ -343,13 +333,6 @@ mod tests {
         assert_eq!(s.height, 40.0);
         assert_eq!(s.top, 10.0);
         assert_eq!(s.rows, (10, 50));
-    }
-
-    #[test]
-    fn fast_floor_matches_floor() {
-        for v in [0.0, 0.5, 1.0, -0.5, -1.0, -1.5, 3.999, -3.999, 1e12, -1e12] {
-            assert_eq!(fast_floor(v), v.floor() as i64, "{v}");
-        }
     }
 
     #[test]

@@ -26,10 +26,10 @@
 
 use crate::camera::Camera;
 use crate::render::light::Lighting;
-use crate::render::lightmap::LightMap;
 use crate::render::point_light::PointLight;
 use crate::render::view::View;
 use crate::world::door::DoorState;
+use crate::world::lightmap::LightMap;
 use crate::world::sprite::Sprite;
 use crate::world::World;
 

@@ -13,10 +13,11 @@ use crate::game::GameState;
 use crate::map::{Blend, ColourKey, SpriteDef, TextureRef};
 use crate::render::cast::Cast;
 use crate::render::framebuffer::Framebuffer;
+use crate::render::sprite_projection::project;
 use crate::texture::builtin;
 use crate::widget::half_block::UPPER_HALF;
 use crate::widget::minimap::MapView;
-use crate::world::sprite::{project, Sprite};
+use crate::world::sprite::Sprite;
 use crate::world::World;
 
 /// The built-in sprite sheet players wear (8 views × 4 walking frames).

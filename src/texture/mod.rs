@@ -3,9 +3,14 @@
 pub mod builtin;
 pub mod decode;
 pub mod generate;
+pub mod key_tint;
 pub mod pickup_art;
 pub mod sheet;
 pub mod sprite_art;
+
+/// Edge length of one picture of the built-in sprite art (one view of one frame), shared by the
+/// creatures' and the pickups' drawings.
+pub const ART_SIZE: usize = 64;
 
 use crate::color::Rgb;
 
@@ -83,12 +88,7 @@ impl Texture {
     /// # Errors
     /// The encoder's message (only on I/O-like failures inside `image`).
     pub fn to_png(&self) -> Result<Vec<u8>, String> {
-        let mut img = image::RgbImage::new(self.width as u32, self.height as u32);
-        for (x, y, p) in img.enumerate_pixels_mut() {
-            let c = self.texel(x as usize, y as usize);
-            *p = image::Rgb([c.r, c.g, c.b]);
-        }
-        crate::output::png::encode(img)
+        crate::png::rgb(self.width, self.height, |x, y| self.texel(x, y))
     }
 
     /// Width in texels.

@@ -4,7 +4,7 @@
 
 use super::generate::{fbm, tint, white};
 use super::sheet::SpriteSheet;
-use super::sprite_art::SIZE;
+use super::ART_SIZE as SIZE;
 use crate::color::Rgb;
 
 const CLEAR: (Rgb, u8) = (Rgb::new(0, 0, 0), 0);

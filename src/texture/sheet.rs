@@ -79,12 +79,7 @@ impl SpriteSheet {
     /// # Errors
     /// The encoder's message.
     pub fn to_png(&self) -> Result<Vec<u8>, String> {
-        let mut img = image::RgbaImage::new(self.width as u32, self.height as u32);
-        for (x, y, p) in img.enumerate_pixels_mut() {
-            let (c, a) = self.texel(x as usize, y as usize);
-            *p = image::Rgba([c.r, c.g, c.b, a]);
-        }
-        crate::output::png::encode(img)
+        crate::png::rgba(self.width, self.height, |x, y| self.texel(x, y))
     }
 
     /// Width in texels (all views side by side).

@@ -7,8 +7,7 @@ use super::pickup_art;
 use super::sheet::SpriteSheet;
 use crate::color::Rgb;
 
-/// Edge length of one sprite picture (one view of one frame).
-pub const SIZE: usize = 64;
+pub use super::ART_SIZE as SIZE;
 
 /// Views and frames in the creature's sheet.
 pub const CREATURE_VIEWS: usize = 8;

@@ -155,7 +155,7 @@ pub fn minimap_things(state: &GameState) -> Vec<Thing> {
             continue;
         }
         let (colour, glyph) = match &item.key {
-            Some(name) => (crate::game::key_colour::key_colour(name), "k"),
+            Some(name) => (crate::texture::key_tint::key_colour(name), "k"),
             None => (crate::color::Rgb::new(255, 200, 60), "$"),
         };
         out.push(Thing {

@@ -172,7 +172,7 @@ fn hud(state: &GameState) -> Vec<Segment> {
     if !score.keys.is_empty() {
         spans.push(l("  keys"));
         for k in &score.keys {
-            let c = crate::game::key_colour::key_colour(k);
+            let c = crate::texture::key_tint::key_colour(k);
             spans.push(l(" "));
             spans.push(Span::styled(
                 k.clone(),
@@ -312,7 +312,7 @@ mod tests {
         let t = line.to_string();
         assert!(t.contains(" 120 pts  keys gold  13 left │ 1:23"), "{t}");
         // The key is written in its own colour.
-        let gold = crate::game::key_colour::key_colour("gold");
+        let gold = crate::texture::key_tint::key_colour("gold");
         let span = line
             .spans
             .iter()

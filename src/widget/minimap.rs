@@ -12,7 +12,7 @@ use super::plot::{blend, disc, dot, line, mix};
 use super::revealed::RevealedTrace;
 use crate::camera::Camera;
 use crate::color::Rgb;
-use crate::game::body::STEP_UP;
+use crate::map::STEP_UP;
 use crate::map::{Cell, DoorPlane, Map};
 use crate::render::cast::ColumnHit;
 use crate::render::framebuffer::Framebuffer;

@@ -1,23 +1,27 @@
 //! A map with its textures loaded: everything the rasterizer needs to paint.
 
 pub mod door;
+pub mod lamp_falloff;
+pub mod lamp_reach;
+pub mod lightmap;
+pub mod ray;
 pub mod sprite;
 
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
 use crate::color::Rgb;
-use crate::game::key_colour::{key_colour, tinted};
 use crate::input_file::read_regular_capped;
 use crate::map::{Cell, ColourKey, Map, SpriteDef, Surface, TextureRef};
-use crate::render::lightmap::LightMap;
 use crate::texture::decode::{
     check_size, image_dimensions, MAX_IMAGE_FILE_BYTES, MAX_TEXTURE_SIDE,
 };
+use crate::texture::key_tint::{key_colour, tinted};
 use crate::texture::sheet::SpriteSheet;
 use crate::texture::{builtin, Texture};
 use crate::vec2::Vec2;
 use crate::world::door::DoorState;
+use crate::world::lightmap::LightMap;
 use crate::world::sprite::Sprite;
 
 /// The default map, compiled in so the binary needs no files.
@@ -353,16 +357,6 @@ pub const LEGACY_SPRITE_FALLBACK: &str = "barrel";
 pub const CREATURE_FALLBACK: &str = "creature";
 
 impl World {
-    /// The light the map asks for: its `FOG` and `SHADE` lines (day, no night).
-    #[must_use]
-    pub fn lighting(&self) -> crate::render::light::Lighting {
-        crate::render::light::Lighting {
-            fog: self.map.fog,
-            night: false,
-            falloff: self.map.shade.unwrap_or(0.0),
-        }
-    }
-
     /// The discs of every solid sprite, for movement code that wants them directly.
     #[must_use]
     pub fn solid_discs(&self) -> Vec<SolidDisc> {

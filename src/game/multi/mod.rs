@@ -4,3 +4,6 @@
 
 pub mod players;
 pub mod round;
+
+/// A connection's id; also names its player in the world.
+pub type PlayerId = u64;

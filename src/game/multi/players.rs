@@ -19,8 +19,7 @@ use crate::vec2::Vec2;
 use crate::world::door::DoorState;
 use crate::world::{SolidDisc, World};
 
-/// A connection's id; also names its player in the world.
-pub type PlayerId = u64;
+pub use super::PlayerId;
 
 /// Commands a player may have waiting for the next tick; more are dropped (a flood of keys).
 const MAX_COMMANDS: usize = 64;

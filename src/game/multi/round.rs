@@ -19,7 +19,7 @@ use crate::game::{Level, Score};
 use crate::map::Map;
 use crate::vec2::Vec2;
 
-use super::players::PlayerId;
+use super::PlayerId;
 
 /// How long the results stay up before the next round, in seconds.
 pub const RESULTS_SECONDS: f64 = 8.0;

@@ -1,4 +1,5 @@
-//! The colour a key and the doors it opens share, so a locked door reads at a glance.
+//! The colour a key and the doors it opens share, so a locked door reads at a glance; the textures
+//! and sprite sheets are tinted with it when a world loads.
 
 use crate::color::Rgb;
 

@@ -20,8 +20,8 @@
 //! shadow edges, as with walls).
 
 use crate::map::{LightDef, Map, Span};
-use crate::render::lightmap::falloff;
 use crate::vec2::Vec2;
+use crate::world::lamp_falloff::falloff;
 
 /// Slack on the height tests, so a floor exactly at a visibility limit stays lit.
 const EPS: f64 = 1e-3;
@@ -272,13 +272,13 @@ impl LampReach {
             }
         }
         // Rounded by adding ½ (sum ≥ 0): `f64::round` is a libm call here.
-        (sum.min(1.0) * f64::from(crate::render::lightmap::FULL) + 0.5) as u16
+        (sum.min(1.0) * f64::from(crate::world::lamp_falloff::FULL) + 0.5) as u16
     }
 }
 
 /// A summed light in 256ths, saturating at full (the flat bake's rounding).
 fn quantize(sum: f64) -> u16 {
-    (sum.min(1.0) * f64::from(crate::render::lightmap::FULL)).round() as u16
+    (sum.min(1.0) * f64::from(crate::world::lamp_falloff::FULL)).round() as u16
 }
 
 #[cfg(test)]

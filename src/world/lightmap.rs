@@ -3,21 +3,19 @@
 //! dark (night or `SHADE`), so lamps are islands of light.
 //!
 //! On maps with `Hz` heights light also depends on a surface point's height, so the bake keeps,
-//! per sample, every lamp that reaches it (see [`crate::render::lamp_reach`]) and the level is
+//! per sample, every lamp that reaches it (see [`crate::world::lamp_reach`]) and the level is
 //! worked out per pixel from the height the pixel shows. A map without `Hz` lines keeps one
 //! level per sample, exactly as before heights existed.
 
 use crate::map::{LightDef, Map};
-use crate::render::cast::cast_ray_doors;
-use crate::render::lamp_reach::{LampReach, Reach};
 use crate::vec2::Vec2;
 use crate::world::door::DoorState;
+use crate::world::lamp_falloff::{falloff, FULL};
+use crate::world::lamp_reach::{LampReach, Reach};
+use crate::world::ray::cast_ray_doors;
 
 /// Samples per cell along each axis (read back with bilinear filtering).
 const PER_CELL: usize = 4;
-
-/// Full brightness in the stored levels (256ths, like [`crate::render::light::Shade`]).
-pub const FULL: u16 = 256;
 
 /// Lamp brightness over the map in 256ths, sampled [`PER_CELL`] times per cell on each axis.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -297,14 +295,6 @@ impl Probe<'_> {
             }
         }
     }
-}
-
-/// How much of a light of `radius` reaches `d` cells away: full at the lamp, smoothly nothing
-/// at the radius.
-#[must_use]
-pub fn falloff(d: f64, radius: f64) -> f64 {
-    let t = (d / radius).clamp(0.0, 1.0);
-    (1.0 - t * t).powi(2)
 }
 
 /// Calls `reached(sample, distance, point)` for every sample `light` sees within its radius.
