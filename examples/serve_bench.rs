@@ -20,7 +20,7 @@ use halfcast::World;
 use russh::{compression, ChannelMsg};
 
 /// The same client the integration tests use (one copy of the SSH client code).
-#[path = "../tests/serve_support/mod.rs"]
+#[path = "../tests/support/serve_support/mod.rs"]
 mod serve_support;
 
 /// Movement keys a bot presses (the local TUI's key map: walk, turn, strafe).

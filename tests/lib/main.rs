@@ -1,0 +1,20 @@
+//! Library tests: the engine, encoder, widgets and game rules driven through the crate as a user
+//! of it would, with no features (`cargo test --no-default-features` runs them too). One binary,
+//! so the support code and the link are paid once.
+
+#[path = "../support/capture/mod.rs"]
+mod capture;
+#[path = "../support/world_common/mod.rs"]
+mod world_common;
+
+mod architecture;
+mod embed_view;
+mod encode_roundtrip;
+mod game_creatures;
+mod game_items;
+mod game_render;
+mod game_sight_heights;
+mod heights_golden;
+mod lamps_heights;
+mod lean_backend;
+mod world_projection;

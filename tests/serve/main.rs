@@ -1,0 +1,25 @@
+//! `halfcast serve` end to end: russh clients (and OpenSSH's `ssh` where installed) joining,
+//! playing, being refused and disconnecting. One binary, so the support code and the link are
+//! paid once.
+
+#[path = "../support/serve_support/mod.rs"]
+mod serve_support;
+#[path = "../support/world_common/mod.rs"]
+mod world_common;
+
+mod game_serve;
+mod heights_serve;
+mod serve_abuse;
+mod serve_auth;
+mod serve_churn;
+mod serve_cli;
+mod serve_colour;
+mod serve_compression;
+mod serve_flood;
+mod serve_names;
+mod serve_openssh;
+mod serve_openssh_colour;
+mod serve_openssh_limits;
+mod serve_refusals;
+mod serve_session;
+mod serve_stall;
