@@ -1,9 +1,9 @@
 //! halfcast: a grid raycaster that renders into terminal-sized framebuffers, a ratatui widget
 //! that shows them, and a byte-lean terminal encoder any ratatui app can use.
 //!
-//! The pipeline, one module per stage: [`map`] → [`camera`] → [`cast`](render::cast) (pure DDA) →
-//! [`raster`](render::raster) into a [`Framebuffer`] → [`encode`] (bytes for a terminal), [`widget`] (ratatui)
-//! or [`output`] (PNG, ANSI, text, JSON).
+//! The pipeline, one module per stage: [`map`] → [`Camera`] → [`cast`](render::cast) (pure DDA) →
+//! [`raster`](render::raster) into a [`Framebuffer`] → [`encode`] (bytes for a terminal), [`widget`]
+//! (ratatui) or the headless forms (`Scene::to_png`, `to_ansi`, `to_cells_text`).
 //!
 //! # Features
 //!
@@ -132,54 +132,59 @@
 // Some docs name private constants and modules for readers of `--document-private-items`.
 #![allow(rustdoc::private_intra_doc_links)]
 
-// The binary's internals: public only because tests/, benches/ and examples/ drive them;
-// not part of the library API (hidden from its docs, and absent without their feature).
+// The library's API: the engine and what a user pins, embeds or replays with (the root
+// re-exports below name the types most users need).
+pub mod encode;
+pub mod game;
+pub mod map;
+pub mod render;
+pub mod replay;
+pub mod snapshot;
+pub mod termframe;
+pub mod widget;
+pub mod world;
+
+// Public only because the binary (`src/cli`), `fuzz/`, examples, benches and the integration
+// tests are crates of their own that drive them; not part of the library API (hidden from its
+// docs; their types that users meet are re-exported at the root). docs/architecture.md lists
+// who needs each.
 #[doc(hidden)]
 #[allow(missing_docs)]
 #[cfg(feature = "cli")]
 pub mod bench;
+#[doc(hidden)]
 pub mod camera;
+#[doc(hidden)]
 pub mod color;
-pub mod encode;
-// The binary's internals: public only because tests/, benches/ and examples/ drive them;
-// not part of the library API (hidden from its docs, and absent without their feature).
 #[doc(hidden)]
 #[allow(missing_docs)]
 #[cfg(feature = "ui")]
 pub mod fuzzing;
-pub mod game;
+#[doc(hidden)]
 pub mod input_file;
-mod lean_backend;
-pub mod map;
+#[doc(hidden)]
 pub mod output;
-mod png;
+#[doc(hidden)]
 pub mod present;
-pub mod render;
-pub mod replay;
-// The binary's internals: public only because tests/, benches/ and examples/ drive them;
-// not part of the library API (hidden from its docs, and absent without their feature).
 #[doc(hidden)]
 #[allow(missing_docs)]
 #[cfg(feature = "serve")]
 pub mod serve;
-pub mod snapshot;
-pub mod termframe;
+#[doc(hidden)]
 pub mod texture;
-// The binary's internals: public only because tests/, benches/ and examples/ drive them;
-// not part of the library API (hidden from its docs, and absent without their feature).
 #[doc(hidden)]
 #[allow(missing_docs)]
 #[cfg(feature = "tui")]
 pub mod tui;
-// The game screen shared by the local terminal, SSH sessions and replays: public only because
-// tests/ and the binary drive it; not part of the library API.
+// The game screen shared by the local terminal, SSH sessions and replays.
 #[doc(hidden)]
 #[allow(missing_docs)]
 #[cfg(feature = "ui")]
 pub mod ui;
+
+mod lean_backend;
+mod png;
 mod vec2;
-pub mod widget;
-pub mod world;
 
 /// The README's Rust examples, compiled and run as doc-tests so they keep working.
 #[cfg(doctest)]

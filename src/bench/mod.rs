@@ -2,10 +2,10 @@
 //! reference, the zlib meter, the colour-fidelity figures and the report's JSON shape (the timing loop lives in the binary).
 
 pub mod fidelity;
-pub mod path;
-pub mod reference;
-pub mod report;
-pub mod zlib;
+pub(crate) mod path;
+pub(crate) mod reference;
+pub(crate) mod report;
+pub(crate) mod zlib;
 
 pub use path::{camera_path, BenchScene};
 pub use reference::RatatuiReference;

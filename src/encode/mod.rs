@@ -8,18 +8,18 @@
 
 pub(crate) mod cells;
 mod cursor;
-pub mod dither;
-pub mod encoder;
-pub mod inline;
-pub mod level;
+pub(crate) mod dither;
+pub(crate) mod encoder;
+pub(crate) mod inline;
+pub(crate) mod level;
 mod number;
-pub mod pacer;
-pub mod pairing;
+pub(crate) mod pacer;
+pub(crate) mod pairing;
 pub mod palette;
 mod plan;
 pub mod quantize;
 mod sgr;
-pub mod shade;
+pub(crate) mod shade;
 
 pub use encoder::{EncodeOptions, Encoder, SYNC_BEGIN, SYNC_END};
 pub use inline::full_frame;

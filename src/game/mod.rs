@@ -6,15 +6,15 @@
 pub mod body;
 pub mod collision;
 pub mod creature;
-pub mod debugger;
+pub(crate) mod debugger;
 pub mod footing;
-pub mod input;
-pub mod level;
+pub(crate) mod input;
+pub(crate) mod level;
 pub mod multi;
 pub mod pose;
-pub mod projectile;
-pub mod rng;
-pub mod score;
+pub(crate) mod projectile;
+pub(crate) mod rng;
+pub(crate) mod score;
 pub mod sight;
 
 use std::sync::Arc;

@@ -3,5 +3,5 @@
 
 pub mod ansi;
 pub mod json;
-pub mod scene_forms;
+pub(crate) mod scene_forms;
 pub mod text;

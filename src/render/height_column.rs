@@ -41,7 +41,7 @@ pub struct FaceSpan {
     pub side: Side,
     /// Distance along the view direction where the ray meets the face.
     pub perp_dist: f64,
-    /// Where along the face the ray meets it, in [0, 1) (texture column), as [`ColumnHit::wall_x`].
+    /// Where along the face the ray meets it, in [0, 1) (texture column), as [`ColumnHit::wall_x`](crate::world::ray::ColumnHit::wall_x).
     pub wall_x: f64,
     /// A full wall, a step below a raised floor, or a lintel above a lowered ceiling.
     pub kind: FaceKind,

@@ -3,19 +3,19 @@
 //! (sprites) into the [`Framebuffer`], lit by `light`/`lightmap` and seen through a `view`.
 //! A [`scene::Scene`] holds one frame's input; [`frame`] turns it into pixels.
 
-pub mod billboard;
+pub(crate) mod billboard;
 pub mod cast;
-pub mod dither_phase;
+pub(crate) mod dither_phase;
 pub(crate) mod fast_floor;
-pub mod frame;
+pub(crate) mod frame;
 pub(crate) mod framebuffer;
 pub mod height_cast;
-pub mod height_column;
-pub mod height_raster;
+pub(crate) mod height_column;
+pub(crate) mod height_raster;
 pub mod light;
 pub mod point_light;
 pub mod raster;
-pub mod scene;
+pub(crate) mod scene;
 pub mod sprite_projection;
 pub mod view;
 

@@ -14,20 +14,20 @@
 //!   `Presenter`; [`avatars`]: other players as the world's 8-view sprite, and their names on
 //!   the minimap.
 
-pub mod ask_colour;
+pub(crate) mod ask_colour;
 pub mod auth;
-pub mod avatars;
-pub mod config;
-pub mod handler;
-pub mod header;
-pub mod hostkey;
-pub mod lifecycle;
+pub(crate) mod avatars;
+pub(crate) mod config;
+pub(crate) mod handler;
+pub(crate) mod header;
+pub(crate) mod hostkey;
+pub(crate) mod lifecycle;
 pub mod limits;
-pub mod log;
+pub(crate) mod log;
 pub mod screen;
-pub mod server;
-pub mod session;
-pub mod stats;
+pub(crate) mod server;
+pub(crate) mod session;
+pub(crate) mod stats;
 pub mod world_task;
 
 pub use config::ServeConfig;

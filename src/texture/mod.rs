@@ -1,11 +1,11 @@
 //! Textures: column-major RGB texels, so a wall stripe reads memory in order.
 
-pub mod builtin;
-pub mod decode;
+pub(crate) mod builtin;
+pub(crate) mod decode;
 pub mod generate;
-pub mod key_tint;
-pub mod pickup_art;
-pub mod sheet;
+pub(crate) mod key_tint;
+pub(crate) mod pickup_art;
+pub(crate) mod sheet;
 pub mod sprite_art;
 
 /// Edge length of one picture of the built-in sprite art (one view of one frame), shared by the

@@ -6,12 +6,12 @@
 //! advances the state, `ui::render` paints the 3D view into a framebuffer, and `ui::screen` lays
 //! every pane into a ratatui buffer. Only [`terminal`] and [`app`] touch the real terminal.
 
-pub mod app;
+pub(crate) mod app;
 pub mod config;
-pub mod events;
-pub mod playback;
-pub mod terminal;
-pub mod tty_out;
+pub(crate) mod events;
+pub(crate) mod playback;
+pub(crate) mod terminal;
+pub(crate) mod tty_out;
 
 use std::sync::atomic::AtomicUsize;
 use std::sync::Arc;

@@ -188,7 +188,7 @@ impl MapView {
 
     /// A map point in canvas pixels.
     #[must_use]
-    pub fn to_px(&self, p: Vec2) -> (f64, f64) {
+    pub fn to_px(self, p: Vec2) -> (f64, f64) {
         (
             (p.x - self.origin.x) * self.scale,
             (p.y - self.origin.y) * self.scale,

@@ -3,11 +3,11 @@
 //! Each widget only reads its inputs and draws into the area it is given; they hold no state
 //! and know nothing of the terminal, so any ratatui app (or a test buffer) can use them.
 
-pub mod debug_pane;
-pub mod half_block;
-pub mod minimap;
-pub mod plot;
-pub mod revealed;
+pub(crate) mod debug_pane;
+pub(crate) mod half_block;
+pub(crate) mod minimap;
+pub(crate) mod plot;
+pub(crate) mod revealed;
 
 pub use debug_pane::DebugPane;
 pub use half_block::HalfBlockView;

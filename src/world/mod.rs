@@ -1,11 +1,11 @@
 //! A map with its textures loaded: everything the rasterizer needs to paint.
 
 pub mod door;
-pub mod lamp_falloff;
-pub mod lamp_reach;
-pub mod lightmap;
-pub mod ray;
-pub mod sprite;
+pub(crate) mod lamp_falloff;
+pub(crate) mod lamp_reach;
+pub(crate) mod lightmap;
+pub(crate) mod ray;
+pub(crate) mod sprite;
 
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};

@@ -535,9 +535,14 @@ mod tests {
         ps.join(2, "bob");
         let s = ps.snapshot();
         let bob = s.player(2).expect("bob");
-        assert_eq!(
-            crate::ui::screen::message_now(&bob.state),
-            Some("Find the exit. 0/12 treasures.")
+        let told = bob.state.message.as_ref().expect("a start message");
+        assert_eq!(told.text, "Find the exit. 0/12 treasures.");
+        // Stamped now on the world's clock (10 s in), not at time 0, so a screen still shows it.
+        let age = bob.state.time - told.at;
+        assert!(
+            (0.0..0.5).contains(&age),
+            "{age} s old at {}",
+            bob.state.time
         );
     }
 
