@@ -85,17 +85,36 @@ pub fn trace_column_doors(
     width: usize,
 ) -> DdaTrace {
     let ray_dir = camera.ray_dir(x, width);
-    let setup = Setup::new(camera.pos, ray_dir);
-    let mut steps = Vec::new();
-    let hit = cast_ray_doors(map, doors, camera.pos, ray_dir, |s| steps.push(s));
-    DdaTrace {
-        column: x,
-        ray_dir,
-        delta_dist: setup.delta,
-        start_cell: setup.cell,
-        initial_side_dist: setup.side_dist,
-        steps,
-        hit,
+    let (trace, ()) = DdaTrace::record(x, camera.pos, ray_dir, |steps| {
+        let hit = cast_ray_doors(map, doors, camera.pos, ray_dir, |s| steps.push(s));
+        (hit, ())
+    });
+    trace
+}
+
+impl DdaTrace {
+    /// Traces column `column`'s ray from `pos`: the set-up, then every step `walk` reports
+    /// (`walk` is the caster's own walk, flat or through heights, with what else it returns),
+    /// so the flat and the heights caster record a trace the same way.
+    pub(crate) fn record<R>(
+        column: usize,
+        pos: Vec2,
+        ray_dir: Vec2,
+        walk: impl FnOnce(&mut Vec<DdaStep>) -> (ColumnHit, R),
+    ) -> (Self, R) {
+        let setup = Setup::new(pos, ray_dir);
+        let mut steps = Vec::new();
+        let (hit, rest) = walk(&mut steps);
+        let trace = DdaTrace {
+            column,
+            ray_dir,
+            delta_dist: setup.delta,
+            start_cell: setup.cell,
+            initial_side_dist: setup.side_dist,
+            steps,
+            hit,
+        };
+        (trace, rest)
     }
 }
 

@@ -87,18 +87,11 @@ pub fn cast_heights(
     for x in 0..width {
         let ray = camera.ray_dir(x, width);
         if traced == Some(x) {
-            let setup = Setup::new(camera.pos, ray);
-            let mut steps = Vec::new();
-            let (hit, col) = cast_column(map, doors, camera.pos, ray, proj, |s| steps.push(s));
-            trace = Some(DdaTrace {
-                column: x,
-                ray_dir: ray,
-                delta_dist: setup.delta,
-                start_cell: setup.cell,
-                initial_side_dist: setup.side_dist,
-                steps,
-                hit,
+            let (traced, col) = DdaTrace::record(x, camera.pos, ray, |steps| {
+                cast_column(map, doors, camera.pos, ray, proj, |s| steps.push(s))
             });
+            let hit = traced.hit;
+            trace = Some(traced);
             columns.push(hit);
             heights.push(col);
         } else {
