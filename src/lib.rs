@@ -191,6 +191,11 @@ mod vec2;
 #[doc = include_str!("../README.md")]
 pub struct ReadmeExamples;
 
+/// docs/library.md's Rust examples, compiled and run as doc-tests for the same reason.
+#[cfg(doctest)]
+#[doc = include_str!("../docs/library.md")]
+pub struct LibraryDocExamples;
+
 pub use camera::Camera;
 pub use color::Rgb;
 pub use encode::ColorLevel;
