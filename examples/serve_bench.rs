@@ -21,6 +21,7 @@ use russh::{compression, ChannelMsg};
 
 /// The same client the integration tests use (one copy of the SSH client code).
 #[path = "../tests/support/serve_support/mod.rs"]
+#[allow(dead_code)] // the load test drives the server and counted connections, not the test client
 mod serve_support;
 
 /// Movement keys a bot presses (the local TUI's key map: walk, turn, strafe).

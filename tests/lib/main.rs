@@ -5,6 +5,7 @@
 #[path = "../support/capture/mod.rs"]
 mod capture;
 #[path = "../support/world_common/mod.rs"]
+#[allow(dead_code)] // each test binary uses its own part of the shared world helpers
 mod world_common;
 
 mod architecture;

@@ -5,6 +5,7 @@
 #[path = "../support/serve_support/mod.rs"]
 mod serve_support;
 #[path = "../support/world_common/mod.rs"]
+#[allow(dead_code)] // each test binary uses its own part of the shared world helpers
 mod world_common;
 
 mod game_serve;

@@ -1,7 +1,5 @@
 //! Helpers shared by the integration tests: running the binary and finding ../shared.
 
-#![allow(dead_code)]
-
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 

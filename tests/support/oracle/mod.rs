@@ -1,6 +1,5 @@
 //! An independent DDA walk (written apart from the library, crossing times only) that the
 //! tests compare the caster's JSON output with. Shut doors are panels across their cell's middle.
-#![allow(dead_code)]
 
 /// One grid line crossed: the cell entered, the axis crossed (`"x"` = a vertical grid line),
 /// and the crossing times of the next x and y grid lines after this step.

@@ -3,7 +3,6 @@
 //!
 //! The child is killed when its [`PtyRun`] is dropped, so a failing test leaves no process behind.
 #![cfg(unix)]
-#![allow(dead_code)]
 
 use std::io::{Read, Write};
 use std::path::Path;
@@ -41,7 +40,6 @@ pub struct PtyRun {
     answered: bool,
     /// What the "terminal" answers to the start-up keyboard probe.
     pub probe_answer: &'static [u8],
-    pub size: (u16, u16),
     parser: vt100::Parser,
     parsed: usize,
 }
@@ -99,7 +97,6 @@ impl PtyRun {
             reader: Some(reader),
             answered: false,
             probe_answer: NO_KITTY,
-            size,
             parser: vt100::Parser::new(size.1, size.0, 0),
             parsed: 0,
         }

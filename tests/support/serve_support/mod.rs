@@ -1,7 +1,6 @@
 //! Helpers for the `serve` integration tests and the `serve_bench` load test (which includes
 //! this file with `#[path]`): an in-process server on a free loopback port, and a real russh
 //! client whose output goes through a vt100 terminal model.
-#![allow(dead_code)]
 
 pub mod openssh;
 
@@ -329,6 +328,7 @@ pub fn colours(s: &vt100::Screen) -> Vec<(u8, u8, u8)> {
 /// Opens a pty shell as `user` over a stream that counts wire bytes received (after SSH
 /// compression and encryption), offering only `compression`; the load test reads the channel
 /// itself.
+#[allow(dead_code)] // examples/serve_bench's load test; the serve tests read through `Client`
 pub async fn open_counting(
     addr: std::net::SocketAddr,
     user: &str,

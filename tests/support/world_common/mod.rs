@@ -1,5 +1,4 @@
 //! Shared helpers for the world-feature tests: small maps built from text with embedded textures.
-#![allow(dead_code)]
 
 use std::path::PathBuf;
 
