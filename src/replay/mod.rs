@@ -1,6 +1,7 @@
 //! Deterministic recordings: the `.hcr` file format and the fixed-timestep player.
 
 pub mod format;
+pub mod limits;
 // Plays a recording through the TUI's screens (the binary's `replay` commands).
 #[doc(hidden)]
 #[allow(missing_docs)]
@@ -10,3 +11,4 @@ pub mod player;
 pub use format::{
     FrameInput, Header, MapSource, Replay, ReplayError, MAX_FRAMES, MAX_REPLAY_BYTES,
 };
+pub use limits::{default_max_frames, DEFAULT_MAX_OUTPUT_BYTES, LONGEST_RECORDING_SECS};
