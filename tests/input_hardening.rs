@@ -375,3 +375,57 @@ fn a_plain_openssh_user_refused_by_address_sees_the_reason() {
     assert!(!err.contains("kex_exchange_identification"), "{err}");
     rt.block_on(srv.shutdown());
 }
+
+/// paramiko asks for the `ssh-userauth` service again before every password attempt; this
+/// script makes a wrong then a right attempt on one connection and prints what each got.
+const PARAMIKO_RETRY: &str = r#"
+import sys, time, paramiko
+t = paramiko.Transport(("127.0.0.1", int(sys.argv[1])))
+t.start_client(timeout=10)
+t.auth_timeout = 10
+for n, pw in ((1, "wrong"), (2, "sesame")):
+    start = time.time()
+    try:
+        t.auth_password("ann", pw, fallback=False)
+        print(f"attempt {n}: accepted after {time.time() - start:.2f} s", flush=True)
+    except paramiko.AuthenticationException as e:
+        print(f"attempt {n}: refused after {time.time() - start:.2f} s ({e})", flush=True)
+    except Exception as e:
+        print(f"attempt {n}: {type(e).__name__} after {time.time() - start:.2f} s ({e})", flush=True)
+t.close()
+"#;
+
+/// Whether `python3` with paramiko is installed (a notice is printed when not).
+fn paramiko_available() -> bool {
+    let ok = Command::new("python3")
+        .args(["-c", "import paramiko"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .status()
+        .is_ok_and(|s| s.success());
+    if !ok {
+        println!("SKIPPED: python3 with paramiko is not installed (pip install paramiko)");
+    }
+    ok
+}
+
+#[test]
+fn paramiko_gets_an_answer_to_its_second_password_attempt() {
+    if !paramiko_available() {
+        return;
+    }
+    let rt = tokio::runtime::Runtime::new().expect("runtime");
+    let (srv, _dir) = rt.block_on(serve_support::server(|c| {
+        c.auth = halfcast::serve::auth::AuthMode::Password("sesame".into());
+    }));
+    let port = srv.local_addr().port().to_string();
+    let out = Command::new("python3")
+        .args(["-c", PARAMIKO_RETRY, &port])
+        .output()
+        .expect("run python3");
+    let text = String::from_utf8_lossy(&out.stdout);
+    println!("{text}{}", String::from_utf8_lossy(&out.stderr));
+    assert!(text.contains("attempt 1: refused"), "{text}");
+    assert!(text.contains("attempt 2: accepted"), "{text}");
+    rt.block_on(srv.shutdown());
+}
