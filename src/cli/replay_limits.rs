@@ -13,7 +13,7 @@ pub(crate) struct ReplayLimits {
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
     pub(crate) max_frames: Option<u64>,
     /// Stop with an error before the written output passes this size (suffixes K, M, G, T;
-    /// default 4G). A file output is then removed, never left looking complete.
+    /// default 16G). A file output is then removed, never left looking complete.
     #[arg(long, value_name = "SIZE", value_parser = parse_bytes)]
     pub(crate) max_output_bytes: Option<u64>,
 }

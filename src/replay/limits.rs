@@ -20,9 +20,12 @@ pub fn default_max_frames(fps: u32) -> usize {
     usize::try_from(frames).map_or(MAX_FRAMES, |f| f.min(MAX_FRAMES))
 }
 
-/// The default `--max-output-bytes` of a headless replay (an asciicast or frame files): 4 GiB,
-/// more than an hour of 120×36 play in full colour, far less than a hostile file could make.
-pub const DEFAULT_MAX_OUTPUT_BYTES: u64 = 4 << 30;
+/// The default `--max-output-bytes` of a headless replay (an asciicast or frame files): 16 GiB.
+/// A truecolor cast of constant turning (every frame a full redraw) measured 16 KB a frame at
+/// 40×12, 79 KB at 120×36 and 145 KB at 160×48, so an hour of that at 30 fps and 160×48 (14.6
+/// GiB) fits; walking measured 9 KB a frame at 120×36. A hostile file (a huge size, a million
+/// frames) stops here instead of filling the disk.
+pub const DEFAULT_MAX_OUTPUT_BYTES: u64 = 16 << 30;
 
 #[cfg(test)]
 mod tests {
