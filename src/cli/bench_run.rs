@@ -11,6 +11,9 @@ use halfcast::bench::{
     ZlibMeter,
 };
 use halfcast::encode::{ColorLevel, EncodeOptions, Encoder};
+use halfcast::input_file::read_regular_capped;
+use halfcast::termframe::{MAX_FRAME, MAX_FRAME_BYTES};
+use halfcast::texture::decode::decode_within;
 use halfcast::world::World;
 use halfcast::{Framebuffer, Scene};
 
@@ -243,11 +246,17 @@ fn fix_ratios(report: &mut Report) {
     }
 }
 
-/// Loads a directory of PNG frames sorted by file name; all must be the same size.
+/// Most pixels all the frames of `bench --frames` may hold together (about 200 MB decoded):
+/// a directory of small, highly compressible PNGs cannot make the bench hold gigabytes.
+pub const MAX_BENCH_PIXELS: usize = 1 << 26;
+
+/// Loads a directory of PNG frames sorted by file name; all must be the same size. Each is a
+/// regular file within the frame-file byte cap and decoded within the frame size limit, and all
+/// together hold at most [`MAX_BENCH_PIXELS`].
 ///
 /// # Errors
-/// Exit-2 errors for a missing directory, a file that is not a PNG, mismatched sizes, an odd
-/// height or an empty directory.
+/// Exit-2 errors for a missing directory, a FIFO or device, a file that is not a PNG, mismatched
+/// sizes, an odd height, frames over the limits, or an empty directory.
 pub fn load_frames(dir: &Path) -> Result<Vec<Framebuffer>, BenchError> {
     let entries = std::fs::read_dir(dir).map_err(|e| {
         input(format!(
@@ -255,25 +264,48 @@ pub fn load_frames(dir: &Path) -> Result<Vec<Framebuffer>, BenchError> {
             dir.display()
         ))
     })?;
+    // Subdirectories are skipped; anything else that is not a regular file is refused on reading.
     let mut paths: Vec<PathBuf> = entries
         .filter_map(Result::ok)
         .map(|e| e.path())
-        .filter(|p| p.is_file())
+        .filter(|p| !p.is_dir())
         .collect();
     paths.sort();
     if paths.is_empty() {
         return Err(input(format!("no PNG frames in {}", dir.display())));
     }
-    let mut frames: Vec<Framebuffer> = Vec::with_capacity(paths.len());
+    let mut frames: Vec<Framebuffer> = Vec::new();
+    let (max_cols, max_rows) = MAX_FRAME;
     for p in &paths {
-        let bytes =
-            std::fs::read(p).map_err(|e| input(format!("cannot read {}: {e}", p.display())))?;
+        let bytes = read_regular_capped(p, MAX_FRAME_BYTES)
+            .map_err(|e| input(format!("cannot read {}: {e}", p.display())))?;
         if !bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
             return Err(input(format!("{} is not a PNG image", p.display())));
         }
-        let fb = Framebuffer::from_image_bytes(&bytes)
+        if frames.is_empty() {
+            // All frames must share the first one's size, so its header says what all of them
+            // will hold: refuse before decoding any.
+            let (w, h) = image::ImageReader::new(std::io::Cursor::new(&bytes))
+                .with_guessed_format()
+                .ok()
+                .and_then(|r| r.into_dimensions().ok())
+                .unwrap_or((0, 0));
+            let pixels = (w as usize)
+                .saturating_mul(h as usize)
+                .saturating_mul(paths.len());
+            if pixels > MAX_BENCH_PIXELS {
+                return Err(input(format!(
+                    "{}: {} frames of {w}x{h} pixels hold more than {MAX_BENCH_PIXELS} pixels \
+                     (the limit); use fewer or smaller frames",
+                    dir.display(),
+                    paths.len()
+                )));
+            }
+        }
+        let img = decode_within(&bytes, max_cols as u32, 2 * max_rows as u32)
             .map_err(|e| input(format!("{} is not a readable PNG: {e}", p.display())))?;
-        if fb.height() % 2 != 0 || fb.width() == 0 || fb.height() == 0 {
+        let fb = Framebuffer::from_image(&img.to_rgb8());
+        if !fb.height().is_multiple_of(2) || fb.width() == 0 || fb.height() == 0 {
             return Err(input(format!(
                 "{} is {}x{} pixels; frames need an even height (two pixel rows per cell)",
                 p.display(),

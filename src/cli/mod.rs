@@ -5,10 +5,12 @@ mod bench;
 mod bench_run;
 mod diff;
 mod options;
+mod output_file;
 mod play;
 mod render;
 mod replay;
 mod replay_frames;
+mod replay_limits;
 mod serve;
 
 use std::io::Write;
@@ -186,7 +188,7 @@ pub(crate) fn camera_for(world: &World, pose: &PoseArgs) -> Camera {
 
 pub(crate) fn write_output(path: Option<&PathBuf>, bytes: &[u8]) -> Result<(), Failure> {
     match path {
-        Some(p) => std::fs::write(p, bytes)
+        Some(p) => output_file::write_whole(p, bytes)
             .map_err(|e| Failure::io(format!("cannot write {}: {e}", p.display()))),
         None => {
             let mut out = std::io::stdout().lock();

@@ -167,6 +167,14 @@ pub(crate) fn play(args: &PlayArgs, record: Option<&PathBuf>) -> Result<(), Fail
             replay.frames.len(),
             path.display()
         );
+        if replay.frames.len() >= halfcast::replay::default_max_frames(args.fps) {
+            eprintln!(
+                "halfcast: the recording stopped at its limit ({} s at {} fps); the rest of the \
+                 game was not recorded",
+                halfcast::replay::LONGEST_RECORDING_SECS,
+                args.fps
+            );
+        }
     }
     ending_result(ending)
 }

@@ -28,6 +28,8 @@ pub(crate) struct ReplayArgs {
     /// Play only frames 0..=N (on screen or as `cast`): the run ends showing frame N.
     #[arg(long, value_name = "N")]
     pub(crate) until_frame: Option<usize>,
+    #[command(flatten)]
+    pub(crate) limits: super::replay_limits::ReplayLimits,
 }
 
 pub(crate) fn replay(args: &ReplayArgs) -> Result<(), Failure> {
@@ -40,12 +42,23 @@ pub(crate) fn replay(args: &ReplayArgs) -> Result<(), Failure> {
     if let Some(n) = args.until_frame {
         super::replay_frames::cut_after(&mut replay, n).map_err(failure)?;
     }
+    let file = args.file.display().to_string();
+    // What one file may make is bounded before anything is loaded or rendered.
+    match (args.format, &args.frames) {
+        (Some(ReplayFormat::Cast), _) => args.limits.check(&replay, replay.frames.len(), &file)?,
+        (Some(_), Some(frames)) => {
+            let last = frames.last().map_or(0, |f| f + 1);
+            args.limits.check(&replay, last, &file)?;
+        }
+        _ => {}
+    }
     let world = replay_world(&replay, &args.file).map_err(failure)?;
     match (args.format, &args.frames) {
         (Some(ReplayFormat::Cast), _) => write_cast(args, &replay, world),
         (Some(format), Some(frames)) => {
             let dir = args.out.clone().unwrap_or_else(|| PathBuf::from("."));
-            write_frames(&replay, world, frames, format, args.colors, &dir).map_err(failure)
+            let cap = args.limits.output_bytes();
+            write_frames(&replay, world, frames, format, args.colors, &dir, cap).map_err(failure)
         }
         (Some(_), None) => Err(Failure::input(
             "--format needs --frames (or use --format cast)",
@@ -60,29 +73,50 @@ pub(crate) fn replay(args: &ReplayArgs) -> Result<(), Failure> {
 
 /// Streams the asciicast to `--out` (or standard output) while the replay renders, so nothing
 /// but the current frame is held in memory; a closed pipe ends the run quietly.
+///
+/// A file appears only when the cast is complete (see `output_file`); on an error or the output
+/// limit nothing is left. Standard output cannot be taken back: at the limit the stream ends
+/// with a last event saying the cast is incomplete (after whole events only), the error goes to
+/// standard error, and the exit code is 2.
 fn write_cast(
     args: &ReplayArgs,
     replay: &halfcast::replay::Replay,
     world: std::sync::Arc<halfcast::world::World>,
 ) -> Result<(), Failure> {
-    use std::io::{BufWriter, ErrorKind};
+    use super::replay_frames::{cast_cut_notice, write_asciicast, CastStop};
+    use std::io::{BufWriter, ErrorKind, Write};
+    let cap = args.limits.output_bytes();
+    let limit = |frame: usize, cap: u64, what: &str| {
+        Failure::input(format!(
+            "{what}: stopped at frame {frame} of {}: the cast would pass --max-output-bytes {cap}",
+            replay.frames.len()
+        ))
+    };
     match &args.out {
         Some(p) => {
-            let file = std::fs::File::create(p)
-                .map_err(|e| Failure::io(format!("cannot write {}: {e}", p.display())))?;
-            super::replay_frames::write_asciicast(
-                replay,
-                world,
-                args.colors,
-                &mut BufWriter::new(file),
-            )
-            .map_err(|e| Failure::io(format!("cannot write {}: {e}", p.display())))
+            let cannot =
+                |e: std::io::Error| Failure::io(format!("cannot write {}: {e}", p.display()));
+            let mut file = super::output_file::OutputFile::create(p).map_err(cannot)?;
+            match write_asciicast(replay, world, args.colors, cap, &mut file) {
+                Ok(()) => file.commit().map_err(cannot),
+                Err(CastStop::Io(e)) => Err(cannot(e)),
+                Err(CastStop::OutputLimit { frame, cap, .. }) => {
+                    Err(limit(frame, cap, &format!("{} (not written)", p.display())))
+                }
+            }
         }
         None => {
             let mut out = BufWriter::new(std::io::stdout().lock());
-            match super::replay_frames::write_asciicast(replay, world, args.colors, &mut out) {
-                Err(e) if e.kind() == ErrorKind::BrokenPipe => Ok(()),
-                r => r.map_err(Failure::io),
+            match write_asciicast(replay, world, args.colors, cap, &mut out) {
+                Ok(()) => Ok(()),
+                Err(CastStop::Io(e)) if e.kind() == ErrorKind::BrokenPipe => Ok(()),
+                Err(CastStop::Io(e)) => Err(Failure::io(e)),
+                Err(CastStop::OutputLimit { frame, at, cap }) => {
+                    let why = format!("cut at frame {frame}, --max-output-bytes {cap}");
+                    let _ = writeln!(out, "{}", cast_cut_notice(at, &why));
+                    let _ = out.flush();
+                    Err(limit(frame, cap, "standard output (incomplete)"))
+                }
             }
         }
     }

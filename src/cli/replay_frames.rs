@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use halfcast::encode::{ColorLevel, EncodeOptions};
-use halfcast::input_file::read_capped;
+use halfcast::input_file::read_regular_capped;
 use halfcast::output::{json::RayReport, text};
 use halfcast::present::Presenter;
 use halfcast::replay::{MapSource, Replay, MAX_FRAMES, MAX_REPLAY_BYTES};
@@ -55,7 +55,7 @@ fn io(message: impl std::fmt::Display) -> ReplayFailure {
 /// # Errors
 /// Unreadable or invalid files (exit 2).
 pub fn read_replay(path: &Path) -> Result<Replay, ReplayFailure> {
-    let bytes = read_capped(path, MAX_REPLAY_BYTES)
+    let bytes = read_regular_capped(path, MAX_REPLAY_BYTES)
         .map_err(|e| input(format!("{}: cannot read: {e}", path.display())))?;
     let text = String::from_utf8(bytes)
         .map_err(|_| input(format!("{}: cannot read: not UTF-8 text", path.display())))?;
@@ -196,10 +196,12 @@ fn extension(format: ReplayFormat) -> &'static str {
     }
 }
 
-/// Writes the chosen frames as `DIR/frame-NNNNN.EXT`.
+/// Writes the chosen frames as `DIR/frame-NNNNN.EXT`, each file whole or not at all, and at
+/// most `max_bytes` in all.
 ///
 /// # Errors
-/// A frame past the end (exit 2), or a file that cannot be written (exit 1).
+/// A frame past the end or the byte cap reached (exit 2), or a file that cannot be written
+/// (exit 1).
 pub fn write_frames(
     replay: &Replay,
     world: Arc<World>,
@@ -207,6 +209,7 @@ pub fn write_frames(
     format: ReplayFormat,
     level: ColorLevel,
     dir: &Path,
+    max_bytes: u64,
 ) -> Result<(), ReplayFailure> {
     let last = *frames
         .last()
@@ -218,6 +221,7 @@ pub fn write_frames(
         .map_err(|e| io(format!("cannot create {}: {e}", dir.display())))?;
     let mut player = Player::new(world, &replay.header);
     let mut wanted = frames.iter().peekable();
+    let mut written = 0u64;
     for input_frame in &replay.frames {
         let Some(frame) = player.play(input_frame) else {
             break;
@@ -225,7 +229,17 @@ pub fn write_frames(
         if wanted.peek() == Some(&&frame.index) {
             wanted.next();
             let path = dir.join(format!("frame-{:05}.{}", frame.index, extension(format)));
-            std::fs::write(&path, frame_bytes(&frame, format, level)?)
+            let bytes = frame_bytes(&frame, format, level)?;
+            written = written.saturating_add(bytes.len() as u64);
+            if written > max_bytes {
+                return Err(input(format!(
+                    "stopped before writing frame {}: the frame files would pass \
+                     --max-output-bytes {max_bytes} (the frames before it were written, each \
+                     complete)",
+                    frame.index
+                )));
+            }
+            super::output_file::write_whole(&path, &bytes)
                 .map_err(|e| io(format!("cannot write {}: {e}", path.display())))?;
         }
         if wanted.peek().is_none() {
@@ -238,30 +252,99 @@ pub fn write_frames(
     }
 }
 
+/// Why an asciicast stopped before the end of the run.
+#[derive(Debug)]
+pub enum CastStop {
+    /// A write failed.
+    Io(std::io::Error),
+    /// The next event would have taken the output past `cap` bytes; it was not written.
+    OutputLimit {
+        /// The frame whose event did not fit.
+        frame: usize,
+        /// The time of that frame in the cast, in seconds.
+        at: f64,
+        /// The cap (`--max-output-bytes`).
+        cap: u64,
+    },
+}
+
+impl From<std::io::Error> for CastStop {
+    fn from(e: std::io::Error) -> Self {
+        Self::Io(e)
+    }
+}
+
+/// Writes whole lines to an output, refusing the line that would take it past a byte cap, so
+/// what was written always ends with a complete line.
+struct CappedLines<'a, W: Write> {
+    out: &'a mut W,
+    written: u64,
+    cap: u64,
+}
+
+impl<W: Write> CappedLines<'_, W> {
+    /// Writes `line` and a newline, or returns false (writing nothing) if it would not fit.
+    fn line(&mut self, line: &str) -> std::io::Result<bool> {
+        let n = line.len() as u64 + 1;
+        if self.written.saturating_add(n) > self.cap {
+            return Ok(false);
+        }
+        self.out.write_all(line.as_bytes())?;
+        self.out.write_all(b"\n")?;
+        self.written += n;
+        Ok(true)
+    }
+}
+
+/// One asciicast v2 event line.
+fn cast_event(t: f64, kind: &str, data: &str) -> String {
+    serde_json::json!([t, kind, data]).to_string()
+}
+
+/// The event that ends a cast cut short, so whoever plays it sees that it is incomplete.
+#[must_use]
+pub fn cast_cut_notice(at: f64, why: &str) -> String {
+    cast_event(
+        at,
+        "o",
+        &format!("\x1b[0m\x1b[?25h\r\n[halfcast: this cast is incomplete: {why}]\r\n"),
+    )
+}
+
 /// The whole run as an asciicast v2 file, written to `out` frame by frame as it is rendered
-/// (a header line, then one output event per frame), so memory stays flat however long the run.
+/// (a header line, then one output event per frame), so memory stays flat however long the run;
+/// at most `max_bytes` are written, and only whole lines.
 ///
 /// # Errors
-/// The first write that fails.
+/// The first write that fails, or the first event that would pass `max_bytes`.
 pub fn write_asciicast(
     replay: &Replay,
     world: Arc<World>,
     level: ColorLevel,
+    max_bytes: u64,
     out: &mut impl Write,
-) -> std::io::Result<()> {
+) -> Result<(), CastStop> {
     let h = &replay.header;
     let head = serde_json::json!({
         "version": 2, "width": h.size.0, "height": h.size.1,
         "title": "halfcast replay", "env": {"TERM": "xterm-256color"},
     });
-    writeln!(out, "{head}")?;
+    let mut lines = CappedLines {
+        out,
+        written: 0,
+        cap: max_bytes,
+    };
+    let over = |frame: usize, at: f64| CastStop::OutputLimit {
+        frame,
+        at,
+        cap: max_bytes,
+    };
+    if !lines.line(&head.to_string())? || !lines.line(&cast_event(0.0, "o", "\x1b[?25l"))? {
+        return Err(over(0, 0.0));
+    }
     let mut presenter = Presenter::new(EncodeOptions::new(level));
     let mut player = Player::new(world, &replay.header);
     let mut size = h.size;
-    let event = |out: &mut dyn Write, t: f64, kind: &str, data: &str| {
-        writeln!(out, "{}", serde_json::json!([t, kind, data]))
-    };
-    event(out, 0.0, "o", "\x1b[?25l")?;
     for input_frame in &replay.frames {
         let Some(frame) = player.play(input_frame) else {
             break;
@@ -269,10 +352,15 @@ pub fn write_asciicast(
         let t = frame.index as f64 / f64::from(h.fps);
         if player.size() != size {
             size = player.size();
-            event(out, t, "r", &format!("{}x{}", size.0, size.1))?;
+            if !lines.line(&cast_event(t, "r", &format!("{}x{}", size.0, size.1)))? {
+                return Err(over(frame.index, t));
+            }
         }
         let bytes = presenter.frame(&frame.screen, &frame.view, frame.view_area);
-        event(out, t, "o", &String::from_utf8_lossy(bytes))?;
+        if !lines.line(&cast_event(t, "o", &String::from_utf8_lossy(bytes)))? {
+            return Err(over(frame.index, t));
+        }
     }
-    out.flush()
+    lines.out.flush()?;
+    Ok(())
 }

@@ -157,13 +157,19 @@ impl Framebuffer {
         let img = image::load_from_memory(bytes)
             .map_err(|e| e.to_string())?
             .to_rgb8();
+        Ok(Self::from_image(&img))
+    }
+
+    /// A framebuffer holding a decoded image's pixels (for images decoded within limits).
+    #[must_use]
+    pub fn from_image(img: &image::RgbImage) -> Self {
         let pixels = img.pixels().map(|p| Rgb::new(p[0], p[1], p[2])).collect();
-        Ok(Self {
+        Self {
             width: img.width() as usize,
             height: img.height() as usize,
             pixels,
             phases: None,
-        })
+        }
     }
 }
 

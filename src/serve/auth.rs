@@ -11,6 +11,14 @@ use russh::keys::ssh_key::AuthorizedKeys;
 use russh::keys::PublicKey;
 use russh::{MethodKind, MethodSet};
 
+use crate::input_file::read_regular_text;
+
+/// Most bytes an `authorized_keys` file may hold (tens of thousands of keys).
+pub const MAX_AUTHORIZED_KEYS_BYTES: u64 = 16 << 20;
+
+/// Most bytes a password file may hold (only its first line is used).
+pub const MAX_PASSWORD_FILE_BYTES: u64 = 64 << 10;
+
 /// The authentication mode chosen on the command line.
 #[derive(Clone, Default)]
 pub enum AuthMode {
@@ -40,7 +48,7 @@ impl AuthMode {
     /// A message naming the file and line when it cannot be read or a line is not a key, or when
     /// it holds no key at all.
     pub fn from_authorized_keys(path: &Path) -> Result<Self, String> {
-        let text = std::fs::read_to_string(path)
+        let text = read_regular_text(path, MAX_AUTHORIZED_KEYS_BYTES)
             .map_err(|e| format!("authorized keys {}: {e}", path.display()))?;
         let mut keys = Vec::new();
         for (n, line) in text.lines().enumerate() {
@@ -175,7 +183,7 @@ impl Backoff {
 /// # Errors
 /// A message naming the file when it cannot be read or its first line is empty.
 pub fn password_from_file(path: &Path) -> Result<String, String> {
-    let text = std::fs::read_to_string(path)
+    let text = read_regular_text(path, MAX_PASSWORD_FILE_BYTES)
         .map_err(|e| format!("password file {}: {e}", path.display()))?;
     let line = text.lines().next().unwrap_or("");
     if line.is_empty() {

@@ -9,6 +9,9 @@ use russh::keys::ssh_key::private::Ed25519Keypair;
 use russh::keys::ssh_key::LineEnding;
 use russh::keys::{HashAlg, PrivateKey};
 
+/// Most bytes a host key file may hold (an OpenSSH RSA-16384 key is about 12 KB).
+pub const MAX_HOST_KEY_BYTES: u64 = 1 << 20;
+
 /// Reads the OpenSSH private key at `path`, or creates a new Ed25519 key there (mode 0600).
 ///
 /// Returns the key and notes for the log (generated, fingerprint, loose permissions).
@@ -19,7 +22,7 @@ use russh::keys::{HashAlg, PrivateKey};
 /// is readable by others (without `insecure`).
 pub fn load_or_generate(path: &Path, insecure: bool) -> Result<(PrivateKey, Vec<String>), String> {
     let mut notes = Vec::new();
-    let key = match fs::read_to_string(path) {
+    let key = match crate::input_file::read_regular_text(path, MAX_HOST_KEY_BYTES) {
         Ok(text) => {
             if let Some(mode) = loose_mode(path) {
                 if !insecure {
@@ -49,7 +52,7 @@ pub fn load_or_generate(path: &Path, insecure: bool) -> Result<(PrivateKey, Vec<
             }
             key
         }
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+        Err(e) if e.is_not_found() => {
             let key = generate()?;
             write_private(path, &key)?;
             notes.push(format!("generated a new host key at {}", path.display()));

@@ -25,7 +25,7 @@ pub(crate) mod lifecycle;
 pub mod limits;
 pub(crate) mod log;
 pub mod screen;
-pub(crate) mod server;
+pub mod server;
 pub(crate) mod session;
 pub(crate) mod stats;
 pub mod world_task;

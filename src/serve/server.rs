@@ -2,9 +2,12 @@
 //! session's panic or error reaches the loop) under the login grace deadline, logs connect and
 //! disconnect with the duration.
 //!
-//! A connection turned away at accept is told why in one text line before the SSH version line
-//! (RFC 4253 §4.2 allows such lines), then closed; one refused later (server full, login grace
-//! over) gets an SSH disconnect message, which OpenSSH prints.
+//! A connection turned away at accept (per-address or start-up limit, server full) is told why
+//! without any key exchange: one text line before the SSH version line (RFC 4253 §4.2 allows
+//! such lines, but OpenSSH's `ssh` shows them only with `-v`), the version line, then an
+//! unencrypted SSH_MSG_DISCONNECT carrying the reason, which plain `ssh` prints as
+//! "Received disconnect from HOST port PORT:12: REASON". One refused later (server full at
+//! login, login grace over) gets the disconnect message inside the encrypted session.
 
 use std::io;
 use std::net::SocketAddr;
@@ -227,12 +230,42 @@ async fn accept_loop(
     }
 }
 
-/// Tells a refused client why in one line before any SSH version line, then closes; the socket
-/// lingers briefly (a bounded number at once) so the line is not lost to a reset.
+/// SSH_DISCONNECT_TOO_MANY_CONNECTIONS (RFC 4250 §4.2.2).
+const TOO_MANY_CONNECTIONS: u32 = 12;
+
+/// What a refused client is sent, all before any key exchange: the reason as a text line
+/// (shown by `ssh -v`, netcat, paramiko's log), our version line, and the reason again as an
+/// SSH_MSG_DISCONNECT in the binary packet format with no encryption and no MAC (RFC 4253 §6),
+/// which is what every SSH client reads next and what plain `ssh` prints.
+#[must_use]
+pub fn refusal_bytes(why: &Refusal) -> Vec<u8> {
+    let reason = format!("halfcast: {why}");
+    let mut out = format!("{reason}\r\nSSH-2.0-halfcast\r\n").into_bytes();
+    let mut payload = vec![1u8]; // SSH_MSG_DISCONNECT
+    payload.extend_from_slice(&TOO_MANY_CONNECTIONS.to_be_bytes());
+    for s in [reason.as_str(), ""] {
+        payload.extend_from_slice(&(s.len() as u32).to_be_bytes());
+        payload.extend_from_slice(s.as_bytes());
+    }
+    // Length field, padding-length byte, payload and padding make a multiple of 8, with at
+    // least 4 bytes of padding.
+    let mut padding = 8 - (4 + 1 + payload.len()) % 8;
+    if padding < 4 {
+        padding += 8;
+    }
+    let packet_len = (1 + payload.len() + padding) as u32;
+    out.extend_from_slice(&packet_len.to_be_bytes());
+    out.push(padding as u8);
+    out.extend_from_slice(&payload);
+    out.extend(std::iter::repeat_n(0u8, padding));
+    out
+}
+
+/// Tells a refused client why (see [`refusal_bytes`]), then closes; the socket lingers briefly
+/// (a bounded number at once) so the reason is not lost to a reset.
 fn refuse(socket: tokio::net::TcpStream, why: Refusal, lingering: &Arc<AtomicU64>) {
-    let line = format!("halfcast: {why}\r\n");
     // A fresh socket's send buffer is empty: this never blocks, and a short write is dropped.
-    let _ = socket.try_write(line.as_bytes());
+    let _ = socket.try_write(&refusal_bytes(&why));
     if lingering.load(Ordering::Relaxed) >= MAX_LINGERING as u64 {
         return;
     }
@@ -355,5 +388,30 @@ async fn wait_for_signal() -> io::Result<()> {
     #[cfg(not(unix))]
     {
         tokio::signal::ctrl_c().await
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_refusal_is_a_line_a_version_and_a_well_formed_disconnect_packet() {
+        let bytes = refusal_bytes(&Refusal::TooManyFromAddress);
+        let text = "halfcast: too many connections from your address";
+        let head = format!("{text}\r\nSSH-2.0-halfcast\r\n");
+        assert!(bytes.starts_with(head.as_bytes()));
+        let packet = &bytes[head.len()..];
+        let len = u32::from_be_bytes(packet[..4].try_into().unwrap()) as usize;
+        assert_eq!(packet.len(), 4 + len);
+        assert_eq!(packet.len() % 8, 0);
+        let padding = usize::from(packet[4]);
+        assert!(padding >= 4);
+        let payload = &packet[5..4 + len - padding];
+        assert_eq!(payload[0], 1, "SSH_MSG_DISCONNECT");
+        assert_eq!(u32::from_be_bytes(payload[1..5].try_into().unwrap()), 12);
+        let n = u32::from_be_bytes(payload[5..9].try_into().unwrap()) as usize;
+        assert_eq!(&payload[9..9 + n], text.as_bytes());
+        assert_eq!(&payload[9 + n..], &[0, 0, 0, 0], "an empty language tag");
     }
 }

@@ -27,7 +27,7 @@ pub enum FrameFormat {
 pub const MAX_FRAME: (usize, usize) = (4000, 2000);
 
 /// Most bytes a frame file may hold (a 4000×2000 frame of distinct colours does not fit, but
-/// anything a person diffs does; `/dev/zero` stops here).
+/// anything a person diffs does). Only regular files are read: a FIFO or `/dev/zero` is refused.
 pub const MAX_FRAME_BYTES: u64 = 64 << 20;
 
 /// The error for a frame larger than [`MAX_FRAME`].
@@ -39,10 +39,10 @@ fn too_large(what: &str, cols: usize, rows: usize) -> String {
 /// Reads a frame file of any supported kind, recognised by content, not by name.
 ///
 /// # Errors
-/// An unreadable or oversized file, a broken PNG or cells text, a frame over [`MAX_FRAME`],
+/// An unreadable or oversized file, a FIFO or device, a broken PNG or cells text, a frame over [`MAX_FRAME`],
 /// with the path in the message.
 pub fn load(path: &Path) -> Result<(TermFrame, FrameFormat), String> {
-    let bytes = crate::input_file::read_capped(path, MAX_FRAME_BYTES)
+    let bytes = crate::input_file::read_regular_capped(path, MAX_FRAME_BYTES)
         .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
     parse_frame(&bytes).map_err(|e| format!("{}: {e}", path.display()))
 }

@@ -1,7 +1,7 @@
 //! Textures: column-major RGB texels, so a wall stripe reads memory in order.
 
 pub(crate) mod builtin;
-pub(crate) mod decode;
+pub mod decode;
 pub mod generate;
 pub(crate) mod key_tint;
 pub(crate) mod pickup_art;

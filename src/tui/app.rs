@@ -48,7 +48,8 @@ pub struct LoopOptions {
     pub colour_reason: ColourReason,
 }
 
-/// Frame-by-frame input captured while playing, for a `.hcr` replay.
+/// Frame-by-frame input captured while playing, for a `.hcr` replay; it stops after
+/// [`crate::replay::LONGEST_RECORDING_SECS`] of game time (the game goes on unrecorded).
 #[derive(Debug, Clone, Default)]
 pub struct Recording {
     /// Terminal size at the first frame.
@@ -270,6 +271,11 @@ pub fn run_loop(
                 ui,
                 resize,
             });
+            // An hour at most, so every recording replays within the default `--max-frames`
+            // and a game left running does not grow the recording without bound.
+            if rec.frames.len() >= crate::replay::default_max_frames(options.fps) {
+                app.recording_open = false;
+            }
         }
         app.last_size = Some((size.width, size.height));
         if app.results.is_none() {

@@ -102,6 +102,9 @@ struct RawDisplay {
     ray_pane: Option<bool>,
 }
 
+/// Most bytes a config file may hold (a few dozen lines in practice).
+pub const MAX_CONFIG_BYTES: u64 = 1 << 20;
+
 impl Config {
     /// Where the config file lives when `--config` is not given:
     /// `$XDG_CONFIG_HOME/halfcast/config.toml`, else `~/.config/halfcast/config.toml`.
@@ -118,15 +121,17 @@ impl Config {
         Some(base.join("halfcast").join("config.toml"))
     }
 
-    /// Loads `path`; with `required` false a missing file means the defaults.
+    /// Loads `path` (a regular file of at most [`MAX_CONFIG_BYTES`]); with `required` false a
+    /// missing file means the defaults.
     ///
     /// # Errors
-    /// The file cannot be read, is not TOML, or has an unknown name or a bad value.
+    /// The file cannot be read (or is a FIFO or device), is not TOML, or has an unknown name or a
+    /// bad value.
     pub fn load(path: &Path, required: bool) -> Result<Self, ConfigError> {
         let file = path.display().to_string();
-        match std::fs::read_to_string(path) {
+        match crate::input_file::read_regular_text(path, MAX_CONFIG_BYTES) {
             Ok(text) => Self::parse(&text, &file),
-            Err(e) if !required && e.kind() == std::io::ErrorKind::NotFound => Ok(Self::default()),
+            Err(e) if !required && e.is_not_found() => Ok(Self::default()),
             Err(e) => Err(ConfigError::Read {
                 file,
                 message: e.to_string(),

@@ -586,7 +586,7 @@ fn read_texture(source: &TextureSource, path: &str, budget: &mut usize) -> Resul
     }
 }
 
-/// An image file's bytes: only a regular file is opened (a FIFO would block the load, a device
+/// An image file's bytes: only a regular file is read (a FIFO would block the load, a device
 /// would read forever), and at most [`MAX_IMAGE_FILE_BYTES`] of it.
 fn read_image_file(path: &Path) -> Result<Vec<u8>, String> {
     read_regular_capped(path, MAX_IMAGE_FILE_BYTES).map_err(|e| e.to_string())

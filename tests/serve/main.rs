@@ -1,7 +1,10 @@
 //! `halfcast serve` end to end: russh clients (and OpenSSH's `ssh` where installed) joining,
-//! playing, being refused and disconnecting. One binary, so the support code and the link are
-//! paid once.
+//! playing, being refused and disconnecting, and the inputs a hostile user controls (FIFOs,
+//! floods of frames). One binary, so the support code and the link are paid once.
 
+#[path = "../support/common/mod.rs"]
+#[allow(dead_code)] // each test binary uses its own part of the shared helpers
+mod common;
 #[path = "../support/serve_support/mod.rs"]
 mod serve_support;
 #[path = "../support/world_common/mod.rs"]
@@ -10,6 +13,7 @@ mod world_common;
 
 mod game_serve;
 mod heights_serve;
+mod input_hardening;
 mod serve_abuse;
 mod serve_auth;
 mod serve_churn;

@@ -94,8 +94,11 @@ async fn max_sessions_counts_players_and_the_per_address_limit_says_why() {
     let mut got = Vec::new();
     assert!(closed_within(&mut fourth, PATIENCE, &mut got).await);
     assert_eq!(
-        String::from_utf8_lossy(&got),
-        "halfcast: too many connections from your address\r\n"
+        got,
+        halfcast::serve::server::refusal_bytes(
+            &halfcast::serve::limits::Refusal::TooManyFromAddress
+        ),
+        "the reason line, a version line and a disconnect packet"
     );
     drop(_pending);
     drop(a);
