@@ -196,23 +196,13 @@ pub fn cast_heights(
     let mut heights = Vec::with_capacity(width);
     let mut trace = None;
     for x in 0..width {
-        let ray = camera.ray_dir(x, width);
         if traced == Some(x) {
-            let setup = Setup::new(camera.pos, ray);
-            let mut steps = Vec::new();
-            let (hit, col) = cast_column(map, doors, camera.pos, ray, proj, |s| steps.push(s));
-            trace = Some(DdaTrace {
-                column: x,
-                ray_dir: ray,
-                delta_dist: setup.delta,
-                start_cell: setup.cell,
-                initial_side_dist: setup.side_dist,
-                steps,
-                hit,
-            });
-            columns.push(hit);
+            let (t, col) = trace_column_heights(map, doors, camera, proj, x, width);
+            columns.push(t.hit);
             heights.push(col);
+            trace = Some(t);
         } else {
+            let ray = camera.ray_dir(x, width);
             let (hit, col) = cast_column(map, doors, camera.pos, ray, proj, |_| {});
             columns.push(hit);
             heights.push(col);
@@ -223,6 +213,33 @@ pub fn cast_heights(
         trace,
         heights,
     }
+}
+
+/// Traces column `x` of `width` on an `Hz` map: its DDA steps and its draw list (what
+/// [`cast_heights`] keeps for its traced column).
+#[must_use]
+pub fn trace_column_heights(
+    map: &Map,
+    doors: &DoorState,
+    camera: &Camera,
+    proj: &Projection,
+    x: usize,
+    width: usize,
+) -> (DdaTrace, HeightColumn) {
+    let ray = camera.ray_dir(x, width);
+    let setup = Setup::new(camera.pos, ray);
+    let mut steps = Vec::new();
+    let (hit, col) = cast_column(map, doors, camera.pos, ray, proj, |s| steps.push(s));
+    let trace = DdaTrace {
+        column: x,
+        ray_dir: ray,
+        delta_dist: setup.delta,
+        start_cell: setup.cell,
+        initial_side_dist: setup.side_dist,
+        steps,
+        hit,
+    };
+    (trace, col)
 }
 
 /// The open window of one column, narrowed front to back.

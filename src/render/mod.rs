@@ -5,6 +5,7 @@
 
 pub mod billboard;
 pub mod cast;
+pub mod derivation;
 pub mod dither_phase;
 pub mod frame;
 pub(crate) mod framebuffer;

@@ -9,6 +9,7 @@ pub mod centred_box;
 pub mod colour_query;
 pub mod config;
 pub mod events;
+pub mod figure_key;
 pub mod help;
 pub mod keymap;
 pub mod keys;
