@@ -337,7 +337,7 @@ fn golden_figure() -> Framebuffer {
         &cam,
         &halfcast::View::default(),
         (80, 24),
-        40,
+        62,
     );
     col.figure(&world.map, &cam, 80).to_framebuffer()
 }
@@ -358,7 +358,7 @@ fn a_png_figure_matches_its_golden_and_the_commands_png() {
         "--size",
         "80x24",
         "--column",
-        "40",
+        "62",
         "-o",
         out.to_str().unwrap(),
     ]);

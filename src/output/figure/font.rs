@@ -1,6 +1,6 @@
 //! A tiny 3×5 bitmap font, drawn for this project, so PNG figures have text on any machine
-//! (no system fonts, no font crate). Lower case is shown as small capitals; a character it
-//! lacks is drawn as a hollow box, never dropped.
+//! (no system fonts, no font crate). It covers printable ASCII and the few signs the figures
+//! use (`·`, `−`, `→`, `°`); a character it lacks is drawn as a hollow box, never dropped.
 
 /// Glyph cell width and height in font pixels (plus one pixel of spacing to the right).
 pub const GLYPH: (usize, usize) = (3, 5);
@@ -49,6 +49,32 @@ const GLYPHS: &[(char, Rows)] = &[
     ('X', ["#.#", "#.#", ".#.", "#.#", "#.#"]),
     ('Y', ["#.#", "#.#", ".#.", ".#.", ".#."]),
     ('Z', ["###", "..#", ".#.", "#..", "###"]),
+    ('a', ["...", "##.", ".##", "#.#", "###"]),
+    ('b', ["#..", "#..", "##.", "#.#", "##."]),
+    ('c', ["...", ".##", "#..", "#..", ".##"]),
+    ('d', ["..#", "..#", ".##", "#.#", ".##"]),
+    ('e', ["...", ".#.", "###", "#..", ".##"]),
+    ('f', [".##", "#..", "###", "#..", "#.."]),
+    ('g', ["...", ".##", "#.#", ".##", "##."]),
+    ('h', ["#..", "#..", "##.", "#.#", "#.#"]),
+    ('i', [".#.", "...", "##.", ".#.", "###"]),
+    ('j', ["..#", "...", "..#", "#.#", ".#."]),
+    ('k', ["#..", "#.#", "##.", "##.", "#.#"]),
+    ('l', ["##.", ".#.", ".#.", ".#.", "###"]),
+    ('m', ["...", "##.", "###", "#.#", "#.#"]),
+    ('n', ["...", "##.", "#.#", "#.#", "#.#"]),
+    ('o', ["...", ".#.", "#.#", "#.#", ".#."]),
+    ('p', ["...", "##.", "#.#", "##.", "#.."]),
+    ('q', ["...", ".##", "#.#", ".##", "..#"]),
+    ('r', ["...", "#.#", "##.", "#..", "#.."]),
+    ('s', ["...", "###", "#..", "..#", "###"]),
+    ('t', [".#.", "###", ".#.", ".#.", "..#"]),
+    ('u', ["...", "#.#", "#.#", "#.#", ".##"]),
+    ('v', ["...", "#.#", "#.#", "#.#", ".#."]),
+    ('w', ["...", "#.#", "#.#", "###", "#.#"]),
+    ('x', ["...", "#.#", ".#.", ".#.", "#.#"]),
+    ('y', ["...", "#.#", ".##", "..#", "##."]),
+    ('z', ["...", "###", ".#.", "#..", "###"]),
     ('.', ["...", "...", "...", "...", ".#."]),
     (',', ["...", "...", "...", ".#.", "#.."]),
     (':', ["...", ".#.", "...", ".#.", "..."]),
@@ -92,10 +118,9 @@ const MISSING: Rows = ["###", "#.#", "#.#", "#.#", "###"];
 
 /// The ink of `c`: `ink(col, row)` for col < 3, row < 5.
 pub fn glyph(c: char) -> impl Fn(usize, usize) -> bool {
-    let up = c.to_ascii_uppercase();
     let rows = GLYPHS
         .iter()
-        .find(|(g, _)| *g == up)
+        .find(|(g, _)| *g == c)
         .map_or(MISSING, |(_, r)| *r);
     move |col, row| rows[row].as_bytes()[col] == b'#'
 }
@@ -116,10 +141,9 @@ mod tests {
             assert!(rows.iter().all(|r| r.len() == 3), "{c:?}");
             assert_eq!(GLYPHS.iter().filter(|(d, _)| d == c).count(), 1, "{c:?}");
         }
-        // Every printable ASCII character has its own glyph (lower case via upper case).
+        // Every printable ASCII character has its own glyph.
         for c in ' '..='~' {
-            let up = c.to_ascii_uppercase();
-            assert!(GLYPHS.iter().any(|(g, _)| *g == up), "{c:?} missing");
+            assert!(GLYPHS.iter().any(|(g, _)| *g == c), "{c:?} missing");
         }
     }
 
@@ -127,7 +151,7 @@ mod tests {
     fn ink_and_widths() {
         let one = glyph('1');
         assert!(one(1, 0) && !one(0, 0) && one(0, 4));
-        assert!(glyph('a')(1, 0) && glyph('\u{263a}')(1, 0) && !glyph('\u{263a}')(1, 1));
+        assert!(glyph('a')(1, 1) && glyph('\u{263a}')(1, 0) && !glyph('\u{263a}')(1, 1));
         assert_eq!(text_width("2.88"), 15);
         assert_eq!(text_width(""), 0);
     }

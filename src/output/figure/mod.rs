@@ -44,12 +44,18 @@ impl TraceFigure<'_> {
     #[must_use]
     pub fn drawing(&self) -> Drawing {
         let d = Derivation::new(self.trace, self.camera, self.width);
-        let plan_origin = (MARGIN + 36.0, 96.0);
+        let plan_origin = (MARGIN + 36.0, 112.0);
         let frame = plan::Frame::around(&d, plan_origin);
         let (pw, ph) = frame.size();
-        let width = (pw + plan_origin.0 + MARGIN + 24.0).max(720.0);
-        let text_top = plan_origin.1 + ph + 30.0;
         let notes = notes(&d);
+        // Wide enough for the plan and for every line of text in the PNG font (2 px per font
+        // pixel at the text size: 8 px a character; a 14 px monospace SVG font: about 8.4).
+        let longest = notes.iter().map(|l| l.chars().count()).max().unwrap_or(0) as f64;
+        let width = (pw + plan_origin.0 + MARGIN + 24.0)
+            .max(longest * 8.6 + 2.0 * MARGIN)
+            .max(720.0)
+            .ceil();
+        let text_top = plan_origin.1 + ph + 30.0;
         let mut height = text_top + notes.len() as f64 * LINE + MARGIN;
         let side_top = height + 24.0;
         if self.heights.is_some() {
@@ -58,20 +64,25 @@ impl TraceFigure<'_> {
         let mut out = Drawing::new(width, height.ceil(), BACKGROUND);
         out.text(
             (MARGIN, MARGIN + TITLE),
+            format!("halfcast trace: column {} of {}", d.column, d.width),
+            TITLE,
+            TEXT,
+            Anchor::Start,
+        );
+        out.text(
+            (MARGIN, MARGIN + TITLE + 22.0),
             format!(
-                "halfcast trace: column {} of {}, pos ({}, {}), angle {} deg, FOV {} deg",
-                d.column,
-                d.width,
+                "pos ({}, {})   angle {} deg   FOV {} deg",
                 num(d.pos.x),
                 num(d.pos.y),
                 num(self.camera.angle_deg()),
                 num(self.camera.fov_deg())
             ),
-            TITLE,
+            TEXT_SIZE,
             TEXT,
             Anchor::Start,
         );
-        legend(&mut out, MARGIN + TITLE + 24.0);
+        legend(&mut out, MARGIN + TITLE + 46.0);
         plan::draw(&mut out, self.map, &d, &frame);
         for (k, line) in notes.iter().enumerate() {
             out.text(

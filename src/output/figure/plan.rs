@@ -74,6 +74,37 @@ impl Frame {
         )
     }
 
+    /// The part of segment a–b inside the region (Liang–Barsky), if any.
+    #[must_use]
+    pub fn clip(&self, a: Vec2, b: Vec2) -> Option<(Vec2, Vec2)> {
+        let (mut t0, mut t1) = (0.0f64, 1.0f64);
+        let d = b - a;
+        let (lo, hi) = (
+            Vec2::new(self.min.0 as f64, self.min.1 as f64),
+            Vec2::new(self.max.0 as f64, self.max.1 as f64),
+        );
+        for (p, q) in [
+            (-d.x, a.x - lo.x),
+            (d.x, hi.x - a.x),
+            (-d.y, a.y - lo.y),
+            (d.y, hi.y - a.y),
+        ] {
+            if p == 0.0 {
+                if q < 0.0 {
+                    return None;
+                }
+            } else {
+                let r = q / p;
+                if p < 0.0 {
+                    t0 = t0.max(r);
+                } else {
+                    t1 = t1.min(r);
+                }
+            }
+        }
+        (t0 <= t1).then(|| (a + d * t0, a + d * t1))
+    }
+
     fn contains(&self, p: Vec2) -> bool {
         p.x >= self.min.0 as f64
             && p.y >= self.min.1 as f64
@@ -89,6 +120,23 @@ fn unit(v: Vec2) -> Vec2 {
     } else {
         Vec2::new(1.0, 0.0)
     }
+}
+
+/// A pale box behind a label so it reads over walls and lines (sized for the wider of the
+/// two back-ends' fonts: about 8.4 px a character).
+fn halo(out: &mut Drawing, base: (f64, f64), text: &str, anchor: Anchor) {
+    let w = text.chars().count() as f64 * 8.4 + 4.0;
+    let left = match anchor {
+        Anchor::Start => base.0 - 2.0,
+        Anchor::Middle => base.0 - w / 2.0,
+        Anchor::End => base.0 - w + 2.0,
+    };
+    out.rect(
+        (left, base.1 - TEXT_SIZE - 3.0),
+        (w, TEXT_SIZE + 6.0),
+        super::palette::BACKGROUND,
+        0.8,
+    );
 }
 
 /// Draws the top view into `out` within `frame`.
@@ -170,16 +218,110 @@ pub fn draw(out: &mut Drawing, map: &Map, d: &Derivation, frame: &Frame) {
         }
     };
     out.line(frame.at(face.0), frame.at(face.1), Stroke::solid(PERP, 4.0));
-    // The camera: the plane through the eye (where perp is measured from), dir and the plane.
     let along = d.plane * (d.camera_x * d.perp);
     let foot = d.pos + along;
-    let pu = unit(d.plane);
-    let reach = along.length() + 1.5;
-    out.line(
-        frame.at(d.pos - pu * reach),
-        frame.at(d.pos + pu * reach),
-        Stroke::dashed(PLANE, 1.0),
+    // The ray, from the eye through its point on the plane to the hit.
+    out.line(frame.at(d.pos), frame.at(hit), Stroke::solid(RAY, 2.0));
+    out.circle(frame.at(d.pos + d.ray_dir), 3.5, Some(RAY), None);
+    // perp: from the camera plane to the hit, parallel to dir.
+    out.line(frame.at(foot), frame.at(hit), Stroke::dashed(PERP, 2.0));
+    let mid = frame.at(foot + (hit - foot) * 0.5);
+    let side = unit(d.dir.right_normal()) * 0.25;
+    let lab = frame.at(foot + (hit - foot) * 0.5 + side);
+    let base = (lab.0, lab.1 + (lab.1 - mid.1).signum().max(0.0) * TEXT_SIZE);
+    let label = format!("perp {}", num(d.perp));
+    halo(out, base, &label, Anchor::Middle);
+    out.tagged_text(
+        base,
+        label,
+        TEXT_SIZE,
+        PERP,
+        Anchor::Middle,
+        Tag {
+            class: "perp".into(),
+            data: vec![("perp", d.perp.to_string())],
+        },
     );
+    // The crossings, numbered in step order and labelled with their sideDist; x labels on one
+    // side of the ray, y labels on the other.
+    let normal = unit(d.ray_dir.right_normal());
+    // Crossings closer than a label's width alternate between a near and a far row.
+    let spacing = |side: Side| {
+        let delta = match side {
+            Side::X => d.delta_dist.0,
+            Side::Y => d.delta_dist.1,
+        };
+        (d.ray_dir * delta).length() * cell_px
+    };
+    let mut seen = (0usize, 0usize);
+    for c in &d.choices {
+        let nth = match c.side {
+            Side::X => &mut seen.0,
+            Side::Y => &mut seen.1,
+        };
+        *nth += 1;
+        let far = if spacing(c.side) < 72.0 && *nth % 2 == 0 {
+            14.0
+        } else {
+            0.0
+        };
+        let t = c.crossing();
+        let p = d.point_at(t);
+        if !frame.contains(p) {
+            continue;
+        }
+        let (colour, class, sign) = match c.side {
+            Side::X => (X_SIDE, "crossing x", 1.0),
+            Side::Y => (Y_SIDE, "crossing y", -1.0),
+        };
+        let at = frame.at(p);
+        out.circle(
+            at,
+            5.0,
+            Some(colour),
+            Some(Stroke::solid(super::palette::BACKGROUND, 1.5)),
+        );
+        let off = (
+            normal.x * sign * (16.0 + far),
+            normal.y * sign * (16.0 + far),
+        );
+        let anchor = if off.0 > 3.0 {
+            Anchor::Start
+        } else if off.0 < -3.0 {
+            Anchor::End
+        } else {
+            Anchor::Middle
+        };
+        let name = match c.side {
+            Side::X => "sideDistX",
+            Side::Y => "sideDistY",
+        };
+        let label = format!("{}: {}", c.index, num(t));
+        let base = (at.0 + off.0, at.1 + off.1 + TEXT_SIZE / 2.0);
+        halo(out, base, &label, anchor);
+        out.tagged_text(
+            base,
+            label,
+            TEXT_SIZE,
+            colour,
+            anchor,
+            Tag {
+                class: class.into(),
+                data: vec![
+                    ("step", c.index.to_string()),
+                    ("name", name.into()),
+                    ("side-dist", t.to_string()),
+                ],
+            },
+        );
+    }
+    // The camera on top: the plane through the eye (where perp is measured from), dir and the
+    // plane.
+    let pu = unit(d.plane);
+    let reach = (d.plane * (d.camera_x * d.perp)).length() + 1.5;
+    if let Some((a, b)) = frame.clip(d.pos - pu * reach, d.pos + pu * reach) {
+        out.line(frame.at(a), frame.at(b), Stroke::dashed(PLANE, 1.0));
+    }
     out.line(
         frame.at(d.pos + d.dir - d.plane),
         frame.at(d.pos + d.dir + d.plane),
@@ -198,82 +340,34 @@ pub fn draw(out: &mut Drawing, map: &Map, d: &Derivation, frame: &Frame) {
         frame.at(d.pos + d.dir),
         Stroke::solid(CAMERA, 2.5),
     );
-    let tip = frame.at(d.pos + d.dir * 0.55);
-    let n = unit(d.dir.right_normal()) * -0.18;
-    let lab = frame.at(d.pos + d.dir * 0.55 + n);
+    // "dir" beside the arrow's middle, on the side away from the plane's far end.
+    let beside = d.pos + d.dir * 0.45 - unit(d.plane) * 0.45;
+    let lab = frame.at(beside);
     out.text(
-        (lab.0 + (lab.0 - tip.0).signum() * 2.0, lab.1 + 4.0),
+        (lab.0, lab.1 + TEXT_SIZE / 2.0),
         "dir",
         TEXT_SIZE,
         CAMERA,
         Anchor::Middle,
     );
-    // The ray, from the eye through its point on the plane to the hit.
-    out.line(frame.at(d.pos), frame.at(hit), Stroke::solid(RAY, 2.0));
-    out.circle(frame.at(d.pos + d.ray_dir), 3.5, Some(RAY), None);
     out.circle(frame.at(d.pos), 5.0, Some(CAMERA), None);
-    // perp: from the camera plane to the hit, parallel to dir.
-    out.line(frame.at(foot), frame.at(hit), Stroke::dashed(PERP, 2.0));
-    let mid = frame.at(foot + (hit - foot) * 0.5);
-    let side = unit(d.dir.right_normal()) * 0.25;
-    let lab = frame.at(foot + (hit - foot) * 0.5 + side);
-    out.tagged_text(
-        (lab.0, lab.1 + (lab.1 - mid.1).signum().max(0.0) * TEXT_SIZE),
-        format!("perp {}", num(d.perp)),
-        TEXT_SIZE,
-        PERP,
-        Anchor::Middle,
-        Tag {
-            class: "perp".into(),
-            data: vec![("perp", d.perp.to_string())],
-        },
-    );
-    // The crossings, numbered in step order and labelled with their sideDist; x labels on one
-    // side of the ray, y labels on the other.
-    let normal = unit(d.ray_dir.right_normal());
-    for c in &d.choices {
-        let t = c.crossing();
-        let p = d.point_at(t);
-        if !frame.contains(p) {
-            continue;
-        }
-        let (colour, class, sign) = match c.side {
-            Side::X => (X_SIDE, "crossing x", 1.0),
-            Side::Y => (Y_SIDE, "crossing y", -1.0),
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn clipping_keeps_the_part_of_a_segment_inside_the_region() {
+        let f = Frame {
+            min: (0, 0),
+            max: (4, 4),
+            cell: 10.0,
+            origin: (0.0, 0.0),
         };
-        let at = frame.at(p);
-        out.circle(
-            at,
-            5.0,
-            Some(colour),
-            Some(Stroke::solid(super::palette::BACKGROUND, 1.5)),
-        );
-        let off = (normal.x * sign * 12.0, normal.y * sign * 12.0);
-        let anchor = if off.0 > 3.0 {
-            Anchor::Start
-        } else if off.0 < -3.0 {
-            Anchor::End
-        } else {
-            Anchor::Middle
-        };
-        let name = match c.side {
-            Side::X => "sideDistX",
-            Side::Y => "sideDistY",
-        };
-        out.tagged_text(
-            (at.0 + off.0, at.1 + off.1 + TEXT_SIZE / 2.0),
-            format!("{}: {}", c.index, num(t)),
-            TEXT_SIZE,
-            colour,
-            anchor,
-            Tag {
-                class: class.into(),
-                data: vec![
-                    ("step", c.index.to_string()),
-                    ("name", name.into()),
-                    ("side-dist", t.to_string()),
-                ],
-            },
-        );
+        let (a, b) = f.clip(Vec2::new(-2.0, 2.0), Vec2::new(6.0, 2.0)).unwrap();
+        assert_eq!((a, b), (Vec2::new(0.0, 2.0), Vec2::new(4.0, 2.0)));
+        assert!(f.clip(Vec2::new(-2.0, 5.0), Vec2::new(6.0, 5.0)).is_none());
+        assert_eq!(f.at(Vec2::new(1.5, 2.0)), (15.0, 20.0));
     }
 }

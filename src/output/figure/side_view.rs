@@ -47,7 +47,7 @@ pub fn draw(
         out.line((left - 4.0, py(z)), (left, py(z)), Stroke::solid(TEXT, 1.0));
         out.text(
             (left - 6.0, py(z) + TEXT_SIZE / 2.0),
-            format!("{z}"),
+            format!("{}", z + 0.0),
             TEXT_SIZE,
             TEXT,
             Anchor::End,
@@ -138,8 +138,7 @@ pub fn draw(
     out.text(
         (left + 4.0, origin.1 - 8.0),
         format!(
-            "side view of column {}: distance along dir (0 to {}) across, height up; shaded: rows still open",
-            d.column,
+            "side view: distance along dir (0 to {}) across, height up; shaded: rows still open",
             num(t_max)
         ),
         TEXT_SIZE,
