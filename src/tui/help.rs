@@ -35,7 +35,7 @@ pub const ROWS: &[(&[&str], &str)] = &[
     (&["step_dda"], "single-step the DDA (pauses)"),
     (
         &["run_to_hit", "save_figure"],
-        "run to the hit / write its figure (SVG)",
+        "run the DDA to its hit / write its figure",
     ),
     (&[], "Screen"),
     (
