@@ -437,6 +437,9 @@ impl<'a> DebugPane<'a> {
             .chunk(", side ", LABEL)
             .and(d.hit_side.as_str(), side_style(d.hit_side))];
         let a = axis(d.hit_side);
+        // A narrow pane keeps perp's derivation and gives the rest as plain results, so the
+        // last steps stay in view above the hit.
+        let compact = self.width < WIDE;
         rows.push(match d.perp_from {
             PerpFrom::GridLine {
                 side_dist,
@@ -445,7 +448,14 @@ impl<'a> DebugPane<'a> {
             } => Row::new()
                 .chunk("perp", NAME)
                 .and(" =", LABEL)
-                .chunk(format!(" sideDist{a} − deltaDist{a}"), LABEL)
+                .chunk(
+                    if compact {
+                        format!(" sideDist{a}−deltaDist{a}")
+                    } else {
+                        format!(" sideDist{a} − deltaDist{a}")
+                    },
+                    LABEL,
+                )
                 .chunk(
                     format!(" = {} − {}", num(side_dist), num(delta_dist)),
                     VALUE,
@@ -466,6 +476,25 @@ impl<'a> DebugPane<'a> {
                     .and(num(d.perp), VALUE)
             }
         });
+        if compact {
+            let hit = &self.ray.trace.hit;
+            rows.push(
+                Row::new()
+                    .chunk("line ", NAME)
+                    .and(num(self.line_height), VALUE)
+                    .and(" px", LABEL)
+                    .chunk("  wall_x ", NAME)
+                    .and(num(d.wall_x), VALUE),
+            );
+            rows.push(
+                Row::new()
+                    .chunk("texture x ", LABEL)
+                    .and(texture_x(hit, self.tex_width).to_string(), VALUE)
+                    .and(format!(" of {}", self.tex_width), LABEL),
+            );
+            rows.extend(self.closed_row());
+            return rows;
+        }
         let line = match self.heights.as_ref().map(|h| h.closing_dz) {
             None => Row::new()
                 .chunk("line", NAME)
@@ -516,15 +545,18 @@ impl<'a> DebugPane<'a> {
                 .and(texture_x(hit, self.tex_width).to_string(), VALUE)
                 .and(format!(" of {}", self.tex_width), LABEL),
         );
-        if let Some(h) = &self.heights {
-            rows.push(
-                Row::new()
-                    .chunk("window closed ", LABEL)
-                    .and(cell_text(h.closed.0), HIT)
-                    .chunk(format!(" at {}", num(h.closed.1)), VALUE),
-            );
-        }
+        rows.extend(self.closed_row());
         rows
+    }
+
+    /// On maps with heights: where the column's window of rows closed.
+    fn closed_row(&self) -> Option<Row> {
+        self.heights.as_ref().map(|h| {
+            Row::new()
+                .chunk("window closed ", LABEL)
+                .and(cell_text(h.closed.0), HIT)
+                .chunk(format!(" at {}", num(h.closed.1)), VALUE)
+        })
     }
 
     /// The pane's lines for `width` columns and `rows` rows: the derivation wrapped to the width,
@@ -570,7 +602,16 @@ impl<'a> DebugPane<'a> {
             }
         }
         let focus_end = focus_end.unwrap_or(lines.len());
-        window(lines, &starts, rows, focus_end, self.ascii)
+        // Cut at the top, the pane still says which ray it follows.
+        let d = &self.derivation;
+        let pinned = self.wrap(
+            &Row::new().chunk("rayDir", NAME).and(
+                format!(" = ({}, {})", num(d.ray_dir.x), num(d.ray_dir.y)),
+                VALUE,
+            ),
+            width,
+        );
+        window(lines, &starts, &pinned, rows, focus_end, self.ascii)
     }
 
     /// One row wrapped to `width`: chunks fill a line, the rest continue indented by two.
@@ -639,6 +680,7 @@ fn to_ascii(s: &str) -> String {
 fn window(
     lines: Vec<Line<'static>>,
     starts: &[bool],
+    pinned: &[Line<'static>],
     rows: usize,
     focus_end: usize,
     ascii: bool,
@@ -654,10 +696,11 @@ fn window(
     } else {
         ("↑", "↓", "↑↓")
     };
+    let keep = rows > pinned.len() + 4;
     if start > 0 {
-        // The note takes the first row; what follows it starts at the start of a line of the
-        // derivation, not half-way through one.
-        start += 1;
+        // The note (and the ray, when there is room) take the first rows; what follows starts
+        // at the start of a line of the derivation, not half-way through one.
+        start += 1 + if keep { pinned.len() } else { 0 };
         while start < end && !starts[start] {
             start += 1;
         }
@@ -668,6 +711,9 @@ fn window(
             format!("{up} {start} more above ({keys} scroll)"),
             LABEL,
         ));
+        if keep {
+            out.extend(pinned.iter().cloned());
+        }
     }
     out.extend(lines[start..end].iter().cloned());
     if end < total && rows > 1 {
