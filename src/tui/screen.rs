@@ -234,7 +234,7 @@ fn draw_debug(
             .scroll(s.debugger.scroll)
             .ascii(mono);
         if let Some(col) = screen.cast.heights.get(t.trace.column) {
-            pane = pane.heights(col, &s.world.map);
+            pane = pane.heights(col);
         }
         pane.render(inner, buf);
     }

@@ -17,7 +17,7 @@ use ratatui::widgets::{Paragraph, Widget};
 
 use super::revealed::RevealedTrace;
 use crate::camera::Camera;
-use crate::map::{Cell, Map};
+use crate::map::Cell;
 use crate::render::cast::Side;
 use crate::render::derivation::{compared, num, Choice, Derivation, PerpFrom};
 use crate::render::height_cast::{Band, FaceSpan, HeightColumn};
@@ -214,7 +214,7 @@ impl<'a> DebugPane<'a> {
     /// Also says, at each face the ray passes, how the column's open window of rows narrowed
     /// (from its draw list, `Cast::heights` of an `Hz` map).
     #[must_use]
-    pub fn heights(mut self, col: &HeightColumn, _map: &Map) -> Self {
+    pub fn heights(mut self, col: &HeightColumn) -> Self {
         let h = Heights::new(col, self.view_rows);
         // The hit's line is the face that closed the window, as tall as the heights it spans
         // (a flat wall's formula would say one wall high); none when a floor or ceiling closed it.
@@ -873,7 +873,7 @@ mod tests {
             Some(n) => RevealedTrace::partial(t, n),
             None => RevealedTrace::full(t),
         };
-        let pane = DebugPane::new(ray, &w, &cam, (40, 12)).heights(&cast.heights[20], &w.map);
+        let pane = DebugPane::new(ray, &w, &cam, (40, 12)).heights(&cast.heights[20]);
         pane_text(pane, 60, rows)
     }
 
