@@ -12,6 +12,7 @@ mod replay;
 mod replay_frames;
 mod replay_limits;
 mod serve;
+mod trace;
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -29,6 +30,7 @@ use play::{PlayArgs, RecordArgs};
 use render::RenderArgs;
 use replay::ReplayArgs;
 use serve::ServeArgs;
+use trace::TraceArgs;
 
 /// `halfcast [MAP] [PLAY FLAGS]` plays (the default command); `halfcast COMMAND …` runs another.
 #[derive(Parser, Debug)]
@@ -88,6 +90,8 @@ enum Command {
     Replay(ReplayArgs),
     /// Run an SSH server where everyone connected plays in one world (`ssh -p 2222 host`).
     Serve(ServeArgs),
+    /// Draw one column's DDA traversal as a figure (SVG or PNG), in Lode's names.
+    Trace(TraceArgs),
     /// Compare two frames (PNG, ANSI, cells text or plain text): exit 0 equal, 1 different, 2 error.
     Diff(DiffArgs),
 }
@@ -148,6 +152,7 @@ pub fn run() -> ExitCode {
     let result = match cli.command {
         Some(Command::Render(args)) => render::render(&args),
         Some(Command::Diff(args)) => diff::diff(&args),
+        Some(Command::Trace(args)) => trace::trace(&args),
         Some(Command::Replay(args)) => replay::replay(&args),
         Some(Command::Play(args)) => play::play(&args, None),
         Some(Command::Record(args)) => play::play(&args.play, Some(&args.output)),

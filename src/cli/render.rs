@@ -57,7 +57,7 @@ pub(crate) enum Format {
     Json,
 }
 
-fn parse_size(s: &str) -> Result<(u16, u16), String> {
+pub(crate) fn parse_size(s: &str) -> Result<(u16, u16), String> {
     let (c, r) = s
         .split_once(['x', 'X'])
         .ok_or_else(|| format!("'{s}' is not COLSxROWS"))?;

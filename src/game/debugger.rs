@@ -21,6 +21,8 @@ pub struct Debugger {
     pub column: Option<usize>,
     /// How far the DDA has been stepped.
     pub cursor: Cursor,
+    /// How many steps the ray pane is scrolled back from the newest (0 = it follows).
+    pub scroll: usize,
 }
 
 impl Debugger {
@@ -48,6 +50,7 @@ impl Debugger {
             paused: !self.paused,
             column: if self.paused { None } else { self.column },
             cursor: Cursor::AtHit,
+            scroll: 0,
         };
     }
 
@@ -59,10 +62,29 @@ impl Debugger {
         let now = self.column_in(width) as i64;
         let max = width as i64 - 1;
         self.column = Some((now + i64::from(by)).clamp(0, max) as usize);
+        self.scroll = 0;
+    }
+
+    /// Scrolls the ray pane `by` steps back (negative: forward again), within what is shown of
+    /// a trace of `total_steps` steps (the setup, each step shown, and the hit once reached).
+    pub fn scroll_by(&mut self, by: i32, total_steps: usize) {
+        let (shown, hit) = self.revealed_count(total_steps);
+        let max = shown + usize::from(hit);
+        let now = self.scroll as i64 + i64::from(by);
+        self.scroll = now.clamp(0, max as i64) as usize;
+    }
+
+    fn revealed_count(&self, all: usize) -> (usize, bool) {
+        match self.cursor {
+            Cursor::AtHit => (all, true),
+            Cursor::Steps(n) if n >= all => (all, true),
+            Cursor::Steps(n) => (n, false),
+        }
     }
 
     /// Reveals one more step; from the hit it starts over at the start cell.
     pub fn step(&mut self, total_steps: usize) {
+        self.scroll = 0;
         self.cursor = match self.cursor {
             Cursor::AtHit => Cursor::Steps(0),
             Cursor::Steps(n) if n + 1 >= total_steps => Cursor::AtHit,
@@ -102,5 +124,24 @@ mod tests {
         d.move_column(5, 80);
         d.toggle_pause();
         assert_eq!(d, Debugger::default());
+    }
+
+    #[test]
+    fn scrolling_stays_within_what_is_shown_and_a_step_follows_again() {
+        let mut d = Debugger::default();
+        d.toggle_pause();
+        // At the hit of a 4-step trace: the hit, 4 steps and the setup can be focused.
+        d.scroll_by(3, 4);
+        assert_eq!(d.scroll, 3);
+        d.scroll_by(100, 4);
+        assert_eq!(d.scroll, 5);
+        d.scroll_by(-100, 4);
+        assert_eq!(d.scroll, 0);
+        d.step(4);
+        d.step(4);
+        d.scroll_by(5, 4);
+        assert_eq!((d.cursor, d.scroll), (Cursor::Steps(1), 1));
+        d.step(4);
+        assert_eq!(d.scroll, 0);
     }
 }

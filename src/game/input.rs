@@ -115,6 +115,9 @@ pub enum Command {
     CentrePitch,
     /// Fire a tag shot from the eye along the view (ignored while paused or reloading).
     Fire,
+    /// Scroll the ray pane's derivation by this many steps, positive = back toward the start
+    /// (only while paused).
+    ScrollPane(i32),
 }
 
 /// How fast the player walks and turns; set by `--move-speed`, `--turn-speed` or the config file.

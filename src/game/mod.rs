@@ -253,7 +253,14 @@ fn advance(state: &mut GameState, input: &Input, dt: f64, owns_world: bool, bodi
                 let total = state.debug_trace().map_or(0, |t| t.steps.len());
                 state.debugger.step(total);
             }
-            Command::RunToHit if d.paused => d.cursor = Cursor::AtHit,
+            Command::RunToHit if d.paused => {
+                d.cursor = Cursor::AtHit;
+                d.scroll = 0;
+            }
+            Command::ScrollPane(by) if d.paused => {
+                let total = state.debug_trace().map_or(0, |t| t.steps.len());
+                state.debugger.scroll_by(by, total);
+            }
             Command::Turn(radians) if !d.paused && radians.is_finite() => turn += radians,
             Command::UseDoor if !d.paused => use_door(state),
             Command::Fire if !d.paused => {

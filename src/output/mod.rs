@@ -2,6 +2,7 @@
 //! [`Scene`](crate::Scene) methods that hand a frame out in each form.
 
 pub mod ansi;
+pub mod figure;
 pub mod json;
 pub(crate) mod scene_forms;
 pub mod text;

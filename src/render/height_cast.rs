@@ -85,16 +85,13 @@ pub fn cast_heights(
     let mut heights = Vec::with_capacity(width);
     let mut trace = None;
     for x in 0..width {
-        let ray = camera.ray_dir(x, width);
         if traced == Some(x) {
-            let (traced, col) = DdaTrace::record(x, camera.pos, ray, |steps| {
-                cast_column(map, doors, camera.pos, ray, proj, |s| steps.push(s))
-            });
-            let hit = traced.hit;
-            trace = Some(traced);
-            columns.push(hit);
+            let (t, col) = trace_column_heights(map, doors, camera, proj, x, width);
+            columns.push(t.hit);
             heights.push(col);
+            trace = Some(t);
         } else {
+            let ray = camera.ray_dir(x, width);
             let (hit, col) = cast_column(map, doors, camera.pos, ray, proj, |_| {});
             columns.push(hit);
             heights.push(col);
@@ -105,6 +102,23 @@ pub fn cast_heights(
         trace,
         heights,
     }
+}
+
+/// Traces column `x` of `width` on an `Hz` map: its DDA steps and its draw list (what
+/// [`cast_heights`] keeps for its traced column).
+#[must_use]
+pub fn trace_column_heights(
+    map: &Map,
+    doors: &DoorState,
+    camera: &Camera,
+    proj: &Projection,
+    x: usize,
+    width: usize,
+) -> (DdaTrace, HeightColumn) {
+    let ray = camera.ray_dir(x, width);
+    DdaTrace::record(x, camera.pos, ray, |steps| {
+        cast_column(map, doors, camera.pos, ray, proj, |s| steps.push(s))
+    })
 }
 
 /// The open window of one column, narrowed front to back.

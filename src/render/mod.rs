@@ -5,6 +5,7 @@
 
 pub(crate) mod billboard;
 pub mod cast;
+pub mod derivation;
 pub(crate) mod dither_phase;
 pub(crate) mod fast_floor;
 pub(crate) mod frame;

@@ -36,6 +36,8 @@ pub enum UiCommand {
     ToggleHelp,
     /// The colour key: the next colour level (truecolor → 256 → 16 → mono).
     CycleColours,
+    /// The figure key: write the debugged column's figure to a file (local play only).
+    SaveFigure,
 }
 
 /// The format version this build writes and the newest it reads.
@@ -122,13 +124,14 @@ const ACTIONS: [(Action, &str); 9] = [
     (Action::Crouch, "crouch"),
 ];
 
-const UI: [(UiCommand, &str); 6] = [
+const UI: [(UiCommand, &str); 7] = [
     (UiCommand::ToggleMinimap, "toggle_minimap"),
     (UiCommand::ToggleDebug, "toggle_debug"),
     (UiCommand::ToggleHelp, "toggle_help"),
     (UiCommand::Back, "back"),
     (UiCommand::Quit, "quit"),
     (UiCommand::CycleColours, "cycle_colours"),
+    (UiCommand::SaveFigure, "save_figure"),
 ];
 
 fn action_name(a: Action) -> &'static str {
@@ -165,6 +168,7 @@ fn command_json(frame: usize, c: &Command) -> Value {
         }
         Command::CentrePitch => json!({"frame": frame, "command": "centre_pitch"}),
         Command::Fire => json!({"frame": frame, "command": "fire"}),
+        Command::ScrollPane(by) => json!({"frame": frame, "command": "scroll_pane", "by": by}),
     }
 }
 
@@ -402,6 +406,12 @@ fn parse_event(v: &Value, held: &mut Held, slot: &mut FrameInput) -> Result<(), 
                     .and_then(Value::as_i64)
                     .and_then(|b| i32::try_from(b).ok())
                     .ok_or("move_column needs an integer \"by\"")?,
+            ),
+            "scroll_pane" => Command::ScrollPane(
+                v.get("by")
+                    .and_then(Value::as_i64)
+                    .and_then(|b| i32::try_from(b).ok())
+                    .ok_or("scroll_pane needs an integer \"by\"")?,
             ),
             "turn" => Command::Turn(
                 v.get("radians")

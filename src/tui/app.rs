@@ -241,6 +241,21 @@ pub fn run_loop(
             app.controls
                 .set_turn_per_column(fov / f64::from(view.width));
         }
+        if ui.contains(&UiCommand::SaveFigure) && view.width > 0 {
+            let text = match super::figure_key::write_figure(
+                &app.state,
+                (view.width, view.height),
+                std::path::Path::new("."),
+            ) {
+                Ok(path) => format!(
+                    "figure of column {} written to {}",
+                    app.state.debug_column(),
+                    path.display()
+                ),
+                Err(e) => format!("figure not written: {e}"),
+            };
+            app.notice = Some((text, now + NOTICE_FOR));
+        }
         let input = app.controls.take_input(now);
         if app.results.is_some() {
             // Enter (the run-to-hit key) on the results screen: the next level, or the last one
@@ -369,6 +384,8 @@ impl App {
                     self.presenter.set_level(next.level);
                     self.stats.level = Some(next);
                 }
+                // Needs the view's size: written once the frame is laid out.
+                UiCommand::SaveFigure => {}
             }
         }
         false

@@ -9,6 +9,7 @@
 pub(crate) mod app;
 pub mod config;
 pub(crate) mod events;
+pub(crate) mod figure_key;
 pub(crate) mod playback;
 pub(crate) mod terminal;
 pub(crate) mod tty_out;

@@ -33,7 +33,10 @@ pub const ROWS: &[(&[&str], &str)] = &[
     ),
     (&["column_left_10", "column_right_10"], "... by 10 columns"),
     (&["step_dda"], "single-step the DDA (pauses)"),
-    (&["run_to_hit"], "run the DDA to its hit"),
+    (
+        &["run_to_hit", "save_figure"],
+        "run the DDA to its hit / write its figure",
+    ),
     (&[], "Screen"),
     (
         &["minimap", "ray_pane"],

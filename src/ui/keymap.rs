@@ -25,6 +25,8 @@ pub enum KeyAction {
     RayPane,
     /// Cycle the colour level (truecolor → 256 → 16 → mono).
     Colours,
+    /// Write the debugged column's figure (SVG) to a file (local play only).
+    SaveFigure,
     Help,
     /// Quit (Esc closes the help first).
     Quit,
@@ -147,6 +149,12 @@ pub const ACTIONS: &[(&str, KeyAction, &str, &[&str])] = &[
         KeyAction::RunToHit,
         "run the DDA to its hit",
         &["enter", "g"],
+    ),
+    (
+        "save_figure",
+        KeyAction::SaveFigure,
+        "write the debugged ray's figure to an SVG file",
+        &["y"],
     ),
     (
         "minimap",

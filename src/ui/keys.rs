@@ -73,6 +73,9 @@ fn binding(map: &KeyMap, key: &KeyEvent, paused: bool) -> Option<Binding> {
         // Paused, the world does not turn: the turn keys move the debugged column instead.
         KeyAction::Hold(Action::TurnLeft) if paused => Binding::Game(Command::MoveColumn(-fast)),
         KeyAction::Hold(Action::TurnRight) if paused => Binding::Game(Command::MoveColumn(fast)),
+        // ... and the walk keys scroll the ray pane's derivation (back = toward the start).
+        KeyAction::Hold(Action::Forward) if paused => Binding::Game(Command::ScrollPane(fast)),
+        KeyAction::Hold(Action::Back) if paused => Binding::Game(Command::ScrollPane(-fast)),
         KeyAction::Hold(a) => Binding::Hold(a),
         KeyAction::UseDoor => Binding::Toggle(Command::UseDoor),
         KeyAction::Tag => Binding::Toggle(Command::Fire),
@@ -86,6 +89,7 @@ fn binding(map: &KeyMap, key: &KeyEvent, paused: bool) -> Option<Binding> {
         KeyAction::Minimap => Binding::Ui(UiCommand::ToggleMinimap),
         KeyAction::RayPane => Binding::Ui(UiCommand::ToggleDebug),
         KeyAction::Colours => Binding::Ui(UiCommand::CycleColours),
+        KeyAction::SaveFigure => Binding::Ui(UiCommand::SaveFigure),
         KeyAction::Help => Binding::Ui(UiCommand::ToggleHelp),
         KeyAction::Quit if key.code == KeyCode::Esc => Binding::Ui(UiCommand::Back),
         KeyAction::Quit => Binding::Ui(UiCommand::Quit),

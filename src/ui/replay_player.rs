@@ -93,7 +93,7 @@ impl Player {
                 UiCommand::ToggleDebug => self.toggles.debug = !self.toggles.debug,
                 UiCommand::ToggleHelp => self.toggles.help = !self.toggles.help,
                 // Frames are written at the level the replay command asks for.
-                UiCommand::CycleColours => {}
+                UiCommand::CycleColours | UiCommand::SaveFigure => {}
             }
         }
         let area = Rect::new(0, 0, self.size.0, self.size.1);

@@ -229,9 +229,12 @@ fn draw_debug(
     block.render(r, buf);
     if let Some(t) = revealed {
         let cells = (usize::from(view_cells.0), usize::from(view_cells.1));
-        let mut pane = DebugPane::new(t, &s.world, &s.camera, cells);
+        let mono = screen.stats.level.map(|c| c.level) == Some(ColorLevel::Mono);
+        let mut pane = DebugPane::new(t, &s.world, &s.camera, cells)
+            .scroll(s.debugger.scroll)
+            .ascii(mono);
         if let Some(col) = screen.cast.heights.get(t.trace.column) {
-            pane = pane.heights(col, &s.world.map);
+            pane = pane.heights(col);
         }
         pane.render(inner, buf);
     }

@@ -81,6 +81,10 @@ pub fn status_line(
             hints.push(l(what));
         }
         segs.push(seg(7, hints));
+        segs.push(seg(
+            4,
+            vec![Span::styled("↑↓", HINT_KEY), l(" scroll the ray pane")],
+        ));
     } else {
         segs.extend(hud(state));
         segs.push(seg(8, vec![v(format!(" {:>3.0}", stats.fps)), l(" fps")]));

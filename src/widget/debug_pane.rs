@@ -1,7 +1,13 @@
-//! The DDA debug pane: one ray's setup, every grid step it took, and where and how it hit. On
-//! maps with heights, also every height change along the ray: the cell, the distance, what was
-//! drawn there (floor, ceiling, wall, step or lintel, at which heights) in which rows, and where
-//! the column's window of open rows closed.
+//! The DDA debug pane: one ray's derivation in Lode's names, line by line with the column's
+//! numbers — `cameraX`, `rayDir`, `deltaDist`, `stepX/Y` and the first `sideDist`s, then for
+//! every step the comparison that chose it and the cell it entered, then `perp`, the line
+//! height and `wall_x`. On maps with heights, each face the ray passes says how it narrowed the
+//! column's open window of rows. Every number comes from the trace (see
+//! [`crate::render::derivation`]), the same one the JSON prints.
+//!
+//! While stepping, earlier steps fold to one line each and the current one is written out; a
+//! pane too short for everything shows the newest lines and says how many are above, and the
+//! scroll position (in steps, kept by the debugger) writes out an earlier step instead.
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -11,51 +17,22 @@ use ratatui::widgets::{Paragraph, Widget};
 
 use super::revealed::RevealedTrace;
 use crate::camera::Camera;
-use crate::map::{Cell, Map};
-use crate::render::cast::{DdaStep, Side};
-use crate::render::height_cast::{Band, HeightColumn};
+use crate::map::Cell;
+use crate::render::cast::Side;
+use crate::render::derivation::{compared, num, Choice, Derivation, PerpFrom};
+use crate::render::height_cast::{Band, FaceSpan, HeightColumn};
 use crate::render::raster::{heading, texture_x, wall_span};
 use crate::world::World;
 
-/// Lines around the step table: column, rayDir, deltaDist, table header; then 3 hit lines.
-const FIXED_LINES: usize = 7;
-
-/// Lines above the height list's rows: its title, which says where the window closed.
-const HEIGHT_FIXED_LINES: usize = 1;
-
 const LABEL: Style = Style::new().fg(Color::Rgb(128, 132, 146));
 const VALUE: Style = Style::new().fg(Color::Rgb(226, 226, 232));
-const HEAD: Style = Style::new()
-    .fg(Color::Rgb(110, 200, 230))
-    .add_modifier(Modifier::BOLD);
+const NAME: Style = Style::new().fg(Color::Rgb(110, 200, 230));
 const SIDE_X: Color = Color::Rgb(255, 176, 96);
 const SIDE_Y: Color = Color::Rgb(126, 192, 255);
 const CURRENT_BG: Color = Color::Rgb(64, 60, 22);
-const CHANGED: Style = Style::new()
-    .fg(Color::Rgb(255, 236, 64))
-    .add_modifier(Modifier::BOLD);
 const HIT: Style = Style::new()
     .fg(Color::Rgb(255, 96, 96))
     .add_modifier(Modifier::BOLD);
-
-/// A number with 4 decimals, or `inf` for the "never" deltaDist of an axis-parallel ray
-/// (ASCII, so it reads the same at every colour level).
-#[must_use]
-pub fn fmt_dist(v: f64) -> String {
-    if v.abs() >= 1e9 {
-        "inf".to_owned()
-    } else {
-        format!("{v:.4}")
-    }
-}
-
-/// Faces stand out from floors and ceilings in the height list.
-fn kind_style(what: &str) -> Style {
-    match what {
-        "floor" | "ceil" => VALUE,
-        _ => Style::new().fg(SIDE_X),
-    }
-}
 
 fn side_style(side: Side) -> Style {
     Style::new().fg(match side {
@@ -64,8 +41,27 @@ fn side_style(side: Side) -> Style {
     })
 }
 
+fn axis(side: Side) -> &'static str {
+    match side {
+        Side::X => "X",
+        Side::Y => "Y",
+    }
+}
+
 fn cell_text(c: (i64, i64)) -> String {
     format!("({},{})", c.0, c.1)
+}
+
+fn pair(v: crate::vec2::Vec2) -> String {
+    format!("({},{})", num(v.x), num(v.y))
+}
+
+fn signed(s: i64) -> &'static str {
+    if s < 0 {
+        "−1"
+    } else {
+        "+1"
+    }
 }
 
 /// A height in wall units, short: `1`, `0.25`, `-0.5` (at most 2 decimals).
@@ -79,96 +75,112 @@ fn fmt_height(z: f64) -> String {
     }
 }
 
-/// One row of the height list: a band drawn in the traced column.
-#[derive(Debug, Clone, PartialEq)]
-struct HeightRow {
-    cell: (i64, i64),
-    /// Where the ray entered the cell (a floor or ceiling) or met the face.
-    dist: f64,
-    /// `floor`, `ceil`, `wall`, `step` or `lintel`.
-    what: &'static str,
-    /// The height of a floor or ceiling, or the span of a face.
-    z: String,
-    rows: (usize, usize),
+/// Panes at least this wide get the roomier forms (`step y` in folded steps).
+const WIDE: usize = 40;
+
+/// One logical line of the derivation: chunks it may wrap between (a chunk never splits).
+#[derive(Debug, Clone, Default)]
+struct Row {
+    chunks: Vec<Vec<Span<'static>>>,
+    /// Drawn on the highlight background (the current step).
+    current: bool,
 }
 
-/// The traced column's height changes, ready to print.
+impl Row {
+    fn new() -> Self {
+        Self::default()
+    }
+
+    /// Starts a new chunk (a place the line may wrap) with one span.
+    fn chunk(mut self, text: impl Into<String>, style: Style) -> Self {
+        self.chunks.push(vec![Span::styled(text.into(), style)]);
+        self
+    }
+
+    /// Adds a span to the current chunk.
+    fn and(mut self, text: impl Into<String>, style: Style) -> Self {
+        let span = Span::styled(text.into(), style);
+        match self.chunks.last_mut() {
+            Some(c) => c.push(span),
+            None => self.chunks.push(vec![span]),
+        }
+        self
+    }
+}
+
+/// The derivation's parts, in order: the setup, one item per step, the hit.
+#[derive(Debug, Clone)]
+struct Item {
+    rows: Vec<Row>,
+}
+
+/// The vertical faces the column drew, each with the open window of rows before and after it.
 #[derive(Debug, Clone, PartialEq)]
-struct HeightList {
-    rows: Vec<HeightRow>,
+struct FaceWindow {
+    face: FaceSpan,
+    before: (usize, usize),
+    after: (usize, usize),
+}
+
+/// The traced column's draw list on an `Hz` map, as the pane prints it.
+#[derive(Debug, Clone, PartialEq)]
+struct Heights {
+    faces: Vec<FaceWindow>,
     closed: ((i64, i64), f64),
+    /// The closing face's height span (its line is that tall), if a face closed the window.
+    closing_dz: Option<f64>,
 }
 
-impl HeightList {
-    /// The bands of `col` in cells where the open span changes along the ray (the first cell
-    /// drawn, every cell whose floor or ceiling differs from the one before, every face), front
-    /// to back.
-    fn new(col: &HeightColumn, map: &Map) -> Self {
-        let mut rows = Vec::new();
-        let mut i = 0;
-        let mut before = None;
-        while i < col.bands.len() {
-            let cell = band_cell(&col.bands[i]);
-            let n = col.bands[i..]
-                .iter()
-                .take_while(|b| band_cell(b) == cell)
-                .count();
-            let group = &col.bands[i..i + n];
-            let span = map.span(cell.0, cell.1);
-            let face = group.iter().any(|b| matches!(b, Band::Face(_)));
-            if i == 0 || face || span != before {
-                rows.extend(group.iter().map(height_row));
+impl Heights {
+    fn new(col: &HeightColumn, rows: usize) -> Self {
+        let (mut top, mut bottom) = (
+            0,
+            rows.max(col.bands.iter().map(|b| b.rows().1).max().unwrap_or(0)),
+        );
+        let mut faces = Vec::new();
+        for b in &col.bands {
+            let before = (top, bottom);
+            let (a, z) = b.rows();
+            if a <= top {
+                top = z.max(top);
+            } else {
+                bottom = a.min(bottom);
             }
-            before = span;
-            i += n;
+            if let Band::Face(f) = b {
+                faces.push(FaceWindow {
+                    face: *f,
+                    before,
+                    after: (top, bottom),
+                });
+            }
         }
+        let closing_dz = col.bands.iter().rev().find_map(|b| match b {
+            Band::Face(f) if f.cell == col.closed.cell => Some(f.z.1 - f.z.0),
+            _ => None,
+        });
         Self {
-            rows,
+            faces,
             closed: (col.closed.cell, col.closed.perp_dist),
+            closing_dz,
         }
     }
 }
 
-fn band_cell(b: &Band) -> (i64, i64) {
-    match b {
-        Band::Flat(f) => f.cell,
-        Band::Face(f) => f.cell,
-    }
-}
-
-fn height_row(b: &Band) -> HeightRow {
-    match b {
-        Band::Flat(f) => HeightRow {
-            cell: f.cell,
-            dist: f.dist.0,
-            what: if f.ceiling { "ceil" } else { "floor" },
-            z: fmt_height(f.z),
-            rows: f.rows,
-        },
-        Band::Face(f) => HeightRow {
-            cell: f.cell,
-            dist: f.perp_dist,
-            what: f.kind.as_str(),
-            z: format!("{}..{}", fmt_height(f.z.0), fmt_height(f.z.1)),
-            rows: f.rows,
-        },
-    }
-}
-
-/// Columns a height row needs in its aligned form (`cell dist drawn z rows`); narrower panes get
-/// the compact one.
-const HEIGHT_ROW_WIDTH: usize = 40;
-
-/// The debugged ray's traversal as text; the last revealed step is highlighted.
+/// The debugged ray's derivation as text; the current step is highlighted.
 #[derive(Debug, Clone)]
 pub struct DebugPane<'a> {
     ray: RevealedTrace<'a>,
-    view_width: usize,
+    derivation: Derivation,
     tex_width: usize,
-    line_height: f64,
     focal: f64,
-    heights: Option<HeightList>,
-    /// Columns the pane has (set when it is drawn): narrow panes get the compact height rows.
+    line_height: f64,
+    heights: Option<Heights>,
+    /// Pixel rows of the view (the heights' window starts as all of them).
+    view_rows: usize,
+    /// Steps scrolled back from the newest (0 = follow the current step).
+    scroll: usize,
+    ascii: bool,
+    /// Columns the pane has (set when it is drawn): lines wrap to it.
     width: usize,
 }
 
@@ -186,268 +198,529 @@ impl<'a> DebugPane<'a> {
         let focal = camera.focal_length(view_cells.0);
         let line_height = wall_span(hit.perp_dist, focal, view_cells.1 * 2).height;
         Self {
+            derivation: Derivation::new(ray.trace, camera, view_cells.0),
             ray,
-            view_width: view_cells.0,
             tex_width,
-            line_height,
             focal,
+            line_height,
             heights: None,
+            view_rows: view_cells.1 * 2,
+            scroll: 0,
+            ascii: false,
             width: usize::MAX,
         }
     }
 
-    /// Also lists the traced column's height changes from its draw list (`Cast::heights` of
-    /// an `Hz` map), as far as the DDA is revealed.
+    /// Also says, at each face the ray passes, how the column's open window of rows narrowed
+    /// (from its draw list, `Cast::heights` of an `Hz` map).
     #[must_use]
-    pub fn heights(mut self, col: &HeightColumn, map: &Map) -> Self {
-        self.heights = Some(HeightList::new(col, map));
+    pub fn heights(mut self, col: &HeightColumn) -> Self {
+        let h = Heights::new(col, self.view_rows);
         // The hit's line is the face that closed the window, as tall as the heights it spans
         // (a flat wall's formula would say one wall high); none when a floor or ceiling closed it.
-        let closing = col.bands.iter().rev().find_map(|b| match b {
-            Band::Face(f) if f.cell == col.closed.cell => Some(f),
-            _ => None,
-        });
-        self.line_height = closing.map_or(0.0, |f| {
-            (f.z.1 - f.z.0) * self.focal / f.perp_dist.max(1e-9)
-        });
+        self.line_height = h
+            .closing_dz
+            .map_or(0.0, |dz| dz * self.focal / self.derivation.perp.max(1e-9));
+        self.heights = Some(h);
         self
     }
 
-    /// All the pane's lines for a pane `rows` tall (the step list is shortened to fit).
+    /// Writes out the step `steps` back from the newest instead (the scroll key).
     #[must_use]
-    pub fn lines(&self, rows: usize) -> Vec<Line<'static>> {
-        let t = self.ray.trace;
-        let mut out = vec![
-            Line::from(vec![
-                Span::styled("column    ", LABEL),
-                Span::styled(format!("{}", t.column), VALUE),
-                Span::styled(format!(" of {}", self.view_width), LABEL),
-            ]),
-            Line::from(vec![
-                Span::styled("rayDir    ", LABEL),
-                Span::styled(format!("({:+.4}, {:+.4})", t.ray_dir.x, t.ray_dir.y), VALUE),
-            ]),
-            Line::from(vec![
-                Span::styled("deltaDist ", LABEL),
-                Span::styled(
-                    format!(
-                        "({}, {})",
-                        fmt_dist(t.delta_dist.0),
-                        fmt_dist(t.delta_dist.1)
-                    ),
+    pub fn scroll(mut self, steps: usize) -> Self {
+        self.scroll = steps;
+        self
+    }
+
+    /// Plain ASCII only (a mono terminal): `-` for −, `*` for ·, `->` for →.
+    #[must_use]
+    pub fn ascii(mut self, on: bool) -> Self {
+        self.ascii = on;
+        self
+    }
+
+    /// The items (setup, revealed steps, hit), with `expanded` steps written out and the others
+    /// folded to one line.
+    fn items(&self, expanded: &dyn Fn(usize) -> bool) -> Vec<Item> {
+        let mut out = vec![Item {
+            rows: self.setup_rows(),
+        }];
+        let shown = self.ray.shown;
+        for c in &self.derivation.choices[..shown] {
+            let current = !self.ray.hit_reached && c.index == shown;
+            out.push(Item {
+                rows: self.step_rows(c, expanded(c.index), current),
+            });
+        }
+        out.push(Item {
+            rows: self.hit_rows(),
+        });
+        out
+    }
+
+    fn setup_rows(&self) -> Vec<Row> {
+        let d = &self.derivation;
+        let mut rows = vec![
+            Row::new()
+                .chunk("cameraX", NAME)
+                .and(" = 2x/w − 1", LABEL)
+                .chunk(format!(" = 2·{}/{} − 1", d.column, d.width), LABEL)
+                .chunk(" = ", LABEL)
+                .and(num(d.camera_x), VALUE),
+            Row::new()
+                .chunk("rayDir", NAME)
+                .and(" = dir + plane·cameraX", LABEL),
+            Row::new()
+                .chunk(format!("  = {}", pair(d.dir)), VALUE)
+                .chunk(format!(" + {}·{}", pair(d.plane), num(d.camera_x)), VALUE),
+            Row::new().chunk(format!("  = {}", pair(d.ray_dir)), VALUE),
+            Row::new()
+                .chunk("deltaDist", NAME)
+                .and(" = |1/rayDir|", LABEL)
+                .chunk(" = ", LABEL)
+                .and(
+                    format!("({}, {})", num(d.delta_dist.0), num(d.delta_dist.1)),
                     VALUE,
                 ),
-            ]),
-            Line::styled(
-                format!(
-                    "{:>3} {:<9}{:>10}{:>10}{:>6}",
-                    "#", "cell", "sideDistX", "sideDistY", "side"
-                ),
-                HEAD,
-            ),
+            Row::new()
+                .chunk("pos ", LABEL)
+                .and(pair(d.pos), VALUE)
+                .chunk(" in map", LABEL)
+                .and(cell_text(d.start_cell), VALUE),
         ];
-        let budget = rows.saturating_sub(FIXED_LINES);
-        let Some(list) = &self.heights else {
-            out.extend(self.step_rows(budget));
-            out.extend(self.hit_lines());
-            return out;
-        };
-        let shown = self.revealed_heights(list);
-        // Both lists shorten to fit; the height list gets at least half of a tight pane.
-        let (need_steps, need_heights) = (self.ray.shown + 1, HEIGHT_FIXED_LINES + shown.len());
-        let heights = need_heights.min(budget.saturating_sub(need_steps).max(budget.div_ceil(2)));
-        out.extend(self.step_rows(budget - heights));
-        out.extend(self.hit_lines());
-        out.extend(self.height_lines(list, &shown, heights));
-        out
-    }
-
-    /// The height rows revealed so far: those in the start cell and the cells stepped into.
-    fn revealed_heights<'l>(&self, list: &'l HeightList) -> Vec<&'l HeightRow> {
-        let t = self.ray.trace;
-        let mut cells = vec![t.start_cell];
-        cells.extend(t.steps[..self.ray.shown].iter().map(|s| s.cell));
-        list.rows
-            .iter()
-            .filter(|r| self.ray.hit_reached || cells.contains(&r.cell))
-            .collect()
-    }
-
-    /// The height list: a title saying where the column's window closed (cell, distance), then
-    /// its rows (elided in the middle to fit `budget` lines), each `cell dist drawn z rows`.
-    fn height_lines(
-        &self,
-        list: &HeightList,
-        shown: &[&HeightRow],
-        budget: usize,
-    ) -> Vec<Line<'static>> {
-        if budget == 0 {
-            return Vec::new();
-        }
-        let title = if self.ray.hit_reached {
-            let (cell, dist) = list.closed;
-            vec![
-                Span::styled("heights ", HEAD),
-                Span::styled("closed ", LABEL),
-                Span::styled(cell_text(cell), HIT),
-                Span::styled(format!(" {dist:.2}"), VALUE),
-            ]
-        } else {
-            vec![
-                Span::styled("heights ", HEAD),
-                Span::styled("so far", LABEL),
-            ]
-        };
-        let mut out = vec![Line::from(title)];
-        let room = budget - HEIGHT_FIXED_LINES;
-        let compact = self.width < HEIGHT_ROW_WIDTH;
-        let row = |r: &&HeightRow| {
-            if compact {
-                // One space between the fields and what was drawn as its initial (f floor, c ceil,
-                // w wall, s step, l lintel; coloured as in the wide form), so the rows column
-                // still fits a compact pane.
-                let initial: String = r.what.chars().take(1).collect();
-                return Line::from(vec![
-                    Span::styled(cell_text(r.cell), VALUE),
-                    Span::styled(format!(" {:.2}", r.dist), VALUE),
-                    Span::styled(format!(" {initial}"), kind_style(r.what)),
-                    Span::styled(format!(" {}", r.z), VALUE),
-                    Span::styled(format!(" {}..{}", r.rows.0, r.rows.1), LABEL),
-                ]);
-            }
-            Line::from(vec![
-                Span::styled(format!("{:<8}", cell_text(r.cell)), VALUE),
-                Span::styled(format!("{:>6}", format!("{:.2}", r.dist)), VALUE),
-                Span::styled(format!(" {:<6}", r.what), kind_style(r.what)),
-                Span::styled(format!(" {:<9}", r.z), VALUE),
-                Span::styled(format!(" {}..{}", r.rows.0, r.rows.1), LABEL),
-            ])
-        };
-        if shown.len() <= room {
-            out.extend(shown.iter().map(row));
-        } else if room > 0 {
-            // The first rows and the last (where the window closed), the middle counted.
-            let tail = (room.saturating_sub(1) / 2).max(1);
-            let head = room.saturating_sub(1 + tail);
-            out.extend(shown[..head].iter().map(row));
-            if room > tail {
-                let hidden = shown.len() - head - tail;
-                out.push(Line::styled(format!("{:<8}{hidden} more", "..."), LABEL));
-            }
-            out.extend(shown[shown.len() - tail..].iter().map(row));
-        }
-        out
-    }
-
-    /// Table rows: step 0 is the start cell, then one per revealed step, elided in the middle.
-    fn step_rows(&self, budget: usize) -> Vec<Line<'static>> {
-        let t = self.ray.trace;
-        let total = self.ray.shown + 1;
-        let row = |i: usize| {
-            let current = i + 1 == total;
-            if i == 0 {
-                self.row(0, t.start_cell, t.initial_side_dist, None, current)
-            } else {
-                let s: &DdaStep = &t.steps[i - 1];
-                self.row(i, s.cell, s.side_dist, Some(s.side), current)
-            }
-        };
-        if total <= budget.max(1) {
-            return (0..total).map(row).collect();
-        }
-        if budget <= 2 {
-            return vec![row(total - 1)];
-        }
-        let tail = ((budget - 1) / 2).max(1);
-        let head = budget - 1 - tail;
-        let hidden = total - head - tail;
-        let mut rows: Vec<Line> = (0..head).map(row).collect();
-        rows.push(Line::styled(
-            format!(
-                "{:>3} {hidden} more step{}",
-                "...",
-                if hidden == 1 { "" } else { "s" }
+        for (side, step, gap, delta, sd, dir) in [
+            (
+                Side::X,
+                d.step.0,
+                d.gap.0,
+                d.delta_dist.0,
+                d.initial_side_dist.0,
+                d.ray_dir.x,
             ),
-            LABEL,
-        ));
-        rows.extend((total - tail..total).map(row));
+            (
+                Side::Y,
+                d.step.1,
+                d.gap.1,
+                d.delta_dist.1,
+                d.initial_side_dist.1,
+                d.ray_dir.y,
+            ),
+        ] {
+            let a = axis(side);
+            let why = if dir < 0.0 { "< 0" } else { "≥ 0" };
+            let formula = if step < 0 {
+                format!("(pos{a}−map{a})")
+            } else {
+                format!("(map{a}+1−pos{a})")
+            };
+            rows.push(
+                Row::new()
+                    .chunk(format!("step{a}"), side_style(side))
+                    .and(format!(" = {}", signed(step)), VALUE)
+                    .chunk(format!(" (rayDir{a} {why})"), LABEL),
+            );
+            rows.push(
+                Row::new()
+                    .chunk(format!("sideDist{a}"), side_style(side))
+                    .and(" =", LABEL)
+                    .chunk(format!(" {formula}·deltaDist{a}"), LABEL)
+                    .chunk(format!(" = {}·{}", num(gap), num(delta)), VALUE)
+                    .chunk(" = ", LABEL)
+                    .and(num(sd), VALUE),
+            );
+        }
         rows
     }
 
-    fn row(
-        &self,
-        i: usize,
-        cell: (i64, i64),
-        side_dist: (f64, f64),
-        side: Option<Side>,
-        current: bool,
-    ) -> Line<'static> {
-        let base = if current {
-            VALUE.bg(CURRENT_BG).add_modifier(Modifier::BOLD)
+    fn step_rows(&self, c: &Choice, expanded: bool, current: bool) -> Vec<Row> {
+        let d = &self.derivation;
+        let a = axis(c.side);
+        let chosen = side_style(c.side);
+        let new_value = match c.side {
+            Side::X => c.after.0,
+            Side::Y => c.after.1,
+        };
+        let mut rows = Vec::new();
+        if expanded {
+            let (x, sign, y) = compared(c.before.0, c.before.1);
+            let step = format!("step {}", a.to_lowercase());
+            rows.push(
+                Row::new()
+                    .chunk(format!("{:>3} ", c.index), VALUE)
+                    .and("sideDistX ", side_style(Side::X))
+                    .and(x, VALUE)
+                    .and(format!(" {sign} "), VALUE)
+                    .chunk("sideDistY ", side_style(Side::Y))
+                    .and(y, VALUE)
+                    .chunk(" → ", LABEL)
+                    .and(step, chosen.add_modifier(Modifier::BOLD)),
+            );
+            let delta = match c.side {
+                Side::X => d.delta_dist.0,
+                Side::Y => d.delta_dist.1,
+            };
+            // Lode's `sideDistY += deltaDistY`, with the numbers.
+            rows.push(
+                Row::new()
+                    .chunk("    map", LABEL)
+                    .and(cell_text(c.cell), VALUE)
+                    .chunk(format!("  sideDist{a}"), chosen)
+                    .and(format!(" += {} → ", num(delta)), VALUE)
+                    .and(num(new_value), VALUE),
+            );
         } else {
-            VALUE
-        };
-        let changed = |axis: Side| {
-            if current && side == Some(axis) {
-                CHANGED.bg(CURRENT_BG)
+            // One line: the step's number, the cell entered, the sideDist that grew.
+            let compact = self.width < WIDE;
+            let step = if compact {
+                String::new()
             } else {
-                base
+                format!("step {} ", a.to_lowercase())
+            };
+            rows.push(
+                Row::new()
+                    .chunk(format!("{:>3} ", c.index), VALUE)
+                    .and(step, chosen)
+                    .and("→ ", LABEL)
+                    .and(cell_text(c.cell), VALUE)
+                    .and(format!(" sideDist{a} "), chosen)
+                    .and(num(new_value), VALUE),
+            );
+        }
+        if let Some(h) = &self.heights {
+            for f in h.faces.iter().filter(|f| f.face.cell == c.cell) {
+                let face = &f.face;
+                rows.push(
+                    Row::new()
+                        .chunk(
+                            format!("    {}", face.kind.as_str()),
+                            Style::new().fg(SIDE_X),
+                        )
+                        .and(
+                            format!(" z {}..{}", fmt_height(face.z.0), fmt_height(face.z.1)),
+                            VALUE,
+                        )
+                        .chunk(format!(" rows {}..{}", face.rows.0, face.rows.1), LABEL)
+                        .chunk(
+                            format!(
+                                " window {}..{} → {}..{}",
+                                f.before.0, f.before.1, f.after.0, f.after.1
+                            ),
+                            VALUE,
+                        ),
+                );
             }
-        };
-        let side_span = match side {
-            Some(s) => Span::styled(format!("{:>6}", s.as_str()), side_style(s).patch(base)),
-            None => Span::styled(format!("{:>6}", "start"), LABEL.patch(base)),
-        };
-        Line::from(vec![
-            Span::styled(format!("{i:>3} {:<9}", cell_text(cell)), base),
-            Span::styled(format!("{:>10}", fmt_dist(side_dist.0)), changed(Side::X)),
-            Span::styled(format!("{:>10}", fmt_dist(side_dist.1)), changed(Side::Y)),
-            side_span,
-        ])
+        }
+        for r in &mut rows {
+            r.current = current;
+        }
+        rows
     }
 
-    fn hit_lines(&self) -> Vec<Line<'static>> {
-        let t = self.ray.trace;
+    fn hit_rows(&self) -> Vec<Row> {
+        let d = &self.derivation;
         if !self.ray.hit_reached {
-            return vec![Line::from(vec![
-                Span::styled("hit       ", LABEL),
-                Span::styled(
-                    format!("not reached (step {} of {})", self.ray.shown, t.steps.len()),
-                    VALUE,
-                ),
-            ])];
+            return vec![Row::new().chunk("hit ", LABEL).and(
+                format!("not yet (step {} of {})", self.ray.shown, d.choices.len()),
+                VALUE,
+            )];
         }
-        let h = &t.hit;
-        let what = match h.what {
-            Cell::Wall(d) => format!("wall {d}"),
+        let what = match d.hit_what {
+            Cell::Wall(n) => format!("wall {n}"),
             Cell::Void => "void".to_owned(),
             Cell::Floor { .. } => "floor".to_owned(),
             Cell::Door(_) => "door".to_owned(),
         };
-        vec![
-            Line::from(vec![
-                Span::styled("hit       ", LABEL),
-                Span::styled(cell_text(h.cell), HIT),
-                Span::styled(format!(" {what}"), VALUE),
-                Span::styled("  side ", LABEL),
-                Span::styled(h.side.as_str(), side_style(h.side)),
-            ]),
-            Line::from(vec![
-                Span::styled("perp      ", LABEL),
-                Span::styled(fmt_dist(h.perp_dist), VALUE),
-                Span::styled("  wall_x ", LABEL),
-                Span::styled(format!("{:.4}", h.wall_x), VALUE),
-            ]),
-            Line::from(vec![
-                Span::styled("texture x ", LABEL),
-                Span::styled(format!("{}", texture_x(h, self.tex_width)), VALUE),
-                Span::styled(format!(" of {}", self.tex_width), LABEL),
-                Span::styled("  line ", LABEL),
-                Span::styled(format!("{:.2}", self.line_height), VALUE),
-                Span::styled(" px", LABEL),
-            ]),
-        ]
+        let mut rows = vec![Row::new()
+            .chunk("hit ", LABEL)
+            .and(cell_text(d.hit_cell), HIT)
+            .and(format!(" {what}"), VALUE)
+            .chunk(", side ", LABEL)
+            .and(d.hit_side.as_str(), side_style(d.hit_side))];
+        let a = axis(d.hit_side);
+        // A narrow pane keeps perp's derivation and gives the rest as plain results, so the
+        // last steps stay in view above the hit.
+        let compact = self.width < WIDE;
+        rows.push(match d.perp_from {
+            PerpFrom::GridLine {
+                side_dist,
+                delta_dist,
+                ..
+            } => Row::new()
+                .chunk("perp", NAME)
+                .and(" =", LABEL)
+                .chunk(
+                    if compact {
+                        format!(" sideDist{a}−deltaDist{a}")
+                    } else {
+                        format!(" sideDist{a} − deltaDist{a}")
+                    },
+                    LABEL,
+                )
+                .chunk(
+                    format!(" = {} − {}", num(side_dist), num(delta_dist)),
+                    VALUE,
+                )
+                .chunk(" = ", LABEL)
+                .and(num(d.perp), VALUE),
+            PerpFrom::DoorPanel { line, .. } => {
+                let (p, r) = match d.hit_side {
+                    Side::X => (d.pos.x, d.ray_dir.x),
+                    Side::Y => (d.pos.y, d.ray_dir.y),
+                };
+                Row::new()
+                    .chunk("perp", NAME)
+                    .and(" =", LABEL)
+                    .chunk(format!(" (map{a}+0.5−pos{a})/rayDir{a}"), LABEL)
+                    .chunk(format!(" = ({} − {})/{}", num(line), num(p), num(r)), VALUE)
+                    .chunk(" = ", LABEL)
+                    .and(num(d.perp), VALUE)
+            }
+        });
+        if compact {
+            let hit = &self.ray.trace.hit;
+            rows.push(
+                Row::new()
+                    .chunk("line ", NAME)
+                    .and(num(self.line_height), VALUE)
+                    .and(" px", LABEL)
+                    .chunk("  wall_x ", NAME)
+                    .and(num(d.wall_x), VALUE),
+            );
+            rows.push(
+                Row::new()
+                    .chunk("texture x ", LABEL)
+                    .and(texture_x(hit, self.tex_width).to_string(), VALUE)
+                    .and(format!(" of {}", self.tex_width), LABEL),
+            );
+            rows.extend(self.closed_row());
+            return rows;
+        }
+        let line = match self.heights.as_ref().map(|h| h.closing_dz) {
+            None => Row::new()
+                .chunk("line", NAME)
+                .and(" = focal/perp", LABEL)
+                .chunk(format!(" = {}/{}", num(self.focal), num(d.perp)), VALUE),
+            Some(Some(dz)) => Row::new()
+                .chunk("line", NAME)
+                .and(" = Δz·focal/perp", LABEL)
+                .chunk(
+                    format!(" = {}·{}/{}", fmt_height(dz), num(self.focal), num(d.perp)),
+                    VALUE,
+                ),
+            Some(None) => Row::new()
+                .chunk("line", NAME)
+                .and(" none (floors closed it)", LABEL),
+        };
+        rows.push(
+            line.chunk(" = ", LABEL)
+                .and(num(self.line_height), VALUE)
+                .and(" px", LABEL),
+        );
+        let (posn, rayn) = match d.hit_side {
+            Side::X => ("posY", "rayDirY"),
+            Side::Y => ("posX", "rayDirX"),
+        };
+        let (p, r) = match d.hit_side {
+            Side::X => (d.pos.y, d.ray_dir.y),
+            Side::Y => (d.pos.x, d.ray_dir.x),
+        };
+        rows.push(if matches!(d.hit_what, Cell::Door(_)) {
+            Row::new()
+                .chunk("wall_x", NAME)
+                .and(" (along the open panel) = ", LABEL)
+                .and(num(d.wall_x), VALUE)
+        } else {
+            Row::new()
+                .chunk("wall_x", NAME)
+                .and(format!(" = {posn} + perp·{rayn}"), LABEL)
+                .chunk(format!(" = {} + {}·{}", num(p), num(d.perp), num(r)), VALUE)
+                .chunk(format!(" = {}", num(d.wall_along)), VALUE)
+                .chunk(" → ", LABEL)
+                .and(num(d.wall_x), VALUE)
+        });
+        let hit = &self.ray.trace.hit;
+        rows.push(
+            Row::new()
+                .chunk("texture x ", LABEL)
+                .and(texture_x(hit, self.tex_width).to_string(), VALUE)
+                .and(format!(" of {}", self.tex_width), LABEL),
+        );
+        rows.extend(self.closed_row());
+        rows
     }
+
+    /// On maps with heights: where the column's window of rows closed.
+    fn closed_row(&self) -> Option<Row> {
+        self.heights.as_ref().map(|h| {
+            Row::new()
+                .chunk("window closed ", LABEL)
+                .and(cell_text(h.closed.0), HIT)
+                .chunk(format!(" at {}", num(h.closed.1)), VALUE)
+        })
+    }
+
+    /// The pane's lines for `width` columns and `rows` rows: the derivation wrapped to the width,
+    /// shortened to fit (earlier steps folded, then the top cut) with the focus — the current
+    /// step, or the hit — at the bottom, moved back by the scroll.
+    #[must_use]
+    pub fn lines(&self, rows: usize) -> Vec<Line<'static>> {
+        let width = self.width.max(16);
+        let shown = self.ray.shown;
+        // The items a scroll can focus: the setup (0), each revealed step, and the hit.
+        let last = shown + usize::from(self.ray.hit_reached);
+        let focus = last.saturating_sub(self.scroll);
+        let stepping = !self.ray.hit_reached || self.scroll > 0;
+        let all_open = |_: usize| true;
+        let only_focus = |i: usize| i == focus;
+        let mut items = if stepping {
+            self.items(&only_focus)
+        } else {
+            self.items(&all_open)
+        };
+        let count = |items: &[Item]| -> usize {
+            items
+                .iter()
+                .flat_map(|i| &i.rows)
+                .map(|r| self.wrap(r, width).len())
+                .sum()
+        };
+        if !stepping && count(&items) > rows {
+            // Too long to write every step out: fold all but the last.
+            items = self.items(&|i| i == shown);
+        }
+        let mut lines = Vec::new();
+        let mut starts = Vec::new();
+        let mut focus_end = None;
+        for (i, item) in items.iter().enumerate() {
+            for r in &item.rows {
+                let wrapped = self.wrap(r, width);
+                starts.extend((0..wrapped.len()).map(|k| k == 0));
+                lines.extend(wrapped);
+            }
+            if self.scroll > 0 && i == focus {
+                focus_end = Some(lines.len());
+            }
+        }
+        let focus_end = focus_end.unwrap_or(lines.len());
+        // Cut at the top, the pane still says which ray it follows.
+        let d = &self.derivation;
+        let pinned = self.wrap(
+            &Row::new().chunk("rayDir", NAME).and(
+                format!(" = ({}, {})", num(d.ray_dir.x), num(d.ray_dir.y)),
+                VALUE,
+            ),
+            width,
+        );
+        window(lines, &starts, &pinned, rows, focus_end, self.ascii)
+    }
+
+    /// One row wrapped to `width`: chunks fill a line, the rest continue indented by two.
+    fn wrap(&self, row: &Row, width: usize) -> Vec<Line<'static>> {
+        let fix = |s: &Span<'static>| -> Span<'static> {
+            if self.ascii {
+                Span::styled(to_ascii(&s.content), s.style)
+            } else {
+                s.clone()
+            }
+        };
+        let bg = |s: Span<'static>| {
+            if row.current {
+                let st = s.style.bg(CURRENT_BG).add_modifier(Modifier::BOLD);
+                s.style(st)
+            } else {
+                s
+            }
+        };
+        let mut out: Vec<Vec<Span<'static>>> = vec![Vec::new()];
+        let mut used = 0;
+        for chunk in &row.chunks {
+            let spans: Vec<Span<'static>> = chunk.iter().map(fix).collect();
+            let w: usize = spans.iter().map(|s| s.content.chars().count()).sum();
+            if used > 0 && used + w > width {
+                // Continue on a new line, indented, without the chunk's leading spaces.
+                let mut first = true;
+                let mut line = vec![Span::styled("  ", VALUE)];
+                used = 2;
+                for s in spans {
+                    let s = if first {
+                        first = false;
+                        let t = s.content.trim_start().to_owned();
+                        Span::styled(t, s.style)
+                    } else {
+                        s
+                    };
+                    used += s.content.chars().count();
+                    line.push(s);
+                }
+                out.push(line);
+            } else {
+                used += w;
+                out.last_mut().expect("one line at least").extend(spans);
+            }
+        }
+        out.into_iter()
+            .map(|spans| Line::from(spans.into_iter().map(bg).collect::<Vec<_>>()))
+            .collect()
+    }
+}
+
+/// Mono terminals get plain ASCII.
+fn to_ascii(s: &str) -> String {
+    s.replace('−', "-")
+        .replace('·', "*")
+        .replace('→', "->")
+        .replace('≥', ">=")
+        .replace('Δ', "d")
+        .replace('↑', "^")
+        .replace('↓', "v")
+}
+
+/// The `rows` lines ending at `focus_end` (or later, if they fit): the first says how many are
+/// above when some are cut, the last how many below.
+fn window(
+    lines: Vec<Line<'static>>,
+    starts: &[bool],
+    pinned: &[Line<'static>],
+    rows: usize,
+    focus_end: usize,
+    ascii: bool,
+) -> Vec<Line<'static>> {
+    let total = lines.len();
+    if total <= rows || rows == 0 {
+        return lines.into_iter().take(rows).collect();
+    }
+    let end = focus_end.max(rows).min(total);
+    let mut start = end - rows;
+    let (up, down, keys) = if ascii {
+        ("^", "v", "w/s")
+    } else {
+        ("↑", "↓", "↑↓")
+    };
+    let keep = rows > pinned.len() + 4;
+    if start > 0 {
+        // The note (and the ray, when there is room) take the first rows; what follows starts
+        // at the start of a line of the derivation, not half-way through one.
+        start += 1 + if keep { pinned.len() } else { 0 };
+        while start < end && !starts[start] {
+            start += 1;
+        }
+    }
+    let mut out: Vec<Line<'static>> = Vec::new();
+    if start > 0 {
+        out.push(Line::styled(
+            format!("{up} {start} more above ({keys} scroll)"),
+            LABEL,
+        ));
+        if keep {
+            out.extend(pinned.iter().cloned());
+        }
+    }
+    out.extend(lines[start..end].iter().cloned());
+    if end < total && rows > 1 {
+        let last = out.len() - 1;
+        out[last] = Line::styled(format!("{down} {} more below", total - end + 1), LABEL);
+    }
+    out
 }
 
 impl Widget for DebugPane<'_> {
@@ -477,44 +750,104 @@ mod tests {
 
     fn setup() -> (World, Camera) {
         let w = World::default_world();
-        let cam = Camera::from_angle(Vec2::new(15.5, 5.5), 90.0, 66.0);
+        // Exactly north: rayDirX is 0 on the centre column (deltaDistX is Lode's 1e30).
+        let cam = Camera::from_dir(Vec2::new(15.5, 5.5), Vec2::new(0.0, -1.0), 66.0);
         (w, cam)
     }
 
-    #[test]
-    fn centre_ray_north_lists_every_step_and_the_hit() {
-        let (w, cam) = setup();
-        let t = trace_column(&w.map, &cam, 20, 40);
-        let pane = DebugPane::new(RevealedTrace::full(&t), &w, &cam, (40, 12));
-        let lines = text(&pane.lines(30));
-        insta::assert_snapshot!(lines.join("\n"));
+    fn pane_text(pane: DebugPane, width: usize, rows: usize) -> Vec<String> {
+        let pane = DebugPane { width, ..pane };
+        text(&pane.lines(rows))
     }
 
     #[test]
-    fn a_long_list_keeps_the_start_and_the_hit() {
+    fn centre_ray_north_derives_every_number() {
+        let (w, cam) = setup();
+        let t = trace_column(&w.map, &cam, 20, 40);
+        let pane = DebugPane::new(RevealedTrace::full(&t), &w, &cam, (40, 12));
+        let lines = pane_text(pane, 60, 40);
+        insta::assert_snapshot!(lines.join("\n"));
+        let all = lines.join("\n");
+        for want in [
+            "cameraX = 2x/w − 1 = 2·20/40 − 1 = 0.00",
+            "deltaDist = |1/rayDir| = (1e30, 1.00)",
+            "sideDistX = (mapX+1−posX)·deltaDistX = 0.50·1e30 = 5e29",
+            "  1 sideDistX 5e29 > sideDistY 0.50 → step y",
+            "perp = sideDistY − deltaDistY = 5.50 − 1.00 = 4.50",
+        ] {
+            assert!(all.contains(want), "{want:?} missing:\n{all}");
+        }
+    }
+
+    #[test]
+    fn a_long_ray_in_a_short_pane_keeps_the_hit_and_says_what_is_above() {
         let (w, _) = setup();
         let cam = Camera::from_angle(Vec2::new(1.5, 5.5), 0.0, 66.0);
         let t = trace_column(&w.map, &cam, 20, 40);
         assert!(t.steps.len() > 8, "{}", t.steps.len());
         let pane = DebugPane::new(RevealedTrace::full(&t), &w, &cam, (40, 12));
-        let lines = text(&pane.lines(13));
+        let lines = pane_text(pane, 46, 13);
         assert_eq!(lines.len(), 13);
-        assert!(lines[4].starts_with("  0 (1,5)"), "{lines:#?}");
-        assert!(lines.iter().any(|l| l.contains("more steps")));
-        let last_step = format!("{:>3}", t.steps.len());
-        assert!(lines[9].starts_with(&last_step), "{lines:#?}");
-        assert!(lines[10].starts_with("hit"));
+        assert!(lines[0].contains("more above"), "{lines:#?}");
+        assert!(lines.iter().any(|l| l.starts_with("perp")), "{lines:#?}");
+        assert!(lines.last().unwrap().starts_with("texture x"), "{lines:#?}");
     }
 
     #[test]
-    fn while_stepping_the_hit_is_not_shown_yet() {
+    fn while_stepping_earlier_steps_fold_and_the_hit_is_not_shown_yet() {
         let (w, cam) = setup();
         let t = trace_column(&w.map, &cam, 20, 40);
         let pane = DebugPane::new(RevealedTrace::partial(&t, 2), &w, &cam, (40, 12));
-        let lines = text(&pane.lines(30));
-        assert_eq!(lines.len(), 4 + 3 + 1);
-        assert!(lines[6].starts_with("  2 (15,3)"), "{lines:#?}");
-        assert!(lines[7].contains("not reached (step 2 of 5)"), "{lines:#?}");
+        let lines = pane_text(pane, 60, 40);
+        let all = lines.join("\n");
+        assert!(all.contains("  1 step y → (15,4) sideDistY 1.50"), "{all}");
+        assert!(
+            all.contains("  2 sideDistX 5e29 > sideDistY 1.50 → step y"),
+            "{all}"
+        );
+        assert!(
+            all.contains("    map(15,3)  sideDistY += 1.00 → 2.50"),
+            "{all}"
+        );
+        assert!(
+            lines.last().unwrap().contains("not yet (step 2 of 5)"),
+            "{all}"
+        );
+    }
+
+    #[test]
+    fn scrolling_writes_out_an_earlier_step() {
+        let (w, cam) = setup();
+        let t = trace_column(&w.map, &cam, 20, 40);
+        let pane = DebugPane::new(RevealedTrace::partial(&t, 3), &w, &cam, (40, 12)).scroll(2);
+        let all = pane_text(pane, 60, 40).join("\n");
+        assert!(all.contains("  1 sideDistX 5e29 > sideDistY 0.50"), "{all}");
+        assert!(all.contains("  3 step y → (15,2) sideDistY 3.50"), "{all}");
+    }
+
+    #[test]
+    fn a_narrow_pane_wraps_between_the_parts_of_a_line() {
+        let (w, cam) = setup();
+        let t = trace_column(&w.map, &cam, 20, 40);
+        let pane = DebugPane::new(RevealedTrace::full(&t), &w, &cam, (40, 12));
+        let lines = pane_text(pane, 28, 200);
+        for l in &lines {
+            assert!(l.chars().count() <= 28, "{l:?} is wider than the pane");
+        }
+        assert!(
+            lines.iter().any(|l| l == "  = 5.50 − 1.00 = 4.50"),
+            "{lines:#?}"
+        );
+    }
+
+    #[test]
+    fn mono_is_ascii_only() {
+        let (w, cam) = setup();
+        let t = trace_column(&w.map, &cam, 20, 40);
+        let pane = DebugPane::new(RevealedTrace::partial(&t, 3), &w, &cam, (40, 12)).ascii(true);
+        for l in pane_text(pane, 28, 11) {
+            assert!(l.is_ascii(), "{l:?}");
+        }
     }
 
     /// A corridor east: a quarter step up at x = 3, a lintel down to 0.7 at x = 5, a wall at 8.
@@ -527,8 +860,7 @@ mod tests {
         World::load(map, &source, true).unwrap().0
     }
 
-    /// The heights corridor seen from its west end in a 40 × 24 view, column 20 traced.
-    fn heights_cast() -> (World, Camera, crate::render::cast::Cast) {
+    fn heights_pane_lines(shown: Option<usize>, rows: usize) -> Vec<String> {
         let w = heights_world();
         let cam = Camera::from_angle(Vec2::new(1.5, 1.5), 0.0, 66.0);
         let view = crate::render::view::View::default();
@@ -536,92 +868,35 @@ mod tests {
         let doors = crate::world::door::DoorState::new(&w.map);
         let cast =
             crate::render::height_cast::cast_heights(&w.map, &doors, &cam, &proj, 40, Some(20));
-        (w, cam, cast)
-    }
-
-    fn heights_pane_lines(shown: Option<usize>, rows: usize) -> Vec<String> {
-        let (w, cam, cast) = heights_cast();
         let t = cast.trace.as_ref().unwrap();
         let ray = match shown {
             Some(n) => RevealedTrace::partial(t, n),
             None => RevealedTrace::full(t),
         };
-        let pane = DebugPane::new(ray, &w, &cam, (40, 12)).heights(&cast.heights[20], &w.map);
-        text(&pane.lines(rows))
+        let pane = DebugPane::new(ray, &w, &cam, (40, 12)).heights(&cast.heights[20]);
+        pane_text(pane, 60, rows)
     }
 
     #[test]
-    fn a_compact_pane_keeps_every_height_rows_column_on_screen() {
-        let (w, cam, cast) = heights_cast();
-        let t = cast.trace.as_ref().unwrap();
-        let pane = DebugPane::new(RevealedTrace::full(t), &w, &cam, (40, 12))
-            .heights(&cast.heights[20], &w.map);
-        let area = Rect::new(0, 0, 28, 40);
-        let mut buf = Buffer::empty(area);
-        pane.render(area, &mut buf);
-        let rows: Vec<String> = (0..40)
-            .map(|y| (0..28).map(|x| buf[(x, y)].symbol()).collect::<String>())
-            .collect();
-        let list = rows
-            .iter()
-            .skip_while(|r| !r.starts_with("heights"))
-            .skip(1)
-            .take_while(|r| r.starts_with('('))
-            .collect::<Vec<_>>();
-        assert!(list.len() >= 3, "{rows:#?}");
-        for r in list {
-            let last = r.trim_end().rsplit(' ').next().unwrap();
-            assert!(
-                last.contains("..") && last.split("..").all(|n| n.parse::<usize>().is_ok()),
-                "the rows column is cut off: {r:?}"
-            );
-        }
-    }
-
-    #[test]
-    fn on_a_heights_map_every_height_change_is_listed_with_its_rows_and_where_it_closed() {
-        let lines = heights_pane_lines(None, 40);
+    fn on_a_heights_map_each_face_says_how_the_window_narrowed() {
+        let lines = heights_pane_lines(None, 60);
         let all = lines.join("\n");
         insta::assert_snapshot!(all);
-        assert!(all.contains("height"), "{all}");
-        // The start cell's floor and ceiling, the step at x = 3, the lintel at x = 5, the wall.
         for want in [
-            "(1,1)",
-            "(3,1)     1.50 step   0..0.25   17..22",
-            "lintel 0.7..1",
-            "wall",
-            "heights closed (8,1) 6.50",
+            "    step z 0..0.25 rows 17..22 window 2..22 → 2..17",
+            "    lintel z 0.7..1 rows 8..10 window 8..14 → 10..14",
+            "window closed (8,1) at 6.50",
             // The closing wall shows only its 0.25..0.7 beside (7,1): 0.45 of the flat 4.74 px.
-            "line 2.13 px",
+            "line = Δz·focal/perp = 0.45·30.80/6.50 = 2.13 px",
         ] {
             assert!(all.contains(want), "{want:?} missing:\n{all}");
         }
-        // Cells with the same span as the one before are not listed again.
-        let list = &all[all.find("heights closed").unwrap()..];
-        for same in ["(4,1)", "(6,1)", "(7,1)"] {
-            assert!(
-                !list.contains(same),
-                "{same} repeats its neighbour:\n{list}"
-            );
-        }
-    }
-
-    #[test]
-    fn the_height_list_follows_the_stepping_and_fits_a_short_pane() {
-        // Stepped into (2,1) only: its floor, nothing from the step at x = 3 yet, no closing.
-        let lines = heights_pane_lines(Some(1), 40).join("\n");
-        assert!(lines.contains("(2,1)     0.50 floor"), "{lines}");
+        // While stepping, only the faces of cells reached so far.
+        let early = heights_pane_lines(Some(1), 60).join("\n");
         assert!(
-            !lines.contains("0..0.25") && !lines.contains("closed"),
-            "{lines}"
+            !early.contains("0..0.25") && !early.contains("closed"),
+            "{early}"
         );
-        // A short pane keeps the ends of both lists: the last height row is the closing wall.
-        let lines = heights_pane_lines(None, 14);
-        assert_eq!(lines.len(), 14, "{lines:#?}");
-        assert!(lines.iter().any(|l| l.starts_with("hit")), "{lines:#?}");
-        assert!(lines.contains(&"heights closed (8,1) 6.50".to_owned()));
-        assert!(lines.iter().any(|l| l.contains("more")), "{lines:#?}");
-        assert!(lines.last().unwrap().contains(" wall "), "{lines:#?}");
     }
 
     #[test]
@@ -630,11 +905,5 @@ mod tests {
         assert_eq!(fmt_height(1.0), "1");
         assert_eq!(fmt_height(-0.5), "-0.5");
         assert_eq!(fmt_height(-0.0001), "0");
-    }
-
-    #[test]
-    fn infinite_delta_is_shown_as_infinity() {
-        assert_eq!(fmt_dist(1e30), "inf");
-        assert_eq!(fmt_dist(1.23456), "1.2346");
     }
 }

@@ -39,7 +39,7 @@ const CASES: &[(&str, &str)] = &[
     ("invalid_config_syntax", "1:8: unclosed table, expected `]`"),
     (
         "invalid_config_unknown_action",
-        "3:1: keys: unknown action 'fly' (known: forward, back, turn_left, turn_right, strafe_left, strafe_right, look_up, look_down, centre_pitch, crouch, jump, use_door, tag, night, pause, column_left, column_right, column_left_10, column_right_10, step_dda, run_to_hit, minimap, ray_pane, colours, help, quit)",
+        "3:1: keys: unknown action 'fly' (known: forward, back, turn_left, turn_right, strafe_left, strafe_right, look_up, look_down, centre_pitch, crouch, jump, use_door, tag, night, pause, column_left, column_right, column_left_10, column_right_10, step_dda, run_to_hit, save_figure, minimap, ray_pane, colours, help, quit)",
     ),
     (
         "invalid_config_unknown_field",

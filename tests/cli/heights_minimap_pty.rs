@@ -82,7 +82,8 @@ fn the_minimap_shades_floors_by_height_and_outlines_ledges() {
     assert!(colours.contains(&Rgb::new(6, 6, 8)), "no ledge line");
     // The ray pane lists the traced column's heights, closed by the wall the player faces.
     assert!(
-        rows.iter().any(|r| r.contains("heights closed (1,0) 0.20")),
+        rows.iter()
+            .any(|r| r.contains("window closed (1,0) at 0.20")),
         "{}",
         rows.join("\n")
     );

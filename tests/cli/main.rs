@@ -44,6 +44,7 @@ mod replay;
 mod replay_pty;
 mod replay_sizes_pty;
 mod screen_sizes;
+mod trace_figure;
 mod widgets;
 mod world_cli;
 mod world_doors;

@@ -200,7 +200,7 @@ fn at_80x24_both_panes_show_and_too_narrow_says_why_a_pane_is_hidden() {
         text.contains(" map ") && text.contains("ray - column"),
         "{text}"
     );
-    assert!(text.contains("sideDistX"), "{text}");
+    assert!(text.contains("perp = sideDistY"), "{text}");
     run.send(b"q");
     run.wait_exit();
 
@@ -215,7 +215,7 @@ fn at_80x24_both_panes_show_and_too_narrow_says_why_a_pane_is_hidden() {
 #[test]
 fn mono_screens_are_plain_ascii_with_a_readable_map() {
     let mut run = start((80, 24), &["--colors", "mono"]);
-    run.wait_for_screen("the panes", |s| s.contents().contains("inf"));
+    run.wait_for_screen("the panes", |s| s.contents().contains("hit (15,0)"));
     let bytes = run.bytes();
     let text = run.screen().contents();
     // The minimap: walls, floor, the player and the ray.
@@ -224,7 +224,9 @@ fn mono_screens_are_plain_ascii_with_a_readable_map() {
     for c in ['#', '.', '@', '*'] {
         assert!(joined.contains(c), "{c} not on the map:\n{joined}");
     }
-    assert!(text.contains("deltaDist (inf, 1.0000)"), "{text}");
+    // The ray pane in ASCII: `-` for the minus sign, `->` for the arrow.
+    assert!(text.contains("perp = sideDistY-deltaDistY"), "{text}");
+    assert!(text.contains("-> "), "{text}");
     // At 80 columns the game's figures and the position fill the status line (ASCII too).
     let line = status(run.screen());
     assert!(

@@ -58,8 +58,8 @@ fn play_start_walk_quit_restores_the_terminal() {
     let (mut s, before) = spawn(&["play", "--fps", "30"]);
     s.wait_for_screen("the first whole frame", |sc| {
         let text = sc.contents();
-        text.contains("(15,4)")
-            && text.contains("sideDistX")
+        text.contains("hit (15,0)")
+            && text.contains("sideDistY")
             && text.contains(" map ")
             && status_line(sc).contains("q quit")
     });
@@ -105,9 +105,9 @@ fn play_start_walk_quit_restores_the_terminal() {
         .unwrap();
     let inner = sc.cell(map_row as u16 + 3, map_col as u16 + 3).unwrap();
     assert_eq!(inner.contents(), "▀");
-    // The debug pane lists the centre ray's steps with cells (x,y).
-    assert!(text.contains("  1 (15,4)"), "{text}");
-    assert!(text.contains("hit"), "{text}");
+    // The ray pane derives the centre ray's hit: its cell (x,y) and perp.
+    assert!(text.contains("hit (15,0) wall 1"), "{text}");
+    assert!(text.contains("perp = sideDistY"), "{text}");
     let status = status_line(sc);
     assert!(status.contains("pos 15.50,5.50"), "{status}");
     assert!(status.contains("fps"), "{status}");
@@ -155,7 +155,7 @@ fn not_a_terminal_is_a_clear_error_with_exit_code_2() {
 #[test]
 fn sigterm_restores_the_terminal_and_exits() {
     let (mut s, before) = spawn(&["play"]);
-    s.wait_for_screen("the first frame", |sc| sc.contents().contains("sideDistX"));
+    s.wait_for_screen("the first frame", |sc| sc.contents().contains("sideDistY"));
     nix::sys::signal::kill(
         nix::unistd::Pid::from_raw(s.pid()),
         nix::sys::signal::Signal::SIGTERM,

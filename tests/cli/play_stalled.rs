@@ -14,7 +14,7 @@ fn sigterm_ends_a_game_whose_terminal_nobody_reads() {
     let mut run = PtyRun::spawn(&["play", "--fps", "60"], (160, 48));
     let before = run.master.get_termios().expect("termios");
     run.wait_for("the first frame", |out| {
-        contains(out, "sideDistX".as_bytes())
+        contains(out, "sideDist".as_bytes())
     });
     let raw = run.master.get_termios().expect("termios");
     assert_ne!(

@@ -104,7 +104,7 @@ fn under_tmux_the_first_screen_walks_and_quits_cleanly() {
     assert!(started.status.success(), "{started:?}");
 
     let first = tmux.wait_for("the first whole frame", |s| {
-        s.contains("sideDistX") && s.contains("(15,4)") && status(s).contains("q quit")
+        s.contains("sideDistY") && s.contains("hit (15,0)") && status(s).contains("q quit")
     });
     assert!(first.contains("╭ map"), "{first}");
     assert!(status(&first).contains("pos 15.50,5.50"), "{first}");
@@ -192,8 +192,8 @@ fn a_closed_terminal_ends_the_game() {
 }
 
 /// (x, y, angle): the position from the status line ("pos 15.50,5.50"), the facing from the
-/// ray pane's centre ray ("rayDir (+0.0000, -1.0000)"), since at 80 columns the game's figures
-/// leave no room for the angle on the status line.
+/// ray pane's centre ray ("rayDir = (0.00, -1.00)", kept at the top of a cut pane), since at
+/// 80 columns the game's figures leave no room for the angle on the status line.
 fn pose(screen: &str) -> (f64, f64, f64) {
     let line = status(screen);
     let i = line
@@ -246,7 +246,7 @@ fn under_tmux_at_80x24_taps_are_small_steps_and_the_help_shows() {
     ]);
     assert!(started.status.success(), "{started:?}");
     let first = tmux.wait_for("the first frame", |s| {
-        s.contains("sideDistX") && status(s).contains("q quit")
+        s.contains("sideDist") && status(s).contains("q quit")
     });
     assert!(first.contains(" map ") && first.contains("ray"), "{first}");
     let (x0, y0, a0) = pose(&first);

@@ -71,7 +71,7 @@ fn first_screen() {
     let screen = replay_on_screen(FIXTURE, Some(0));
     let text = all_text(&screen);
     assert!(
-        text.contains("sideDistX") && text.contains("(15,4)"),
+        text.contains("sideDistY") && text.contains("hit (15,0)"),
         "{text}"
     );
     assert!(status(&screen).contains("q quit"), "{text}");

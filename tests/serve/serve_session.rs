@@ -22,14 +22,7 @@ async fn a_frame_arrives_and_decodes_to_the_tui_layout() {
     );
     // The local TUI's side panes: the minimap and the debugger's pane of the centre ray.
     let text = c.screen.screen().contents();
-    for needle in [
-        " map ",
-        " ray ",
-        "column",
-        "rayDir",
-        "deltaDist",
-        "sideDistX",
-    ] {
+    for needle in [" map ", " ray ", "column", "hit (15,0)", "perp = sideDistY"] {
         assert!(text.contains(needle), "{needle:?} in:\n{text}");
     }
     let v = view_rect(120, 40);

@@ -1,0 +1,151 @@
+//! The side view of one column on a map with `Hz` heights: distance along the view on the
+//! horizontal axis, height up; each cell's floor and ceiling along the ray (solid parts
+//! filled), every face the column drew at its distance, and the open window of rows — the
+//! wedge of rows from the eye still to be drawn — closing face by face.
+
+use super::drawing::{Anchor, Drawing, Stroke, Tag};
+use super::palette::{CAMERA, GRID, TEXT, TEXT_SIZE, WALL, WINDOW, X_SIDE, Y_SIDE};
+use crate::map::{Map, Span};
+use crate::render::cast::Side;
+use crate::render::derivation::{num, Derivation};
+use crate::render::height_cast::{Band, HeightColumn, Projection};
+
+/// Height of the side view in pixels (without its caption).
+pub const HEIGHT: f64 = 220.0;
+
+/// Draws the side view in the box at `origin` of `width` × [`HEIGHT`] pixels.
+pub fn draw(
+    out: &mut Drawing,
+    map: &Map,
+    d: &Derivation,
+    col: &HeightColumn,
+    proj: &Projection,
+    origin: (f64, f64),
+    width: f64,
+) {
+    // The cells along the ray with the distances where the ray is in them.
+    let mut cells = vec![(d.start_cell, 0.0)];
+    cells.extend(d.choices.iter().map(|c| (c.cell, c.crossing())));
+    let t_max = d.perp.max(0.5) * 1.1;
+    let mut z_lo = proj.eye.min(0.0);
+    let mut z_hi = proj.eye.max(1.0);
+    for (c, _) in &cells {
+        if let Some(s) = map.span(c.0, c.1) {
+            z_lo = z_lo.min(s.floor);
+            z_hi = z_hi.max(s.ceil);
+        }
+    }
+    let (z_lo, z_hi) = (z_lo - 0.25, z_hi + 0.25);
+    let left = origin.0 + 40.0;
+    let plot_w = width - 60.0;
+    let px = |t: f64| left + t.clamp(0.0, t_max) / t_max * plot_w;
+    let py = |z: f64| origin.1 + (z_hi - z.clamp(z_lo, z_hi)) / (z_hi - z_lo) * HEIGHT;
+    out.frame((left, origin.1), (plot_w, HEIGHT), Stroke::solid(GRID, 1.0));
+    // Height marks.
+    let mut z = z_lo.ceil();
+    while z <= z_hi {
+        out.line((left - 4.0, py(z)), (left, py(z)), Stroke::solid(TEXT, 1.0));
+        out.text(
+            (left - 6.0, py(z) + TEXT_SIZE / 2.0),
+            format!("{}", z + 0.0),
+            TEXT_SIZE,
+            TEXT,
+            Anchor::End,
+        );
+        z += 1.0;
+    }
+    // Solid parts of each cell: below its floor, above its ceiling (all of a wall).
+    for (k, (c, t0)) in cells.iter().enumerate() {
+        let t1 = cells.get(k + 1).map_or(t_max, |n| n.1);
+        let (x0, x1) = (px(*t0), px(t1));
+        match map.span(c.0, c.1) {
+            Some(Span { floor, ceil }) => {
+                out.rect((x0, py(floor)), (x1 - x0, py(z_lo) - py(floor)), WALL, 1.0);
+                out.rect((x0, py(z_hi)), (x1 - x0, py(ceil) - py(z_hi)), WALL, 1.0);
+            }
+            None => out.rect((x0, py(z_hi)), (x1 - x0, HEIGHT), WALL, 1.0),
+        }
+    }
+    // The window of rows still open after each face, as the wedge of those rows' rays.
+    let z_of = |row: f64, t: f64| proj.eye - (row - proj.horizon) * t / proj.focal;
+    let mut top = 0usize;
+    let mut bottom = proj.height;
+    let mut t_from = 0.0;
+    let mut wedges = Vec::new();
+    for b in &col.bands {
+        let (a, z) = b.rows();
+        if a <= top {
+            top = z.max(top);
+        } else {
+            bottom = a.min(bottom);
+        }
+        if let Band::Face(f) = b {
+            wedges.push((t_from, f.perp_dist, top, bottom, *f));
+            t_from = f.perp_dist;
+        }
+    }
+    let mut open = (0usize, proj.height);
+    let mut start = 0.0;
+    for (k, (_, t, a, b, f)) in wedges.iter().enumerate() {
+        // Rows open from the previous face to this one.
+        let (ra, rb) = (open.0 as f64, open.1 as f64);
+        if ra < rb {
+            out.polygon(
+                vec![
+                    (px(start), py(z_of(ra, start))),
+                    (px(*t), py(z_of(ra, *t))),
+                    (px(*t), py(z_of(rb, *t))),
+                    (px(start), py(z_of(rb, start))),
+                ],
+                WINDOW,
+                0.16,
+            );
+        }
+        let colour = match f.side {
+            Side::X => X_SIDE,
+            Side::Y => Y_SIDE,
+        };
+        out.line(
+            (px(*t), py(f.z.0)),
+            (px(*t), py(f.z.1)),
+            Stroke::solid(colour, 4.0),
+        );
+        let label_y = origin.1 + HEIGHT + 14.0 + (k % 2) as f64 * 14.0;
+        out.tagged_text(
+            (px(*t), label_y),
+            format!("{} {}..{}", f.kind.as_str(), f.rows.0, f.rows.1),
+            TEXT_SIZE,
+            colour,
+            Anchor::Middle,
+            Tag {
+                class: format!("face {}", f.kind.as_str()),
+                data: vec![
+                    ("rows", format!("{}..{}", f.rows.0, f.rows.1)),
+                    ("window", format!("{a}..{b}")),
+                ],
+            },
+        );
+        out.line(
+            (px(*t), py(z_lo)),
+            (px(*t), label_y - TEXT_SIZE - 2.0),
+            Stroke::dashed(GRID, 1.0),
+        );
+        open = (*a, *b);
+        start = *t;
+    }
+    // The eye.
+    out.circle((px(0.0), py(proj.eye)), 5.0, Some(CAMERA), None);
+    out.text(
+        (left + 4.0, origin.1 - 8.0),
+        format!(
+            "side view: distance along dir (0 to {}) across, height up; shaded: rows still open",
+            num(t_max)
+        ),
+        TEXT_SIZE,
+        TEXT,
+        Anchor::Start,
+    );
+}
+
+/// Pixels below the side view's box that its face labels use.
+pub const LABELS: f64 = 36.0;
