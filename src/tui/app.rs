@@ -125,6 +125,9 @@ const NOTICE_FOR: Duration = Duration::from_secs(4);
 ///
 /// # Errors
 /// Terminal I/O failures (reading events, writing frames).
+/// Most keys taken between two frames once the frame is already due (the input queue's size).
+const LATE_KEYS: usize = 256;
+
 pub fn run_loop(
     session: &mut Session,
     campaign: Campaign,
@@ -170,14 +173,21 @@ pub fn run_loop(
     let mut last = Instant::now();
     let mut next = last;
     loop {
-        // 1. Input: take events until this frame is due (blocking in poll, never spinning).
+        // 1. Input: take events until this frame is due (blocking in poll, never spinning). A
+        // frame that took longer than the period leaves no time to wait: the keys already typed
+        // are still taken (up to the queue's size), so a slow machine lags but never drops keys.
+        let mut late = 0;
         loop {
-            let now = Instant::now();
-            if now >= next {
-                break;
+            let wait = next.saturating_duration_since(Instant::now());
+            match events.next_within(wait)? {
+                Some(ev) => app.controls.handle(&ev, Instant::now()),
+                None => break,
             }
-            if let Some(ev) = events.next_within(next - now)? {
-                app.controls.handle(&ev, Instant::now());
+            if wait.is_zero() {
+                late += 1;
+                if late >= LATE_KEYS {
+                    break;
+                }
             }
             if signal.load(Ordering::SeqCst) != 0 {
                 break;

@@ -236,3 +236,19 @@ fn a_panic_restores_the_terminal_before_the_message() {
     let after = s.master.get_termios().expect("termios");
     assert_eq!(before.local_flags, after.local_flags);
 }
+
+#[test]
+fn keys_are_taken_even_when_every_frame_is_late() {
+    // At 1000 fps every frame is due before the one before it is drawn (a slow machine, a
+    // debug build at a big size): the loop must still read what was typed, not skip input.
+    let (mut s, _) = spawn(&["play", "--fps", "1000"]);
+    s.wait_for_screen("the first whole frame", |sc| {
+        status_line(sc).contains("q quit")
+    });
+    s.send(b"q");
+    let st = exit_status(
+        &mut s,
+        "halfcast did not quit on q while every frame was late",
+    );
+    assert!(st.success());
+}
