@@ -18,7 +18,7 @@ fn mapped(fb: &Framebuffer, p: &Palette) -> Framebuffer {
     let mut out = fb.clone();
     for y in 0..fb.height() {
         for x in 0..fb.width() {
-            out.set(x, y, p.rgb(p.code(fb.get(x, y), x, y)));
+            out.set(x, y, p.rgb(p.code(fb.get(x, y))));
         }
     }
     out
@@ -37,13 +37,8 @@ fn main() {
             .into_iter()
             .map(|c| Scene::new(&world, c).render(240, 68))
             .collect();
-        for (level, dither) in [
-            (ColorLevel::Ansi256, false),
-            (ColorLevel::Ansi256, true),
-            (ColorLevel::Ansi16, false),
-            (ColorLevel::Ansi16, true),
-        ] {
-            let p = Palette::new(level, dither);
+        for level in [ColorLevel::Ansi256, ColorLevel::Ansi16] {
+            let p = Palette::new(level);
             let q: Vec<Framebuffer> = frames.iter().map(|f| mapped(f, &p)).collect();
             let (mut sum, mut n) = (0.0, 0usize);
             for (f, g) in frames.iter().zip(&q) {
@@ -57,11 +52,10 @@ fn main() {
                 .flat_map(|f| f.pixels().iter().copied())
                 .collect();
             println!(
-                "{:<5} {:>4} dither={:<5} mean ΔE(OKLab×100) {:5.2} | distinct truecolour colours {:6} | \
+                "{:<5} {:>4} mean ΔE(OKLab×100) {:5.2} | distinct truecolour colours {:6} | \
                  truecolor B/f: raw {:8.0}, palette-exact frames {:8.0} | {} B/f {:8.0}",
                 scene.name(),
                 level.name(),
-                dither,
                 100.0 * sum / n as f64,
                 distinct.len(),
                 bytes(&frames, ColorLevel::TrueColor),

@@ -56,7 +56,7 @@ impl RatatuiReference {
         Self {
             terminal,
             bytes,
-            palette: Palette::new(level, false),
+            palette: Palette::new(level),
         }
     }
 
@@ -79,8 +79,8 @@ impl RatatuiReference {
                             cell.set_char(mono_char(t, b));
                             continue;
                         }
-                        let colour = |c, y| {
-                            let code = palette.code(c, cx, y);
+                        let colour = |c| {
+                            let code = palette.code(c);
                             match palette.level() {
                                 ColorLevel::TrueColor => {
                                     Color::Rgb((code >> 16) as u8, (code >> 8) as u8, code as u8)
@@ -88,9 +88,7 @@ impl RatatuiReference {
                                 _ => Color::Indexed(code as u8),
                             }
                         };
-                        cell.set_char('▀')
-                            .set_fg(colour(t, 2 * cy))
-                            .set_bg(colour(b, 2 * cy + 1));
+                        cell.set_char('▀').set_fg(colour(t)).set_bg(colour(b));
                     }
                 }
             })

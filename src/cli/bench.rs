@@ -24,9 +24,6 @@ pub(crate) struct BenchArgs {
     /// Frames per replayed path after the first one.
     #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u16).range(1..=5000))]
     pub(crate) frame_count: u16,
-    /// Ordered dithering at 256 and 16 colours.
-    #[arg(long)]
-    pub(crate) dither: bool,
     /// Lossy: don't resend cells whose colours moved less than N (0–255).
     #[arg(long, value_name = "N")]
     pub(crate) delta: Option<u8>,
@@ -40,7 +37,6 @@ pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
     let plan = BenchPlan {
         frames: usize::from(args.frame_count),
         levels: args.colors.into_iter().collect(),
-        dither: args.dither,
         delta: args.delta,
         beam: args.beam,
     };

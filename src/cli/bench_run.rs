@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use halfcast::bench::fidelity::{self, Fidelity};
+use halfcast::bench::scielab::{self, Figures};
 use halfcast::bench::{
     camera_path, BenchScene, HalfcastFigures, RatatuiFigures, RatatuiReference, Report, Run,
     ZlibMeter,
@@ -17,8 +17,19 @@ use halfcast::texture::decode::decode_within;
 use halfcast::world::World;
 use halfcast::{Framebuffer, Scene};
 
-/// Every this many frames (from the first) the fidelity figures are measured.
+/// Every this many frames (from the first) the colour figures are measured.
 const FIDELITY_EVERY: usize = 10;
+
+/// The RGBs of a level's palette as the terminal shows them (what the baselines quantise to);
+/// empty at truecolor and mono, which have no baselines.
+fn palette_rgbs(level: ColorLevel) -> Vec<halfcast::Rgb> {
+    use halfcast::encode::palette::{xterm_rgb, ANSI16};
+    match level {
+        ColorLevel::Ansi256 => (16..=255).map(xterm_rgb).collect(),
+        ColorLevel::Ansi16 => ANSI16.to_vec(),
+        ColorLevel::TrueColor | ColorLevel::Mono => Vec::new(),
+    }
+}
 
 /// How often each sequence is re-encoded for timing (the minimum per frame is kept).
 const TIMING_REPEATS: usize = 10;
@@ -44,7 +55,6 @@ pub struct BenchPlan {
     pub frames: usize,
     /// Colour levels (all when empty).
     pub levels: Vec<ColorLevel>,
-    pub dither: bool,
     pub delta: Option<u8>,
     /// Row-planner beam width (None = the encoder's default).
     pub beam: Option<usize>,
@@ -53,7 +63,6 @@ pub struct BenchPlan {
 impl BenchPlan {
     fn options(&self, level: ColorLevel) -> EncodeOptions {
         let mut o = EncodeOptions::new(level);
-        o.dither = self.dither;
         o.delta = self.delta;
         if let Some(b) = self.beam {
             o.beam = b;
@@ -98,7 +107,9 @@ fn measure(
     let (mut bytes, mut zbytes, mut rbytes) = (Vec::new(), Vec::new(), Vec::new());
     let (mut first, mut rfirst) = (0, 0);
     let (mut enc_ms, mut draw_ms) = (0.0, 0.0);
-    let mut fidelities: Vec<Fidelity> = Vec::new();
+    let mut fidelities: Vec<Figures> = Vec::new();
+    let (mut nearest, mut fs): (Vec<Figures>, Vec<Figures>) = (Vec::new(), Vec::new());
+    let palette = palette_rgbs(opts.level);
     for (i, fb) in frames.iter().enumerate() {
         let t = Instant::now();
         let out = enc.encode(fb, 0, 0);
@@ -108,7 +119,13 @@ fn measure(
         let n = out.len();
         if i % FIDELITY_EVERY == 0 {
             if let Some(shown) = enc.shown_frame() {
-                fidelities.push(fidelity::compare(fb, &shown));
+                let source = scielab::Source::new(fb);
+                fidelities.push(source.compare(&shown));
+                if !palette.is_empty() {
+                    let (n, f) = source.baselines(&palette);
+                    nearest.push(n);
+                    fs.push(f);
+                }
             }
         }
         let t = Instant::now();
@@ -138,7 +155,7 @@ fn measure(
     }
     enc_ms = enc_ms.min(best.iter().skip(1).sum());
     let diff_frames = frames.len().saturating_sub(1).max(1) as f64;
-    let fidelity = fidelity::mean(&fidelities);
+    let fidelity = scielab::mean(&fidelities);
     let bytes_per_frame = mean(&bytes);
     let ratatui_bpf = mean(&rbytes);
     let baseline = if opts.level == ColorLevel::TrueColor || truecolor_ratatui <= 0.0 {
@@ -169,8 +186,12 @@ fn measure(
         } else {
             0.0
         },
-        oklab_de_blur: fidelity.map(|f| f.oklab_de_blur),
+        scielab_45: fidelity.map(|f| f.scielab_45),
+        scielab_9: fidelity.map(|f| f.scielab_9),
         chroma_kept: fidelity.and_then(|f| f.chroma_kept),
+        hue_error: fidelity.and_then(|f| f.hue_error),
+        nearest: scielab::mean(&nearest).map(Into::into),
+        floyd_steinberg: scielab::mean(&fs).map(Into::into),
     })
 }
 
@@ -387,7 +408,7 @@ pub fn table(report: &Report) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "{:<6} {:>7} {:>9} {:>6} | {:>9} {:>9} {:>8} {:>7} {:>6} | {:>9} {:>9} {:>7} | {:>7} {:>7} | {:>6} {:>6}",
+        "{:<6} {:>7} {:>9} {:>6} | {:>9} {:>9} {:>8} {:>7} {:>6} | {:>9} {:>9} {:>7} | {:>7} {:>7} | {:>11} {:>6} {:>5} | {:>11} {:>11}",
         "scene",
         "size",
         "colors",
@@ -402,8 +423,11 @@ pub fn table(report: &Report) -> String {
         "rat ms",
         "vs rat",
         "vs rtc",
-        "dE blr",
-        "chroma"
+        "S-CIELAB",
+        "chroma",
+        "hue",
+        "nearest",
+        "FS"
     );
     for r in &report.runs {
         let same = if r.ratatui.bytes_per_frame > 0.0 {
@@ -413,7 +437,7 @@ pub fn table(report: &Report) -> String {
         };
         let _ = writeln!(
             s,
-            "{:<6} {:>7} {:>9} {:>6} | {:>9.0} {:>9} {:>8.0} {:>7.3} {:>6.2} | {:>9.0} {:>9} {:>7.3} | {:>6.1}% {:>6.1}% | {:>6} {:>6}",
+            "{:<6} {:>7} {:>9} {:>6} | {:>9.0} {:>9} {:>8.0} {:>7.3} {:>6.2} | {:>9.0} {:>9} {:>7.3} | {:>6.1}% {:>6.1}% | {:>11} {:>6} {:>5} | {:>11} {:>11}",
             r.scene,
             format!("{}x{}", r.cols, r.rows),
             r.colors,
@@ -428,19 +452,29 @@ pub fn table(report: &Report) -> String {
             r.ratatui.draw_ms,
             same,
             100.0 * r.ratio_vs_ratatui_truecolor,
-            figure(r.oklab_de_blur),
-            figure(r.chroma_kept),
+            pair(r.scielab_45.zip(r.scielab_9)),
+            figure(r.chroma_kept, 2),
+            figure(r.hue_error, 1),
+            pair(r.nearest.map(|f| (f.scielab_45, f.scielab_9))),
+            pair(r.floyd_steinberg.map(|f| (f.scielab_45, f.scielab_9))),
         );
     }
     s.push_str(
         "B/frame, zlib, enc ms: mean over frames after the first; vs rat: halfcast / stock ratatui \
-         at the same level; vs rtc: halfcast / stock ratatui truecolor; dE blr, chroma: blurred \
-         OKLab distance (x100) and chroma kept of what the terminal shows (every 10th frame)\n",
+         at the same level; vs rtc: halfcast / stock ratatui truecolor; S-CIELAB: mean S-CIELAB \
+         dE at 4.5/9 pixels per degree of what the terminal shows (every 10th frame), chroma kept \
+         and hue error (degrees); nearest, FS: S-CIELAB of the nearest palette colour and of \
+         Floyd-Steinberg on the same frames\n",
     );
     s
 }
 
-/// A fidelity figure for the table (`-` when not measured).
-fn figure(v: Option<f64>) -> String {
-    v.map_or_else(|| "-".to_string(), |v| format!("{v:.2}"))
+/// A colour figure for the table with `digits` decimals (`-` when not measured).
+fn figure(v: Option<f64>, digits: usize) -> String {
+    v.map_or_else(|| "-".to_string(), |v| format!("{v:.digits$}"))
+}
+
+/// S-CIELAB at 4.5 and 9 ppd as `a/b` (`-` when not measured).
+fn pair(v: Option<(f64, f64)>) -> String {
+    v.map_or_else(|| "-".to_string(), |(a, b)| format!("{a:.2}/{b:.2}"))
 }

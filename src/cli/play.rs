@@ -38,9 +38,6 @@ pub(crate) struct PlayArgs {
     /// Colour level (default: NO_COLOR, COLORTERM, else ask the terminal, else the TERM rule).
     #[arg(long, value_parser = parse_level)]
     pub(crate) colors: Option<ColorLevel>,
-    /// Ordered dithering at 256 and 16 colours, so walls don't band.
-    #[arg(long)]
-    pub(crate) dither: bool,
     /// Lossy: don't resend a cell whose colours moved less than N (0-255) since it was sent.
     #[arg(long, value_name = "N")]
     pub(crate) delta: Option<u8>,
@@ -112,7 +109,6 @@ pub(crate) fn play(args: &PlayArgs, record: Option<&PathBuf>) -> Result<(), Fail
         (None, None) => detect_colours(),
     };
     let mut encode = EncodeOptions::new(colour.level);
-    encode.dither = args.dither;
     encode.delta = args.delta;
     let options = PlayOptions {
         looping: LoopOptions {

@@ -36,9 +36,6 @@ pub(crate) struct RenderArgs {
     /// Colour level for `--format ansi` (default: detected from COLORTERM, TERM, NO_COLOR).
     #[arg(long, value_parser = parse_level)]
     pub(crate) colors: Option<ColorLevel>,
-    /// Ordered dithering at 256 and 16 colours (`--format ansi`).
-    #[arg(long)]
-    pub(crate) dither: bool,
     #[command(flatten)]
     pub(crate) world: WorldArgs,
 }
@@ -111,8 +108,7 @@ pub(crate) fn render(args: &RenderArgs) -> Result<(), Failure> {
     let bytes = match args.format {
         Format::Png => fb.to_png().map_err(Failure::io)?,
         Format::Ansi => {
-            let mut opts = EncodeOptions::new(args.colors.unwrap_or_else(detect_level));
-            opts.dither = args.dither;
+            let opts = EncodeOptions::new(args.colors.unwrap_or_else(detect_level));
             full_frame(&fb, &opts)
         }
         Format::Txt => text::to_text(&fb).into_bytes(),

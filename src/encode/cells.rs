@@ -90,7 +90,7 @@ impl CellWriter {
     #[must_use]
     pub fn new(level: ColorLevel) -> Self {
         Self {
-            palette: Palette::new(level, false),
+            palette: Palette::new(level),
             cursor: Cursor::Unknown,
             pen: PLAIN,
             scratch: (Vec::new(), Vec::new()),
@@ -301,7 +301,7 @@ impl CellWriter {
     fn palette_paint(&self, c: Rgb) -> Paint {
         Paint {
             kind: self.level(),
-            code: self.palette.code(c, 0, 0),
+            code: self.palette.code(c),
         }
     }
 

@@ -4,7 +4,7 @@ use super::cursor::{write_move, Cursor};
 use super::level::ColorLevel;
 use super::palette::{distance, Code, Palette, DEFAULT, UNKNOWN};
 use super::plan::{write_span, Choice, RowPlanner, RowStart, DEFAULT_BEAM};
-use super::quantize::{quantize_with, CellCache};
+use super::quantize::quantize;
 use super::sgr;
 use crate::render::framebuffer::Framebuffer;
 
@@ -18,8 +18,6 @@ pub const SYNC_END: &[u8] = b"\x1b[?2026l";
 pub struct EncodeOptions {
     /// The colour level frames are sent at.
     pub level: ColorLevel,
-    /// Ordered dithering before palette mapping (256 and 16 colours only).
-    pub dither: bool,
     /// Lossy: don't resend a cell whose colours moved less than this (0–255 perceptual scale).
     pub delta: Option<u8>,
     /// Wrap each frame in synchronized-output markers (never in mono).
@@ -34,7 +32,6 @@ impl EncodeOptions {
     pub fn new(level: ColorLevel) -> Self {
         Self {
             level,
-            dither: false,
             delta: None,
             sync: true,
             beam: DEFAULT_BEAM,
@@ -88,8 +85,6 @@ pub struct Encoder {
     shown: Vec<[Code; 2]>,
     /// What each cell should show this frame.
     intent: Vec<[Code; 2]>,
-    /// Pixel pairs → codes, kept across frames (the pair choice is the costly part at 256/16).
-    cache: CellCache,
     skippable: Vec<bool>,
     planner: RowPlanner,
     out: Vec<u8>,
@@ -102,14 +97,13 @@ impl Encoder {
     #[must_use]
     pub fn new(opts: EncodeOptions) -> Self {
         Self {
-            palette: Palette::new(opts.level, opts.dither),
+            palette: Palette::new(opts.level),
             opts,
             cols: 0,
             rows: 0,
             origin: (0, 0),
             shown: Vec::new(),
             intent: Vec::new(),
-            cache: CellCache::default(),
             skippable: Vec::new(),
             planner: RowPlanner::default(),
             out: Vec::new(),
@@ -170,7 +164,7 @@ impl Encoder {
             self.shown.resize(cols * rows, [UNKNOWN; 2]);
             self.fresh = true;
         }
-        quantize_with(&self.palette, fb, &mut self.intent, &mut self.cache);
+        quantize(&self.palette, fb, &mut self.intent);
         self.out.clear();
         if self.opts.level == ColorLevel::Mono {
             self.encode_mono();

@@ -16,7 +16,7 @@ use crate::render::framebuffer::Framebuffer;
 /// of that row costs); `sync`, `delta` and cursor moves do not apply here.
 #[must_use]
 pub fn full_frame(fb: &Framebuffer, opts: &EncodeOptions) -> Vec<u8> {
-    let palette = Palette::new(opts.level, opts.dither);
+    let palette = Palette::new(opts.level);
     let mut cells = Vec::new();
     quantize(&palette, fb, &mut cells);
     let w = fb.width();

@@ -1,20 +1,20 @@
 //! Byte-lean terminal output (pure: framebuffers in, bytes out; no terminal I/O here).
 //!
 //! - [`level`]: the colour ladder (truecolor → 256 → 16 → mono) and its detection.
-//! - [`palette`]: pixel → colour code, with a precomputed nearest-colour table and optional dithering.
+//! - [`palette`]: pixel → colour code, from shared tables: the nearest entry, or [`mixing`]'s
+//!   per-pixel mixes thresholded by the surfaces' dither phases.
 //! - [`encoder`]: the live frame encoder (diff against what the terminal shows, minimal SGR and moves,
 //!   synchronized output); [`inline`]: a whole frame as printable lines for `render --format ansi`.
 //! - [`pacer`]: fitting the frame rate to a bandwidth cap.
 
 pub(crate) mod cells;
 mod cursor;
-pub(crate) mod dither;
 pub(crate) mod encoder;
 pub(crate) mod inline;
 pub(crate) mod level;
+pub(crate) mod mixing;
 mod number;
 pub(crate) mod pacer;
-pub(crate) mod pairing;
 pub mod palette;
 mod plan;
 pub mod quantize;

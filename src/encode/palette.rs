@@ -1,10 +1,10 @@
-//! Colour codes per level: exact 24-bit, or the nearest xterm-256 / ANSI-16 colour from a lookup table.
+//! Colour codes per level: exact 24-bit, or xterm-256 / ANSI-16 entries from shared lookup tables:
+//! the nearest entry for single colours, mixes ([`super::mixing`]) for pictures.
 
 use std::sync::{Arc, OnceLock};
 
-use super::dither::bayer_offset;
 use super::level::ColorLevel;
-use super::pairing::{self, PairTables, NEAR};
+use super::mixing::{Mix, MixTable, Weights, FINE_SHARES, HALF_SHARES, MIX_16, MIX_256, SHARES};
 use crate::color::Rgb;
 
 /// A colour as the terminal is told it: packed `0xRRGGBB` at truecolor, a palette index otherwise.
@@ -63,53 +63,53 @@ pub fn xterm_rgb(i: u8) -> Rgb {
     }
 }
 
-/// Maps pixels to codes for one level. The lookup tables (a few ms each to build) are built once
-/// per process and shared, so every encoder and SSH session reuses them.
+/// Maps pixels to codes for one level. The lookup tables are built once per process and shared,
+/// so every encoder and SSH session reuses them.
 #[derive(Debug, Clone)]
 pub struct Palette {
     level: ColorLevel,
-    dither: bool,
-    /// The nearest palette entries per 5-bit-per-channel bin and what the per-cell pair choice
-    /// reads (`None` at truecolor and mono).
-    pairs: Option<Arc<PairTables>>,
-    /// Amplitude of the ordered-dither offset, in 8-bit channel units.
-    amplitude: i16,
+    /// The nearest entry per 5-bit-per-channel bin and the level's mix tables (`None` at
+    /// truecolor and mono).
+    tables: Option<Arc<Tables>>,
     /// Channel value → lookup-table bin (rounded, so 0 and 255 sit on bin centres).
     bin: [u8; 256],
 }
 
+/// A level's shared tables.
+#[derive(Debug)]
+struct Tables {
+    /// The nearest entry (OKLab) per 5-bit-per-channel bin: single colours (interface text,
+    /// stock ratatui's reference).
+    near: Vec<u8>,
+    /// Mixes in sixteenths, for pixels whose surface wrote a threshold.
+    fine: MixTable,
+    /// Mixes of none, half or all, for pixels no surface wrote a threshold for (floors,
+    /// ceilings, frames from elsewhere): each cell's upper pixel shows `b` at half and over, its
+    /// lower one at all.
+    halves: MixTable,
+}
+
 impl Palette {
-    /// Builds the lookup table for `level` (perceptual nearest match in OKLab).
+    /// The palette for `level`.
     #[must_use]
-    pub fn new(level: ColorLevel, dither: bool) -> Self {
-        static LUT_256: OnceLock<Arc<PairTables>> = OnceLock::new();
-        static LUT_16: OnceLock<Arc<PairTables>> = OnceLock::new();
-        let (pairs, amplitude): (Option<Arc<PairTables>>, i16) = match level {
-            ColorLevel::Ansi256 => (
-                Some(Arc::clone(LUT_256.get_or_init(|| {
-                    Arc::new(build_tables(&(16..=255).collect::<Vec<u8>>()))
+    pub fn new(level: ColorLevel) -> Self {
+        static LUT_256: OnceLock<Arc<Tables>> = OnceLock::new();
+        static LUT_16: OnceLock<Arc<Tables>> = OnceLock::new();
+        let tables: Option<Arc<Tables>> =
+            match level {
+                ColorLevel::Ansi256 => Some(Arc::clone(LUT_256.get_or_init(|| {
+                    Arc::new(build_tables(&(16..=255).collect::<Vec<u8>>(), &MIX_256))
                 }))),
-                40,
-            ),
-            ColorLevel::Ansi16 => (
-                Some(Arc::clone(LUT_16.get_or_init(|| {
-                    Arc::new(build_tables(&(0..16).collect::<Vec<u8>>()))
+                ColorLevel::Ansi16 => Some(Arc::clone(LUT_16.get_or_init(|| {
+                    Arc::new(build_tables(&(0..16).collect::<Vec<u8>>(), &MIX_16))
                 }))),
-                96,
-            ),
-            ColorLevel::TrueColor | ColorLevel::Mono => (None, 0),
-        };
+                ColorLevel::TrueColor | ColorLevel::Mono => None,
+            };
         let mut bin = [0u8; 256];
         for (v, b) in bin.iter_mut().enumerate() {
             *b = ((v * (LUT_SIDE - 1) + 127) / 255) as u8;
         }
-        Self {
-            level,
-            dither: dither && pairs.is_some(),
-            pairs,
-            amplitude,
-            bin,
-        }
+        Self { level, tables, bin }
     }
 
     /// The level this palette serves.
@@ -118,21 +118,14 @@ impl Palette {
         self.level
     }
 
-    /// The code for pixel `c` at pixel position (x, y) (the position only matters when dithering).
+    /// The code for a single colour `c`: exact at truecolor, else the nearest palette entry.
     #[must_use]
     #[inline]
-    pub fn code(&self, c: Rgb, x: usize, y: usize) -> Code {
-        let Some(t) = &self.pairs else {
+    pub fn code(&self, c: Rgb) -> Code {
+        let Some(t) = &self.tables else {
             return (u32::from(c.r) << 16) | (u32::from(c.g) << 8) | u32::from(c.b);
         };
-        let c = if self.dither {
-            let o = bayer_offset(x, y, self.amplitude);
-            let add = |v: u8| (i16::from(v) + o).clamp(0, 255) as u8;
-            Rgb::new(add(c.r), add(c.g), add(c.b))
-        } else {
-            c
-        };
-        u32::from(t.near[self.bin_of(c)][0])
+        u32::from(t.near[self.bin_of(c)])
     }
 
     /// The lookup-table bin of a colour.
@@ -142,51 +135,59 @@ impl Palette {
         (bin(c.r) << (2 * LUT_BITS)) | (bin(c.g) << LUT_BITS) | bin(c.b)
     }
 
-    /// Whether [`Palette::cell`] chooses the two codes together (so they depend only on the pixels).
+    /// Whether cells are drawn with mixes ([`Palette::cell_at`]): at 256 and 16 colours.
     #[must_use]
     #[inline]
-    pub fn pairs_cells(&self) -> bool {
-        self.pairs.is_some() && !self.dither
+    pub fn mixes(&self) -> bool {
+        self.tables.is_some()
     }
 
-    /// The `[top, bottom]` codes of a cell showing pixels `top` over `bottom`.
+    /// The `[top, bottom]` codes of a cell showing pixels `top` over `bottom` whose upper pixel
+    /// has dither phase `phase` (written by the surface it shows, or
+    /// [`NEUTRAL_PHASE`](crate::render::framebuffer::NEUTRAL_PHASE) where none did).
     ///
-    /// At 256 and 16 colours (without `--dither`) the two are chosen together so the cell's mix
-    /// keeps its colour ([`pairing`]); it depends on the two pixels only, never on the position.
-    /// Elsewhere each pixel gets [`Palette::code`] at (x, y) and (x, y + 1).
+    /// The answer depends on the pixels and the phase only, never on the cell's position; at
+    /// truecolor (and mono) each pixel gets [`Palette::code`].
     #[must_use]
     #[inline]
-    pub fn cell(&self, top: Rgb, bottom: Rgb, x: usize, y: usize) -> [Code; 2] {
-        match &self.pairs {
-            Some(t) if !self.dither => {
-                let near = |c: Rgb| t.near[self.bin_of(c)];
-                let [p, q] = pairing::choose(t, near, top, bottom);
-                [u32::from(p), u32::from(q)]
+    pub fn cell_at(&self, top: Rgb, bottom: Rgb, phase: u8) -> [Code; 2] {
+        match &self.tables {
+            Some(t) => {
+                if phase == crate::render::framebuffer::NEUTRAL_PHASE {
+                    [
+                        u32::from(t.halves.mix(top).pick(HALF_TOP)),
+                        u32::from(t.halves.mix(bottom).pick(HALF_BOTTOM)),
+                    ]
+                } else {
+                    let th = phase >> 4;
+                    [
+                        u32::from(t.fine.mix(top).pick(th)),
+                        u32::from(t.fine.mix(bottom).pick((th + SHARES / 2) % SHARES)),
+                    ]
+                }
             }
-            _ => [self.code(top, x, y), self.code(bottom, x, y + 1)],
+            None => [self.code(top), self.code(bottom)],
         }
     }
 
-    /// The two pairs and share of a cell showing `top` over `bottom` in a frame with dither
-    /// phases ([`pairing::choose_alternating`]); `None` where cells are not paired (truecolor,
-    /// mono, `--dither`).
+    /// [`Palette::cell_at`] for a cell no surface wrote a phase for (a frame from elsewhere).
     #[must_use]
     #[inline]
-    pub fn cell_dithered(&self, top: Rgb, bottom: Rgb) -> Option<pairing::Alternating> {
-        match &self.pairs {
-            Some(t) if !self.dither => {
-                let near = |c: Rgb| t.near[self.bin_of(c)];
-                Some(pairing::choose_alternating(t, near, top, bottom))
-            }
-            _ => None,
-        }
+    pub fn cell(&self, top: Rgb, bottom: Rgb) -> [Code; 2] {
+        self.cell_at(top, bottom, crate::render::framebuffer::NEUTRAL_PHASE)
+    }
+
+    /// The mix of colour `c` where a surface wrote thresholds (`None` at truecolor and mono).
+    #[must_use]
+    pub fn mix_of(&self, c: Rgb) -> Option<Mix> {
+        self.tables.as_ref().map(|t| t.fine.mix(c))
     }
 
     /// The RGB a code shows (the xterm default for palette indices).
     #[must_use]
     #[inline]
     pub fn rgb(&self, code: Code) -> Rgb {
-        if self.pairs.is_none() {
+        if self.tables.is_none() {
             Rgb::new((code >> 16) as u8, (code >> 8) as u8, code as u8)
         } else {
             xterm_rgb(code as u8)
@@ -194,33 +195,37 @@ impl Palette {
     }
 }
 
-/// For every bin centre, the [`NEAR`] candidates nearest in OKLab; and every index's colour.
-fn build_tables(candidates: &[u8]) -> PairTables {
+/// Thresholds of a cell's upper and lower pixel where no surface wrote one (with the
+/// none/half/all mixes: the upper pixel shows `b` from half, the lower one only at all).
+const HALF_TOP: u8 = 0;
+const HALF_BOTTOM: u8 = SHARES / 2;
+
+/// For every bin centre, the nearest entry in OKLab; and the mix tables.
+fn build_tables(candidates: &[u8], weights: &Weights) -> Tables {
     let labs: Vec<[f32; 3]> = candidates.iter().map(|&i| oklab(xterm_rgb(i))).collect();
     let centre = |i: usize| ((i * 255 + (LUT_SIDE - 1) / 2) / (LUT_SIDE - 1)) as u8;
-    let mut near = vec![[0u8; NEAR]; LUT_SIDE * LUT_SIDE * LUT_SIDE];
+    let mut near = vec![0u8; LUT_SIDE * LUT_SIDE * LUT_SIDE];
     for r in 0..LUT_SIDE {
         for g in 0..LUT_SIDE {
             for b in 0..LUT_SIDE {
                 let lab = oklab(Rgb::new(centre(r), centre(g), centre(b)));
-                // Insertion into a short sorted list; strict `<` keeps the lower index on ties.
-                let mut best = [(f32::MAX, candidates[0]); NEAR];
+                // Strict `<` keeps the lower index on ties.
+                let mut best = (f32::MAX, candidates[0]);
                 for (k, p) in labs.iter().enumerate() {
                     let d = crate::color::lab_dist2(lab, *p);
-                    if d < best[NEAR - 1].0 {
-                        let mut j = NEAR - 1;
-                        while j > 0 && d < best[j - 1].0 {
-                            best[j] = best[j - 1];
-                            j -= 1;
-                        }
-                        best[j] = (d, candidates[k]);
+                    if d < best.0 {
+                        best = (d, candidates[k]);
                     }
                 }
-                near[(r * LUT_SIDE + g) * LUT_SIDE + b] = best.map(|(_, i)| i);
+                near[(r * LUT_SIDE + g) * LUT_SIDE + b] = best.1;
             }
         }
     }
-    PairTables::new(near, xterm_rgb, candidates.len() > 16)
+    Tables {
+        near,
+        fine: MixTable::new(candidates, xterm_rgb, *weights, &FINE_SHARES),
+        halves: MixTable::new(candidates, xterm_rgb, *weights, &HALF_SHARES),
+    }
 }
 
 /// sRGB → OKLab (Björn Ottosson's perceptual space), for nearest-colour matching.
@@ -252,14 +257,14 @@ mod tests {
 
     #[test]
     fn the_256_level_never_uses_the_theme_colours() {
-        let p = Palette::new(ColorLevel::Ansi256, false);
+        let p = Palette::new(ColorLevel::Ansi256);
         for v in (0..=255).step_by(5) {
             for c in [
                 Rgb::new(v, 0, 0),
                 Rgb::new(v, v, v),
                 Rgb::new(0, v, 255 - v),
             ] {
-                assert!(p.code(c, 0, 0) >= 16);
+                assert!(p.code(c) >= 16);
             }
         }
     }
@@ -267,26 +272,26 @@ mod tests {
     #[test]
     fn palette_colours_map_to_themselves_or_a_near_twin() {
         // Two entries can share a table bin (cube grey 95 and ramp grey 98), so a few map to a twin.
-        let p = Palette::new(ColorLevel::Ansi256, false);
+        let p = Palette::new(ColorLevel::Ansi256);
         let mut exact = 0;
         for i in 16..=255u8 {
             let c = xterm_rgb(i);
-            let got = p.rgb(p.code(c, 0, 0));
+            let got = p.rgb(p.code(c));
             assert!(distance(got, c) <= 8, "index {i}: {got:?}");
             exact += usize::from(got == c);
         }
         assert!(exact >= 225, "{exact}");
-        let p = Palette::new(ColorLevel::Ansi16, false);
-        assert_eq!(p.code(Rgb::new(0, 0, 0), 0, 0), 0);
-        assert_eq!(p.code(Rgb::new(255, 255, 255), 0, 0), 15);
-        assert_eq!(p.code(Rgb::new(250, 10, 10), 0, 0), 9);
+        let p = Palette::new(ColorLevel::Ansi16);
+        assert_eq!(p.code(Rgb::new(0, 0, 0)), 0);
+        assert_eq!(p.code(Rgb::new(255, 255, 255)), 15);
+        assert_eq!(p.code(Rgb::new(250, 10, 10)), 9);
     }
 
     #[test]
     fn truecolor_codes_are_exact() {
-        let p = Palette::new(ColorLevel::TrueColor, true);
+        let p = Palette::new(ColorLevel::TrueColor);
         let c = Rgb::new(1, 2, 3);
-        assert_eq!(p.code(c, 5, 7), 0x010203);
+        assert_eq!(p.code(c), 0x010203);
         assert_eq!(p.rgb(0x010203), c);
     }
 
@@ -305,16 +310,5 @@ mod tests {
         assert_eq!(distance(w, w), 0);
         let d = distance(Rgb::default(), w);
         assert!((250..=256).contains(&d), "{d}");
-    }
-
-    #[test]
-    fn dithering_spreads_a_flat_colour_over_neighbouring_entries() {
-        let p = Palette::new(ColorLevel::Ansi256, true);
-        let c = Rgb::new(115, 115, 115);
-        let codes: std::collections::HashSet<u32> = (0..4)
-            .flat_map(|y| (0..4).map(move |x| (x, y)))
-            .map(|(x, y)| p.code(c, x, y))
-            .collect();
-        assert!(codes.len() >= 2, "{codes:?}");
     }
 }

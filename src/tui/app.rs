@@ -36,7 +36,7 @@ pub enum Ending {
 pub struct LoopOptions {
     /// Target frames per second.
     pub fps: u32,
-    /// Colour level, dithering and the lossy delta for the terminal encoder.
+    /// Colour level and the lossy delta for the terminal encoder.
     pub encode: EncodeOptions,
     /// Bandwidth cap in bits per second: the frame rate drops to fit.
     pub max_bandwidth: Option<u64>,

@@ -98,7 +98,7 @@ impl Widget for &HalfBlockView<'_> {
         if self.level != ColorLevel::TrueColor {
             // The encoder's own choice per cell (with the surface-anchored alternation where the
             // frame carries dither phases), so a stock backend shows what the encoder would send.
-            let palette = Palette::new(self.level, false);
+            let palette = Palette::new(self.level);
             let mut codes = Vec::new();
             quantize(&palette, self.fb, &mut codes);
             let w = self.fb.width();
@@ -186,7 +186,7 @@ mod tests {
             .level(ColorLevel::Ansi256)
             .render(area, &mut buf);
         let mut codes = Vec::new();
-        quantize(&Palette::new(ColorLevel::Ansi256, false), &fb, &mut codes);
+        quantize(&Palette::new(ColorLevel::Ansi256), &fb, &mut codes);
         let mut alternated = 0;
         for cy in 0..20u16 {
             for cx in 0..60u16 {
@@ -197,7 +197,7 @@ mod tests {
                     (Color::Indexed(t as u8), Color::Indexed(b as u8))
                 );
                 let (pt, pb) = fb.cell(cx.into(), cy.into());
-                let plain = Palette::new(ColorLevel::Ansi256, false).cell(pt, pb, 0, 0);
+                let plain = Palette::new(ColorLevel::Ansi256).cell(pt, pb);
                 alternated += usize::from(plain != [t, b]);
             }
         }
@@ -211,11 +211,11 @@ mod tests {
         for level in [ColorLevel::Ansi256, ColorLevel::Ansi16] {
             let mut buf = Buffer::empty(area);
             HalfBlockView::new(&fb).level(level).render(area, &mut buf);
-            let palette = Palette::new(level, false);
+            let palette = Palette::new(level);
             for cy in 0..4u16 {
                 for cx in 0..12u16 {
                     let (t, b) = fb.cell(cx.into(), cy.into());
-                    let [pt, pb] = palette.cell(t, b, cx.into(), 2 * usize::from(cy));
+                    let [pt, pb] = palette.cell(t, b);
                     let cell = &buf[(cx, cy)];
                     assert_eq!(cell.fg, Color::Indexed(pt as u8), "{level} ({cx},{cy})");
                     assert_eq!(cell.bg, Color::Indexed(pb as u8), "{level} ({cx},{cy})");

@@ -283,8 +283,15 @@ fn bench_json_has_the_documented_shape() {
         for key in ["bytes_per_frame", "first_frame_bytes"] {
             assert!(r["ratatui"][key].is_number(), "{key}");
         }
-        // Issue 12: how faithful the colours are, per run (colour level).
-        assert!(r["oklab_de_blur"].as_f64().is_some_and(|d| d > 0.0), "{r}");
-        assert!(r["chroma_kept"].is_number() || r["chroma_kept"].is_null());
+        // Issues 12 and 20: how the colours look, per run, beside nearest and Floyd–Steinberg.
+        for key in ["scielab_45", "scielab_9"] {
+            assert!(r[key].as_f64().is_some_and(|d| d > 0.0), "{key}: {r}");
+            for baseline in ["nearest", "floyd_steinberg"] {
+                assert!(r[baseline][key].as_f64().is_some_and(|d| d > 0.0), "{r}");
+            }
+        }
+        for key in ["chroma_kept", "hue_error"] {
+            assert!(r[key].is_number() || r[key].is_null());
+        }
     }
 }

@@ -16,6 +16,7 @@ mod world_common;
 
 mod cli_colors;
 mod cli_default_play;
+mod colour;
 mod colour_fidelity;
 mod config_cli;
 mod corpus;

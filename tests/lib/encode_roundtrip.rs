@@ -112,13 +112,8 @@ fn default_map_turn_and_walk_round_trips_at_every_level() {
 }
 
 #[test]
-fn dithered_and_other_beam_widths_round_trip() {
+fn other_beam_widths_round_trip() {
     let frames = default_map_frames(40, 12, 16);
-    for level in [ColorLevel::Ansi256, ColorLevel::Ansi16] {
-        let mut opts = EncodeOptions::new(level);
-        opts.dither = true;
-        replay(&frames, opts, (0, 0), (40, 12));
-    }
     let opts = EncodeOptions {
         beam: 4,
         ..EncodeOptions::default()
@@ -201,7 +196,6 @@ proptest! {
         (cols, rows, pixels) in arb_frames(),
         origin in (0u16..4, 0u16..3),
         level in prop::sample::select(ColorLevel::ALL.to_vec()),
-        dither in any::<bool>(),
     ) {
         let frames: Vec<Framebuffer> = pixels
             .iter()
@@ -213,8 +207,7 @@ proptest! {
                 fb
             })
             .collect();
-        let mut opts = EncodeOptions::new(level);
-        opts.dither = dither;
+        let opts = EncodeOptions::new(level);
         replay(&frames, opts, origin, (origin.0 + cols, origin.1 + rows + 1));
     }
 }

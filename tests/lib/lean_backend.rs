@@ -202,11 +202,11 @@ fn screens() -> Vec<(&'static str, Screen)> {
 /// Maps a drawn buffer's 24-bit colours to the palette, as the lean backend does at `level`
 /// (what a stock backend must be given to show the same screen).
 fn quantized(buf: &mut Buffer, level: ColorLevel) {
-    let palette = Palette::new(level, false);
+    let palette = Palette::new(level);
     for cell in &mut buf.content {
         for c in [&mut cell.fg, &mut cell.bg] {
             if let Color::Rgb(r, g, b) = *c {
-                *c = Color::Indexed(palette.code(halfcast::Rgb::new(r, g, b), 0, 0) as u8);
+                *c = Color::Indexed(palette.code(halfcast::Rgb::new(r, g, b)) as u8);
             }
         }
     }
