@@ -477,7 +477,6 @@ impl<'a> DebugPane<'a> {
             }
         });
         if compact {
-            let hit = &self.ray.trace.hit;
             rows.push(
                 Row::new()
                     .chunk("line ", NAME)
@@ -486,12 +485,7 @@ impl<'a> DebugPane<'a> {
                     .chunk("  wall_x ", NAME)
                     .and(num(d.wall_x), VALUE),
             );
-            rows.push(
-                Row::new()
-                    .chunk("texture x ", LABEL)
-                    .and(texture_x(hit, self.tex_width).to_string(), VALUE)
-                    .and(format!(" of {}", self.tex_width), LABEL),
-            );
+            rows.push(self.texture_row());
             rows.extend(self.closed_row());
             return rows;
         }
@@ -516,13 +510,10 @@ impl<'a> DebugPane<'a> {
                 .and(num(self.line_height), VALUE)
                 .and(" px", LABEL),
         );
-        let (posn, rayn) = match d.hit_side {
-            Side::X => ("posY", "rayDirY"),
-            Side::Y => ("posX", "rayDirX"),
-        };
-        let (p, r) = match d.hit_side {
-            Side::X => (d.pos.y, d.ray_dir.y),
-            Side::Y => (d.pos.x, d.ray_dir.x),
+        // wall_x runs along the face: the other axis from the one the ray crossed.
+        let (posn, rayn, p, r) = match d.hit_side {
+            Side::X => ("posY", "rayDirY", d.pos.y, d.ray_dir.y),
+            Side::Y => ("posX", "rayDirX", d.pos.x, d.ray_dir.x),
         };
         rows.push(if matches!(d.hit_what, Cell::Door(_)) {
             Row::new()
@@ -538,15 +529,20 @@ impl<'a> DebugPane<'a> {
                 .chunk(" → ", LABEL)
                 .and(num(d.wall_x), VALUE)
         });
-        let hit = &self.ray.trace.hit;
-        rows.push(
-            Row::new()
-                .chunk("texture x ", LABEL)
-                .and(texture_x(hit, self.tex_width).to_string(), VALUE)
-                .and(format!(" of {}", self.tex_width), LABEL),
-        );
+        rows.push(self.texture_row());
         rows.extend(self.closed_row());
         rows
+    }
+
+    /// Which texture column the hit samples, of how many.
+    fn texture_row(&self) -> Row {
+        Row::new()
+            .chunk("texture x ", LABEL)
+            .and(
+                texture_x(&self.ray.trace.hit, self.tex_width).to_string(),
+                VALUE,
+            )
+            .and(format!(" of {}", self.tex_width), LABEL)
     }
 
     /// On maps with heights: where the column's window of rows closed.
