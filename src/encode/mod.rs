@@ -17,12 +17,15 @@ mod number;
 pub(crate) mod pacer;
 pub mod palette;
 mod plan;
-pub mod quantize;
+pub(crate) mod quantize;
 mod sgr;
 pub(crate) mod shade;
 
 pub use encoder::{EncodeOptions, Encoder, SYNC_BEGIN, SYNC_END};
+// The cells a terminal should show for a framebuffer: the oracle that tests read a terminal
+// model's screen against.
 pub use inline::full_frame;
 pub use level::{ColorLevel, ColourChoice, ColourReason};
 pub use pacer::{parse_rate, Pacer};
 pub use palette::Palette;
+pub use quantize::quantize;

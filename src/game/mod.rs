@@ -3,19 +3,23 @@
 //! No terminal, no clock, no I/O: the TUI, replays (fixed `dt`) and an SSH server all drive
 //! the same function, so a recorded input sequence always gives the same poses.
 
-pub mod body;
-pub mod collision;
-pub mod creature;
+pub(crate) mod body;
+pub(crate) mod collision;
+pub(crate) mod creature;
 pub(crate) mod debugger;
-pub mod footing;
+pub(crate) mod footing;
 pub(crate) mod input;
 pub(crate) mod level;
 pub mod multi;
 pub mod pose;
 pub(crate) mod projectile;
+#[cfg(test)]
+mod random_grid_props;
 pub(crate) mod rng;
 pub(crate) mod score;
-pub mod sight;
+pub(crate) mod sight;
+#[cfg(test)]
+mod sight_heights_oracle;
 
 use std::sync::Arc;
 
@@ -26,9 +30,13 @@ use crate::vec2::Vec2;
 use crate::world::door::DoorState;
 use crate::world::{SolidDisc, World};
 
-pub use body::Body;
+// The body's sizes are rules a level designer (and a test) needs: how close to a wall a
+// player or creature comes, the head room under a ceiling, how long a step up eases.
+pub use body::{Body, HEAD_ROOM};
+pub use collision::PLAYER_RADIUS;
+pub use creature::CREATURE_RADIUS;
 pub use debugger::{Cursor, Debugger};
-pub use footing::Footing;
+pub use footing::{Footing, STEP_EASE};
 pub use input::{Action, Command, Held, Input, Speeds};
 pub use level::{Event, Level, Player};
 pub use score::Score;

@@ -125,8 +125,9 @@ fn walk(
 
 /// Whether `to` can be seen from `from`: the DDA from one toward the other enters `to`'s cell
 /// before any wall, void or shut door (distance not considered).
+#[cfg(test)]
 #[must_use]
-pub fn line_of_sight(map: &Map, doors: &DoorState, from: Vec2, to: Vec2) -> bool {
+pub(crate) fn line_of_sight(map: &Map, doors: &DoorState, from: Vec2, to: Vec2) -> bool {
     first_block(map, doors, from, to).is_none()
 }
 

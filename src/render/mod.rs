@@ -5,19 +5,25 @@
 
 pub(crate) mod billboard;
 pub mod cast;
-pub mod derivation;
+pub(crate) mod derivation;
 pub(crate) mod dither_phase;
 pub(crate) mod fast_floor;
 pub(crate) mod frame;
 pub(crate) mod framebuffer;
-pub mod height_cast;
+pub(crate) mod height_cast;
 pub(crate) mod height_column;
 pub(crate) mod height_raster;
 pub mod light;
-pub mod point_light;
-pub mod raster;
+pub(crate) mod point_light;
+pub(crate) mod raster;
 pub(crate) mod scene;
 pub mod sprite_projection;
 pub mod view;
 
 pub use framebuffer::Framebuffer;
+// The heights projection and its per-column bands, as `Scene::render_frame` hands them out.
+pub use height_cast::{Band, FaceSpan, Projection};
+// Moving lights a caller hands to `Scene::with_lights`.
+pub use point_light::PointLight;
+// Where a wall at a distance lands on screen: what tests pin a frame's geometry against.
+pub use raster::{wall_span, WallSpan};

@@ -1,7 +1,6 @@
 //! Turns the cast rays into pixels: textured floor and ceiling rows, then wall stripes, then
 //! sprites; everything lit through one distance table and placed by the view's horizon and eye.
 
-use crate::color::Rgb;
 use crate::map::Cell;
 use crate::render::billboard::{draw_sprites, Occluders, SpriteOutcome};
 use crate::render::cast::{ColumnHit, Side};
@@ -103,12 +102,8 @@ pub fn wall_span_at(
     }
 }
 
-/// Paints the frame: floor and ceiling where no wall covers, then the walls, then the sprites.
-pub fn rasterize(scene: &Scene, hits: &[ColumnHit], fb: &mut Framebuffer) {
-    rasterize_frame(scene, hits, fb);
-}
-
-/// [`rasterize`], returning what became of each sprite (for the JSON report).
+/// Paints the frame: floor and ceiling where no wall covers, then the walls, then the sprites;
+/// returns what became of each sprite (for the JSON report).
 pub fn rasterize_frame(
     scene: &Scene,
     hits: &[ColumnHit],
@@ -273,14 +268,6 @@ fn floor_and_ceiling(
             });
         }
     }
-}
-
-/// The colour a column's wall shows at its centre row, for tests and the minimap.
-#[must_use]
-pub fn wall_colour_at(world: &World, hit: &ColumnHit, v: f64) -> Rgb {
-    let tex = world.wall_texture_at(hit.what, hit.cell, heading(hit));
-    let y = ((v * tex.height() as f64) as usize).min(tex.height() - 1);
-    tex.column(texture_x(hit, tex.width()))[y]
 }
 
 #[cfg(test)]

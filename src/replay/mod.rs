@@ -1,6 +1,6 @@
 //! Deterministic recordings: the `.hcr` file format and the fixed-timestep player.
 
-pub mod format;
+pub(crate) mod format;
 pub mod limits;
 
 pub use format::{

@@ -24,11 +24,11 @@ pub(crate) mod hostkey;
 pub(crate) mod lifecycle;
 pub mod limits;
 pub(crate) mod log;
-pub mod screen;
+pub(crate) mod screen;
 pub mod server;
 pub(crate) mod session;
 pub(crate) mod stats;
-pub mod world_task;
+pub(crate) mod world_task;
 
 pub use config::ServeConfig;
 pub use server::{run_until_signal, start, RunningServer};

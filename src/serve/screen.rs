@@ -112,20 +112,6 @@ impl SessionScreen {
         &self.world.map
     }
 
-    /// The colour level frames are sent at.
-    #[must_use]
-    pub fn level(&self) -> ColorLevel {
-        self.presenter.level()
-    }
-
-    /// Switches colour level; the next frame redraws everything.
-    pub fn set_level(&mut self, level: ColorLevel) {
-        self.set_colour(ColourChoice {
-            level,
-            reason: ColourReason::Key,
-        });
-    }
-
     /// Switches colour level, keeping why it was chosen (for the status line and header).
     pub fn set_colour(&mut self, choice: ColourChoice) {
         self.presenter.set_level(choice.level);

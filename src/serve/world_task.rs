@@ -52,22 +52,10 @@ impl WorldHandle {
     pub fn snapshots(&self) -> watch::Receiver<SharedSnapshot> {
         self.snapshots.clone()
     }
-
-    /// The newest snapshot now.
-    #[must_use]
-    pub fn latest(&self) -> SharedSnapshot {
-        self.snapshots.borrow().clone()
-    }
 }
 
-/// Starts the world task on the current runtime (a round of coop); it ends when every handle
-/// is dropped.
-#[must_use]
-pub fn spawn_world(world: Arc<World>, tick_hz: u32) -> WorldHandle {
-    spawn_game(world, tick_hz, Mode::Coop, 0)
-}
-
-/// [`spawn_world`] playing `mode`, its creatures' random choices starting from `seed`.
+/// Starts the world task on the current runtime, playing `mode`, its creatures' random choices
+/// starting from `seed`; it ends when every handle is dropped.
 #[must_use]
 pub fn spawn_game(world: Arc<World>, tick_hz: u32, mode: Mode, seed: u64) -> WorldHandle {
     let (tx, mut rx) = mpsc::channel::<WorldMsg>(1024);
@@ -112,3 +100,6 @@ pub fn spawn_game(world: Arc<World>, tick_hz: u32, mode: Mode, seed: u64) -> Wor
         snapshots: snap_rx,
     }
 }
+
+#[cfg(test)]
+mod height_rules;

@@ -5,7 +5,7 @@ use std::process::Command;
 
 use halfcast::bench::scielab::{self, Figures, Source};
 use halfcast::encode::palette::xterm_rgb;
-use halfcast::encode::quantize::quantize;
+use halfcast::encode::quantize;
 use halfcast::encode::{ColorLevel, Palette};
 use halfcast::{Camera, Framebuffer, Rgb, Scene, World};
 
@@ -300,7 +300,7 @@ fn dither_patterns_move_with_the_wall_when_strafing() {
         .filter(|&x| on_wall(&hits2[x]) && on_wall(&hits[x + k]))
         .collect();
     assert!(columns.len() >= 20, "{} columns on the wall", columns.len());
-    let span = halfcast::render::raster::wall_span(d, focal, 2 * usize::from(rows));
+    let span = halfcast::render::wall_span(d, focal, 2 * usize::from(rows));
     let cell_rows: Vec<usize> = (span.rows.0.div_ceil(2)..span.rows.1 / 2).collect();
     assert!(cell_rows.len() >= 4, "{span:?}");
 
@@ -407,7 +407,7 @@ fn on_height_maps_faces_carry_the_pattern_and_bring_views_closer_at_256_colours(
 fn on_height_maps_the_pattern_moves_with_a_face_when_strafing() {
     // Facing a face of heights.cub square on and stepping sideways by exactly three columns'
     // worth of its distance, its pixels and phases are the old ones moved three columns.
-    use halfcast::render::height_cast::Band;
+    use halfcast::render::Band;
     // Without its sprites (a plant nearer than the face moves by more than the face).
     let mut world = heights_world();
     world.sprites.clear();
@@ -440,7 +440,7 @@ fn on_height_maps_the_pattern_moves_with_a_face_when_strafing() {
                 let moved = Camera::from_angle(pos + right * shift, angle, 66.0);
                 let mut b = Framebuffer::for_cells(cols, rows);
                 let cast_b = Scene::new(&world, moved).render_into(&mut b, None);
-                let same = |g: Option<halfcast::render::height_cast::FaceSpan>| {
+                let same = |g: Option<halfcast::render::FaceSpan>| {
                     g.is_some_and(|g| g.cell == f.cell && g.side == f.side && g.rows == f.rows)
                 };
                 let columns: Vec<usize> = (0..w - k)

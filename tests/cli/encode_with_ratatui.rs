@@ -6,7 +6,7 @@ use crate::capture;
 use capture::Capture;
 
 use halfcast::encode::palette::{Code, DEFAULT};
-use halfcast::encode::quantize::quantize;
+use halfcast::encode::quantize;
 use halfcast::encode::{ColorLevel, EncodeOptions, Encoder};
 use halfcast::{Camera, Scene, World};
 use ratatui::backend::CrosstermBackend;

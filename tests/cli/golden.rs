@@ -5,7 +5,7 @@ use crate::common;
 
 use halfcast::camera::Camera;
 use halfcast::render::cast::cast;
-use halfcast::render::raster::wall_span;
+use halfcast::render::wall_span;
 use halfcast::snapshot::{assert_png_golden, Tolerance};
 use halfcast::world::World;
 use halfcast::{Scene, Vec2};

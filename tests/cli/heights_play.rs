@@ -7,8 +7,7 @@ use crate::world_common;
 use std::sync::Arc;
 
 use halfcast::camera::Camera;
-use halfcast::game::footing::STEP_EASE;
-use halfcast::game::{step, Action, Command, GameState, Held, Input, CROUCH_EYE};
+use halfcast::game::{step, Action, Command, GameState, Held, Input, CROUCH_EYE, STEP_EASE};
 use halfcast::render::view::STANDING_EYE;
 use halfcast::{Vec2, World};
 
@@ -45,7 +44,7 @@ const LANES: &str = "\
 ";
 
 /// Where a body stops against the ledge at x = 3: its half-size short of it.
-const AGAINST: f64 = 3.0 - halfcast::game::collision::PLAYER_RADIUS;
+const AGAINST: f64 = 3.0 - halfcast::game::PLAYER_RADIUS;
 
 fn world() -> Arc<World> {
     Arc::new(world_common::world(ZONES, LANES))
@@ -104,7 +103,7 @@ fn a_body_that_dropped_into_a_pit_half_over_its_rim_cannot_walk_back_up() {
     // Lane 11: balcony g (floor 1) then pit f (floor -1) from x = 3.
     let mut s = player(11);
     hold(&mut s, &[Action::Forward], 0.55, 60.0);
-    assert!(x(&s) > 3.0 && x(&s) - halfcast::game::collision::PLAYER_RADIUS < 3.0);
+    assert!(x(&s) > 3.0 && x(&s) - halfcast::game::PLAYER_RADIUS < 3.0);
     assert_eq!(
         s.footing.floor, -1.0,
         "the centre is over the pit: {:?}",
@@ -435,12 +434,12 @@ proptest::proptest! {
             let commands = if jump == 0 { vec![Command::Jump] } else { vec![] };
             let before = s.footing.floor;
             step(&mut s, &Input { held, commands }, 1.0 / 30.0);
-            let (i, j) = halfcast::game::collision::centre_cell(s.camera.pos);
+            let (i, j) = (s.camera.pos.x.floor() as i64, s.camera.pos.y.floor() as i64);
             let span = world.map.span(i, j);
             proptest::prop_assert!(span.is_some(), "in a wall at {:?}", s.camera.pos);
             let span = span.unwrap();
             proptest::prop_assert_eq!(s.footing.floor, span.floor);
-            let head = s.footing.floor + s.jump.0 + s.base_eye + halfcast::game::body::HEAD_ROOM;
+            let head = s.footing.floor + s.jump.0 + s.base_eye + halfcast::game::HEAD_ROOM;
             proptest::prop_assert!(head <= span.ceil + 1e-9, "head {} over {:?}", head, span);
             proptest::prop_assert!(
                 s.footing.floor - before <= 0.5 + 1e-9,

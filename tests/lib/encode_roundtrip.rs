@@ -2,7 +2,7 @@
 //! what was intended: the palette-mapped colours (or the ASCII shade in mono), frame after frame.
 
 use halfcast::encode::palette::{Code, DEFAULT};
-use halfcast::encode::quantize::quantize;
+use halfcast::encode::quantize;
 use halfcast::encode::{ColorLevel, EncodeOptions, Encoder, SYNC_BEGIN, SYNC_END};
 use halfcast::{Camera, Framebuffer, Rgb, Scene, Vec2, World};
 use proptest::prelude::*;

@@ -1,145 +1,16 @@
-//! Creatures, sight and tag shots, driven through the library as a game would: random small
-//! maps for the properties (creatures never inside walls or shut doors, sight = the renderer's
-//! DDA), and whole games through `GameState` for catches, tags and determinism.
+//! Creatures, sight and tag shots, driven through the library as a game would: whole games
+//! through `GameState` for catches, tags and determinism. (The properties on random maps,
+//! creatures never inside walls and sight = the renderer's DDA, are unit tests in
+//! `src/game/random_grid_props.rs`.)
 
 use crate::world_common;
 
 use std::sync::Arc;
 
-use halfcast::game::collision::{overlaps_wall, Obstacles};
-use halfcast::game::creature::CREATURE_RADIUS;
-use halfcast::game::sight::line_of_sight;
 use halfcast::game::{step, Action, Command, Event, GameState, Held, Input, Level, Player, Score};
-use halfcast::map::{parse_map, Cell, Map};
-use halfcast::render::cast::cast_ray_doors;
 use halfcast::world::door::DoorState;
 use halfcast::{Camera, Vec2};
-use proptest::prelude::*;
-use world_common::{world, HEADER};
-
-/// A closed random grid: border walls, `walls` inside, and every floor cell framed by walls on
-/// two opposite sides turned into a door where `doors` says so; the start is the first floor.
-fn random_map(w: usize, h: usize, walls: &[bool], doors: &[bool], creatures: &str) -> Option<Map> {
-    let wall =
-        |i: usize, j: usize| i == 0 || j == 0 || i == w - 1 || j == h - 1 || walls[j * w + i];
-    let mut rows: Vec<Vec<u8>> = (0..h)
-        .map(|j| {
-            (0..w)
-                .map(|i| if wall(i, j) { b'1' } else { b'0' })
-                .collect()
-        })
-        .collect();
-    for j in 1..h - 1 {
-        for i in 1..w - 1 {
-            let framed = (wall(i - 1, j) && wall(i + 1, j)) || (wall(i, j - 1) && wall(i, j + 1));
-            if !wall(i, j) && framed && doors[j * w + i] {
-                rows[j][i] = b'D';
-            }
-        }
-    }
-    let start = (0..h * w).find(|&k| rows[k / w][k % w] == b'0')?;
-    rows[start / w][start % w] = b'E';
-    let grid: Vec<String> = rows
-        .into_iter()
-        .map(|r| String::from_utf8(r).unwrap())
-        .collect();
-    let text = format!("{HEADER}{creatures}\n{}\n", grid.join("\n"));
-    parse_map("random.cub", text.as_bytes()).ok()
-}
-
-fn floor_points(map: &Map, picks: &[(u16, f64, f64)]) -> Vec<Vec2> {
-    let floors: Vec<(i64, i64)> = (0..map.height as i64)
-        .flat_map(|j| (0..map.width as i64).map(move |i| (i, j)))
-        .filter(|&(i, j)| matches!(map.cell(i, j), Cell::Floor { .. }))
-        .collect();
-    picks
-        .iter()
-        .map(|&(k, fx, fy)| {
-            let (i, j) = floors[usize::from(k) % floors.len()];
-            Vec2::new(i as f64 + fx, j as f64 + fy)
-        })
-        .collect()
-}
-
-fn doors_as(map: &Map, open: &[bool]) -> DoorState {
-    let mut doors = DoorState::new(map);
-    for (k, &cell) in map.door_cells().iter().enumerate() {
-        doors.set_open(cell, if open[k % open.len()] { 1.0 } else { 0.0 });
-    }
-    doors
-}
-
-proptest! {
-    #![proptest_config(ProptestConfig::with_cases(48))]
-
-    #[test]
-    fn creatures_never_walk_into_walls_or_shut_doors(
-        (w, h) in (5usize..11, 5usize..10),
-        walls in prop::collection::vec(prop::bool::weighted(0.3), 110),
-        door_cells in prop::collection::vec(prop::bool::weighted(0.4), 110),
-        open in prop::collection::vec(any::<bool>(), 1..6),
-        picks in prop::collection::vec((any::<u16>(), 0.05f64..0.95, 0.05f64..0.95), 3..6),
-        behaviours in prop::collection::vec(0usize..3, 3),
-        seed in any::<u64>(),
-    ) {
-        let Some(plain) = random_map(w, h, &walls, &door_cells, "") else { return Ok(()) };
-        let points = floor_points(&plain, &picks);
-        let names = ["wander", "patrol", "chase"];
-        let lines: String = points[1..]
-            .iter()
-            .zip(behaviours.iter().cycle())
-            .map(|(p, &b)| format!("CREATURE {},{} creature speed=4 behaviour={}\n", p.x, p.y, names[b]))
-            .collect();
-        let map = random_map(w, h, &walls, &door_cells, &lines).expect("same grid parses");
-        let doors = doors_as(&map, &open);
-        let mut level = Level::new(&map, seed);
-        let mut score = Score::default();
-        let obstacles = Obstacles { map: &map, doors: Some(&doors), discs: &[], body: None };
-        let cell = |p: Vec2| (p.x.floor() as i64, p.y.floor() as i64);
-        let mut before: Vec<(i64, i64)> = level.creatures().iter().map(|c| cell(c.pos)).collect();
-        for _ in 0..240 {
-            let mut players = [Player {
-                pos: points[0],
-                eye: 0.5,
-                score: &mut score,
-            }];
-            level.tick(&map, &doors, &mut players, 1.0 / 30.0);
-            for (c, was) in level.creatures().iter().zip(&mut before) {
-                prop_assert!(
-                    !overlaps_wall(&obstacles, c.pos, CREATURE_RADIUS - 1e-6),
-                    "creature at {:?} overlaps a wall or shut door", c.pos
-                );
-                let now = cell(c.pos);
-                prop_assert!(
-                    (now.0 - was.0).abs() + (now.1 - was.1).abs() <= 1,
-                    "jumped from {:?} to {:?}", was, now
-                );
-                *was = now;
-            }
-        }
-    }
-
-    #[test]
-    fn sight_agrees_with_the_renderers_dda(
-        (w, h) in (5usize..12, 5usize..12),
-        walls in prop::collection::vec(prop::bool::weighted(0.25), 144),
-        door_cells in prop::collection::vec(prop::bool::weighted(0.5), 144),
-        open in prop::collection::vec(any::<bool>(), 1..6),
-        picks in prop::collection::vec((any::<u16>(), 0.0f64..1.0, 0.0f64..1.0), 2),
-    ) {
-        let Some(map) = random_map(w, h, &walls, &door_cells, "") else { return Ok(()) };
-        let doors = doors_as(&map, &open);
-        let pts = floor_points(&map, &picks);
-        let (a, b) = (pts[0], pts[1]);
-        let target = (b.x.floor() as i64, b.y.floor() as i64);
-        // The renderer's ray from A toward B: does it enter B's cell before it stops?
-        let mut cells = Vec::new();
-        let hit = cast_ray_doors(&map, &doors, a, b - a, |s| cells.push(s.cell));
-        let start = (a.x.floor() as i64, a.y.floor() as i64);
-        let reached = start == target || cells.iter().take_while(|&&c| c != hit.cell).any(|&c| c == target);
-        prop_assert_eq!(line_of_sight(&map, &doors, a, b), reached, "{:?} -> {:?}", a, b);
-    }
-}
+use world_common::world;
 
 /// A corridor: start (1,1) facing east, open floor to (8,1).
 const CORRIDOR: &str = "1111111111\n1E00000001\n1111111111\n";

@@ -186,7 +186,7 @@ fn shared_steps_respect_locks_but_leave_the_level_alone() {
 
 #[test]
 fn a_tag_shot_is_recorded_in_replays_as_fire() {
-    use halfcast::replay::format::{FrameInput, Header, MapSource};
+    use halfcast::replay::{FrameInput, Header, MapSource};
     use halfcast::Replay;
     let replay = Replay {
         header: Header {

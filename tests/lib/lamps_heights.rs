@@ -5,9 +5,8 @@
 
 use halfcast::camera::Camera;
 use halfcast::map::parse_map;
-use halfcast::render::height_cast::{Band, Projection};
 use halfcast::render::light::{Lighting, ShadeTable};
-use halfcast::render::point_light::PointLight;
+use halfcast::render::{Band, PointLight, Projection};
 use halfcast::world::{TextureSource, World};
 use halfcast::{Framebuffer, Rgb, Scene, Vec2, View};
 

@@ -14,7 +14,6 @@ mod encode_roundtrip;
 mod game_creatures;
 mod game_items;
 mod game_render;
-mod game_sight_heights;
 mod heights_golden;
 mod lamps_heights;
 mod lean_backend;

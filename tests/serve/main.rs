@@ -12,7 +12,6 @@ mod serve_support;
 mod world_common;
 
 mod game_serve;
-mod heights_serve;
 mod input_hardening;
 mod serve_abuse;
 mod serve_auth;

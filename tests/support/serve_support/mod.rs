@@ -8,7 +8,7 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use halfcast::serve::{start, RunningServer, ServeConfig};
-use halfcast::ui::layout::Toggles;
+use halfcast::ui::layout::{Panes, Toggles};
 use halfcast::World;
 use ratatui::layout::Rect;
 use russh::client;
@@ -274,8 +274,14 @@ pub fn header_has(s: &vt100::Screen, needle: &str) -> bool {
 
 /// Where the 3D view is on a `cols` × `rows` client with the default panes.
 pub fn view_rect(cols: u16, rows: u16) -> Rect {
-    let panes = halfcast::serve::screen::panes_for((cols, rows), Toggles::default());
-    halfcast::serve::screen::view_rect(&panes)
+    // The server's screen is a one-row header over the game panes.
+    match Panes::compute(
+        Rect::new(0, 1, cols, rows.saturating_sub(1)),
+        Toggles::default(),
+    ) {
+        Panes::Game { view, .. } => view,
+        Panes::TooSmall(_) => Rect::default(),
+    }
 }
 
 /// Counts the cells of `view` drawn as half-blocks (or one-colour cells) in 24-bit colour.

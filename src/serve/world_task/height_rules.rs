@@ -2,18 +2,26 @@
 //! messages a session sends) walks a quarter step, climbs a half-wall ledge only by jumping,
 //! and never climbs 0.51.
 
-use crate::world_common;
-
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use halfcast::game::{Action, Command, Held, Input};
-use halfcast::serve::world_task::{spawn_world, WorldHandle, WorldMsg};
+use super::{spawn_game, WorldHandle, WorldMsg};
+use crate::game::multi::round::Mode;
+use crate::game::{Action, Command, Held, Input, PLAYER_RADIUS};
+use crate::map::parse_map;
+use crate::world::{TextureSource, World};
 
 /// A corridor east from the start: floor 0, a quarter step (a), a ledge 0.5 higher (c), and one
 /// 0.51 higher again (d).
 const ZONES: &str = "Ha 0.25 2\nHc 0.75 2\nHd 1.26 3\n";
 const GRID: &str = "1111111111\n1E0aaccdd1\n1111111111\n";
+
+/// A world from extra header lines and a grid, textures from the embedded set.
+fn world(extra: &str, grid: &str) -> World {
+    let text = format!("NO textures/bricks.png\nSO textures/bricks.png\nWE textures/stone.png\nEA textures/stone.png\nF 96,88,80\nC 150,146,136\n{extra}\n{grid}");
+    let map = parse_map("test.cub", text.as_bytes()).unwrap_or_else(|e| panic!("{e}"));
+    World::load(map, &TextureSource::Embedded, true).unwrap().0
+}
 
 const TICK_HZ: u32 = 60;
 
@@ -63,15 +71,15 @@ async fn settle(world: &WorldHandle) -> (f64, f64) {
 
 #[tokio::test]
 async fn the_world_task_moves_players_by_the_same_height_rules() {
-    let world = Arc::new(world_common::world(ZONES, GRID));
-    let handle = spawn_world(world, TICK_HZ);
+    let world = Arc::new(world(ZONES, GRID));
+    let handle = spawn_game(world, TICK_HZ, Mode::Coop, 0);
     handle
         .send(WorldMsg::Join {
             id: 1,
             name: "ada".into(),
         })
         .await;
-    let against = |edge: f64| edge - halfcast::game::collision::PLAYER_RADIUS;
+    let against = |edge: f64| edge - PLAYER_RADIUS;
 
     send(&handle, &[Action::Forward], vec![]).await;
     let (x, floor) = settle(&handle).await;

@@ -3,10 +3,10 @@
 //! walk over every grid crossing of the segment (found analytically and sorted, not stepped)
 //! meets a wall or a height outside the open air of the cell it is in.
 
-use halfcast::game::sight::first_block_at;
-use halfcast::map::{parse_map, Map};
-use halfcast::world::door::DoorState;
-use halfcast::Vec2;
+use crate::game::sight::first_block_at;
+use crate::map::{parse_map, Map};
+use crate::vec2::Vec2;
+use crate::world::door::DoorState;
 use proptest::prelude::*;
 
 const SIZE: usize = 9;
