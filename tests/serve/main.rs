@@ -26,5 +26,6 @@ mod serve_openssh;
 mod serve_openssh_colour;
 mod serve_openssh_limits;
 mod serve_refusals;
+mod serve_rotation;
 mod serve_session;
 mod serve_stall;
