@@ -5,70 +5,12 @@
 use crate::serve_support;
 
 use std::collections::HashMap;
-use std::io::{BufRead, BufReader, Read, Write};
+use std::io::{Read, Write};
 use std::net::TcpStream;
-use std::process::{Child, Command, Stdio};
-use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
+use crate::serve_process::{free_port, spawn_server};
 use serve_support::{connect_raw, header_has, Client, PATIENCE};
-
-/// Kills the server if the test fails before stopping it.
-struct Guard(Child);
-
-impl Drop for Guard {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
-
-fn free_port() -> u16 {
-    std::net::TcpListener::bind("127.0.0.1:0")
-        .and_then(|l| l.local_addr())
-        .expect("a free port")
-        .port()
-}
-
-/// Starts `halfcast serve` with `extra` flags; returns it, its SSH port and its stderr lines
-/// once it listens.
-pub fn spawn_server(dir: &std::path::Path, extra: &[&str]) -> (Guard, u16, mpsc::Receiver<String>) {
-    let port = free_port();
-    let mut child = Command::new(env!("CARGO_BIN_EXE_halfcast"))
-        .args([
-            "serve",
-            "--listen",
-            &format!("127.0.0.1:{port}"),
-            "--host-key",
-        ])
-        .arg(dir.join("hk"))
-        .args(extra)
-        .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("halfcast serve starts");
-    let stderr = child.stderr.take().expect("stderr");
-    let (tx, rx) = mpsc::channel();
-    std::thread::spawn(move || {
-        for line in BufReader::new(stderr).lines().map_while(Result::ok) {
-            if tx.send(line).is_err() {
-                break;
-            }
-        }
-    });
-    let guard = Guard(child);
-    let deadline = Instant::now() + PATIENCE;
-    loop {
-        let line = rx
-            .recv_timeout(deadline.saturating_duration_since(Instant::now()))
-            .expect("the server said it listens");
-        if line.contains("listening on") {
-            break;
-        }
-    }
-    (guard, port, rx)
-}
 
 /// GET /metrics, parsed: `name{labels}` → value (histograms as their `_count`, `_sum`, …).
 fn scrape(port: u16) -> HashMap<String, f64> {
