@@ -24,6 +24,7 @@ mod serve_colour;
 mod serve_compression;
 mod serve_flood;
 mod serve_haproxy;
+mod serve_json_log;
 mod serve_metrics;
 mod serve_names;
 mod serve_openssh;
