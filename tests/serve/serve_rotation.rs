@@ -181,7 +181,7 @@ fn a_damaged_database_stops_the_start_with_a_clear_error_and_is_left_as_it_was()
     );
     assert!(err.contains(&want), "{err}");
     assert!(!err.contains("listening on"), "{err}");
-    assert_eq!(std::fs::read(&db).unwrap(), junk, "the file was changed");
+    assert!(std::fs::read(&db).unwrap() == junk, "the file was changed");
     // Nothing else appeared beside it either (no journal left behind).
     assert!(!dir.path().join("halfcast.sqlite-journal").exists());
 }

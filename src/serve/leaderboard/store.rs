@@ -126,6 +126,20 @@ impl Store {
         if ok != "ok" {
             return Err(failed(path, "damaged", ok));
         }
+        if version == 0 {
+            // Version 0 is a new, empty file; one with tables of its own is someone else's.
+            let tables: i64 = self
+                .conn
+                .query_row("SELECT COUNT(*) FROM sqlite_master", [], |r| r.get(0))
+                .map_err(|e| failed(path, "cannot read", e))?;
+            if tables > 0 {
+                return Err(failed(
+                    path,
+                    "not a halfcast leaderboard",
+                    "it has tables but no schema version",
+                ));
+            }
+        }
         if version > SCHEMA_VERSION {
             return Err(failed(
                 path,
@@ -407,7 +421,28 @@ mod tests {
         let before = std::fs::read(&path).unwrap();
         let e = Store::open(&path).unwrap_err();
         assert!(e.contains("written by a newer halfcast"), "{e}");
+        assert!(
+            std::fs::read(&path).unwrap() == before,
+            "the file was changed"
+        );
+        // Another program's database is not taken over either.
+        let other = dir.path().join("other.sqlite");
+        Connection::open(&other)
+            .unwrap()
+            .execute_batch("CREATE TABLE notes (x)")
+            .unwrap();
+        let theirs = std::fs::read(&other).unwrap();
+        let e = Store::open(&other).unwrap_err();
+        assert!(e.contains("not a halfcast leaderboard"), "{e}");
+        assert!(
+            std::fs::read(&other).unwrap() == theirs,
+            "the file was changed"
+        );
+        let e = Store::open(&path).unwrap_err();
         assert!(e.contains("schema version 99"), "{e}");
-        assert_eq!(std::fs::read(&path).unwrap(), before);
+        assert!(
+            std::fs::read(&path).unwrap() == before,
+            "the file was changed"
+        );
     }
 }
