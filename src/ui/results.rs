@@ -106,8 +106,14 @@ impl Results {
                 Span::styled(value, VALUE),
             ])
         };
+        // A shared world's round can also end on its clock, with nobody at the exit.
+        let timed_out = matches!(self.then, Then::NewRound { .. }) && self.by.is_none();
         let mut out = vec![Line::from(Span::styled(
-            "Level complete!",
+            if timed_out {
+                "Time is up!"
+            } else {
+                "Level complete!"
+            },
             VALUE.fg(Color::Rgb(120, 255, 150)),
         ))];
         if let Some(who) = &self.by {
@@ -144,6 +150,7 @@ impl Results {
         if let Some(board) = &self.leaders {
             out.push(Line::default());
             out.extend(board.lines());
+            out.push(Line::default());
         }
         if let Some(then) = then {
             out.push(Line::from(vec![

@@ -85,7 +85,12 @@ async fn three_maps_rotate_over_three_rounds_and_each_results_screen_names_the_n
         see(
             &mut ann,
             &format!("the results of {now} naming {next}"),
-            |t| t.contains("next round in") && t.contains(&on) && t.contains(now),
+            |t| {
+                t.contains("Time is up!")
+                    && t.contains("next round in")
+                    && t.contains(&on)
+                    && t.contains(now)
+            },
         )
         .await;
         // Then the next round starts (the results go) before the next results come.
