@@ -56,6 +56,7 @@ pub struct RunningServer {
     limiter: Limiter,
     shutdown: watch::Sender<bool>,
     accept: JoinHandle<()>,
+    leaderboard: Option<Leaderboard>,
 }
 
 impl RunningServer {
@@ -78,8 +79,9 @@ impl RunningServer {
         self.limiter.live()
     }
 
-    /// Stops accepting, tells every session to end, and waits (up to a few seconds) for them;
-    /// returns the totals after that, so sessions that were still running count too.
+    /// Stops accepting, tells every session to end, and waits (up to a few seconds) for them
+    /// and for the leaderboard's queued writes; returns the totals after that, so sessions that
+    /// were still running count too.
     pub async fn shutdown(self) -> StatsSnapshot {
         let _ = self.shutdown.send(true);
         let _ = self.accept.await;
@@ -88,6 +90,9 @@ impl RunningServer {
                 break;
             }
             tokio::time::sleep(Duration::from_millis(40)).await;
+        }
+        if let Some(lb) = &self.leaderboard {
+            lb.flush(Duration::from_secs(5)).await;
         }
         self.stats.snapshot()
     }
@@ -194,7 +199,7 @@ pub async fn start_maps(
         shutdown: shutdown_rx.clone(),
         limiter: limiter.clone(),
         backoff: Backoff::default(),
-        boards: leaderboard.map(|board| BoardLine {
+        boards: leaderboard.clone().map(|board| BoardLine {
             board,
             hashes: Arc::new(hashes),
             mode,
@@ -209,6 +214,7 @@ pub async fn start_maps(
         limiter,
         shutdown: shutdown_tx,
         accept,
+        leaderboard,
     })
 }
 

@@ -25,6 +25,8 @@ enum Job {
         mode: String,
         name: String,
     },
+    /// Answers once every job queued before it is done.
+    Flush(std::sync::mpsc::Sender<()>),
 }
 
 /// A line to the leaderboard thread; cheap to clone.
@@ -79,6 +81,19 @@ impl Leaderboard {
         });
     }
 
+    /// Waits (up to `patience`) until every round queued so far is written: a server that is
+    /// shutting down loses no finished round.
+    pub async fn flush(&self, patience: std::time::Duration) {
+        let (tx, rx) = std::sync::mpsc::channel();
+        let queue = self.tx.clone();
+        let _ = tokio::task::spawn_blocking(move || {
+            if queue.send(Job::Flush(tx)).is_ok() {
+                let _ = rx.recv_timeout(patience);
+            }
+        })
+        .await;
+    }
+
     /// The boards as they are now, and as they change.
     #[must_use]
     pub fn boards(&self) -> watch::Receiver<Arc<Boards>> {
@@ -128,6 +143,9 @@ fn run(mut store: Store, rx: &Receiver<Job>, boards: &watch::Sender<Arc<Boards>>
                 Ok(None) => {}
                 Err(e) => log.server(format_args!("leaderboard: cannot read a best: {e}")),
             },
+            Job::Flush(done) => {
+                let _ = done.send(());
+            }
         }
     }
 }
