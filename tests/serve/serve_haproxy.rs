@@ -2,7 +2,7 @@
 //! (docs/deploy/haproxy.cfg, its ports moved to free ones) in front of two `halfcast serve
 //! --proxy-protocol` processes, and OpenSSH's `ssh` from two source addresses (127.0.0.2 and
 //! 127.0.0.3) through it: each plays, and the world's log names the player's own address, not
-//! HAProxy's. And the shipped systemd unit passes `systemd-analyze verify`. Each part is
+//! HAProxy's; with one world behind it, the two addresses are limited apart. And the shipped systemd unit passes `systemd-analyze verify`. Each part is
 //! skipped with a notice when its tool is not installed.
 
 use crate::serve_process::{free_port, spawn_server, Guard};
@@ -74,14 +74,85 @@ fn play_through(port: u16, from: &str) -> SshPty {
     ssh
 }
 
-#[test]
-fn openssh_through_haproxy_plays_and_the_world_logs_the_players_own_address() {
+/// HAProxy with the shipped config, listening on a free port, its two worlds at `p1` and
+/// `p2`; returns it (stopped when dropped) and its port once it listens.
+fn haproxy(dir: &Path, p1: u16, p2: u16) -> (Guard, u16) {
+    let front = free_port();
+    let cfg = deploy("haproxy.cfg");
+    let cfg = moved(&cfg, "bind :22", &format!("bind 127.0.0.1:{front}"));
+    let cfg = moved(&cfg, "127.0.0.1:2201", &format!("127.0.0.1:{p1}"));
+    let cfg = moved(&cfg, "127.0.0.1:2202", &format!("127.0.0.1:{p2}"));
+    let cfg_path = dir.join("haproxy.cfg");
+    std::fs::write(&cfg_path, cfg).unwrap();
+    let child = Command::new("haproxy")
+        .arg("-db")
+        .arg("-f")
+        .arg(&cfg_path)
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("haproxy starts");
+    let guard = Guard(child);
+    let deadline = Instant::now() + PATIENCE;
+    while std::net::TcpStream::connect(("127.0.0.1", front)).is_err() {
+        assert!(Instant::now() < deadline, "haproxy never listened");
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    (guard, front)
+}
+
+/// Whether HAProxy and OpenSSH's client are both here (a skip notice otherwise).
+fn tools() -> bool {
     if !installed("haproxy", "-v") {
         eprintln!("skip: HAProxy is not installed (apt-get install haproxy)");
-        return;
+        return false;
     }
     if !ssh_available() {
         eprintln!("skip: OpenSSH `ssh` is not installed (apt-get install openssh-client)");
+        return false;
+    }
+    true
+}
+
+#[test]
+fn through_haproxy_two_source_addresses_are_limited_apart() {
+    if !tools() {
+        return;
+    }
+    // One world behind both of the config's server lines, so every connection reaches it.
+    let dir = tempfile::tempdir().expect("tempdir");
+    let (_w, p, _log) = spawn_server(
+        dir.path(),
+        &["--proxy-protocol", "--db", "none", "--max-per-ip", "1"],
+    );
+    let (_haproxy, front) = haproxy(dir.path(), p, p);
+    let ann = play_through(front, "127.0.0.2");
+    // Another address has a place of its own, though HAProxy's address is the same.
+    let bob = play_through(front, "127.0.0.3");
+    // A second connection from 127.0.0.2 is over --max-per-ip 1, and ssh says so.
+    let carol = SshPty::spawn(front, &["-b".as_ref(), "127.0.0.2".as_ref()], (80, 24));
+    let mut said = Vec::new();
+    let deadline = Instant::now() + PATIENCE;
+    let want = b"too many connections from your address";
+    while !said.windows(want.len()).any(|w| w == want) {
+        let left = deadline
+            .checked_duration_since(Instant::now())
+            .unwrap_or_else(|| panic!("not refused: {}", String::from_utf8_lossy(&said)));
+        match carol.rx.recv_timeout(left) {
+            Ok(b) => said.extend_from_slice(&b),
+            Err(_) => panic!("not refused: {}", String::from_utf8_lossy(&said)),
+        }
+    }
+    for mut ssh in [ann, bob, carol] {
+        let _ = ssh.child.kill();
+        let _ = ssh.child.wait();
+    }
+}
+
+#[test]
+fn openssh_through_haproxy_plays_and_the_world_logs_the_players_own_address() {
+    if !tools() {
         return;
     }
     let dir = tempfile::tempdir().expect("tempdir");
@@ -91,28 +162,7 @@ fn openssh_through_haproxy_plays_and_the_world_logs_the_players_own_address() {
     std::fs::create_dir_all(&w2dir).unwrap();
     let (_w1, p1, log1) = spawn_server(&w1dir, &flags);
     let (_w2, p2, log2) = spawn_server(&w2dir, &flags);
-    let front = free_port();
-    let cfg = deploy("haproxy.cfg");
-    let cfg = moved(&cfg, "bind :22", &format!("bind 127.0.0.1:{front}"));
-    let cfg = moved(&cfg, "127.0.0.1:2201", &format!("127.0.0.1:{p1}"));
-    let cfg = moved(&cfg, "127.0.0.1:2202", &format!("127.0.0.1:{p2}"));
-    let cfg_path = dir.path().join("haproxy.cfg");
-    std::fs::write(&cfg_path, cfg).unwrap();
-    let haproxy = Command::new("haproxy")
-        .arg("-db")
-        .arg("-f")
-        .arg(&cfg_path)
-        .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("haproxy starts");
-    let _haproxy = Guard(haproxy);
-    let deadline = Instant::now() + PATIENCE;
-    while std::net::TcpStream::connect(("127.0.0.1", front)).is_err() {
-        assert!(Instant::now() < deadline, "haproxy never listened");
-        std::thread::sleep(Duration::from_millis(50));
-    }
+    let (_haproxy, front) = haproxy(dir.path(), p1, p2);
 
     let ann = play_through(front, "127.0.0.2");
     let bob = play_through(front, "127.0.0.3");
