@@ -1,5 +1,5 @@
 //! A server as game servers are run: maps in rotation (one per round, the results naming the
-//! next), and a leaderboard in SQLite that the next round's results show, that `halfcast
+//! next; every map checked before the server listens), and a leaderboard in SQLite that the next round's results show, that `halfcast
 //! scores --json` reads after a restart, and that refuses a damaged file at start-up without
 //! touching it. Rounds are made short through the config (1 s of play, 0.8 s of results).
 
@@ -189,4 +189,35 @@ fn a_damaged_database_stops_the_start_with_a_clear_error_and_is_left_as_it_was()
     assert!(std::fs::read(&db).unwrap() == junk, "the file was changed");
     // Nothing else appeared beside it either (no journal left behind).
     assert!(!dir.path().join("halfcast.sqlite-journal").exists());
+}
+
+#[test]
+fn every_map_is_checked_before_listening_and_every_bad_one_named_at_file_line_col() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let repo = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let out = Command::new(env!("CARGO_BIN_EXE_halfcast"))
+        .current_dir(repo)
+        .args([
+            "serve",
+            "tests/fixtures/game_serve_room.cub",
+            "tests/fixtures/invalid_serve_rotation.cub",
+            "tests/fixtures/no_such_map.cub",
+            "--listen",
+            "127.0.0.1:0",
+            "--host-key",
+        ])
+        .arg(dir.path().join("hk"))
+        .stdin(std::process::Stdio::null())
+        .output()
+        .expect("halfcast serve runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert_eq!(
+        err,
+        "error: tests/fixtures/invalid_serve_rotation.cub:7:1: unknown identifier 'Q'\n\
+         error: tests/fixtures/no_such_map.cub: cannot read the file: No such file or directory \
+         (os error 2)\n"
+    );
+    // Nothing was started: no host key, no leaderboard.
+    assert!(std::fs::read_dir(dir.path()).unwrap().next().is_none());
 }
