@@ -1,7 +1,7 @@
 //! A server as game servers are run: maps in rotation (one per round, the results naming the
-//! next; every map checked before the server listens), and a leaderboard in SQLite that the next round's results show, that `halfcast
-//! scores --json` reads after a restart, and that refuses a damaged file at start-up without
-//! touching it. Rounds are made short through the config (1 s of play, 0.8 s of results).
+//! next; every map checked before the server listens), and a leaderboard in SQLite that the
+//! next round's results show, that `halfcast scores --json` reads after a restart, and that
+//! refuses a damaged file at start-up without touching it. Rounds are made short through the config (1 s of play, 0.8 s of results).
 
 use crate::serve_support;
 
