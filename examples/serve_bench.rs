@@ -3,10 +3,15 @@
 //! named threads, so its CPU time can be read apart from the clients'.
 //!
 //! `cargo run --release --example serve_bench -- --clients 32 --secs 10 --term xterm-direct \
-//!     --compression none --cols 80 --rows 24 --server-threads 1 [--map PATH]`
+//!     --compression none --cols 80 --rows 24 --server-threads 1 [--map PATH] \
+//!     [--metrics on] [--db on] [--round-secs N]`
 //!
 //! `--map` serves that map file (e.g. one with creatures, to see what game logic costs)
-//! instead of the embedded default.
+//! instead of the embedded default. `--metrics on` installs the Prometheus recorder and its
+//! listener (on a free loopback port, scraped once a second as Prometheus would, more often),
+//! `--db on` keeps the SQLite leaderboard in a temporary file; `--round-secs N` ends each
+//! round after N seconds so rounds (and their leaderboard writes and results screens) happen
+//! during the run. The leaderboard thread's CPU counts as the server's.
 //!
 //! Prints one JSON object: server CPU, frames/s and bytes/s per client (payload and on the wire),
 //! frames the server sent and frame ticks it skipped (slow readers), connections refused.
@@ -37,6 +42,9 @@ struct Opts {
     fps: u32,
     server_threads: usize,
     map: Option<String>,
+    metrics: bool,
+    db: bool,
+    round_secs: Option<u64>,
 }
 
 fn opts() -> Opts {
@@ -50,6 +58,9 @@ fn opts() -> Opts {
         fps: 30,
         server_threads: 1,
         map: None,
+        metrics: false,
+        db: false,
+        round_secs: None,
     };
     let args: Vec<String> = std::env::args().skip(1).collect();
     for pair in args.chunks(2) {
@@ -66,6 +77,9 @@ fn opts() -> Opts {
             "--fps" => o.fps = num(&v) as u32,
             "--server-threads" => o.server_threads = num(&v).clamp(1, 8) as usize,
             "--map" => o.map = Some(v),
+            "--metrics" => o.metrics = v == "on",
+            "--db" => o.db = v == "on",
+            "--round-secs" => o.round_secs = Some(num(&v).clamp(1, 3600)),
             other => panic!("unknown option {other}"),
         }
     }
@@ -120,6 +134,15 @@ fn main() {
     cfg.max_startups = o.clients.to_string().parse().expect("startups");
     cfg.max_startups_per_ip = o.clients;
     cfg.fps = o.fps;
+    cfg.round_limit = o.round_secs.map(Duration::from_secs);
+    cfg.db = o.db.then(|| dir.path().join("bench.sqlite"));
+    let metrics_port = o.metrics.then(|| {
+        std::net::TcpListener::bind("127.0.0.1:0")
+            .and_then(|l| l.local_addr())
+            .expect("a free port")
+            .port()
+    });
+    cfg.metrics = metrics_port.map(|p| std::net::SocketAddr::from(([127, 0, 0, 1], p)));
     let world = match &o.map {
         Some(path) => {
             World::from_file(std::path::Path::new(path), false)
@@ -188,14 +211,18 @@ fn main() {
                 let _ = h.disconnect(russh::Disconnect::ByApplication, "", "").await;
             }));
         }
-        let cpu0 = thread_cpu("srv-worker");
+        let scraper = metrics_port.map(|port| tokio::spawn(scrape_every_second(port)));
+        let cpu0 = thread_cpu("srv-worker") + thread_cpu("halfcast-leader");
         let ccpu0 = thread_cpu("cli-worker");
         let t0 = Instant::now();
         for t in tasks {
             let _ = t.await;
         }
+        if let Some(s) = scraper {
+            s.abort();
+        }
         (
-            thread_cpu("srv-worker") - cpu0,
+            thread_cpu("srv-worker") + thread_cpu("halfcast-leader") - cpu0,
             thread_cpu("cli-worker") - ccpu0,
             t0.elapsed().as_secs_f64(),
         )
@@ -232,7 +259,7 @@ fn main() {
 \"target_fps\":{},\"server_threads\":{},\"server_cpu_percent\":{:.1},\"client_cpu_percent\":{:.1},\"fps_per_client_mean\":{:.1},\
 \"fps_per_client_min_seen\":{:.1},\"payload_bytes_per_s_per_client\":{:.0},\"wire_bytes_per_s_per_client\":{:.0},\
 \"server_frames_sent\":{},\"server_frame_ticks_skipped\":{},\"refused\":{},\
-\"clients_per_core_at_target_fps\":{:.1}}}",
+\"clients_per_core_at_target_fps\":{:.1},\"metrics\":{},\"db\":{},\"round_secs\":{}}}",
         o.map.as_deref().unwrap_or("(embedded)"),
         creatures,
         o.clients,
@@ -253,5 +280,23 @@ fn main() {
         stats.frames_dropped,
         stats.refused,
         n * (mean_fps / f64::from(o.fps)) / cpu_frac.max(1e-9),
+        o.metrics,
+        o.db,
+        o.round_secs.unwrap_or(0),
     );
+}
+
+/// GETs the metrics page once a second (the scrape's cost on the server counts too).
+async fn scrape_every_second(port: u16) {
+    use tokio::io::{AsyncReadExt, AsyncWriteExt};
+    loop {
+        tokio::time::sleep(Duration::from_secs(1)).await;
+        if let Ok(mut s) = tokio::net::TcpStream::connect(("127.0.0.1", port)).await {
+            let _ = s
+                .write_all(b"GET /metrics HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n")
+                .await;
+            let mut sink = Vec::new();
+            let _ = s.read_to_end(&mut sink).await;
+        }
+    }
 }

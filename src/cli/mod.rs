@@ -11,6 +11,7 @@ mod render;
 mod replay;
 mod replay_frames;
 mod replay_limits;
+mod scores;
 mod serve;
 mod trace;
 
@@ -29,6 +30,7 @@ use options::{MapArgs, PoseArgs};
 use play::{PlayArgs, RecordArgs};
 use render::RenderArgs;
 use replay::ReplayArgs;
+use scores::ScoresArgs;
 use serve::ServeArgs;
 use trace::TraceArgs;
 
@@ -90,6 +92,8 @@ enum Command {
     Replay(ReplayArgs),
     /// Run an SSH server where everyone connected plays in one world (`ssh -p 2222 host`).
     Serve(ServeArgs),
+    /// Print a server's lasting leaderboard (the SQLite file `serve --db` writes).
+    Scores(ScoresArgs),
     /// Draw one column's DDA traversal as a figure (SVG or PNG), in Lode's names.
     Trace(TraceArgs),
     /// Compare two frames (PNG, ANSI, cells text or plain text): exit 0 equal, 1 different, 2 error.
@@ -158,6 +162,7 @@ pub fn run() -> ExitCode {
         Some(Command::Record(args)) => play::play(&args.play, Some(&args.output)),
         Some(Command::Bench(args)) => bench::bench(&args),
         Some(Command::Serve(args)) => serve::serve(args),
+        Some(Command::Scores(args)) => scores::scores(&args),
         None => play::play(&cli.play, None),
     };
     match result {

@@ -1,19 +1,48 @@
 //! `halfcast serve`: the SSH server's flags, turned into its configuration.
 
-use std::path::PathBuf;
+use std::net::SocketAddr;
+use std::path::{Path, PathBuf};
 
 use clap::Args;
+use halfcast::serve::log::LogFormat;
+use halfcast::serve::ServedMap;
 
-use super::options::MapArgs;
-use super::{load_world, Failure};
+use super::Failure;
 
 /// The environment variable a password may come from (kept out of the process list).
 pub(crate) const PASSWORD_ENV: &str = "HALFCAST_PASSWORD";
 
 #[derive(Args, Debug)]
 pub(crate) struct ServeArgs {
-    #[command(flatten)]
-    pub(crate) map: MapArgs,
+    /// The .cub maps rounds play, one per round in turn (default: the embedded map).
+    #[arg(value_name = "MAP")]
+    pub(crate) maps: Vec<PathBuf>,
+    /// Treat a missing or unreadable texture as an error instead of a warning.
+    #[arg(long)]
+    pub(crate) strict: bool,
+    /// Play the maps in a random order (a new order each pass, drawn from --seed).
+    #[arg(long)]
+    pub(crate) shuffle: bool,
+    /// Seed for --shuffle and the creatures (default: a fresh one each start).
+    #[arg(long)]
+    pub(crate) seed: Option<u64>,
+    /// A round lasts at most this many minutes (coop: otherwise until the exit; tag: 3).
+    #[arg(long, value_name = "N", value_parser = parse_minutes)]
+    pub(crate) round_minutes: Option<f64>,
+    /// The leaderboard's SQLite file (default: halfcast.sqlite beside the host key; `none`
+    /// keeps no leaderboard).
+    #[arg(long, value_name = "FILE")]
+    pub(crate) db: Option<PathBuf>,
+    /// Serve Prometheus metrics on http://ADDR/metrics (a bare port listens on 127.0.0.1).
+    #[arg(long, value_name = "ADDR", value_parser = parse_metrics_addr)]
+    pub(crate) metrics: Option<SocketAddr>,
+    /// Every connection starts with a PROXY protocol v1 or v2 header (behind HAProxy or
+    /// another balancer); its address is the one limits, logs and metrics use.
+    #[arg(long)]
+    pub(crate) proxy_protocol: bool,
+    /// The log's form on stderr: text lines, or one JSON object per event.
+    #[arg(long, default_value = "text", value_parser = parse_log_format)]
+    pub(crate) log_format: LogFormat,
     /// Address to listen on (port 0 picks a free one; the log says which).
     #[arg(long, default_value = "127.0.0.1:2222")]
     pub(crate) listen: std::net::SocketAddr,
@@ -74,6 +103,70 @@ fn parse_mode(s: &str) -> Result<halfcast::game::multi::round::Mode, String> {
     s.parse()
 }
 
+fn parse_log_format(s: &str) -> Result<LogFormat, String> {
+    s.parse()
+}
+
+/// Minutes, more than 0 and at most a day (fractions allowed: 0.5 is thirty seconds).
+fn parse_minutes(s: &str) -> Result<f64, String> {
+    let v = super::options::parse_finite(s)?;
+    if v > 0.0 && v <= 1440.0 {
+        Ok(v)
+    } else {
+        Err(format!(
+            "{v} minutes: a round lasts more than 0 and at most 1440 minutes"
+        ))
+    }
+}
+
+/// `HOST:PORT`, or a bare `PORT` on the loopback address.
+pub(crate) fn parse_metrics_addr(s: &str) -> Result<SocketAddr, String> {
+    if let Ok(port) = s.parse::<u16>() {
+        return Ok(SocketAddr::from(([127, 0, 0, 1], port)));
+    }
+    s.parse()
+        .map_err(|_| format!("'{s}' is neither HOST:PORT nor a port number"))
+}
+
+/// Every map, read and checked before the server listens; all the errors at once.
+fn load_maps(paths: &[PathBuf], strict: bool) -> Result<Vec<ServedMap>, Failure> {
+    if paths.is_empty() {
+        return Ok(vec![ServedMap::embedded()]);
+    }
+    let mut maps = Vec::new();
+    let mut errors = Vec::new();
+    for p in paths {
+        match ServedMap::from_file(p, strict) {
+            Ok((m, warnings)) => {
+                for w in warnings {
+                    eprintln!("{w}");
+                }
+                maps.push(m);
+            }
+            Err(e) => errors.push(e),
+        }
+    }
+    if errors.is_empty() {
+        Ok(maps)
+    } else {
+        Err(Failure::input(errors.join("\nerror: ")))
+    }
+}
+
+/// The leaderboard file: `--db`, `none` for none, else beside the host key.
+fn db_path(db: Option<&Path>, host_key: &Path) -> Option<PathBuf> {
+    match db {
+        Some(p) if p == Path::new("none") => None,
+        Some(p) => Some(p.to_path_buf()),
+        None => Some(
+            host_key
+                .parent()
+                .unwrap_or_else(|| Path::new(""))
+                .join(halfcast::serve::leaderboard::DEFAULT_FILE),
+        ),
+    }
+}
+
 /// The authentication mode from the flags and the environment; warns about `--password`.
 fn auth_mode(args: &ServeArgs) -> Result<halfcast::serve::auth::AuthMode, Failure> {
     use halfcast::serve::auth::{password_from_file, AuthMode};
@@ -111,8 +204,17 @@ pub(crate) fn serve(args: ServeArgs) -> Result<(), Failure> {
         .parse()
         .map_err(|e| Failure::input(format!("--max-startups {e}")))?;
     let auth = auth_mode(&args)?;
-    let world = load_world(&args.map)?;
+    let maps = load_maps(&args.maps, args.strict)?;
+    let db = db_path(args.db.as_deref(), &args.host_key);
     let mut config = ServeConfig::local(args.listen, args.host_key);
+    config.db = db;
+    config.metrics = args.metrics;
+    config.proxy_protocol = args.proxy_protocol;
+    config.log_format = args.log_format;
+    config.shuffle = args.shuffle;
+    config.round_limit = args
+        .round_minutes
+        .map(|m| Duration::from_secs_f64(m * 60.0));
     config.auth = auth;
     config.insecure_host_key = args.insecure_host_key;
     config.max_sessions = args.max_sessions as usize;
@@ -128,8 +230,10 @@ pub(crate) fn serve(args: ServeArgs) -> Result<(), Failure> {
     config.mode = args.mode;
     let mut seed = [0u8; 8];
     // Unpredictable refusals where the OS has randomness; the fixed seed otherwise.
-    if getrandom::fill(&mut seed).is_ok() {
+    if let Some(s) = args.seed {
+        config.seed = s;
+    } else if getrandom::fill(&mut seed).is_ok() {
         config.seed = u64::from_ne_bytes(seed);
     }
-    run_until_signal(config, world).map_err(Failure::input)
+    run_until_signal(config, maps).map_err(Failure::input)
 }

@@ -60,6 +60,20 @@ pub struct ServeConfig {
     pub quiet: bool,
     /// The game everybody plays: coop or tag.
     pub mode: crate::game::multi::round::Mode,
+    /// Rounds last at most this long (`--round-minutes`; tag's default is 3 minutes).
+    pub round_limit: Option<Duration>,
+    /// How long a round's results show before the next round.
+    pub results_time: Duration,
+    /// Play the maps in a random order drawn from `seed` (`--shuffle`).
+    pub shuffle: bool,
+    /// The leaderboard's SQLite file (`--db`); `None` keeps no leaderboard.
+    pub db: Option<PathBuf>,
+    /// Where to serve Prometheus metrics (`--metrics`); `None` serves none.
+    pub metrics: Option<SocketAddr>,
+    /// Every connection starts with a PROXY protocol header naming the client's address.
+    pub proxy_protocol: bool,
+    /// Text lines or one JSON object per event (`--log-format`).
+    pub log_format: super::log::LogFormat,
 }
 
 impl ServeConfig {
@@ -84,6 +98,13 @@ impl ServeConfig {
             fps: 30,
             quiet: false,
             mode: crate::game::multi::round::Mode::Coop,
+            round_limit: None,
+            results_time: Duration::from_secs_f64(crate::game::multi::round::RESULTS_SECONDS),
+            shuffle: false,
+            db: None,
+            metrics: None,
+            proxy_protocol: false,
+            log_format: super::log::LogFormat::Text,
         }
     }
 }

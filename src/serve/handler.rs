@@ -12,9 +12,11 @@ use tokio::sync::{mpsc, watch};
 
 use super::auth::Backoff;
 use super::config::{ServeConfig, DEFAULT_SIZE};
+use super::leaderboard::writer::Leaderboard;
 use super::lifecycle::Lifeline;
 use super::limits::{Limiter, Pending, Playing, Refusal};
 use super::log::Log;
+use super::metrics::{self, Reason};
 use super::session::{self, End, SessionInputs, SessionParams};
 use super::stats::ServeStats;
 use super::world_task::WorldHandle;
@@ -41,6 +43,19 @@ pub struct Shared {
     pub limiter: Limiter,
     /// Failed password logins per source address.
     pub backoff: Backoff,
+    /// The lasting leaderboard, when the server keeps one.
+    pub boards: Option<BoardLine>,
+}
+
+/// A session's line to the leaderboard: the boards, and how to find a map's board.
+#[derive(Debug, Clone)]
+pub struct BoardLine {
+    /// The leaderboard thread's handle.
+    pub board: Leaderboard,
+    /// The served maps' content hashes, by index.
+    pub hashes: Arc<Vec<String>>,
+    /// The mode played ("coop", "tag").
+    pub mode: &'static str,
 }
 
 /// How long a connection whose game ended may linger before it is closed (the client normally
@@ -112,6 +127,7 @@ impl ConnHandler {
 
     /// A wrong password: waits the source address's growing delay, then rejects.
     async fn reject_guess(&self) -> Auth {
+        metrics::refused(Reason::Auth);
         let wait = self.shared.backoff.failed(self.peer.ip(), Instant::now());
         self.shared.log.session(
             self.id,
@@ -126,7 +142,8 @@ impl ConnHandler {
     fn turn_away(&self, session: &mut Session, why: &Refusal) -> Result<(), russh::Error> {
         self.shared
             .log
-            .session(self.id, self.peer, format_args!("refused: {why}"));
+            .refusal(Some(self.id), self.peer, why.reason().label(), why);
+        metrics::refused(why.reason());
         ServeStats::add(&self.shared.stats.refused, 1);
         session.disconnect(russh::Disconnect::TooManyConnections, &why.to_string(), "")
     }
@@ -206,6 +223,7 @@ impl russh::server::Handler for ConnHandler {
         if self.shared.config.auth.allows_key(key) {
             Ok(self.accept_user(user))
         } else {
+            metrics::refused(Reason::Auth);
             Ok(self.reject())
         }
     }
@@ -313,6 +331,7 @@ impl russh::server::Handler for ConnHandler {
             handle: session.handle(),
             channel,
             world: sh.world.clone(),
+            boards: sh.boards.clone(),
             world_data: Arc::clone(&sh.world_data),
             avatar_sheet: sh.avatar_sheet,
             fps: sh.config.fps,
@@ -326,16 +345,8 @@ impl russh::server::Handler for ConnHandler {
             data: rx,
             size: self.size.subscribe(),
         };
-        sh.log.session(
-            self.id,
-            self.peer,
-            format_args!(
-                "{} as {:?} (TERM={:?})",
-                if spectator { "watching" } else { "playing" },
-                params.name,
-                self.term
-            ),
-        );
+        sh.log
+            .login(self.id, self.peer, &params.name, spectator, &self.term);
         let live = LiveSession::new(Arc::clone(&sh.stats));
         let (handle, log, id, peer) = (session.handle(), sh.log, self.id, self.peer);
         let life = Arc::clone(&self.life);

@@ -10,6 +10,8 @@
 use std::future::Future;
 use std::io;
 use std::pin::Pin;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Arc;
 use std::task::{Context, Poll};
 
 use tokio::io::{AsyncRead, AsyncWrite, ReadBuf};
@@ -20,6 +22,14 @@ use tokio::sync::watch;
 pub struct Lifeline {
     kill: watch::Sender<bool>,
     playing: watch::Sender<bool>,
+    wire: Arc<Wire>,
+}
+
+/// Bytes read from and written to one connection's socket.
+#[derive(Debug, Default)]
+struct Wire {
+    read: AtomicU64,
+    written: AtomicU64,
 }
 
 impl Default for Lifeline {
@@ -27,6 +37,7 @@ impl Default for Lifeline {
         Self {
             kill: watch::channel(false).0,
             playing: watch::channel(false).0,
+            wire: Arc::default(),
         }
     }
 }
@@ -54,11 +65,22 @@ impl Lifeline {
         self.playing.subscribe()
     }
 
-    /// Wraps `inner` so that [`Lifeline::kill`] cuts it.
+    /// Bytes (read, written) on the socket so far.
+    #[must_use]
+    pub fn wire_bytes(&self) -> (u64, u64) {
+        (
+            self.wire.read.load(Ordering::Relaxed),
+            self.wire.written.load(Ordering::Relaxed),
+        )
+    }
+
+    /// Wraps `inner` so that [`Lifeline::kill`] cuts it (and its bytes are counted).
     #[must_use]
     pub fn wrap<S>(&self, inner: S) -> Killable<S> {
         let mut rx = self.kill.subscribe();
         Killable {
+            wire: Arc::clone(&self.wire),
+            wire_metric: super::metrics::wire_bytes(),
             inner,
             kill: Box::pin(async move {
                 // Err: the lifeline is gone, and nobody is left to keep the connection.
@@ -72,6 +94,8 @@ impl Lifeline {
 /// A stream that fails every read and write once its [`Lifeline`] is killed.
 pub struct Killable<S> {
     inner: S,
+    wire: Arc<Wire>,
+    wire_metric: metrics::Counter,
     kill: Pin<Box<dyn Future<Output = ()> + Send>>,
     dead: bool,
 }
@@ -95,7 +119,11 @@ impl<S: AsyncRead + Unpin> AsyncRead for Killable<S> {
         if let Some(e) = self.cut(cx) {
             return Poll::Ready(Err(e));
         }
-        Pin::new(&mut self.inner).poll_read(cx, buf)
+        let before = buf.filled().len();
+        let r = Pin::new(&mut self.inner).poll_read(cx, buf);
+        let n = buf.filled().len().saturating_sub(before) as u64;
+        self.wire.read.fetch_add(n, Ordering::Relaxed);
+        r
     }
 }
 
@@ -108,7 +136,12 @@ impl<S: AsyncWrite + Unpin> AsyncWrite for Killable<S> {
         if let Some(e) = self.cut(cx) {
             return Poll::Ready(Err(e));
         }
-        Pin::new(&mut self.inner).poll_write(cx, buf)
+        let r = Pin::new(&mut self.inner).poll_write(cx, buf);
+        if let Poll::Ready(Ok(n)) = r {
+            self.wire.written.fetch_add(n as u64, Ordering::Relaxed);
+            self.wire_metric.increment(n as u64);
+        }
+        r
     }
 
     fn poll_flush(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<io::Result<()>> {

@@ -24,6 +24,19 @@ pub enum Refusal {
     TooManyStartups,
 }
 
+impl Refusal {
+    /// The metrics and log label for this refusal.
+    #[must_use]
+    pub fn reason(&self) -> super::metrics::Reason {
+        use super::metrics::Reason;
+        match self {
+            Self::Full(_) => Reason::Full,
+            Self::TooManyFromAddress => Reason::PerAddress,
+            Self::TooManyStartups => Reason::Startups,
+        }
+    }
+}
+
 impl fmt::Display for Refusal {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
@@ -220,6 +233,7 @@ impl Limiter {
         e.0 += 1;
         e.1 += 1;
         drop(c);
+        super::metrics::logging_in(true);
         Ok(Pending {
             ip,
             limiter: self.clone(),
@@ -270,6 +284,7 @@ impl Pending {
 impl Drop for Pending {
     fn drop(&mut self) {
         self.limiter.lock().release(self.ip, true);
+        super::metrics::logging_in(false);
     }
 }
 

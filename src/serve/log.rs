@@ -1,32 +1,177 @@
-//! The server's log: one line per event on stderr, each naming its session; `--quiet` silences it.
+//! The server's log on stderr: one line per event, each naming its session; `--quiet`
+//! silences it. Text lines by default; `--log-format json` writes each event as one JSON
+//! object (`event`: connect, login, refusal, round_end, disconnect, or message for the rest),
+//! for log shippers. docs/serving.md lists the fields.
 
 use std::fmt::Display;
 use std::net::SocketAddr;
+use std::str::FromStr;
+use std::time::{SystemTime, UNIX_EPOCH};
 
-/// Where log lines go (stderr unless quiet).
+use serde_json::{json, Value};
+
+/// How log lines are written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum LogFormat {
+    /// `halfcast serve: [session 3 127.0.0.1:5555] connected`.
+    #[default]
+    Text,
+    /// `{"ts":…,"event":"connect","session":3,"peer":"127.0.0.1:5555"}`.
+    Json,
+}
+
+impl FromStr for LogFormat {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "text" => Ok(Self::Text),
+            "json" => Ok(Self::Json),
+            _ => Err(format!("unknown log format '{s}' (text or json)")),
+        }
+    }
+}
+
+/// Where log lines go (stderr unless quiet), and in which form.
 #[derive(Debug, Clone, Copy)]
 pub struct Log {
     quiet: bool,
+    format: LogFormat,
 }
 
 impl Log {
-    /// A log that prints unless `quiet`.
+    /// A text log that prints unless `quiet`.
     #[must_use]
     pub fn new(quiet: bool) -> Self {
-        Self { quiet }
+        Self::with_format(quiet, LogFormat::Text)
+    }
+
+    /// A log in `format` that prints unless `quiet`.
+    #[must_use]
+    pub fn with_format(quiet: bool, format: LogFormat) -> Self {
+        Self { quiet, format }
+    }
+
+    fn json(&self, event: &str, mut fields: Value) {
+        let ts = SystemTime::now()
+            .duration_since(UNIX_EPOCH)
+            .map_or(0.0, |d| d.as_secs_f64());
+        let mut obj = json!({ "ts": (ts * 1000.0).round() / 1000.0, "event": event });
+        if let (Some(o), Some(f)) = (obj.as_object_mut(), fields.as_object_mut()) {
+            o.append(f);
+        }
+        eprintln!("{obj}");
     }
 
     /// A server-wide line.
     pub fn server(&self, msg: impl Display) {
-        if !self.quiet {
-            eprintln!("halfcast serve: {msg}");
+        if self.quiet {
+            return;
+        }
+        match self.format {
+            LogFormat::Text => eprintln!("halfcast serve: {msg}"),
+            LogFormat::Json => self.json("message", json!({ "text": msg.to_string() })),
         }
     }
 
     /// A line about session `id` from `peer`.
     pub fn session(&self, id: u64, peer: SocketAddr, msg: impl Display) {
-        if !self.quiet {
-            eprintln!("halfcast serve: [session {id} {peer}] {msg}");
+        if self.quiet {
+            return;
+        }
+        match self.format {
+            LogFormat::Text => eprintln!("halfcast serve: [session {id} {peer}] {msg}"),
+            LogFormat::Json => self.json(
+                "message",
+                json!({ "session": id, "peer": peer.to_string(), "text": msg.to_string() }),
+            ),
+        }
+    }
+
+    /// A connection was accepted.
+    pub fn connect(&self, id: u64, peer: SocketAddr) {
+        match self.format {
+            LogFormat::Text => self.session(id, peer, "connected"),
+            LogFormat::Json if !self.quiet => self.json(
+                "connect",
+                json!({ "session": id, "peer": peer.to_string() }),
+            ),
+            LogFormat::Json => {}
+        }
+    }
+
+    /// A connection logged in and started to play (or watch) as `name`.
+    pub fn login(&self, id: u64, peer: SocketAddr, name: &str, spectator: bool, term: &str) {
+        let what = if spectator { "watching" } else { "playing" };
+        match self.format {
+            LogFormat::Text => {
+                self.session(id, peer, format_args!("{what} as {name:?} (TERM={term:?})"))
+            }
+            LogFormat::Json if !self.quiet => self.json(
+                "login",
+                json!({ "session": id, "peer": peer.to_string(), "name": name,
+                        "as": what, "term": term }),
+            ),
+            LogFormat::Json => {}
+        }
+    }
+
+    /// A connection was turned away for `reason` (a metrics label) saying `why`; `id` when it
+    /// had been accepted first.
+    pub fn refusal(&self, id: Option<u64>, peer: SocketAddr, reason: &str, why: impl Display) {
+        match (self.format, id) {
+            (LogFormat::Text, Some(id)) => self.session(id, peer, format_args!("refused: {why}")),
+            (LogFormat::Text, None) => self.server(format_args!("refused {peer}: {why}")),
+            (LogFormat::Json, _) if !self.quiet => self.json(
+                "refusal",
+                json!({ "session": id, "peer": peer.to_string(), "reason": reason,
+                        "text": why.to_string() }),
+            ),
+            (LogFormat::Json, _) => {}
+        }
+    }
+
+    /// A round ended on `map` (its name and content hash), with each player's figures.
+    pub fn round_end(&self, map: &str, hash: &str, mode: &str, seconds: f64, players: Value) {
+        match self.format {
+            LogFormat::Text => self.server(format_args!(
+                "round over on {map} ({mode}, {seconds:.1} s): {players}"
+            )),
+            LogFormat::Json if !self.quiet => self.json(
+                "round_end",
+                json!({ "map": map, "map_hash": hash, "mode": mode,
+                        "seconds": seconds, "players": players }),
+            ),
+            LogFormat::Json => {}
+        }
+    }
+
+    /// A connection closed after `seconds`, with the bytes it read and wrote on the wire, and
+    /// why when it was not the client's own doing.
+    pub fn disconnect(
+        &self,
+        id: u64,
+        peer: SocketAddr,
+        seconds: f64,
+        bytes: (u64, u64),
+        error: Option<&str>,
+    ) {
+        match self.format {
+            LogFormat::Text => match error {
+                None => self.session(id, peer, format_args!("disconnected after {seconds:.1} s")),
+                Some(e) => self.session(
+                    id,
+                    peer,
+                    format_args!("disconnected after {seconds:.1} s: {e}"),
+                ),
+            },
+            LogFormat::Json if !self.quiet => self.json(
+                "disconnect",
+                json!({ "session": id, "peer": peer.to_string(),
+                        "seconds": (seconds * 1000.0).round() / 1000.0,
+                        "bytes_in": bytes.0, "bytes_out": bytes.1, "error": error }),
+            ),
+            LogFormat::Json => {}
         }
     }
 }

@@ -13,6 +13,10 @@
 //! - [`screen`]: the TUI's panes under a header ([`header`] fits it to the width), through the
 //!   `Presenter`; [`avatars`]: other players as the world's 8-view sprite, and their names on
 //!   the minimap.
+//! - [`served_map`]: a map of the rotation and its content hash; [`leaderboard`]: the SQLite
+//!   file of finished rounds, written by a thread of its own; [`metrics`]: the Prometheus
+//!   series; [`proxy_header`]: PROXY protocol headers from a load balancer; [`log`]: text or
+//!   JSON lines.
 
 pub(crate) mod ask_colour;
 pub mod auth;
@@ -21,14 +25,19 @@ pub(crate) mod config;
 pub(crate) mod handler;
 pub(crate) mod header;
 pub(crate) mod hostkey;
+pub mod leaderboard;
 pub(crate) mod lifecycle;
 pub mod limits;
-pub(crate) mod log;
+pub mod log;
+pub(crate) mod metrics;
+pub(crate) mod proxy_header;
 pub(crate) mod screen;
+pub(crate) mod served_map;
 pub mod server;
 pub(crate) mod session;
 pub(crate) mod stats;
 pub(crate) mod world_task;
 
 pub use config::ServeConfig;
-pub use server::{run_until_signal, start, RunningServer};
+pub use served_map::ServedMap;
+pub use server::{run_until_signal, start, start_maps, RunningServer};

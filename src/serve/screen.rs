@@ -20,7 +20,7 @@ use crate::render::framebuffer::Framebuffer;
 use crate::ui::keys::InputMode;
 use crate::ui::layout::{Panes, Toggles};
 use crate::ui::render::render_view;
-use crate::ui::results::{Results, Then};
+use crate::ui::results::{Board, Results, Then};
 use crate::ui::screen::{draw, Screen};
 use crate::ui::stats::FrameStats;
 use crate::ui::status::BAR;
@@ -35,6 +35,13 @@ pub struct SessionScreen {
     /// This session's copy of the served world; its sprites after `base_sprites` are the
     /// other players, replaced every frame.
     world: Arc<World>,
+    /// The world it is a copy of (a new one comes with the next map of a rotation).
+    source: Option<Arc<World>>,
+    /// The leaderboard for the results, and whether it shows over the game too (`L`).
+    leaders: Option<Board>,
+    show_leaders: bool,
+    /// The last frame's (render, draw and encode) times.
+    times: (std::time::Duration, std::time::Duration),
     base_sprites: usize,
     avatar_sheet: usize,
     presenter: Presenter,
@@ -69,13 +76,21 @@ pub fn view_rect(panes: &Panes) -> Rect {
 }
 
 /// A finished round as the results screen shows it.
-fn round_results(state: &crate::game::GameState, end: &RoundEnd) -> Results {
+fn round_results(
+    state: &crate::game::GameState,
+    end: &RoundEnd,
+    leaders: Option<&Board>,
+) -> Results {
     Results {
         level: state.world.map.name.clone(),
         seconds: end.seconds,
         points: end.points,
         treasures: end.treasures,
-        then: Then::NewRound(end.left.max(0.0).ceil() as u64),
+        then: Then::NewRound {
+            seconds: end.left.max(0.0).ceil() as u64,
+            map: end.next_map.clone(),
+        },
+        leaders: leaders.cloned(),
         by: end.by.clone(),
         board: end
             .board
@@ -97,6 +112,10 @@ impl SessionScreen {
         Self {
             base_sprites: world.sprites.len(),
             world: Arc::new(world.clone()),
+            source: None,
+            leaders: None,
+            show_leaders: false,
+            times: Default::default(),
             avatar_sheet,
             presenter: Presenter::new(EncodeOptions::new(level)),
             fb: Framebuffer::new(0, 0),
@@ -110,6 +129,32 @@ impl SessionScreen {
     #[must_use]
     pub fn map(&self) -> &crate::map::Map {
         &self.world.map
+    }
+
+    /// The leaderboard to show on the results, and over the game when `over_game`.
+    pub fn set_leaders(&mut self, board: Option<Board>, over_game: bool) {
+        self.leaders = board;
+        self.show_leaders = over_game;
+    }
+
+    /// How long the last frame took to render, and to draw and encode.
+    #[must_use]
+    pub fn last_times(&self) -> (std::time::Duration, std::time::Duration) {
+        self.times
+    }
+
+    /// Switches to `world` when the round plays another map than the one drawn so far.
+    fn follow(&mut self, world: &Arc<World>) {
+        if self.source.as_ref().is_some_and(|w| Arc::ptr_eq(w, world)) {
+            return;
+        }
+        if self.source.is_some() || world.map.file != self.world.map.file {
+            let (copy, sheet) = avatars::with_avatar_sheet(World::clone(world));
+            self.base_sprites = copy.sprites.len();
+            self.avatar_sheet = sheet;
+            self.world = Arc::new(copy);
+        }
+        self.source = Some(Arc::clone(world));
     }
 
     /// Switches colour level, keeping why it was chosen (for the status line and header).
@@ -149,6 +194,9 @@ impl SessionScreen {
         let mut view = view_rect(&panes);
         let started = Instant::now();
         let mut render_time = std::time::Duration::ZERO;
+        if let Some(w) = &snap.world {
+            self.follow(w);
+        }
         match eye.and_then(|id| snap.player(id).map(|p| (id, p))) {
             Some((id, p)) => {
                 if let Some(world) = Arc::get_mut(&mut self.world) {
@@ -164,7 +212,10 @@ impl SessionScreen {
                 let cast = render_view(&state, &mut self.fb);
                 let tags = avatars::mark_players(&mut self.fb, &state, &cast, snap, id);
                 render_time = started.elapsed();
-                let results = snap.ended.as_ref().map(|end| round_results(&state, end));
+                let results = snap
+                    .ended
+                    .as_ref()
+                    .map(|end| round_results(&state, end, self.leaders.as_ref()));
                 let screen = Screen {
                     state: &state,
                     view: &self.fb,
@@ -183,6 +234,9 @@ impl SessionScreen {
                     avatars::label_minimap(&mut buf, inner, &state, &cast, snap, id);
                 }
                 avatars::draw_tags(&mut buf, view, &tags);
+                if let (Some(board), true, None) = (&self.leaders, self.show_leaders, &results) {
+                    board.render(body, &mut buf);
+                }
             }
             None => {
                 view = Rect::default();
@@ -203,6 +257,7 @@ impl SessionScreen {
         self.out.clear();
         self.out.extend_from_slice(bytes);
         self.stats.record_bytes(self.out.len());
+        self.times = (render_time, started.elapsed() - render_time);
         self.stats
             .record(Instant::now(), render_time, started.elapsed() - render_time);
         &self.out

@@ -13,7 +13,7 @@ use std::io;
 use std::net::SocketAddr;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
 
 use russh::server::Config;
 use russh::{compression, Preferred};
@@ -24,13 +24,21 @@ use tokio::task::JoinHandle;
 use super::auth::Backoff;
 use super::avatars::with_avatar_sheet;
 use super::config::ServeConfig;
-use super::handler::{ConnHandler, Shared};
+use super::handler::{BoardLine, ConnHandler, Shared};
 use super::hostkey;
+use super::leaderboard::store::Store;
+use super::leaderboard::writer::Leaderboard;
+use super::leaderboard::RoundRecord;
 use super::lifecycle::Lifeline;
 use super::limits::{Caps, Limiter, Refusal};
 use super::log::Log;
+use super::metrics::Reason;
+use super::proxy_header::{read_header, Inbound, Source, HEADER_WAIT};
+use super::served_map::ServedMap;
 use super::stats::{ServeStats, StatsSnapshot};
-use super::world_task::spawn_game;
+use super::world_task::spawn_rounds;
+use crate::game::multi::players::Rules;
+use crate::game::multi::round::RoundEnd;
 use crate::world::World;
 
 /// Compression offered to clients, most preferred first: the delayed `zlib@openssh.com`
@@ -48,6 +56,7 @@ pub struct RunningServer {
     limiter: Limiter,
     shutdown: watch::Sender<bool>,
     accept: JoinHandle<()>,
+    leaderboard: Option<Leaderboard>,
 }
 
 impl RunningServer {
@@ -70,8 +79,9 @@ impl RunningServer {
         self.limiter.live()
     }
 
-    /// Stops accepting, tells every session to end, and waits (up to a few seconds) for them;
-    /// returns the totals after that, so sessions that were still running count too.
+    /// Stops accepting, tells every session to end, and waits (up to a few seconds) for them
+    /// and for the leaderboard's queued writes; returns the totals after that, so sessions that
+    /// were still running count too.
     pub async fn shutdown(self) -> StatsSnapshot {
         let _ = self.shutdown.send(true);
         let _ = self.accept.await;
@@ -81,19 +91,54 @@ impl RunningServer {
             }
             tokio::time::sleep(Duration::from_millis(40)).await;
         }
+        if let Some(lb) = &self.leaderboard {
+            lb.flush(Duration::from_secs(5)).await;
+        }
         self.stats.snapshot()
     }
 }
 
-/// Binds, loads or creates the host key, starts the world and the accept loop.
+/// Binds, loads or creates the host key, starts the world and the accept loop (one map).
 ///
 /// # Errors
 /// A message when the address cannot be bound or the host key cannot be read or created.
 pub async fn start(config: ServeConfig, world: World) -> Result<RunningServer, String> {
-    let log = Log::new(config.quiet);
+    start_maps(config, vec![ServedMap::from_world(world)]).await
+}
+
+/// [`start`] with rounds rotating over `maps` (at least one).
+///
+/// # Errors
+/// A message when there is no map, the address cannot be bound, the host key cannot be read or
+/// created, the leaderboard cannot be opened or the metrics listener cannot start.
+pub async fn start_maps(
+    config: ServeConfig,
+    maps: Vec<ServedMap>,
+) -> Result<RunningServer, String> {
+    if maps.is_empty() {
+        return Err("no map to serve".into());
+    }
+    let log = Log::with_format(config.quiet, config.log_format);
     let (key, notes) = hostkey::load_or_generate(&config.host_key, config.insecure_host_key)?;
     for n in notes {
         log.server(n);
+    }
+    let mode = config.mode.name();
+    let leaderboard = match &config.db {
+        Some(path) => {
+            let store = Store::open(path)?;
+            let served: Vec<(String, String)> = maps
+                .iter()
+                .map(|m| (m.hash.clone(), mode.to_owned()))
+                .collect();
+            log.server(format_args!("leaderboard in {}", path.display()));
+            Some(Leaderboard::start(store, &served, log)?)
+        }
+        None => None,
+    };
+    if let Some(addr) = config.metrics {
+        super::metrics::install(addr)?;
+        log.server(format_args!("metrics on http://{addr}/metrics"));
     }
     let listener = TcpListener::bind(config.listen)
         .await
@@ -129,19 +174,36 @@ pub async fn start(config: ServeConfig, world: World) -> Result<RunningServer, S
         },
         config.seed,
     );
-    let (world, avatar_sheet) = with_avatar_sheet(world);
-    let world = Arc::new(world);
+    let hashes: Vec<String> = maps.iter().map(|m| m.hash.clone()).collect();
+    let worlds: Vec<Arc<World>> = maps
+        .into_iter()
+        .map(|m| Arc::new(with_avatar_sheet(m.world).0))
+        .collect();
+    let (world, avatar_sheet) = with_avatar_sheet(World::clone(&worlds[0]));
     let (shutdown_tx, shutdown_rx) = watch::channel(false);
     let stats = Arc::new(ServeStats::default());
+    let rules = Rules {
+        mode: config.mode,
+        seed: config.seed,
+        round_limit: config.round_limit.map(|d| d.as_secs_f64()),
+        results_seconds: config.results_time.as_secs_f64(),
+        shuffle: config.shuffle,
+    };
+    let on_round = round_recorder(&worlds, &hashes, mode, leaderboard.clone(), log);
     let shared = Arc::new(Shared {
-        world: spawn_game(Arc::clone(&world), config.tick_hz, config.mode, config.seed),
-        world_data: world,
+        world: spawn_rounds(worlds, config.tick_hz, rules, on_round),
+        world_data: Arc::new(world),
         avatar_sheet,
         stats: Arc::clone(&stats),
         log,
         shutdown: shutdown_rx.clone(),
         limiter: limiter.clone(),
         backoff: Backoff::default(),
+        boards: leaderboard.clone().map(|board| BoardLine {
+            board,
+            hashes: Arc::new(hashes),
+            mode,
+        }),
         config,
     });
     log.server(format_args!("listening on {addr}"));
@@ -152,13 +214,72 @@ pub async fn start(config: ServeConfig, world: World) -> Result<RunningServer, S
         limiter,
         shutdown: shutdown_tx,
         accept,
+        leaderboard,
     })
+}
+
+/// What the world task does with a finished round: log it, count it, queue it for the
+/// leaderboard (never waiting for the disk).
+fn round_recorder(
+    worlds: &[Arc<World>],
+    hashes: &[String],
+    mode: &'static str,
+    leaderboard: Option<Leaderboard>,
+    log: Log,
+) -> impl FnMut(&RoundEnd) + Send + 'static {
+    let names: Vec<String> = worlds.iter().map(|w| w.map.name.clone()).collect();
+    let hashes = hashes.to_vec();
+    move |end: &RoundEnd| {
+        super::metrics::round(mode);
+        let (name, hash) = (&names[end.map], &hashes[end.map]);
+        let players: Vec<serde_json::Value> = end
+            .players
+            .iter()
+            .map(|p| {
+                serde_json::json!({ "name": p.name, "points": p.points, "items": p.items,
+                    "it_seconds": (p.it_seconds * 10.0).round() / 10.0,
+                    "reached_exit": p.reached_exit })
+            })
+            .collect();
+        log.round_end(
+            name,
+            hash,
+            mode,
+            end.seconds,
+            serde_json::Value::from(players),
+        );
+        if let Some(lb) = &leaderboard {
+            let ended_at = SystemTime::now()
+                .duration_since(UNIX_EPOCH)
+                .map_or(0, |d| d.as_secs() as i64);
+            lb.record(RoundRecord {
+                map_hash: hash.clone(),
+                map_name: name.clone(),
+                mode: mode.to_owned(),
+                seconds: end.seconds,
+                cleared: end.cleared,
+                ended_at,
+                players: end.players.clone(),
+            });
+        }
+    }
 }
 
 /// Refused sockets at most lingering at once to deliver their reason (beyond, just closed).
 const MAX_LINGERING: usize = 64;
 /// How long a refused socket lingers so its reason line arrives before the close.
 const LINGER: Duration = Duration::from_millis(500);
+/// Connections at most waiting at once for their PROXY header (beyond, closed at accept).
+const MAX_HEADER_WAITS: u64 = 256;
+
+/// What the accept loop hands each connection.
+struct Door {
+    ssh: Arc<Config>,
+    shared: Arc<Shared>,
+    next_id: AtomicU64,
+    lingering: Arc<AtomicU64>,
+    header_waits: AtomicU64,
+}
 
 async fn accept_loop(
     listener: TcpListener,
@@ -166,68 +287,126 @@ async fn accept_loop(
     shared: Arc<Shared>,
     mut shutdown: watch::Receiver<bool>,
 ) {
-    let next_id = AtomicU64::new(1);
-    let lingering = Arc::new(AtomicU64::new(0));
+    let door = Arc::new(Door {
+        ssh,
+        shared,
+        next_id: AtomicU64::new(1),
+        lingering: Arc::new(AtomicU64::new(0)),
+        header_waits: AtomicU64::new(0),
+    });
     loop {
-        let (socket, peer) = tokio::select! {
+        let (socket, tcp_peer) = tokio::select! {
             _ = shutdown.changed() => return,
             r = listener.accept() => match r {
                 Ok(x) => x,
                 Err(e) => {
                     // E.g. out of file descriptors: back off instead of spinning.
-                    shared.log.server(format_args!("accept failed: {e}"));
+                    door.shared.log.server(format_args!("accept failed: {e}"));
                     tokio::time::sleep(Duration::from_millis(100)).await;
                     continue;
                 }
             },
         };
         let accepted = Instant::now();
-        let pending = match shared.limiter.admit(peer.ip()) {
-            Ok(s) => s,
-            Err(why) => {
-                ServeStats::add(&shared.stats.refused, 1);
-                let (logging_in, playing) = shared.limiter.live();
-                shared.log.server(format_args!(
-                    "refused {peer}: {why} ({logging_in} logging in, {playing} playing)"
-                ));
-                refuse(socket, why, &lingering);
-                continue;
-            }
-        };
-        ServeStats::add(&shared.stats.connections, 1);
-        let id = next_id.fetch_add(1, Ordering::Relaxed);
-        let ssh = Arc::clone(&ssh);
-        let shared = Arc::clone(&shared);
+        if !door.shared.config.proxy_protocol {
+            admit(&door, socket, tcp_peer, Inbound::refusing_headers, accepted);
+            continue;
+        }
+        // Behind a balancer: the header names the client; every limit applies to it.
+        if door.header_waits.load(Ordering::Relaxed) >= MAX_HEADER_WAITS {
+            continue;
+        }
+        door.header_waits.fetch_add(1, Ordering::Relaxed);
+        let door = Arc::clone(&door);
         tokio::spawn(async move {
-            shared.log.session(id, peer, "connected");
-            let life = Arc::new(Lifeline::default());
-            let handler =
-                ConnHandler::new(id, peer, Arc::clone(&shared), pending, Arc::clone(&life));
-            let deadline = accepted + shared.config.login_grace;
-            let result = serve_connection(
-                ssh,
+            let mut socket = socket;
+            let got = tokio::time::timeout(HEADER_WAIT, read_header(&mut socket)).await;
+            door.header_waits.fetch_sub(1, Ordering::Relaxed);
+            let (peer, head) = match got {
+                Ok(Ok((Source::Client(peer), head))) => (peer, head),
+                Ok(Ok((Source::Local, head))) => (tcp_peer, head),
+                Ok(Err(e)) => return bad_header(&door, socket, tcp_peer, &e),
+                Err(_) => return bad_header(&door, socket, tcp_peer, "no PROXY header in time"),
+            };
+            admit(
+                &door,
                 socket,
-                handler,
-                &life,
-                deadline,
-                shared.shutdown.clone(),
-            )
-            .await;
-            let secs = accepted.elapsed().as_secs_f64();
-            match result {
-                Ok(()) => {
-                    shared
-                        .log
-                        .session(id, peer, format_args!("disconnected after {secs:.1} s"))
-                }
-                Err(e) => shared.log.session(
-                    id,
-                    peer,
-                    format_args!("disconnected after {secs:.1} s: {e}"),
-                ),
-            }
+                peer,
+                move |s| Inbound::after_header(s, head),
+                accepted,
+            );
         });
     }
+}
+
+/// Closes a connection whose PROXY header is missing or malformed.
+fn bad_header(door: &Door, socket: tokio::net::TcpStream, tcp_peer: SocketAddr, why: &str) {
+    ServeStats::add(&door.shared.stats.refused, 1);
+    super::metrics::refused(Reason::Proxy);
+    door.shared
+        .log
+        .refusal(None, tcp_peer, Reason::Proxy.label(), why);
+    let _ = socket.try_write(format!("halfcast: {why}\r\n").as_bytes());
+}
+
+/// Admits a connection from `peer` within the limits and runs it in a task of its own, or
+/// tells it why not.
+fn admit(
+    door: &Door,
+    socket: tokio::net::TcpStream,
+    peer: SocketAddr,
+    inbound: impl FnOnce(tokio::net::TcpStream) -> Inbound<tokio::net::TcpStream>,
+    accepted: Instant,
+) {
+    let shared = &door.shared;
+    let pending = match shared.limiter.admit(peer.ip()) {
+        Ok(s) => s,
+        Err(why) => {
+            ServeStats::add(&shared.stats.refused, 1);
+            super::metrics::refused(why.reason());
+            let (logging_in, playing) = shared.limiter.live();
+            shared.log.refusal(
+                None,
+                peer,
+                why.reason().label(),
+                format_args!("{why} ({logging_in} logging in, {playing} playing)"),
+            );
+            refuse(socket, why, &door.lingering);
+            return;
+        }
+    };
+    ServeStats::add(&shared.stats.connections, 1);
+    super::metrics::connected();
+    let id = door.next_id.fetch_add(1, Ordering::Relaxed);
+    let ssh = Arc::clone(&door.ssh);
+    let shared = Arc::clone(shared);
+    let stream = inbound(socket);
+    tokio::spawn(async move {
+        shared.log.connect(id, peer);
+        let life = Arc::new(Lifeline::default());
+        let handler = ConnHandler::new(id, peer, Arc::clone(&shared), pending, Arc::clone(&life));
+        let deadline = accepted + shared.config.login_grace;
+        let result = serve_connection(
+            ssh,
+            stream,
+            handler,
+            &life,
+            deadline,
+            shared.shutdown.clone(),
+        )
+        .await;
+        let secs = accepted.elapsed().as_secs_f64();
+        let err = result.err();
+        if err
+            .as_deref()
+            .is_some_and(|e| e.starts_with("login grace time over"))
+        {
+            super::metrics::refused(Reason::Grace);
+        }
+        shared
+            .log
+            .disconnect(id, peer, secs, life.wire_bytes(), err.as_deref());
+    });
 }
 
 /// SSH_DISCONNECT_TOO_MANY_CONNECTIONS (RFC 4250 §4.2.2).
@@ -289,7 +468,7 @@ fn refuse(socket: tokio::net::TcpStream, why: Refusal, lingering: &Arc<AtomicU64
 /// plays, or when the server shuts down.
 async fn serve_connection(
     ssh: Arc<Config>,
-    socket: tokio::net::TcpStream,
+    socket: Inbound<tokio::net::TcpStream>,
     handler: ConnHandler,
     life: &Lifeline,
     deadline: Instant,
@@ -356,14 +535,14 @@ async fn goodbye(handle: &russh::server::Handle, reason: russh::Disconnect, why:
 ///
 /// # Errors
 /// A message when the runtime, the address or the host key fail.
-pub fn run_until_signal(config: ServeConfig, world: World) -> Result<(), String> {
+pub fn run_until_signal(config: ServeConfig, maps: Vec<ServedMap>) -> Result<(), String> {
     let rt = tokio::runtime::Builder::new_multi_thread()
         .enable_all()
         .build()
         .map_err(|e| format!("cannot start the async runtime: {e}"))?;
     rt.block_on(async move {
-        let log = Log::new(config.quiet);
-        let server = start(config, world).await?;
+        let log = Log::with_format(config.quiet, config.log_format);
+        let server = start_maps(config, maps).await?;
         wait_for_signal().await.map_err(|e| e.to_string())?;
         log.server("shutting down");
         let stats = server.shutdown().await;

@@ -21,8 +21,11 @@ use tokio::time::MissedTickBehavior;
 
 use super::ask_colour::{ask_truecolor, SSH_QUERY_PATIENCE};
 use super::config::clamp_size;
+use super::handler::BoardLine;
 use super::header::{self, Piece};
+use super::leaderboard::{board_key, shown_name, Boards};
 use super::log::Log;
+use super::metrics::{self, FrameMetrics, Reason};
 use super::screen::{panes_for, view_rect, SessionScreen};
 use super::stats::ServeStats;
 use super::world_task::{WorldHandle, WorldMsg};
@@ -33,6 +36,7 @@ use crate::ui::key_bytes::{InputEvent, InputParser};
 use crate::ui::key_route::{route, Routed};
 use crate::ui::keys::{Controls, InputMode, UiCommand};
 use crate::ui::layout::Toggles;
+use crate::ui::results::Board;
 use crate::world::World;
 
 /// Alternate screen, hidden cursor, cleared; kitty keyboard flags pushed (disambiguate, event
@@ -55,6 +59,8 @@ pub struct SessionParams {
     pub handle: Handle,
     pub channel: ChannelId,
     pub world: WorldHandle,
+    /// The lasting leaderboard, when the server keeps one.
+    pub boards: Option<BoardLine>,
     /// The served world (with the avatar sheet at `avatar_sheet`).
     pub world_data: Arc<World>,
     pub avatar_sheet: usize,
@@ -98,6 +104,11 @@ struct Tally {
 pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
     let mut s = State::new(&p, *inputs.size.borrow());
     let mut shutdown = p.shutdown.clone();
+    let frame_metrics = FrameMetrics::new();
+    metrics::session(p.spectator, true);
+    let boards = p.boards.as_ref().map(|b| b.board.boards());
+    // (map index, name) whose own best was last asked for.
+    let mut asked: Option<(usize, String)> = None;
     if !p.spectator {
         p.world
             .send(WorldMsg::Join {
@@ -163,7 +174,9 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
             at = tick.tick() => {
                 if let Some(prev) = last_tick {
                     let gap = at.duration_since(prev).as_secs_f64() / period.as_secs_f64();
-                    tally.dropped += (gap.round() as u64).saturating_sub(1);
+                    let skipped = (gap.round() as u64).saturating_sub(1);
+                    tally.dropped += skipped;
+                    frame_metrics.skipped(skipped);
                 }
                 last_tick = Some(at);
                 let now = Instant::now();
@@ -197,10 +210,29 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
                         }
                     }
                 }
+                if let (Some(line), Some(me)) = (&p.boards, snap.player(p.id)) {
+                    // Ask for our own best on each map as we come to it.
+                    let here = (snap.map, me.name.clone());
+                    if asked.as_ref() != Some(&here) {
+                        if let Some(hash) = line.hashes.get(snap.map) {
+                            line.board.lookup(hash, line.mode, &here.1);
+                        }
+                        asked = Some(here);
+                    }
+                }
+                // Only while shown: a frame of play builds no board.
+                s.leaders = match (&p.boards, &boards) {
+                    (Some(line), Some(rx)) if snap.ended.is_some() || s.show_leaders => {
+                        leaders(line, &rx.borrow(), &snap, p.id)
+                    }
+                    _ => None,
+                };
                 s.compose(&snap, &mut out);
                 if out.is_empty() {
                     continue;
                 }
+                let (render, encode) = s.screen.last_times();
+                frame_metrics.timed(render, encode);
                 let n = out.len() as u64;
                 let bytes = std::mem::take(&mut out);
                 match tokio::time::timeout(p.stall_timeout, p.handle.data(p.channel, bytes)).await {
@@ -209,6 +241,7 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
                     Ok(Ok(())) => {
                         tally.frames += 1;
                         tally.bytes += n;
+                        frame_metrics.sent(n as usize);
                     }
                 }
             }
@@ -233,6 +266,10 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
             let _ = h.close(p.channel).await;
         })
         .await;
+    }
+    metrics::session(p.spectator, false);
+    if end == End::Stalled {
+        metrics::refused(Reason::Stall);
     }
     ServeStats::add(&p.stats.frames_sent, tally.frames);
     ServeStats::add(&p.stats.bytes_sent, tally.bytes);
@@ -260,8 +297,44 @@ fn keys_early(s: &mut State, bytes: &[u8]) -> Option<End> {
     s.on_keys(&keys, &Snapshot::default())
 }
 
-/// (snapshot version, size, colour level, eye, panes): everything a frame is drawn from.
-type Shown = (u64, (u16, u16), ColourChoice, Option<PlayerId>, Toggles);
+/// (snapshot version, size, colour level, eye, panes, leaderboard shown): everything a frame
+/// is drawn from.
+type Shown = (
+    u64,
+    (u16, u16),
+    ColourChoice,
+    Option<PlayerId>,
+    Toggles,
+    Option<(Board, bool)>,
+);
+
+/// The leaderboard a session shows for the map of `snap` (the finished round's map while the
+/// results show): top entries with escaped names, and `me`'s own best.
+fn leaders(line: &BoardLine, boards: &Boards, snap: &Snapshot, me: PlayerId) -> Option<Board> {
+    let map = snap.ended.as_ref().map_or(snap.map, |e| e.map);
+    let hash = line.hashes.get(map)?;
+    let board = boards.maps.get(&board_key(hash, line.mode));
+    let top = board.map(|b| b.top.as_slice()).unwrap_or_default();
+    let rows = top
+        .iter()
+        .enumerate()
+        .map(|(i, e)| {
+            (
+                format!("{:>2}. {}", i + 1, shown_name(&e.name)),
+                e.figure(line.mode),
+            )
+        })
+        .collect();
+    let own = snap
+        .player(me)
+        .and_then(|p| board?.bests.get(&p.name))
+        .map(|e| e.figure(line.mode));
+    Some(Board {
+        title: format!("All-time top {} on this map", super::leaderboard::TOP),
+        rows,
+        own,
+    })
+}
 
 /// What is on the client's screen and what it asked for; everything the frame depends on.
 struct State {
@@ -280,6 +353,10 @@ struct State {
     screen: SessionScreen,
     /// What the frame on screen was drawn from, to skip identical frames.
     shown: Option<Shown>,
+    /// The leaderboard to show (on the results, and over the game while `L` is on).
+    leaders: Option<Board>,
+    /// Whether `L` put the leaderboard over the game.
+    show_leaders: bool,
 }
 
 impl State {
@@ -302,6 +379,8 @@ impl State {
                 screen
             },
             shown: None,
+            leaders: None,
+            show_leaders: false,
         }
     }
 
@@ -328,6 +407,7 @@ impl State {
                 InputEvent::Key(k) => match route(k) {
                     Routed::NextTarget => self.following = cycle(snap, self.following, true),
                     Routed::PrevTarget => self.following = cycle(snap, self.following, false),
+                    Routed::Leaderboard => self.show_leaders = !self.show_leaders,
                     Routed::Tui(ev) => self.controls.handle(&ev, now),
                     Routed::Nothing => {}
                 },
@@ -429,11 +509,14 @@ impl State {
             self.screen.colour(),
             eye,
             self.screen.toggles,
+            self.leaders.clone().map(|b| (b, self.show_leaders)),
         );
-        if self.shown == Some(key) {
+        if self.shown.as_ref() == Some(&key) {
             return;
         }
         self.shown = Some(key);
+        self.screen
+            .set_leaders(self.leaders.clone(), self.show_leaders);
         let header = self.header(snap, eye);
         let mode = self.controls.mode();
         out.extend_from_slice(self.screen.frame(snap, eye, &header, self.size, mode));

@@ -9,8 +9,8 @@ use std::time::Duration;
 use tokio::sync::{mpsc, watch};
 use tokio::time::MissedTickBehavior;
 
-use crate::game::multi::players::{PlayerId, Players, SharedSnapshot, Snapshot};
-use crate::game::multi::round::Mode;
+use crate::game::multi::players::{PlayerId, Players, Rules, SharedSnapshot, Snapshot};
+use crate::game::multi::round::RoundEnd;
 use crate::game::Input;
 use crate::world::World;
 
@@ -54,16 +54,25 @@ impl WorldHandle {
     }
 }
 
-/// Starts the world task on the current runtime, playing `mode`, its creatures' random choices
-/// starting from `seed`; it ends when every handle is dropped.
+/// The world task for a server: rounds over `worlds` in turn by `rules`; `round_over` is called
+/// (on the world task: it must not block) with each finished round's results as it ends.
+///
+/// # Panics
+/// When `worlds` is empty.
 #[must_use]
-pub fn spawn_game(world: Arc<World>, tick_hz: u32, mode: Mode, seed: u64) -> WorldHandle {
+pub fn spawn_rounds(
+    worlds: Vec<Arc<World>>,
+    tick_hz: u32,
+    rules: Rules,
+    mut round_over: impl FnMut(&RoundEnd) + Send + 'static,
+) -> WorldHandle {
     let (tx, mut rx) = mpsc::channel::<WorldMsg>(1024);
     let (snap_tx, snap_rx) = watch::channel(Arc::new(Snapshot::default()));
     let tick_hz = tick_hz.clamp(1, 1000);
     let dt = 1.0 / f64::from(tick_hz);
     tokio::spawn(async move {
-        let mut players = Players::with_mode(world, mode, seed);
+        let mut players = Players::rotating(worlds, rules);
+        let mut was_over = false;
         let mut tick = tokio::time::interval(Duration::from_secs_f64(dt));
         tick.set_missed_tick_behavior(MissedTickBehavior::Skip);
         loop {
@@ -88,7 +97,14 @@ pub fn spawn_game(world: Arc<World>, tick_hz: u32, mode: Mode, seed: u64) -> Wor
                     Err(mpsc::error::TryRecvError::Disconnected) => return,
                 }
             }
+            let started = std::time::Instant::now();
             players.tick(dt);
+            super::metrics::world_tick(started.elapsed());
+            let over = players.ended();
+            if let (Some(end), false) = (over, was_over) {
+                round_over(end);
+            }
+            was_over = over.is_some();
             // The world moves every tick (doors, animations); an empty one has nothing to show.
             if joined_or_left || !players.is_empty() {
                 let _ = snap_tx.send(Arc::new(players.snapshot()));

@@ -14,6 +14,8 @@ pub enum Routed {
     /// Follow the next player (Tab) or the previous one (Shift-Tab).
     NextTarget,
     PrevTarget,
+    /// Show or hide the server's lasting leaderboard (`L`, shifted: `l` stays night mode).
+    Leaderboard,
     /// The TUI's key map decides (movement, doors, debugger, panes, help, quit).
     Tui(Event),
     /// Releases and repeats of server keys, and keys no terminal library names.
@@ -31,6 +33,7 @@ pub fn route(ev: KeyEvent) -> Routed {
     let server_key = match ev.key {
         Key::Tab => Some(Routed::NextTarget),
         Key::BackTab => Some(Routed::PrevTarget),
+        Key::Char('L') => Some(Routed::Leaderboard),
         _ => None,
     };
     if let Some(r) = server_key {

@@ -15,8 +15,24 @@ pub enum Then {
     Level(String),
     /// Enter plays this level again.
     Again,
-    /// A shared world starts the next round by itself, in this many seconds.
-    NewRound(u64),
+    /// A shared world starts the next round by itself, in `seconds`, on the map `map`.
+    NewRound {
+        /// Seconds until it starts.
+        seconds: u64,
+        /// The next round's map name.
+        map: String,
+    },
+}
+
+/// A lasting leaderboard shown under a shared world's results: the map's all-time best.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct Board {
+    /// Its heading ("All-time top 10").
+    pub title: String,
+    /// (rank and name, figure), best first; names already escaped for the terminal.
+    pub rows: Vec<(String, String)>,
+    /// The player's own best, if they have one.
+    pub own: Option<String>,
 }
 
 /// One finished level's figures, and where the player goes from here.
@@ -36,6 +52,8 @@ pub struct Results {
     pub by: Option<String>,
     /// A shared world's scoreboard (name, figure), best first.
     pub board: Vec<(String, String)>,
+    /// A server's lasting leaderboard for this map, when it keeps one.
+    pub leaders: Option<Board>,
 }
 
 impl Results {
@@ -50,6 +68,7 @@ impl Results {
             then,
             by: None,
             board: Vec::new(),
+            leaders: None,
         }
     }
 }
@@ -87,8 +106,14 @@ impl Results {
                 Span::styled(value, VALUE),
             ])
         };
+        // A shared world's round can also end on its clock, with nobody at the exit.
+        let timed_out = matches!(self.then, Then::NewRound { .. }) && self.by.is_none();
         let mut out = vec![Line::from(Span::styled(
-            "Level complete!",
+            if timed_out {
+                "Time is up!"
+            } else {
+                "Level complete!"
+            },
             VALUE.fg(Color::Rgb(120, 255, 150)),
         ))];
         if let Some(who) = &self.by {
@@ -114,14 +139,19 @@ impl Results {
         let then = match &self.then {
             Then::Level(name) => Some(format!(" next level: {name}")),
             Then::Again => Some(" play this level again".to_owned()),
-            Then::NewRound(s) => {
-                out.push(Line::from(Span::styled(
-                    format!("next round in {s} s"),
-                    LABEL,
-                )));
+            Then::NewRound { seconds, map } => {
+                out.push(Line::from(vec![
+                    Span::styled(format!("next round in {seconds} s on "), LABEL),
+                    Span::styled(map.clone(), VALUE),
+                ]));
                 None
             }
         };
+        if let Some(board) = &self.leaders {
+            out.push(Line::default());
+            out.extend(board.lines());
+            out.push(Line::default());
+        }
         if let Some(then) = then {
             out.push(Line::from(vec![
                 Span::styled("Enter", KEY),
@@ -133,6 +163,53 @@ impl Results {
             Span::styled(" quit", LABEL),
         ]));
         out
+    }
+}
+
+impl Board {
+    /// Its text rows: the heading, one row per entry (or "no rounds yet"), the own best.
+    #[must_use]
+    pub fn lines(&self) -> Vec<Line<'static>> {
+        let mut out = vec![Line::from(Span::styled(self.title.clone(), LABEL))];
+        if self.rows.is_empty() {
+            out.push(Line::from(Span::styled("no rounds recorded yet", LABEL)));
+        }
+        for (name, figure) in &self.rows {
+            out.push(Line::from(vec![
+                Span::styled(format!("{name:<20}"), LABEL),
+                Span::styled(figure.clone(), VALUE),
+            ]));
+        }
+        if let Some(own) = &self.own {
+            out.push(Line::from(vec![
+                Span::styled(format!("{:<20}", "your best"), LABEL),
+                Span::styled(own.clone(), VALUE),
+            ]));
+        }
+        out
+    }
+}
+
+impl Widget for &Board {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        let lines = self.lines();
+        let text_width = lines.iter().map(Line::width).max().unwrap_or(0);
+        let block = Block::bordered()
+            .border_set(ratatui::symbols::border::PLAIN)
+            .border_style(Style::new().fg(Color::Rgb(110, 200, 230)))
+            .title(" L: leaderboard ")
+            .style(Style::new().bg(Color::Rgb(22, 24, 32)));
+        let size = (text_width.max(16) as u16 + 4, lines.len() as u16 + 2);
+        let Some(inner) = super::centred_box::draw(area, size, block, buf) else {
+            return;
+        };
+        let inner = Rect::new(
+            inner.x + 1,
+            inner.y,
+            inner.width.saturating_sub(1),
+            inner.height,
+        );
+        Paragraph::new(lines).render(inner, buf);
     }
 }
 
@@ -198,6 +275,7 @@ mod tests {
             then: Then::Level("maps/level2.cub".into()),
             by: None,
             board: Vec::new(),
+            leaders: None,
         };
         let mut buf = Buffer::empty(Rect::new(0, 0, 80, 24));
         (&r).render(buf.area, &mut buf);

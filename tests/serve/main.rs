@@ -5,6 +5,8 @@
 #[path = "../support/common/mod.rs"]
 #[allow(dead_code)] // each test binary uses its own part of the shared helpers
 mod common;
+#[path = "../support/serve_process/mod.rs"]
+mod serve_process;
 #[path = "../support/serve_support/mod.rs"]
 mod serve_support;
 #[path = "../support/world_common/mod.rs"]
@@ -20,10 +22,15 @@ mod serve_cli;
 mod serve_colour;
 mod serve_compression;
 mod serve_flood;
+mod serve_haproxy;
+mod serve_json_log;
+mod serve_metrics;
 mod serve_names;
 mod serve_openssh;
 mod serve_openssh_colour;
 mod serve_openssh_limits;
+mod serve_proxy;
 mod serve_refusals;
+mod serve_rotation;
 mod serve_session;
 mod serve_stall;

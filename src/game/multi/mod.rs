@@ -3,6 +3,7 @@
 //! the SSH server's world task drives them once per tick.
 
 pub mod players;
+pub mod rotation;
 pub mod round;
 
 /// A connection's id; also names its player in the world.

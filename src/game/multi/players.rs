@@ -13,6 +13,7 @@ use crate::game::Body;
 use crate::game::Player as LevelPlayer;
 use crate::game::{step_shared, Command, GameState, Held, Input, Level, Message, Score};
 
+use super::rotation::Rotation;
 use super::round::{self, Here, Mode, Round, RoundEnd, Scoreboard};
 use crate::render::view::STANDING_EYE;
 use crate::vec2::Vec2;
@@ -68,11 +69,17 @@ pub struct Snapshot {
     pub it: Option<PlayerId>,
     /// The round's results while they show.
     pub ended: Option<RoundEnd>,
+    /// The world this round plays (it changes between rounds when several maps rotate).
+    pub world: Option<Arc<World>>,
+    /// Which of the served maps that is.
+    pub map: usize,
 }
 
 impl Default for Snapshot {
     fn default() -> Self {
         Self {
+            world: None,
+            map: 0,
             version: 0,
             doors: DoorState::none(),
             players: Vec::new(),
@@ -104,10 +111,43 @@ struct Player {
     walking: bool,
 }
 
+/// How a server's rounds run: their length, the results' pause, the order of the maps.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Rules {
+    /// The game everybody plays.
+    pub mode: Mode,
+    /// Seeds the creatures' random choices (and the shuffle, when there is one).
+    pub seed: u64,
+    /// Seconds a round lasts at most (`None`: coop until the exit, tag its 3 minutes).
+    pub round_limit: Option<f64>,
+    /// Seconds the results show before the next round.
+    pub results_seconds: f64,
+    /// Plays the maps in a random order (drawn from `seed`) instead of the order given.
+    pub shuffle: bool,
+}
+
+impl Rules {
+    /// `mode` from `seed` with the default clock and the maps in order.
+    #[must_use]
+    pub fn new(mode: Mode, seed: u64) -> Self {
+        Self {
+            mode,
+            seed,
+            round_limit: None,
+            results_seconds: round::RESULTS_SECONDS,
+            shuffle: false,
+        }
+    }
+}
+
 /// The game state of the shared world: every player, keyed by id, and the doors.
 #[derive(Debug, Clone)]
 pub struct Players {
+    /// The world this round plays: `worlds[rotation.current()]`.
     world: Arc<World>,
+    /// Every served map's world, in the order given.
+    worlds: Vec<Arc<World>>,
+    rotation: Rotation,
     solids: Vec<SolidDisc>,
     players: BTreeMap<PlayerId, Player>,
     doors: DoorState,
@@ -129,16 +169,45 @@ impl Players {
     /// Nobody here yet, playing `mode`; the creatures' random choices start from `seed`.
     #[must_use]
     pub fn with_mode(world: Arc<World>, mode: Mode, seed: u64) -> Self {
+        Self::rotating(vec![world], Rules::new(mode, seed))
+    }
+
+    /// Nobody here yet; rounds play `worlds` in turn (at least one) by `rules`.
+    ///
+    /// # Panics
+    /// When `worlds` is empty.
+    #[must_use]
+    pub fn rotating(worlds: Vec<Arc<World>>, rules: Rules) -> Self {
+        assert!(!worlds.is_empty(), "a server plays at least one map");
+        let rotation = Rotation::new(worlds.len(), rules.shuffle.then_some(rules.seed));
+        let world = Arc::clone(&worlds[rotation.current()]);
+        let mut round = Round::new(&world.map, rules.mode, rules.seed);
+        round.limit = rules.round_limit;
+        round.results_seconds = rules.results_seconds;
         Self {
             solids: world.solid_discs(),
             doors: DoorState::new(&world.map),
-            round: Round::new(&world.map, mode, seed),
+            round,
             world,
+            worlds,
+            rotation,
             players: BTreeMap::new(),
             time: 0.0,
             joined: 0,
             version: 0,
         }
+    }
+
+    /// The round's results while they show (the round is over).
+    #[must_use]
+    pub fn ended(&self) -> Option<&RoundEnd> {
+        self.round.ended.as_ref()
+    }
+
+    /// Which of the served maps this round plays.
+    #[must_use]
+    pub fn map_index(&self) -> usize {
+        self.rotation.current()
     }
 
     /// Adds a player at a free spawn point, facing the map's start direction (ignored if `id`
@@ -350,6 +419,10 @@ impl Players {
                 .and_then(|id| self.players.get(id))
                 .map(|p| p.name.clone());
             self.round.end(&here, by.as_deref());
+            if let Some(end) = self.round.ended.as_mut() {
+                end.map = self.rotation.current();
+                end.next_map = self.worlds[self.rotation.next()].map.name.clone();
+            }
         }
         // Each player's HUD: the team's score in coop, their own in tag.
         for p in self.players.values_mut() {
@@ -361,8 +434,15 @@ impl Players {
         }
     }
 
-    /// A new round: a fresh level, scores cleared, everyone back at a spawn point.
+    /// A new round on the rotation's next map: a fresh level, scores cleared, everyone back at
+    /// a spawn point.
     fn next_round(&mut self) {
+        self.rotation.advance();
+        let world = Arc::clone(&self.worlds[self.rotation.current()]);
+        if !Arc::ptr_eq(&world, &self.world) {
+            self.solids = world.solid_discs();
+            self.world = world;
+        }
         self.round.next(&self.world.map);
         self.doors = DoorState::new(&self.world.map);
         let ids: Vec<PlayerId> = self.players.keys().copied().collect();
@@ -415,6 +495,8 @@ impl Players {
         let here = self.here();
         let scoreboard = self.round.header(&here);
         Snapshot {
+            world: Some(Arc::clone(&self.world)),
+            map: self.rotation.current(),
             level: self.round.level.clone(),
             scoreboard,
             it: self.round.it,
@@ -560,6 +642,34 @@ mod tests {
             "{}",
             s.scoreboard
         );
+    }
+
+    #[test]
+    fn rounds_rotate_through_the_maps_and_the_results_name_the_next() {
+        let a = Arc::new(World::default_world());
+        let mut bw = World::default_world();
+        bw.map.name = "b.cub".into();
+        let b = Arc::new(bw);
+        let mut rules = Rules::new(Mode::Coop, 1);
+        rules.round_limit = Some(1.0);
+        rules.results_seconds = 0.5;
+        let mut ps = Players::rotating(vec![a, b], rules);
+        ps.join(1, "ann");
+        let mut seen = Vec::new();
+        for _ in 0..80 {
+            ps.tick(0.1);
+            let s = ps.snapshot();
+            let name = s.world.as_ref().expect("a world").map.name.clone();
+            if seen.last() != Some(&name) {
+                seen.push(name);
+            }
+            if let Some(end) = &s.ended {
+                let other = if s.map == 0 { "b.cub" } else { "default.cub" };
+                assert_eq!(end.next_map, other);
+                assert_eq!(end.map, s.map);
+            }
+        }
+        assert_eq!(seen[..4], ["default.cub", "b.cub", "default.cub", "b.cub"]);
     }
 
     #[test]

@@ -87,6 +87,21 @@ pub struct BoardRow {
     pub it: bool,
 }
 
+/// One player's figures in a finished round, as the leaderboard records them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlayerResult {
+    /// The name they played under (unique among those connected).
+    pub name: String,
+    /// Their own points (coop pools them for the team; this is their part).
+    pub points: i64,
+    /// Treasures they picked up.
+    pub items: usize,
+    /// Seconds they were "it" (tag; 0 in coop).
+    pub it_seconds: f64,
+    /// Whether they were the one who reached the exit.
+    pub reached_exit: bool,
+}
+
 /// A finished round, shown until the next starts.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RoundEnd {
@@ -102,6 +117,14 @@ pub struct RoundEnd {
     pub treasures: (usize, usize),
     /// The final scoreboard, best first.
     pub board: Vec<BoardRow>,
+    /// Everyone's figures, for the leaderboard.
+    pub players: Vec<PlayerResult>,
+    /// Which of the served maps this round played (filled in by `Players`).
+    pub map: usize,
+    /// The name of the map the next round plays (filled in by `Players`).
+    pub next_map: String,
+    /// Whether the round ended at the exit with every treasure found (a full clear).
+    pub cleared: bool,
 }
 
 /// Who is here, as the round needs them: id, name, colour, where they stand.
@@ -138,6 +161,11 @@ pub struct Round {
     pub it_seconds: BTreeMap<PlayerId, f64>,
     /// The results, once the round is over.
     pub ended: Option<RoundEnd>,
+    /// Seconds a round lasts at most (`--round-minutes`); tag's default is
+    /// [`TAG_ROUND_SECONDS`], coop's is none (it ends at the exit).
+    pub limit: Option<f64>,
+    /// How long the results show before the next round, in seconds.
+    pub results_seconds: f64,
     grace: f64,
     seed: u64,
 }
@@ -155,6 +183,8 @@ impl Round {
             it: None,
             it_seconds: BTreeMap::new(),
             ended: None,
+            limit: None,
+            results_seconds: RESULTS_SECONDS,
             grace: 0.0,
             seed,
         }
@@ -214,11 +244,19 @@ impl Round {
         Some(touched.name.to_owned())
     }
 
-    /// Whether this tick ends the round: someone reached the exit, or tag's time ran out.
+    /// The round's length limit in seconds, if it has one.
+    #[must_use]
+    pub fn time_limit(&self) -> Option<f64> {
+        match self.mode {
+            Mode::Coop => self.limit,
+            Mode::Tag => Some(self.limit.unwrap_or(TAG_ROUND_SECONDS)),
+        }
+    }
+
+    /// Whether this tick ends the round: someone reached the exit, or the time ran out.
     #[must_use]
     pub fn is_over(&self) -> bool {
-        self.level.finished().is_some()
-            || (self.mode == Mode::Tag && self.elapsed >= TAG_ROUND_SECONDS)
+        self.level.finished().is_some() || self.time_limit().is_some_and(|t| self.elapsed >= t)
     }
 
     /// Ends the round: the results for everyone `here`, `by` the player who reached the exit.
@@ -231,13 +269,28 @@ impl Round {
                 here.iter().map(|h| h.score.found).sum(),
             ),
         };
+        let players = here
+            .iter()
+            .map(|h| PlayerResult {
+                name: h.name.to_owned(),
+                points: h.score.points,
+                items: h.score.found,
+                it_seconds: self.it_seconds.get(&h.id).copied().unwrap_or(0.0),
+                reached_exit: by == Some(h.name),
+            })
+            .collect();
+        let total = self.level.treasures_total();
         self.ended = Some(RoundEnd {
-            left: RESULTS_SECONDS,
+            left: self.results_seconds,
             by: by.map(str::to_owned),
             seconds: self.elapsed,
             points,
-            treasures: (found, self.level.treasures_total()),
+            treasures: (found, total),
             board,
+            players,
+            map: 0,
+            next_map: String::new(),
+            cleared: by.is_some() && found >= total,
         });
     }
 
@@ -290,17 +343,25 @@ impl Round {
             .collect();
         let left = self.level.items_left();
         let summary = match self.mode {
-            Mode::Coop => format!(
-                "coop: team {} pts, {left} {} left",
-                self.team.points,
-                if left == 1 { "item" } else { "items" },
-            ),
+            Mode::Coop => {
+                let mut s = format!(
+                    "coop: team {} pts, {left} {} left",
+                    self.team.points,
+                    if left == 1 { "item" } else { "items" },
+                );
+                if let Some(limit) = self.limit {
+                    let clock = (limit - self.elapsed).max(0.0) as u64;
+                    s.push_str(&format!(", {}:{:02} to go", clock / 60, clock % 60));
+                }
+                s
+            }
             Mode::Tag => {
                 let it = self
                     .it
                     .and_then(|id| here.iter().find(|h| h.id == id))
                     .map_or("nobody", |h| h.name);
-                let clock = (TAG_ROUND_SECONDS - self.elapsed).max(0.0);
+                let limit = self.time_limit().unwrap_or(TAG_ROUND_SECONDS);
+                let clock = (limit - self.elapsed).max(0.0);
                 format!(
                     "tag: it is {it}, {}:{:02} left",
                     clock as u64 / 60,
@@ -430,6 +491,30 @@ mod tests {
         r.next(&m);
         assert_eq!((r.number, r.elapsed, r.it), (2, 0.0, None));
         assert!(r.ended.is_none());
+    }
+
+    #[test]
+    fn a_limited_coop_round_ends_on_time_and_its_results_show_as_long_as_asked() {
+        let m = map();
+        let mut r = Round::new(&m, Mode::Coop, 1);
+        r.elapsed = 10_000.0;
+        assert!(!r.is_over(), "coop has no clock by default");
+        r.limit = Some(60.0);
+        r.results_seconds = 1.5;
+        r.elapsed = 45.0;
+        let s = Score::default();
+        let ann = [here(1, "ann", (2.5, 2.5), &s)];
+        assert!(r.header(&ann).summary.ends_with(", 0:15 to go"));
+        assert!(!r.is_over());
+        r.elapsed = 60.0;
+        assert!(r.is_over());
+        r.end(&ann, None);
+        let end = r.ended.as_ref().expect("ended");
+        assert_eq!(end.left, 1.5);
+        assert!(!end.cleared);
+        assert_eq!(end.players[0].name, "ann");
+        assert!(!end.players[0].reached_exit);
+        assert!(r.wait(1.6));
     }
 
     #[test]

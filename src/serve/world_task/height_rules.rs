@@ -5,7 +5,8 @@
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use super::{spawn_game, WorldHandle, WorldMsg};
+use super::{spawn_rounds, WorldHandle, WorldMsg};
+use crate::game::multi::players::Rules;
 use crate::game::multi::round::Mode;
 use crate::game::{Action, Command, Held, Input, PLAYER_RADIUS};
 use crate::map::parse_map;
@@ -72,7 +73,7 @@ async fn settle(world: &WorldHandle) -> (f64, f64) {
 #[tokio::test]
 async fn the_world_task_moves_players_by_the_same_height_rules() {
     let world = Arc::new(world(ZONES, GRID));
-    let handle = spawn_game(world, TICK_HZ, Mode::Coop, 0);
+    let handle = spawn_rounds(vec![world], TICK_HZ, Rules::new(Mode::Coop, 0), |_| {});
     handle
         .send(WorldMsg::Join {
             id: 1,

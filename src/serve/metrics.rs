@@ -1,0 +1,227 @@
+//! What the server reports to Prometheus (`--metrics ADDR`): the series' names in one place,
+//! and the exporter's HTTP listener (the `metrics-exporter-prometheus` crate's own).
+//!
+//! The server records through the `metrics` facade whether or not an exporter is installed;
+//! without one every record is a no-op. Per-frame series go through handles made once per
+//! session, so a frame costs a few atomic additions.
+
+use std::net::SocketAddr;
+use std::time::Duration;
+
+use metrics::{counter, describe_counter, describe_gauge, describe_histogram, gauge, histogram};
+use metrics::{Counter, Histogram, Unit};
+use metrics_exporter_prometheus::{Matcher, PrometheusBuilder};
+
+/// Sessions playing or watching now, by `state` ("playing", "watching").
+pub const SESSIONS: &str = "halfcast_sessions";
+/// Connections accepted and still logging in (TCP accept to shell start).
+pub const LOGGING_IN: &str = "halfcast_logging_in";
+/// Connections accepted since start.
+pub const CONNECTIONS: &str = "halfcast_connections_total";
+/// Connections turned away, by `reason`: full, per-address, startups, auth, grace, stall,
+/// proxy (a missing or bad PROXY header).
+pub const REFUSALS: &str = "halfcast_refusals_total";
+/// Frames sent to clients.
+pub const FRAMES_SENT: &str = "halfcast_frames_sent_total";
+/// Frame ticks skipped because a client was still taking the previous frame.
+pub const FRAMES_SKIPPED: &str = "halfcast_frames_skipped_total";
+/// Terminal bytes of the frames sent (before SSH's compression and encryption).
+pub const PAYLOAD_BYTES: &str = "halfcast_payload_bytes_total";
+/// Bytes written to clients' TCP sockets (SSH packets: compressed, encrypted, framed).
+pub const WIRE_BYTES: &str = "halfcast_wire_bytes_total";
+/// Time to cast one frame's 3D view and its overlays.
+pub const RENDER_SECONDS: &str = "halfcast_frame_render_seconds";
+/// Time to draw the panes and encode one frame to terminal bytes.
+pub const ENCODE_SECONDS: &str = "halfcast_frame_encode_seconds";
+/// Time of one world tick (every player's step, the level, the round's rules).
+pub const TICK_SECONDS: &str = "halfcast_world_tick_seconds";
+/// Rounds finished, by `mode`.
+pub const ROUNDS: &str = "halfcast_rounds_total";
+/// Leaderboard writes, by `result` ("ok", "error", "dropped": the writer's queue was full).
+pub const DB_WRITES: &str = "halfcast_leaderboard_writes_total";
+
+/// Histogram buckets for the timing series, in seconds (0.1 ms to 0.5 s).
+const BUCKETS: &[f64] = &[
+    0.0001, 0.00025, 0.0005, 0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 0.5,
+];
+
+/// Why a connection was turned away, as the `reason` label says it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Reason {
+    /// `--max-sessions` reached.
+    Full,
+    /// `--max-per-ip` or the per-address share of logging-in connections.
+    PerAddress,
+    /// `--max-startups`.
+    Startups,
+    /// A failed authentication attempt.
+    Auth,
+    /// The login grace time ran out.
+    Grace,
+    /// The client stopped taking output.
+    Stall,
+    /// A missing or malformed PROXY protocol header (or one sent without `--proxy-protocol`).
+    Proxy,
+}
+
+impl Reason {
+    /// The label value.
+    #[must_use]
+    pub fn label(self) -> &'static str {
+        match self {
+            Reason::Full => "full",
+            Reason::PerAddress => "per-address",
+            Reason::Startups => "startups",
+            Reason::Auth => "auth",
+            Reason::Grace => "grace",
+            Reason::Stall => "stall",
+            Reason::Proxy => "proxy",
+        }
+    }
+}
+
+/// Starts the exporter's HTTP listener on `addr` (`/metrics`, any path in fact) and makes it the
+/// process's recorder.
+///
+/// # Errors
+/// A message when the address cannot be bound or a recorder is already installed.
+pub fn install(addr: SocketAddr) -> Result<(), String> {
+    PrometheusBuilder::new()
+        .with_http_listener(addr)
+        .set_buckets_for_metric(Matcher::Suffix("_seconds".into()), BUCKETS)
+        .and_then(PrometheusBuilder::install)
+        .map_err(|e| format!("cannot serve metrics on {addr}: {e}"))?;
+    describe();
+    Ok(())
+}
+
+/// Help lines for every series.
+fn describe() {
+    describe_gauge!(SESSIONS, "Sessions playing or watching now, by state.");
+    describe_gauge!(LOGGING_IN, "Connections accepted and still logging in.");
+    describe_counter!(CONNECTIONS, "Connections accepted.");
+    describe_counter!(REFUSALS, "Connections turned away, by reason.");
+    describe_counter!(FRAMES_SENT, "Frames sent to clients.");
+    describe_counter!(
+        FRAMES_SKIPPED,
+        "Frame ticks skipped while a client was still taking the previous frame."
+    );
+    describe_counter!(
+        PAYLOAD_BYTES,
+        Unit::Bytes,
+        "Terminal bytes of frames sent, before SSH."
+    );
+    describe_counter!(
+        WIRE_BYTES,
+        Unit::Bytes,
+        "Bytes written to client sockets (SSH packets)."
+    );
+    describe_histogram!(RENDER_SECONDS, Unit::Seconds, "3D view cast per frame.");
+    describe_histogram!(
+        ENCODE_SECONDS,
+        Unit::Seconds,
+        "Panes and encoding per frame."
+    );
+    describe_histogram!(TICK_SECONDS, Unit::Seconds, "One world tick.");
+    describe_counter!(ROUNDS, "Rounds finished, by mode.");
+    describe_counter!(DB_WRITES, "Leaderboard writes, by result.");
+}
+
+/// A connection was turned away.
+pub fn refused(why: Reason) {
+    counter!(REFUSALS, "reason" => why.label()).increment(1);
+}
+
+/// A connection was accepted.
+pub fn connected() {
+    counter!(CONNECTIONS).increment(1);
+}
+
+/// One more (`up`) or one fewer connection logging in.
+pub fn logging_in(up: bool) {
+    let g = gauge!(LOGGING_IN);
+    if up {
+        g.increment(1.0);
+    } else {
+        g.decrement(1.0);
+    }
+}
+
+/// One more (`up`) or one fewer session playing (or watching, for a spectator).
+pub fn session(spectator: bool, up: bool) {
+    let g = gauge!(SESSIONS, "state" => if spectator { "watching" } else { "playing" });
+    if up {
+        g.increment(1.0);
+    } else {
+        g.decrement(1.0);
+    }
+}
+
+/// One world tick took `d`.
+pub fn world_tick(d: Duration) {
+    histogram!(TICK_SECONDS).record(d.as_secs_f64());
+}
+
+/// A round of `mode` finished.
+pub fn round(mode: &'static str) {
+    counter!(ROUNDS, "mode" => mode).increment(1);
+}
+
+/// A leaderboard write ended with `result` ("ok", "error", "dropped").
+pub fn db_write(result: &'static str) {
+    counter!(DB_WRITES, "result" => result).increment(1);
+}
+
+/// The per-frame series, resolved once per session.
+#[derive(Clone)]
+pub struct FrameMetrics {
+    sent: Counter,
+    skipped: Counter,
+    payload: Counter,
+    render: Histogram,
+    encode: Histogram,
+}
+
+impl FrameMetrics {
+    /// Handles to the frame series of the installed recorder (no-ops without one).
+    #[must_use]
+    pub fn new() -> Self {
+        Self {
+            sent: counter!(FRAMES_SENT),
+            skipped: counter!(FRAMES_SKIPPED),
+            payload: counter!(PAYLOAD_BYTES),
+            render: histogram!(RENDER_SECONDS),
+            encode: histogram!(ENCODE_SECONDS),
+        }
+    }
+
+    /// A frame of `bytes` went out.
+    pub fn sent(&self, bytes: usize) {
+        self.sent.increment(1);
+        self.payload.increment(bytes as u64);
+    }
+
+    /// `n` frame ticks were skipped.
+    pub fn skipped(&self, n: u64) {
+        if n > 0 {
+            self.skipped.increment(n);
+        }
+    }
+
+    /// A frame took `render` to cast and `encode` to draw and encode.
+    pub fn timed(&self, render: Duration, encode: Duration) {
+        self.render.record(render.as_secs_f64());
+        self.encode.record(encode.as_secs_f64());
+    }
+}
+
+impl Default for FrameMetrics {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// The wire-bytes counter, for a connection's socket wrapper.
+pub fn wire_bytes() -> Counter {
+    counter!(WIRE_BYTES)
+}
