@@ -202,7 +202,7 @@ pub use encode::ColorLevel;
 pub use lean_backend::LeanBackend;
 pub use render::scene::Scene;
 pub use render::view::View;
-pub use render::Framebuffer;
+pub use render::{Framebuffer, Glyphs};
 pub use replay::{Replay, ReplayError};
 pub use vec2::Vec2;
 pub use widget::{DebugPane, HalfBlockView, Minimap};

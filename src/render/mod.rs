@@ -10,6 +10,7 @@ pub(crate) mod dither_phase;
 pub(crate) mod fast_floor;
 pub(crate) mod frame;
 pub(crate) mod framebuffer;
+pub mod glyphs;
 pub mod height_cast;
 pub(crate) mod height_column;
 pub(crate) mod height_raster;
@@ -21,3 +22,4 @@ pub mod sprite_projection;
 pub mod view;
 
 pub use framebuffer::Framebuffer;
+pub use glyphs::Glyphs;
