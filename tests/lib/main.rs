@@ -15,6 +15,7 @@ mod game_creatures;
 mod game_items;
 mod game_render;
 mod game_sight_heights;
+mod glyph_grid;
 mod heights_golden;
 mod lamps_heights;
 mod lean_backend;
