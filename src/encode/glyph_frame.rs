@@ -225,6 +225,30 @@ impl GlyphFrames {
     }
 }
 
+/// A whole glyph frame as printable lines (`render --format ansi`): every cell in the form
+/// [`GlyphFrames`] would pick, each row ending with a colour reset and a newline.
+#[must_use]
+pub fn full_lines(fb: &Framebuffer, palette: &Palette) -> Vec<u8> {
+    let glyphs = fb.glyphs();
+    let (cols, level, full) = (fb.cell_cols(), palette.level(), full_mask(glyphs));
+    let mut cells = Vec::new();
+    glyph_cells(fb, &mut cells);
+    let mut out = Vec::with_capacity(cells.len() * 12);
+    for row in cells.chunks(cols.max(1)) {
+        let mut pen = (DEFAULT, DEFAULT);
+        for &c in row {
+            let (mask, colours) = pick_form(CodedCell::of(c, palette), pen, full, level);
+            sgr::write(&mut out, level, pen, colours);
+            pen = colours;
+            let mut buf = [0u8; 4];
+            out.extend_from_slice(glyph(glyphs, mask).encode_utf8(&mut buf).as_bytes());
+        }
+        sgr::write(&mut out, level, pen, (DEFAULT, DEFAULT));
+        out.push(b'\n');
+    }
+    out
+}
+
 /// The mask to send and the pen to send it with: the form of `cell` that changes the fewest
 /// bytes of the current `pen`.
 fn pick_form(

@@ -75,3 +75,22 @@ fn a_still_camera_sends_nothing_after_the_first_frame_at_every_setting() {
         }
     }
 }
+
+/// Golden pictures of the default view at 80×24 cells as the terminal shows it at each setting
+/// (each cell's mask in its two colours). Update after an intended change:
+/// `HALFCAST_UPDATE_GOLDEN=1 cargo test --test lib glyph_grid` (and look at every image).
+#[test]
+fn golden_default_view_at_each_setting() {
+    use halfcast::output::glyph_picture::shown_picture;
+    use halfcast::snapshot::{assert_png_golden, Tolerance};
+    let world = World::default_world();
+    let start = world.map.start;
+    let scene = Scene::new(&world, Camera::from_angle(start.pos(), start.angle_deg(), 66.0));
+    for glyphs in Glyphs::ALL {
+        let mut fb = Framebuffer::for_glyphs(80, 24, glyphs);
+        scene.render_into(&mut fb, None);
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join(format!("tests/images/glyphs/default_{glyphs}.png"));
+        assert_png_golden(&shown_picture(&fb), path, Tolerance::default());
+    }
+}
