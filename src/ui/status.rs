@@ -118,6 +118,11 @@ pub fn status_line(
                 ],
             ));
         }
+        // The block characters (U cycles them), so a player who switched knows which.
+        segs.push(seg(
+            6,
+            vec![v(stats.glyphs.name().to_owned()), l(" blocks")],
+        ));
     }
     segs.push(seg(
         6,

@@ -85,7 +85,10 @@ fn golden_default_view_at_each_setting() {
     use halfcast::snapshot::{assert_png_golden, Tolerance};
     let world = World::default_world();
     let start = world.map.start;
-    let scene = Scene::new(&world, Camera::from_angle(start.pos(), start.angle_deg(), 66.0));
+    let scene = Scene::new(
+        &world,
+        Camera::from_angle(start.pos(), start.angle_deg(), 66.0),
+    );
     for glyphs in Glyphs::ALL {
         let mut fb = Framebuffer::for_glyphs(80, 24, glyphs);
         scene.render_into(&mut fb, None);
