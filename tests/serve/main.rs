@@ -21,6 +21,7 @@ mod serve_cli;
 mod serve_colour;
 mod serve_compression;
 mod serve_flood;
+mod serve_glyphs;
 mod serve_names;
 mod serve_openssh;
 mod serve_openssh_colour;
