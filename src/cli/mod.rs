@@ -2,6 +2,7 @@
 //! command; shared option groups in `options`).
 
 mod bench;
+mod bench_glyphs;
 mod bench_run;
 mod diff;
 mod glyphs;

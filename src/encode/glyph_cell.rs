@@ -105,14 +105,21 @@ fn mask_where(pixels: &[Rgb], f: impl Fn(Rgb) -> bool) -> u8 {
         .fold(0u8, |m, (i, _)| m | (1 << i))
 }
 
-/// The 2-means split of ≥ 3 distinct colours (see the module doc).
+/// The 2-means split of ≥ 3 distinct colours (see the module doc). Each distinct colour is
+/// taken to OKLab once; while the split moves, a group's centre is the mean of its members'
+/// OKLab (cheap, and close to the OKLab of their mean light at these small spreads); the colours
+/// shown are the groups' mean light.
 fn two_means(pixels: &[Rgb]) -> GlyphCell {
     let n = pixels.len();
     let mut lin = [[0.0f32; 3]; MAX_PIXELS];
     let mut lab = [[0.0f32; 3]; MAX_PIXELS];
     for (i, &c) in pixels.iter().enumerate() {
-        lin[i] = c.linear();
-        lab[i] = oklab(lin[i]);
+        if let Some(j) = pixels[..i].iter().position(|&p| p == c) {
+            (lin[i], lab[i]) = (lin[j], lab[j]);
+        } else {
+            lin[i] = c.linear();
+            lab[i] = oklab(lin[i]);
+        }
     }
     // Seeds: the two pixels farthest apart.
     let (mut a, mut b, mut far) = (0, 1, -1.0f32);
@@ -124,37 +131,37 @@ fn two_means(pixels: &[Rgb]) -> GlyphCell {
             }
         }
     }
+    let full = ((1u16 << n) - 1) as u8;
     let (mut ca, mut cb) = (lab[a], lab[b]);
     let mut mask = 0u8;
     for _ in 0..4 {
-        let next = (0..n).fold(0u8, |m, i| {
+        let mut next = (0..n).fold(0u8, |m, i| {
             if lab_dist2(lab[i], cb) < lab_dist2(lab[i], ca) {
                 m | (1 << i)
             } else {
                 m
             }
         });
-        if next == mask && mask != 0 {
+        if next == 0 {
+            // Every pixel nearer `a`'s centre: the far seed keeps its own pixel.
+            next = 1 << b;
+        } else if next == full {
+            next = full & !(1 << a);
+        }
+        if next == mask {
             break;
         }
         mask = next;
-        let full = ((1u16 << n) - 1) as u8;
-        if mask == 0 {
-            // Every pixel nearer `a`'s seed: the far seed keeps its own pixel.
-            mask = 1 << b;
-        } else if mask == full {
-            mask = full & !(1 << a);
-        }
-        ca = oklab(mean_linear(&lin[..n], !mask));
-        cb = oklab(mean_linear(&lin[..n], mask));
+        ca = mean(&lab[..n], !mask);
+        cb = mean(&lab[..n], mask);
     }
-    let fg = to_srgb(mean_linear(&lin[..n], mask));
-    let bg = to_srgb(mean_linear(&lin[..n], !mask));
+    let fg = to_srgb(mean(&lin[..n], mask));
+    let bg = to_srgb(mean(&lin[..n], !mask));
     GlyphCell { mask, fg, bg }.canonical(n)
 }
 
-/// The mean light of the pixels whose bit is set in `mask`.
-fn mean_linear(lin: &[Linear], mask: u8) -> Linear {
+/// The mean of the triples (light, or OKLab) whose bit is set in `mask`.
+fn mean(lin: &[Linear], mask: u8) -> Linear {
     let mut sum = [0.0f32; 3];
     let mut k = 0.0f32;
     for (i, l) in lin.iter().enumerate() {
@@ -169,25 +176,35 @@ fn mean_linear(lin: &[Linear], mask: u8) -> Linear {
     [sum[0] / k, sum[1] / k, sum[2] / k]
 }
 
-/// Linear light back to the nearest 8-bit sRGB colour (a search of the transfer table).
+/// Linear light back to the nearest 8-bit sRGB colour: a first guess from a table of 4096
+/// steps, then the nearest of it and its neighbours on the transfer curve.
 fn to_srgb(l: Linear) -> Rgb {
-    let ch = |v: f32| -> u8 {
-        let (mut lo, mut hi) = (0u16, 255u16);
-        while lo < hi {
-            let mid = (lo + hi) / 2;
-            if channel_to_linear(mid as u8) < v {
-                lo = mid + 1;
-            } else {
-                hi = mid;
+    static GUESS: std::sync::OnceLock<Vec<u8>> = std::sync::OnceLock::new();
+    let guess = GUESS.get_or_init(|| {
+        let mut t = vec![0u8; 4096];
+        let mut v = 0u8;
+        for (i, g) in t.iter_mut().enumerate() {
+            let x = i as f32 / 4095.0;
+            while v < 255 && channel_to_linear(v + 1) <= x {
+                v += 1;
+            }
+            *g = v;
+        }
+        t
+    });
+    let ch = |x: f32| -> u8 {
+        let g = guess[((x.clamp(0.0, 1.0) * 4095.0) as usize).min(4095)];
+        let mut best = g;
+        for c in [
+            g.saturating_sub(1),
+            g.saturating_add(1),
+            g.saturating_add(2),
+        ] {
+            if (channel_to_linear(c) - x).abs() < (channel_to_linear(best) - x).abs() {
+                best = c;
             }
         }
-        // `lo` is the first at or above v; the one below may be nearer.
-        let up = lo as u8;
-        if up > 0 && v - channel_to_linear(up - 1) < channel_to_linear(up) - v {
-            up - 1
-        } else {
-            up
-        }
+        best
     };
     Rgb::new(ch(l[0]), ch(l[1]), ch(l[2]))
 }
