@@ -68,8 +68,49 @@ pub fn cell_pixels(fb: &Framebuffer, cx: usize, cy: usize, out: &mut [Rgb; MAX_P
     c * r
 }
 
+/// The last frame whose cells this thread chose, and those cells: a frame is drawn by the
+/// view widget, checked by the presenter and sent by the encoder, and each asks for the same
+/// cells, so the choice is made once per frame (a pure memo: the answer depends on the pixels).
+struct LastChoice {
+    size: (usize, usize, Glyphs),
+    pixels: Vec<Rgb>,
+    cells: Vec<GlyphCell>,
+}
+
+thread_local! {
+    static LAST: std::cell::RefCell<Option<LastChoice>> = const { std::cell::RefCell::new(None) };
+}
+
 /// Every cell of `fb`, chosen ([`choose`]), row-major.
 pub fn glyph_cells(fb: &Framebuffer, cells: &mut Vec<GlyphCell>) {
+    let size = (fb.width(), fb.height(), fb.glyphs());
+    let hit = LAST.with(|last| match &*last.borrow() {
+        Some(l) if l.size == size && l.pixels == fb.pixels() => {
+            cells.clone_from(&l.cells);
+            true
+        }
+        _ => false,
+    });
+    if hit {
+        return;
+    }
+    choose_all(fb, cells);
+    LAST.with(|last| {
+        let mut last = last.borrow_mut();
+        let l = last.get_or_insert_with(|| LastChoice {
+            size,
+            pixels: Vec::new(),
+            cells: Vec::new(),
+        });
+        l.size = size;
+        l.pixels.clear();
+        l.pixels.extend_from_slice(fb.pixels());
+        l.cells.clone_from(cells);
+    });
+}
+
+/// [`glyph_cells`] without the memo.
+fn choose_all(fb: &Framebuffer, cells: &mut Vec<GlyphCell>) {
     let (cols, rows) = (fb.cell_cols(), fb.cell_rows());
     cells.clear();
     let mut px = [Rgb::default(); MAX_PIXELS];
