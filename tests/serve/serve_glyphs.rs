@@ -47,7 +47,10 @@ async fn one_session_switches_to_octants_while_another_stays_on_half_blocks() {
     bob.drain_for(std::time::Duration::from_millis(500)).await;
     let s = bob.screen.screen();
     assert_eq!(octant_cells(s, cols, rows), 0);
-    assert!(status_has(s, "half blocks"));
+    assert!(
+        !status_has(s, "blocks"),
+        "bob's status line names no other setting"
+    );
     let v = view_rect(cols, rows);
     assert!(half_block_cells(s, v) > usize::from(v.width) * usize::from(v.height) / 2);
     srv.shutdown().await;
