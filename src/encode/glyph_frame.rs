@@ -13,7 +13,7 @@ use super::glyph_mask::{full_mask, glyph};
 use super::level::ColorLevel;
 use super::palette::{Code, Palette, DEFAULT, UNKNOWN};
 use super::sgr;
-use crate::color::Rgb;
+use crate::color::{lab_dist2, oklab, Rgb};
 use crate::render::framebuffer::Framebuffer;
 use crate::render::glyphs::Glyphs;
 
@@ -54,6 +54,64 @@ impl CodedCell {
                 bg,
             }
         }
+    }
+}
+
+impl CodedCell {
+    /// `cell` (chosen for `pixels`) at `palette`'s level: below truecolor its two colours become
+    /// the palette's nearest entries ([`CodedCell::of`]), and then each pixel shows whichever of
+    /// those two is nearer to it in OKLab, so the mask fits the colours the terminal will draw.
+    #[must_use]
+    pub fn fit(cell: GlyphCell, pixels: &[Rgb], palette: &Palette) -> Self {
+        let coded = Self::of(cell, palette);
+        if !palette.mixes() || coded.mask == 0 {
+            return coded;
+        }
+        let lab = |c: Rgb| oklab(c.linear());
+        let (f, b) = (lab(palette.rgb(coded.fg)), lab(palette.rgb(coded.bg)));
+        let full = ((1u16 << pixels.len()) - 1) as u8;
+        let mut mask = 0u8;
+        for (i, &p) in pixels.iter().enumerate() {
+            let l = lab(p);
+            if lab_dist2(l, f) < lab_dist2(l, b) {
+                mask |= 1 << i;
+            }
+        }
+        match mask {
+            0 => Self {
+                mask: 0,
+                fg: coded.bg,
+                bg: coded.bg,
+            },
+            m if m == full => Self {
+                mask: 0,
+                fg: coded.fg,
+                bg: coded.fg,
+            },
+            m if m & 1 != 0 => Self {
+                mask: !m & full,
+                fg: coded.bg,
+                bg: coded.fg,
+            },
+            m => Self { mask: m, ..coded },
+        }
+    }
+}
+
+/// Every cell of `fb` at `palette`'s level ([`glyph_cells`], then [`CodedCell::fit`]).
+pub fn coded_cells(
+    fb: &Framebuffer,
+    palette: &Palette,
+    chosen: &mut Vec<GlyphCell>,
+    out: &mut Vec<CodedCell>,
+) {
+    glyph_cells(fb, chosen);
+    out.clear();
+    let cols = fb.cell_cols().max(1);
+    let mut px = [Rgb::default(); MAX_PIXELS];
+    for (i, &c) in chosen.iter().enumerate() {
+        let n = cell_pixels(fb, i % cols, i / cols, &mut px);
+        out.push(CodedCell::fit(c, &px[..n], palette));
     }
 }
 
@@ -220,10 +278,7 @@ impl GlyphFrames {
             self.shown.resize(cols * rows, UNSEEN);
             self.fresh = true;
         }
-        glyph_cells(fb, &mut self.chosen);
-        self.intent.clear();
-        self.intent
-            .extend(self.chosen.iter().map(|&c| CodedCell::of(c, palette)));
+        coded_cells(fb, palette, &mut self.chosen, &mut self.intent);
         let level = palette.level();
         let start = out.len();
         if sync {
@@ -272,13 +327,13 @@ impl GlyphFrames {
 pub fn full_lines(fb: &Framebuffer, palette: &Palette) -> Vec<u8> {
     let glyphs = fb.glyphs();
     let (cols, level, full) = (fb.cell_cols(), palette.level(), full_mask(glyphs));
-    let mut cells = Vec::new();
-    glyph_cells(fb, &mut cells);
+    let (mut chosen, mut cells) = (Vec::new(), Vec::new());
+    coded_cells(fb, palette, &mut chosen, &mut cells);
     let mut out = Vec::with_capacity(cells.len() * 12);
     for row in cells.chunks(cols.max(1)) {
         let mut pen = (DEFAULT, DEFAULT);
         for &c in row {
-            let (mask, colours) = pick_form(CodedCell::of(c, palette), pen, full, level);
+            let (mask, colours) = pick_form(c, pen, full, level);
             sgr::write(&mut out, level, pen, colours);
             pen = colours;
             let mut buf = [0u8; 4];

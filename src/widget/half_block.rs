@@ -7,7 +7,7 @@ use ratatui::style::Color;
 use ratatui::widgets::Widget;
 
 use crate::color::Rgb;
-use crate::encode::glyph_frame::{as_half_blocks, glyph_cells, CodedCell};
+use crate::encode::glyph_frame::{as_half_blocks, coded_cells, glyph_cells};
 use crate::encode::glyph_mask::glyph;
 use crate::encode::quantize::quantize;
 use crate::encode::{ColorLevel, Palette};
@@ -97,22 +97,25 @@ impl HalfBlockView<'_> {
         let glyphs = self.fb.glyphs();
         let cols = usize::from(area.width).min(self.fb.cell_cols());
         let rows = usize::from(area.height).min(self.fb.cell_rows());
-        let mut cells = Vec::new();
-        glyph_cells(self.fb, &mut cells);
+        let (mut cells, mut coded) = (Vec::new(), Vec::new());
         let palette = Palette::new(self.level);
+        if self.level == ColorLevel::TrueColor {
+            glyph_cells(self.fb, &mut cells);
+        } else {
+            coded_cells(self.fb, &palette, &mut cells, &mut coded);
+        }
         let w = self.fb.cell_cols();
         for cy in 0..rows {
             for cx in 0..cols {
-                let chosen = cells[cy * w + cx];
-                let (mask, fg, bg) = if self.level == ColorLevel::TrueColor {
-                    (chosen.mask, to_color(chosen.fg), to_color(chosen.bg))
-                } else {
-                    let c = CodedCell::of(chosen, &palette);
+                let (mask, fg, bg) = if let Some(c) = coded.get(cy * w + cx) {
                     (
                         c.mask,
                         Color::Indexed(c.fg as u8),
                         Color::Indexed(c.bg as u8),
                     )
+                } else {
+                    let chosen = cells[cy * w + cx];
+                    (chosen.mask, to_color(chosen.fg), to_color(chosen.bg))
                 };
                 buf[(area.x + cx as u16, area.y + cy as u16)]
                     .set_char(glyph(glyphs, mask))
