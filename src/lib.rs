@@ -112,7 +112,7 @@
 //!
 //! let header = Header {
 //!     map: MapSource::Embedded, pos: Vec2::new(8.5, 5.5), angle_deg: 30.0, fov_deg: 66.0,
-//!     size: (80, 24), fps: 30, seed: 0, speeds: Default::default(),
+//!     size: (80, 24), fps: 30, seed: 0, speeds: Default::default(), glyphs: Default::default(),
 //! };
 //! let turn = FrameInput { input: Input::holding(&[Action::TurnLeft]), ..Default::default() };
 //! let text = Replay { header, frames: vec![turn; 30] }.to_jsonl(); // what a .hcr file holds
@@ -202,7 +202,7 @@ pub use encode::ColorLevel;
 pub use lean_backend::LeanBackend;
 pub use render::scene::Scene;
 pub use render::view::View;
-pub use render::Framebuffer;
+pub use render::{Framebuffer, Glyphs};
 pub use replay::{Replay, ReplayError};
 pub use vec2::Vec2;
 pub use widget::{DebugPane, HalfBlockView, Minimap};

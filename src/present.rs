@@ -84,7 +84,7 @@ impl Presenter {
         let mut next = screen.clone();
         let level = self.level();
         let view_area = view_area.intersection(area);
-        let usable = view_area.area() > 0 && view.width() == usize::from(view_area.width);
+        let usable = view_area.area() > 0 && view.cell_cols() == usize::from(view_area.width);
         let over = if usable {
             covering(screen, view, view_area)
         } else {
@@ -155,8 +155,14 @@ impl Presenter {
                     let (cx, cy) = (usize::from(x - view_area.x), usize::from(y - view_area.y));
                     let top = ratatui_rgb(c.fg).unwrap_or(Rgb::new(0, 0, 0));
                     let bottom = ratatui_rgb(c.bg).unwrap_or(Rgb::new(0, 0, 0));
-                    self.painted.set(cx, 2 * cy, top);
-                    self.painted.set(cx, 2 * cy + 1, bottom);
+                    // The cell's upper pixels in its fg, lower in its bg (at any sub-grid).
+                    let (w, h) = view.glyphs().cell_size();
+                    for dy in 0..h {
+                        let c = if 2 * dy < h { top } else { bottom };
+                        for dx in 0..w {
+                            self.painted.set(cx * w + dx, cy * h + dy, c);
+                        }
+                    }
                 }
                 &self.painted
             };
@@ -212,13 +218,26 @@ fn covering(screen: &Buffer, view: &Framebuffer, at: Rect) -> Vec<(u16, u16)> {
     let rows = usize::from(at.height).min(view.cell_rows());
     let blank = ratatui::buffer::Cell::default();
     let mut out = Vec::new();
+    let glyphs = view.glyphs();
+    let mut chosen = Vec::new();
+    if glyphs != crate::render::glyphs::Glyphs::Half {
+        crate::encode::glyph_frame::glyph_cells(view, &mut chosen);
+    }
     for cy in 0..rows {
         for cx in 0..usize::from(at.width) {
-            let (top, bottom) = view.cell(cx, cy);
             let (x, y) = (at.x + cx as u16, at.y + cy as u16);
             let c = &screen[(x, y)];
-            let is_view =
-                c.symbol() == UPPER_HALF && c.fg == to_color(top) && c.bg == to_color(bottom);
+            let is_view = if let Some(g) = chosen.get(cy * view.cell_cols() + cx) {
+                // What `HalfBlockView` draws for the cell at a finer glyph setting.
+                let mut s = [0u8; 4];
+                let ch = crate::encode::glyph_mask::glyph(glyphs, g.mask);
+                c.symbol() == ch.encode_utf8(&mut s)
+                    && c.fg == to_color(g.fg)
+                    && c.bg == to_color(g.bg)
+            } else {
+                let (top, bottom) = view.cell(cx, cy);
+                c.symbol() == UPPER_HALF && c.fg == to_color(top) && c.bg == to_color(bottom)
+            };
             if !is_view && *c != blank {
                 out.push((x, y));
             }

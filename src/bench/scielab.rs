@@ -259,15 +259,25 @@ pub struct Source {
     px: Vec<Rgb>,
     lab: Vec<[f64; 3]>,
     filtered: [Vec<[f64; 3]>; 2],
+    /// The two viewing conditions of its figures ([`PPDS`] unless [`Source::at_ppds`]).
+    ppds: [f64; 2],
 }
 
 impl Source {
     /// Prepares `fb` as the truth the others are measured against.
     #[must_use]
     pub fn new(fb: &Framebuffer) -> Self {
+        Self::at_ppds(fb, PPDS)
+    }
+
+    /// [`Source::new`] for other viewing conditions: `ppds` pixels per degree of this frame's
+    /// own grid (a finer glyph grid has more pixels per degree at the same seat). The figures'
+    /// `scielab_45` and `scielab_9` fields then hold these two conditions.
+    #[must_use]
+    pub fn at_ppds(fb: &Framebuffer, ppds: [f64; 2]) -> Self {
         let (w, h, px) = image(fb);
         let img = Image { w, h, px: &px };
-        let filtered = PPDS.map(|p| scielab(&img, p));
+        let filtered = ppds.map(|p| scielab(&img, p));
         let lab_px = px.iter().map(|&c| lab(xyz(c))).collect();
         Self {
             w,
@@ -275,6 +285,7 @@ impl Source {
             px,
             lab: lab_px,
             filtered,
+            ppds,
         }
     }
 
@@ -311,7 +322,7 @@ impl Source {
             .sum::<f64>()
             / n;
         let s = [0, 1].map(|k| {
-            scielab(&img, PPDS[k])
+            scielab(&img, self.ppds[k])
                 .iter()
                 .zip(&self.filtered[k])
                 .map(|(&a, &b)| de(a, b))

@@ -30,10 +30,27 @@ pub(crate) struct BenchArgs {
     /// Row-planner beam width (1 = greedy), for comparing planner settings.
     #[arg(long, hide = true)]
     pub(crate) beam: Option<usize>,
+    /// The glyph ladder instead: each block-character setting at 80x24 and 240x68 (S-CIELAB
+    /// against an octant-grid render, bytes and render + encode time against half-blocks).
+    #[arg(long, conflicts_with = "frames")]
+    pub(crate) glyphs: bool,
 }
 
 pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
     use super::bench_run::{run_default, run_frames, table, BenchPlan};
+    if args.glyphs {
+        use super::bench_glyphs::{glyph_table, run_glyphs};
+        let level = args.colors.unwrap_or(ColorLevel::TrueColor);
+        let runs = run_glyphs(usize::from(args.frame_count), level);
+        let text = if args.json {
+            let mut s = serde_json::to_string(&runs).map_err(Failure::io)?;
+            s.push('\n');
+            s
+        } else {
+            glyph_table(&runs)
+        };
+        return write_output(None, text.as_bytes());
+    }
     let plan = BenchPlan {
         frames: usize::from(args.frame_count),
         levels: args.colors.into_iter().collect(),

@@ -2,8 +2,10 @@
 //! command; shared option groups in `options`).
 
 mod bench;
+mod bench_glyphs;
 mod bench_run;
 mod diff;
+mod glyphs;
 mod options;
 mod output_file;
 mod play;
@@ -98,6 +100,9 @@ enum Command {
     Trace(TraceArgs),
     /// Compare two frames (PNG, ANSI, cells text or plain text): exit 0 equal, 1 different, 2 error.
     Diff(DiffArgs),
+    /// A test card of the block characters (half, quadrant, sextant, octant): which ones this
+    /// terminal draws.
+    Glyphs(glyphs::GlyphsArgs),
 }
 
 pub(crate) fn parse_level(s: &str) -> Result<ColorLevel, String> {
@@ -156,6 +161,7 @@ pub fn run() -> ExitCode {
     let result = match cli.command {
         Some(Command::Render(args)) => render::render(&args),
         Some(Command::Diff(args)) => diff::diff(&args),
+        Some(Command::Glyphs(args)) => glyphs::glyphs(&args),
         Some(Command::Trace(args)) => trace::trace(&args),
         Some(Command::Replay(args)) => replay::replay(&args),
         Some(Command::Play(args)) => play::play(&args, None),

@@ -38,6 +38,10 @@ pub(crate) struct PlayArgs {
     /// Colour level (default: NO_COLOR, COLORTERM, else ask the terminal, else the TERM rule).
     #[arg(long, value_parser = parse_level)]
     pub(crate) colors: Option<ColorLevel>,
+    /// Block characters for the view: half (default), quadrant, sextant or octant (the U key
+    /// cycles them; `halfcast glyphs` shows which your terminal draws).
+    #[arg(long, value_parser = super::render::parse_glyphs)]
+    pub(crate) glyphs: Option<halfcast::Glyphs>,
     /// Lossy: don't resend a cell whose colours moved less than N (0-255) since it was sent.
     #[arg(long, value_name = "N")]
     pub(crate) delta: Option<u8>,
@@ -123,6 +127,7 @@ pub(crate) fn play(args: &PlayArgs, record: Option<&PathBuf>) -> Result<(), Fail
         setup: Setup {
             keys: config.keys.clone(),
             speeds: config.speeds,
+            glyphs: args.glyphs.unwrap_or(config.glyphs),
             toggles: Toggles {
                 minimap: config.minimap,
                 debug: config.ray_pane,
@@ -152,6 +157,7 @@ pub(crate) fn play(args: &PlayArgs, record: Option<&PathBuf>) -> Result<(), Fail
             fps: args.fps,
             seed,
             speeds: config.speeds,
+            glyphs: args.glyphs.unwrap_or(config.glyphs),
         };
         let replay = halfcast::replay::Replay {
             header,

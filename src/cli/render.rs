@@ -7,7 +7,7 @@ use halfcast::encode::{full_frame, ColorLevel, EncodeOptions};
 use halfcast::output::{json::RayReport, text};
 use halfcast::termframe;
 use halfcast::world::door::DoorState;
-use halfcast::{Framebuffer, Scene};
+use halfcast::{Framebuffer, Glyphs, Scene};
 
 use super::options::{MapArgs, PoseArgs, WorldArgs};
 use super::{camera_for, detect_level, load_world, parse_level, write_output, Failure};
@@ -36,6 +36,10 @@ pub(crate) struct RenderArgs {
     /// Colour level for `--format ansi` (default: detected from COLORTERM, TERM, NO_COLOR).
     #[arg(long, value_parser = parse_level)]
     pub(crate) colors: Option<ColorLevel>,
+    /// Block characters for the view: half (1×2 pixels a cell), quadrant (2×2), sextant (2×3)
+    /// or octant (2×4). PNG then shows each cell's mask in its two colours; JSON stays per cell.
+    #[arg(long, default_value = "half", value_parser = parse_glyphs)]
+    pub(crate) glyphs: Glyphs,
     #[command(flatten)]
     pub(crate) world: WorldArgs,
 }
@@ -52,6 +56,10 @@ pub(crate) enum Format {
     Cells,
     /// The ray data: camera, per-column hits, the centre ray's DDA trace.
     Json,
+}
+
+pub(crate) fn parse_glyphs(s: &str) -> Result<Glyphs, String> {
+    s.parse()
 }
 
 pub(crate) fn parse_size(s: &str) -> Result<(u16, u16), String> {
@@ -82,7 +90,13 @@ pub(crate) fn render(args: &RenderArgs) -> Result<(), Failure> {
             .map_err(Failure::input)?;
     }
     let (cols, rows) = args.size;
-    let mut fb = Framebuffer::for_cells(cols, rows);
+    // The ray report stays one ray per cell column; the pictures are at the glyphs' sub-grid.
+    let glyphs = if args.format == Format::Json {
+        Glyphs::Half
+    } else {
+        args.glyphs
+    };
+    let mut fb = Framebuffer::for_glyphs(cols, rows, glyphs);
     let opts = &args.world;
     let mut doors = DoorState::new(&world.map);
     for cell in doors.cells().to_vec() {
@@ -103,15 +117,21 @@ pub(crate) fn render(args: &RenderArgs) -> Result<(), Failure> {
         scene.light.fog = Some(fog);
     }
     scene.light.night |= opts.night;
-    let frame = scene.render_frame(&mut fb, Some(usize::from(cols) / 2));
+    // The traced column: the centre cell's (its left sub-column when cells are two wide).
+    let traced = usize::from(cols) / 2 * glyphs.cell_size().0;
+    let frame = scene.render_frame(&mut fb, Some(traced));
     let cast = frame.cast;
     let bytes = match args.format {
-        Format::Png => fb.to_png().map_err(Failure::io)?,
+        Format::Png => halfcast::output::glyph_picture::shown_picture(&fb)
+            .to_png()
+            .map_err(Failure::io)?,
         Format::Ansi => {
             let opts = EncodeOptions::new(args.colors.unwrap_or_else(detect_level));
             full_frame(&fb, &opts)
         }
-        Format::Txt => text::to_text(&fb).into_bytes(),
+        Format::Txt => {
+            text::to_text(&halfcast::encode::glyph_frame::as_half_blocks(&fb)).into_bytes()
+        }
         Format::Cells => {
             termframe::to_cells_text(&termframe::TermFrame::from_framebuffer(&fb)).into_bytes()
         }

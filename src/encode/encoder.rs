@@ -1,12 +1,14 @@
 //! The frame encoder: keeps what the terminal shows and sends only the bytes that change it.
 
 use super::cursor::{write_move, Cursor};
+use super::glyph_frame::GlyphFrames;
 use super::level::ColorLevel;
 use super::palette::{distance, Code, Palette, DEFAULT, UNKNOWN};
 use super::plan::{write_span, Choice, RowPlanner, RowStart, DEFAULT_BEAM};
 use super::quantize::quantize;
 use super::sgr;
 use crate::render::framebuffer::Framebuffer;
+use crate::render::glyphs::Glyphs;
 
 /// DEC private mode 2026: the terminal holds the screen until the end marker, so frames never tear.
 pub const SYNC_BEGIN: &[u8] = b"\x1b[?2026h";
@@ -90,6 +92,10 @@ pub struct Encoder {
     out: Vec<u8>,
     /// True until a frame was sent since creation, resize or `invalidate`: colours then unknown.
     fresh: bool,
+    /// The same for frames at a finer glyph setting (quadrants, sextants, octants).
+    glyph: GlyphFrames,
+    /// Whether the last frame was at a finer glyph setting.
+    glyph_mode: bool,
 }
 
 impl Encoder {
@@ -108,6 +114,8 @@ impl Encoder {
             planner: RowPlanner::default(),
             out: Vec::new(),
             fresh: true,
+            glyph: GlyphFrames::default(),
+            glyph_mode: false,
         }
     }
 
@@ -127,6 +135,7 @@ impl Encoder {
     pub fn invalidate(&mut self) {
         self.shown.fill([UNKNOWN; 2]);
         self.fresh = true;
+        self.glyph.invalidate();
     }
 
     /// What the terminal shows after the last frame, row-major `[top, bottom]` per cell.
@@ -142,6 +151,9 @@ impl Encoder {
         if self.opts.level == ColorLevel::Mono {
             return None;
         }
+        if self.glyph_mode {
+            return Some(self.glyph.shown_frame(&self.palette));
+        }
         let mut fb = Framebuffer::new(self.cols, 2 * self.rows);
         for (i, cell) in self.shown.iter().enumerate() {
             let (x, y) = (i % self.cols.max(1), 2 * (i / self.cols.max(1)));
@@ -154,7 +166,31 @@ impl Encoder {
     /// The bytes that turn the terminal's view rectangle into `fb` (empty when nothing changed).
     ///
     /// A new size or origin forces a full redraw.
+    ///
+    /// A framebuffer at a finer glyph setting ([`Framebuffer::for_glyphs`]) is sent as a mask
+    /// and two colours per cell (in mono: as half-blocks of its mean colours). Switching setting
+    /// redraws everything.
     pub fn encode(&mut self, fb: &Framebuffer, origin_col: u16, origin_row: u16) -> &[u8] {
+        let fine = fb.glyphs() != Glyphs::Half && self.opts.level != ColorLevel::Mono;
+        if fine != self.glyph_mode {
+            self.glyph_mode = fine;
+            self.invalidate();
+        }
+        if fine {
+            self.out.clear();
+            let sync = self.opts.sync;
+            let origin = (origin_col, origin_row);
+            self.glyph
+                .encode(fb, origin, &self.palette, sync, &mut self.out);
+            return &self.out;
+        }
+        let halved;
+        let fb = if fb.glyphs() == Glyphs::Half {
+            fb
+        } else {
+            halved = super::glyph_frame::as_half_blocks(fb);
+            &halved
+        };
         let (cols, rows) = (fb.width(), fb.cell_rows());
         if (cols, rows) != (self.cols, self.rows) || (origin_col, origin_row) != self.origin {
             self.cols = cols;

@@ -15,7 +15,16 @@ use crate::render::framebuffer::Framebuffer;
 /// The cells are chosen by the same planner as the live encoder (so a row costs what a full redraw
 /// of that row costs); `sync`, `delta` and cursor moves do not apply here.
 #[must_use]
+///
+/// A frame at a finer glyph setting is written as its masks and two colours per cell (in mono,
+/// as half-blocks of its means).
 pub fn full_frame(fb: &Framebuffer, opts: &EncodeOptions) -> Vec<u8> {
+    if fb.glyphs() != crate::render::glyphs::Glyphs::Half {
+        if opts.level == ColorLevel::Mono {
+            return full_frame(&super::glyph_frame::as_half_blocks(fb), opts);
+        }
+        return super::glyph_frame::full_lines(fb, &Palette::new(opts.level));
+    }
     let palette = Palette::new(opts.level);
     let mut cells = Vec::new();
     quantize(&palette, fb, &mut cells);

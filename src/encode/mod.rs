@@ -10,6 +10,9 @@
 pub(crate) mod cells;
 mod cursor;
 pub(crate) mod encoder;
+pub mod glyph_cell;
+pub mod glyph_frame;
+pub mod glyph_mask;
 pub(crate) mod inline;
 pub(crate) mod level;
 pub(crate) mod mixing;

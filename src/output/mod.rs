@@ -3,6 +3,7 @@
 
 pub mod ansi;
 pub mod figure;
+pub mod glyph_picture;
 pub mod json;
 pub(crate) mod scene_forms;
 pub mod text;

@@ -10,7 +10,7 @@ use crate::render::light::{Shade, ShadeTable};
 use crate::render::point_light;
 use crate::render::scene::Scene;
 use crate::render::sprite_projection::{
-    far_to_near, frame_index, project, view_index, Culled, Projection,
+    far_to_near, frame_index, project_on, view_index, Culled, Projection,
 };
 
 /// What became of one sprite in a frame (the JSON `sprites` array is built from these).
@@ -71,14 +71,16 @@ pub fn draw_sprites(
         .enumerate()
         .map(|(index, s)| SpriteOutcome {
             index,
-            projection: project(
+            projection: project_on(
                 &scene.camera,
                 &view,
-                s.def.pos,
-                s.def.scale,
-                sprite_base(&scene.world.map, &s.def),
-                w,
-                h,
+                (
+                    s.def.pos,
+                    s.def.scale,
+                    sprite_base(&scene.world.map, &s.def),
+                ),
+                (w, h),
+                fb.pixel_height(),
             ),
             drawn: false,
         })

@@ -33,7 +33,9 @@ impl Scene<'_> {
         let map = &self.world.map;
         if map.has_heights() {
             // Steps, pits and lintels: each column keeps walking until its window of rows closes.
-            let proj = Projection::new(&self.camera, &self.view, fb.width(), fb.height());
+            let size = (fb.width(), fb.height());
+            let proj =
+                Projection::with_pixel_height(&self.camera, &self.view, size, fb.pixel_height());
             let cast = cast_heights(map, doors, &self.camera, &proj, fb.width(), traced);
             let sprites = rasterize_heights(self, &cast, fb);
             return Frame { cast, sprites };

@@ -1,6 +1,8 @@
-//! The pixel grid every renderer writes and every output reads: W × 2H for a W × H-cell view.
+//! The pixel grid every renderer writes and every output reads: W × 2H for a W × H-cell view
+//! in half-blocks, or the finer sub-grid of another [`Glyphs`] setting (2W × 2H, 2W × 3H, 2W × 4H).
 
 use crate::color::Rgb;
+use crate::render::glyphs::Glyphs;
 
 /// Row-major RGB pixels; two pixel rows make one terminal cell row.
 ///
@@ -14,6 +16,8 @@ pub struct Framebuffer {
     /// Per-pixel dither phase, tied to the surface the pixel shows; `None` until a renderer
     /// writes one.
     phases: Option<Vec<u8>>,
+    /// How many pixels a terminal cell shows (half-blocks unless made for another setting).
+    glyphs: Glyphs,
 }
 
 impl PartialEq for Framebuffer {
@@ -37,7 +41,47 @@ impl Framebuffer {
             height,
             pixels: vec![Rgb::default(); width * height],
             phases: None,
+            glyphs: Glyphs::Half,
         }
+    }
+
+    /// The framebuffer for `cols` × `rows` cells drawn with `glyphs`: each cell is that setting's
+    /// pixels (1×2, 2×2, 2×3 or 2×4).
+    #[must_use]
+    pub fn for_glyphs(cols: u16, rows: u16, glyphs: Glyphs) -> Self {
+        let (c, r) = glyphs.cell_size();
+        let mut fb = Self::new(usize::from(cols) * c, usize::from(rows) * r);
+        fb.glyphs = glyphs;
+        fb
+    }
+
+    /// Resizes to `cols` × `rows` cells at `glyphs` only when that changes anything (contents
+    /// become black then), so per-frame reuse is free.
+    pub fn resize_cells(&mut self, cols: u16, rows: u16, glyphs: Glyphs) {
+        let (c, r) = glyphs.cell_size();
+        let size = (usize::from(cols) * c, usize::from(rows) * r);
+        if (size, glyphs) != ((self.width, self.height), self.glyphs) {
+            *self = Self::for_glyphs(cols, rows, glyphs);
+        }
+    }
+
+    /// The glyph setting whose sub-grid these pixels are.
+    #[must_use]
+    pub fn glyphs(&self) -> Glyphs {
+        self.glyphs
+    }
+
+    /// A pixel's height over its width on screen ([`Glyphs::pixel_height`]): what the
+    /// renderers divide the vertical focal length by, so walls stay square.
+    #[must_use]
+    pub fn pixel_height(&self) -> f64 {
+        self.glyphs.pixel_height()
+    }
+
+    /// Terminal columns this framebuffer covers.
+    #[must_use]
+    pub fn cell_cols(&self) -> usize {
+        self.width / self.glyphs.cell_size().0
     }
 
     /// The framebuffer for a terminal area of `cols` × `rows` cells (two pixel rows per cell).
@@ -58,9 +102,10 @@ impl Framebuffer {
         self.height
     }
 
-    /// Resizes (contents become black) only when the size changed, so per-frame reuse is free.
+    /// Resizes (contents become black, half-blocks) only when the size changed, so per-frame
+    /// reuse is free.
     pub fn resize(&mut self, width: usize, height: usize) {
-        if (width, height) != (self.width, self.height) {
+        if (width, height, Glyphs::Half) != (self.width, self.height, self.glyphs) {
             *self = Self::new(width, height);
         }
     }
@@ -138,7 +183,7 @@ impl Framebuffer {
     /// Number of whole terminal rows this framebuffer covers.
     #[must_use]
     pub fn cell_rows(&self) -> usize {
-        self.height / 2
+        self.height / self.glyphs.cell_size().1
     }
 
     /// Encodes as an RGB PNG of exactly width × height pixels.
@@ -169,6 +214,7 @@ impl Framebuffer {
             height: img.height() as usize,
             pixels,
             phases: None,
+            glyphs: Glyphs::Half,
         }
     }
 }

@@ -43,8 +43,22 @@ impl Projection {
     /// The projection of `view` on a `w` × `h`-pixel screen seen through `camera`.
     #[must_use]
     pub fn new(camera: &Camera, view: &View, w: usize, h: usize) -> Self {
+        Self::with_pixel_height(camera, view, (w, h), 1.0)
+    }
+
+    /// [`Projection::new`] on a screen of `size` pixels each `pixel_height` times as tall as
+    /// wide (a glyph sub-grid's, [`crate::Glyphs::pixel_height`]): the vertical focal length
+    /// is divided by it, so walls stay square on screen.
+    #[must_use]
+    pub fn with_pixel_height(
+        camera: &Camera,
+        view: &View,
+        size: (usize, usize),
+        pixel_height: f64,
+    ) -> Self {
+        let (w, h) = size;
         let view = view.clamped();
-        let focal = camera.focal_length(w);
+        let focal = camera.focal_length(w) / pixel_height;
         Self {
             eye: view.eye(),
             focal,

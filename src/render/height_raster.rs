@@ -25,7 +25,7 @@ pub fn rasterize_heights(scene: &Scene, cast: &Cast, fb: &mut Framebuffer) -> Ve
     if w == 0 || h == 0 {
         return Vec::new();
     }
-    let proj = Projection::new(&scene.camera, &scene.view, w, h);
+    let proj = Projection::with_pixel_height(&scene.camera, &scene.view, (w, h), fb.pixel_height());
     let table = ShadeTable::new(&scene.light);
     let lamps = scene.lamp_light();
     // Faces write their dither phases (floors and ceilings carry none, as on flat maps), and

@@ -10,6 +10,7 @@ pub(crate) mod dither_phase;
 pub(crate) mod fast_floor;
 pub(crate) mod frame;
 pub(crate) mod framebuffer;
+pub(crate) mod glyphs;
 pub(crate) mod height_cast;
 pub(crate) mod height_column;
 pub(crate) mod height_raster;
@@ -26,4 +27,5 @@ pub use height_cast::{Band, FaceSpan, Projection};
 // Moving lights a caller hands to `Scene::with_lights`.
 pub use point_light::PointLight;
 // Where a wall at a distance lands on screen: what tests pin a frame's geometry against.
+pub use glyphs::Glyphs;
 pub use raster::{wall_span, WallSpan};

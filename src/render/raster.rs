@@ -113,7 +113,9 @@ pub fn rasterize_frame(
     if w == 0 || h == 0 {
         return Vec::new();
     }
-    let focal = scene.camera.focal_length(w);
+    // Vertical pixels per unit at distance 1: the camera's focal length, over the pixel's
+    // height where the sub-grid's pixels are not square.
+    let focal = scene.camera.focal_length(w) / fb.pixel_height();
     let view = scene.view.clamped();
     let horizon = view.horizon(focal, h);
     let table = ShadeTable::new(&scene.light);

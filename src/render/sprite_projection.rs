@@ -64,6 +64,24 @@ pub fn project(
     w: usize,
     h: usize,
 ) -> Result<Projection, Culled> {
+    project_on(camera, view, (pos, scale, offset), (w, h), 1.0)
+}
+
+/// [`project`] on a screen of `size` pixels each `pixel_height` times as tall as wide (a glyph
+/// sub-grid's): widths use the camera's focal length, heights that over `pixel_height`.
+/// `sprite` is (position, scale, base height) as [`project`] takes them.
+///
+/// # Errors
+/// [`Culled`] when nothing of it can be on screen.
+pub fn project_on(
+    camera: &Camera,
+    view: &View,
+    sprite: (Vec2, (f64, f64), f64),
+    size: (usize, usize),
+    pixel_height: f64,
+) -> Result<Projection, Culled> {
+    let (pos, scale, offset) = sprite;
+    let (w, h) = size;
     let (lateral, depth) = to_camera_space(camera, pos);
     if depth.is_nan() || depth <= NEAR_PLANE {
         return Err(Culled::Behind);
@@ -71,6 +89,7 @@ pub fn project(
     let focal = camera.focal_length(w);
     let centre = w as f64 / 2.0 * (1.0 + lateral / depth);
     let half_w = focal * scale.0 / depth / 2.0;
+    let focal = focal / pixel_height;
     let horizon = view.horizon(focal, h);
     let top = view.row_of(offset + scale.1, depth, focal, horizon);
     let bottom = view.row_of(offset, depth, focal, horizon);

@@ -19,6 +19,7 @@ use std::fmt::Write;
 use serde_json::{json, Value};
 
 use crate::game::{Action, Command, Held, Input, Speeds};
+use crate::render::glyphs::Glyphs;
 use crate::vec2::Vec2;
 
 /// Things the TUI itself does (not the game), recorded with each frame of a replay.
@@ -38,6 +39,8 @@ pub enum UiCommand {
     CycleColours,
     /// The figure key: write the debugged column's figure to a file (local play only).
     SaveFigure,
+    /// The glyph key: the next block characters (half → quadrant → sextant → octant).
+    CycleGlyphs,
 }
 
 /// The format version this build writes and the newest it reads.
@@ -78,6 +81,9 @@ pub struct Header {
     pub seed: u64,
     /// Walking and turning speeds (written only when not the defaults).
     pub speeds: Speeds,
+    /// Block characters of the view at the start (written only when not half-blocks; a
+    /// recording without it, as every one before the glyph ladder, replays as half-blocks).
+    pub glyphs: Glyphs,
 }
 
 /// What happens at the start of one frame.
@@ -124,7 +130,7 @@ const ACTIONS: [(Action, &str); 9] = [
     (Action::Crouch, "crouch"),
 ];
 
-const UI: [(UiCommand, &str); 7] = [
+const UI: [(UiCommand, &str); 8] = [
     (UiCommand::ToggleMinimap, "toggle_minimap"),
     (UiCommand::ToggleDebug, "toggle_debug"),
     (UiCommand::ToggleHelp, "toggle_help"),
@@ -132,6 +138,7 @@ const UI: [(UiCommand, &str); 7] = [
     (UiCommand::Quit, "quit"),
     (UiCommand::CycleColours, "cycle_colours"),
     (UiCommand::SaveFigure, "save_figure"),
+    (UiCommand::CycleGlyphs, "cycle_glyphs"),
 ];
 
 fn action_name(a: Action) -> &'static str {
@@ -186,6 +193,9 @@ impl Replay {
             "start": {"pos": [h.pos.x, h.pos.y], "angle": h.angle_deg, "fov": h.fov_deg},
             "size": [h.size.0, h.size.1], "fps": h.fps, "seed": h.seed,
         });
+        if h.glyphs != Glyphs::Half {
+            head["glyphs"] = json!(h.glyphs.name());
+        }
         if h.speeds != Speeds::default() {
             head["speeds"] = json!({"move": h.speeds.move_cells, "turn": h.speeds.turn_deg()});
         }
@@ -361,6 +371,14 @@ fn parse_header(v: &Value) -> Result<Header, String> {
                 num(sp.get("turn"), "speeds.turn")?,
             )?,
         },
+        glyphs: match v.get("glyphs") {
+            None => Glyphs::Half,
+            Some(g) => g
+                .as_str()
+                .ok_or_else(|| "header: glyphs must be a name".to_owned())?
+                .parse()
+                .map_err(|e| format!("header: {e}"))?,
+        },
     })
 }
 
@@ -461,6 +479,7 @@ mod tests {
             fps: 30,
             seed: 0,
             speeds: Speeds::default(),
+            glyphs: Glyphs::Half,
         };
         let mut frames = vec![FrameInput::default(); 6];
         frames[1].input.held = [Action::Forward].into_iter().collect();
@@ -482,6 +501,31 @@ mod tests {
         );
         assert_eq!(Replay::parse("r.hcr", &text).unwrap(), r);
         assert!(text.ends_with("{\"end\":6}\n"));
+    }
+
+    #[test]
+    fn the_glyph_setting_rides_in_the_header_and_old_recordings_are_half_blocks() {
+        let mut r = sample();
+        assert!(!r.to_jsonl().contains("glyphs"));
+        r.header.glyphs = Glyphs::Octant;
+        r.frames[2].ui.push(UiCommand::CycleGlyphs);
+        let text = r.to_jsonl();
+        assert!(text
+            .lines()
+            .next()
+            .unwrap()
+            .contains("\"glyphs\":\"octant\""));
+        assert_eq!(Replay::parse("r.hcr", &text).unwrap(), r);
+        let old = sample().to_jsonl();
+        assert_eq!(
+            Replay::parse("r.hcr", &old).unwrap().header.glyphs,
+            Glyphs::Half
+        );
+        let bad = text.replace("\"octant\"", "\"braille\"");
+        assert_eq!(
+            Replay::parse("r.hcr", &bad).unwrap_err().to_string(),
+            "r.hcr:1: header: 'braille' is not a glyph setting (half, quadrant, sextant or octant)"
+        );
     }
 
     #[test]

@@ -13,7 +13,7 @@ use crate::game::GameState;
 use crate::map::{Blend, ColourKey, SpriteDef, TextureRef};
 use crate::render::cast::Cast;
 use crate::render::framebuffer::Framebuffer;
-use crate::render::sprite_projection::project;
+use crate::render::sprite_projection::project_on;
 use crate::texture::builtin;
 use crate::widget::half_block::UPPER_HALF;
 use crate::widget::minimap::MapView;
@@ -109,14 +109,12 @@ pub fn mark_players(
             // Where the avatar's feet are: its cell's floor (0 on flat maps) plus any jump.
             let lift = p.state.footing.floor + p.state.jump.0.max(0.0);
             let pos = p.state.camera.pos;
-            project(
+            project_on(
                 &eye.camera,
                 &eye.view,
-                pos,
-                (AVATAR_SCALE, AVATAR_SCALE),
-                lift,
-                w,
-                h,
+                (pos, (AVATAR_SCALE, AVATAR_SCALE), lift),
+                (w, h),
+                fb.pixel_height(),
             )
             .ok()
             .map(|pr| (p, pr))
@@ -333,7 +331,16 @@ mod tests {
         // The marker sits just over the avatar's head, which is one wall up on the platform.
         let scale = (AVATAR_SCALE, AVATAR_SCALE);
         let pos = other.camera.pos;
-        let pr = project(&eye.camera, &eye.view, pos, scale, 1.0, w, h).unwrap();
+        let pr = crate::render::sprite_projection::project(
+            &eye.camera,
+            &eye.view,
+            pos,
+            scale,
+            1.0,
+            w,
+            h,
+        )
+        .unwrap();
         let centre = ((pr.left + pr.right) / 2.0).floor() as usize;
         let base = pr.top.floor() as usize - 1;
         assert_eq!(fb.get(centre, base), colour);

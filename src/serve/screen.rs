@@ -17,6 +17,7 @@ use crate::game::multi::players::{PlayerId, Snapshot};
 use crate::game::multi::round::RoundEnd;
 use crate::present::Presenter;
 use crate::render::framebuffer::Framebuffer;
+use crate::render::glyphs::Glyphs;
 use crate::ui::keys::InputMode;
 use crate::ui::layout::{Panes, Toggles};
 use crate::ui::render::render_view;
@@ -51,6 +52,8 @@ pub struct SessionScreen {
     out: Vec<u8>,
     /// Which panes this client shows (M, I and ? toggle them, as in the local TUI).
     pub toggles: Toggles,
+    /// This client's block characters (U cycles them; each session its own).
+    glyphs: Glyphs,
 }
 
 /// Where a terminal of `size` puts the 3D view, below the header.
@@ -122,7 +125,20 @@ impl SessionScreen {
             stats,
             out: Vec::new(),
             toggles: Toggles::default(),
+            glyphs: Glyphs::Half,
         }
+    }
+
+    /// The block characters this client's view is drawn with.
+    #[must_use]
+    pub fn glyphs(&self) -> Glyphs {
+        self.glyphs
+    }
+
+    /// Switches block characters; the next frame redraws the view.
+    pub fn set_glyphs(&mut self, glyphs: Glyphs) {
+        self.glyphs = glyphs;
+        self.stats.glyphs = glyphs;
     }
 
     /// The map served.
@@ -207,8 +223,13 @@ impl SessionScreen {
                 state.doors = snap.doors.clone();
                 state.level = snap.level.clone();
                 state.view_width = usize::from(view.width);
-                self.fb
-                    .resize(usize::from(view.width), usize::from(view.height) * 2);
+                // Mono is ASCII shades: it draws half-blocks' worth whatever the setting.
+                let glyphs = if self.presenter.level() == ColorLevel::Mono {
+                    Glyphs::Half
+                } else {
+                    self.glyphs
+                };
+                self.fb.resize_cells(view.width, view.height, glyphs);
                 let cast = render_view(&state, &mut self.fb);
                 let tags = avatars::mark_players(&mut self.fb, &state, &cast, snap, id);
                 render_time = started.elapsed();

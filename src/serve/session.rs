@@ -423,6 +423,7 @@ impl State {
                 UiCommand::ToggleDebug => toggles.debug = !toggles.debug,
                 UiCommand::ToggleHelp => toggles.help = !toggles.help,
                 UiCommand::CycleColours => self.screen.set_colour(self.screen.colour().cycled()),
+                UiCommand::CycleGlyphs => self.screen.set_glyphs(self.screen.glyphs().cycled()),
                 // Over SSH the figure key is off: it would write on the server's disk.
                 UiCommand::SaveFigure => {}
             }

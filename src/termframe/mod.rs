@@ -36,9 +36,26 @@ impl TermCell {
             '▄' => ('▀', self.bg, self.fg),
             ' ' => ('▀', self.bg, self.bg),
             '█' => ('▀', self.fg, self.fg),
-            g => (g, self.fg, self.bg),
+            g => glyph_appearance(g, self.fg, self.bg),
         }
     }
+}
+
+/// A quadrant, sextant or octant cell in canonical form: a mask and its complement with the
+/// colours swapped draw the same picture, so the form whose first pixel is the background
+/// stands for both (other glyphs as they are).
+fn glyph_appearance(g: char, fg: Option<Rgb>, bg: Option<Rgb>) -> (char, Option<Rgb>, Option<Rgb>) {
+    use crate::encode::glyph_mask::{full_mask, glyph, mask_of};
+    use crate::render::glyphs::Glyphs;
+    for set in [Glyphs::Octant, Glyphs::Sextant] {
+        if let Some(m) = mask_of(set, g) {
+            if m & 1 != 0 {
+                return (glyph(set, !m & full_mask(set)), bg, fg);
+            }
+            return (g, fg, bg);
+        }
+    }
+    (g, fg, bg)
 }
 
 /// A grid of terminal cells, row-major.
@@ -55,7 +72,24 @@ pub struct TermFrame {
 impl TermFrame {
     /// The half-block view of a framebuffer: `▀` with fg = upper pixel, bg = lower pixel.
     #[must_use]
+    ///
+    /// A framebuffer at a finer glyph setting gives that setting's cells: each cell's chosen
+    /// mask as its character, fg = the mask's colour, bg = the rest's.
     pub fn from_framebuffer(fb: &Framebuffer) -> Self {
+        if fb.glyphs() != crate::render::glyphs::Glyphs::Half {
+            let mut chosen = Vec::new();
+            crate::encode::glyph_frame::glyph_cells(fb, &mut chosen);
+            let cells = chosen
+                .iter()
+                .map(|c| TermCell {
+                    glyph: crate::encode::glyph_mask::glyph(fb.glyphs(), c.mask),
+                    fg: Some(c.fg),
+                    bg: Some(c.bg),
+                })
+                .collect();
+            let (cols, rows) = (fb.cell_cols(), fb.cell_rows());
+            return Self { cols, rows, cells };
+        }
         let (cols, rows) = (fb.width(), fb.cell_rows());
         let mut cells = Vec::with_capacity(cols * rows);
         for cy in 0..rows {

@@ -163,6 +163,7 @@ pub fn run_loop(
         level: options.encode.level,
         reason: options.colour_reason,
     });
+    app.stats.glyphs = setup.glyphs;
     // Keys typed while the start-up colour query ran come first.
     let now = Instant::now();
     for ev in &early_keys {
@@ -313,8 +314,13 @@ pub fn run_loop(
 
         // 3. Render the 3D view at exactly the pane's size.
         let t = Instant::now();
-        app.fb
-            .resize(usize::from(view.width), usize::from(view.height) * 2);
+        // Mono is ASCII shades: it draws half-blocks' worth whatever the setting.
+        let glyphs = if app.presenter.level() == crate::encode::ColorLevel::Mono {
+            crate::render::glyphs::Glyphs::Half
+        } else {
+            app.stats.glyphs
+        };
+        app.fb.resize_cells(view.width, view.height, glyphs);
         let cast = render_view(&app.state, &mut app.fb);
         let render_time = t.elapsed();
 
@@ -394,6 +400,7 @@ impl App {
                     self.presenter.set_level(next.level);
                     self.stats.level = Some(next);
                 }
+                UiCommand::CycleGlyphs => self.stats.glyphs = self.stats.glyphs.cycled(),
                 // Needs the view's size: written once the frame is laid out.
                 UiCommand::SaveFigure => {}
             }

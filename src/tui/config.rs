@@ -22,6 +22,8 @@ pub struct Config {
     pub speeds: Speeds,
     /// The colour level to use when `--colors` is not given; `None` = detect from the environment.
     pub colors: Option<ColorLevel>,
+    /// Block characters of the view when `--glyphs` is not given (U cycles them).
+    pub glyphs: crate::render::glyphs::Glyphs,
     /// Whether the minimap is shown at start (M toggles it).
     pub minimap: bool,
     /// Whether the ray (DDA) pane is shown at start (I toggles it).
@@ -34,6 +36,7 @@ impl Default for Config {
         Self {
             speeds: Speeds::default(),
             colors: None,
+            glyphs: crate::render::glyphs::Glyphs::Half,
             minimap: true,
             ray_pane: true,
             keys: KeyMap::default(),
@@ -98,6 +101,7 @@ impl Number {
 #[serde(deny_unknown_fields)]
 struct RawDisplay {
     colors: Option<Spanned<String>>,
+    glyphs: Option<Spanned<String>>,
     minimap: Option<bool>,
     ray_pane: Option<bool>,
 }
@@ -194,6 +198,12 @@ impl Config {
                 })?)
             };
         }
+        if let Some(glyphs) = raw.display.glyphs {
+            c.glyphs = glyphs
+                .get_ref()
+                .parse()
+                .map_err(|m| at(glyphs.span(), format!("display.glyphs: {m}")))?;
+        }
         c.minimap = raw.display.minimap.unwrap_or(c.minimap);
         c.ray_pane = raw.display.ray_pane.unwrap_or(c.ray_pane);
         let mut spans = Vec::new();
@@ -243,6 +253,11 @@ impl Config {
         );
         let level = self.colors.map_or("auto", ColorLevel::name);
         let _ = writeln!(out, "colors = {level:?}");
+        let _ = writeln!(
+            out,
+            "# Block characters of the view when --glyphs is not given: half, quadrant, sextant, octant (U cycles them)."
+        );
+        let _ = writeln!(out, "glyphs = {:?}", self.glyphs.name());
         let _ = writeln!(out, "# Panes shown at start (M and I toggle them).");
         let _ = writeln!(out, "minimap = {}", self.minimap);
         let _ = writeln!(out, "ray_pane = {}", self.ray_pane);

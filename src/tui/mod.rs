@@ -56,6 +56,8 @@ pub struct Setup {
     pub keys: crate::ui::keymap::KeyMap,
     pub speeds: crate::game::Speeds,
     pub toggles: crate::ui::layout::Toggles,
+    /// Block characters the view starts with (the U key cycles them).
+    pub glyphs: crate::render::glyphs::Glyphs,
 }
 
 /// Registers the signals that end a session (SIGTERM, SIGINT; SIGHUP and SIGQUIT on unix)

@@ -42,7 +42,10 @@ pub const ROWS: &[(&[&str], &str)] = &[
         &["minimap", "ray_pane"],
         "show / hide the minimap / the ray pane",
     ),
-    (&["colours"], "colours: truecolor > 256 > 16 > mono"),
+    (
+        &["colours", "glyphs"],
+        "next colour level / next block characters",
+    ),
     (&["help"], "this help"),
     (&["quit"], "quit (esc closes this help; ctrl+c quits)"),
 ];

@@ -25,6 +25,8 @@ pub enum KeyAction {
     RayPane,
     /// Cycle the colour level (truecolor → 256 → 16 → mono).
     Colours,
+    /// Cycle the view's block characters (half → quadrant → sextant → octant).
+    Glyphs,
     /// Write the debugged column's figure (SVG) to a file (local play only).
     SaveFigure,
     Help,
@@ -173,6 +175,12 @@ pub const ACTIONS: &[(&str, KeyAction, &str, &[&str])] = &[
         KeyAction::Colours,
         "colour level: truecolor, 256, 16, mono",
         &["o"],
+    ),
+    (
+        "glyphs",
+        KeyAction::Glyphs,
+        "block characters: half, quadrant, sextant, octant",
+        &["u"],
     ),
     ("help", KeyAction::Help, "this help", &["?", "h", "f1"]),
     (

@@ -89,6 +89,7 @@ fn binding(map: &KeyMap, key: &KeyEvent, paused: bool) -> Option<Binding> {
         KeyAction::Minimap => Binding::Ui(UiCommand::ToggleMinimap),
         KeyAction::RayPane => Binding::Ui(UiCommand::ToggleDebug),
         KeyAction::Colours => Binding::Ui(UiCommand::CycleColours),
+        KeyAction::Glyphs => Binding::Ui(UiCommand::CycleGlyphs),
         KeyAction::SaveFigure => Binding::Ui(UiCommand::SaveFigure),
         KeyAction::Help => Binding::Ui(UiCommand::ToggleHelp),
         KeyAction::Quit if key.code == KeyCode::Esc => Binding::Ui(UiCommand::Back),

@@ -12,6 +12,7 @@ const MARK: Rgb = Rgb::new(255, 230, 60);
 
 /// Renders the view into `fb` (sized by the caller to the view pane) and returns the rays,
 /// with the debugged column traced; while paused that column is tinted so it can be found.
+/// At a finer glyph setting the rays are one per pixel column (2 per cell).
 pub fn render_view(state: &GameState, fb: &mut Framebuffer) -> Cast {
     let column = state.debug_column();
     let sprites = state.level.sprites(&state.world);
@@ -23,11 +24,17 @@ pub fn render_view(state: &GameState, fb: &mut Framebuffer) -> Cast {
         .with_lights(&lights)
         .at_time(state.time);
     scene.light.night = state.night;
-    let cast = scene.render_into(fb, Some(column));
-    if state.debugger.paused && column < fb.width() {
-        for y in 0..fb.height() {
-            let c = fb.get(column, y);
-            fb.set(column, y, mix(c, MARK, 120));
+    // At a sub-grid two pixels wide the debugged cell column traces its left sub-column (the
+    // same ray: cameraX = 2·(2x)/(2W) − 1 = 2x/W − 1), and both sub-columns are tinted.
+    let per_cell = fb.glyphs().cell_size().0;
+    let traced = column * per_cell;
+    let cast = scene.render_into(fb, Some(traced));
+    if state.debugger.paused && traced < fb.width() {
+        for x in traced..(traced + per_cell).min(fb.width()) {
+            for y in 0..fb.height() {
+                let c = fb.get(x, y);
+                fb.set(x, y, mix(c, MARK, 120));
+            }
         }
     }
     cast

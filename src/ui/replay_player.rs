@@ -52,6 +52,7 @@ impl Player {
         let camera = Camera::from_angle(header.pos, header.angle_deg, header.fov_deg);
         let mut stats = FrameStats::default();
         stats.fps = f64::from(header.fps);
+        stats.glyphs = header.glyphs;
         let mut state = GameState::with_seed(world, camera, 0, header.seed);
         state.speeds = header.speeds;
         Self {
@@ -92,6 +93,7 @@ impl Player {
                 UiCommand::ToggleMinimap => self.toggles.minimap = !self.toggles.minimap,
                 UiCommand::ToggleDebug => self.toggles.debug = !self.toggles.debug,
                 UiCommand::ToggleHelp => self.toggles.help = !self.toggles.help,
+                UiCommand::CycleGlyphs => self.stats.glyphs = self.stats.glyphs.cycled(),
                 // Frames are written at the level the replay command asks for.
                 UiCommand::CycleColours | UiCommand::SaveFigure => {}
             }
@@ -115,7 +117,7 @@ impl Player {
             }
         }
         self.view
-            .resize(usize::from(view.width), usize::from(view.height) * 2);
+            .resize_cells(view.width, view.height, self.stats.glyphs);
         let cast = render_view(&self.state, &mut self.view);
         let mut screen = Buffer::empty(area);
         let s = Screen {

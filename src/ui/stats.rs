@@ -23,6 +23,8 @@ pub struct FrameStats {
     pub kbit_s: f64,
     /// The colour level frames are sent at and why (shown in the status line).
     pub level: Option<crate::encode::ColourChoice>,
+    /// The view's block characters (shown in the status line; the U key cycles them).
+    pub glyphs: crate::render::glyphs::Glyphs,
     window_bytes: u64,
     window_start: Option<Instant>,
     window_frames: u32,

@@ -118,6 +118,14 @@ pub fn status_line(
                 ],
             ));
         }
+        // The block characters when not the default half-blocks (U cycles them), so a player
+        // who switched knows which.
+        if stats.glyphs != crate::render::glyphs::Glyphs::Half {
+            segs.push(seg(
+                6,
+                vec![v(stats.glyphs.name().to_owned()), l(" blocks")],
+            ));
+        }
     }
     segs.push(seg(
         6,

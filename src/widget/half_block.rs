@@ -1,4 +1,5 @@
-//! Shows a [`Framebuffer`] in a terminal buffer: one `▀` cell per two stacked pixels.
+//! Shows a [`Framebuffer`] in a terminal buffer: one `▀` cell per two stacked pixels, or at a
+//! finer glyph setting one quadrant, sextant or octant cell per 2×2, 2×3 or 2×4 pixels.
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -6,9 +7,12 @@ use ratatui::style::Color;
 use ratatui::widgets::Widget;
 
 use crate::color::Rgb;
+use crate::encode::glyph_frame::{as_half_blocks, coded_cells, glyph_cells};
+use crate::encode::glyph_mask::glyph;
 use crate::encode::quantize::quantize;
 use crate::encode::{ColorLevel, Palette};
 use crate::render::framebuffer::Framebuffer;
+use crate::render::glyphs::Glyphs;
 
 /// The upper-half block: its foreground paints the upper pixel, its background the lower.
 pub const UPPER_HALF: &str = "▀";
@@ -84,6 +88,44 @@ impl<'a> HalfBlockView<'a> {
     }
 }
 
+impl HalfBlockView<'_> {
+    /// A framebuffer at a finer glyph setting ([`Framebuffer::for_glyphs`]): each cell the
+    /// character of its chosen mask, fg the mask's colour, bg the rest's (the palette's nearest
+    /// entries below truecolor, as the encoder sends them).
+    fn render_glyphs(&self, area: Rect, buf: &mut Buffer) {
+        let area = area.intersection(buf.area);
+        let glyphs = self.fb.glyphs();
+        let cols = usize::from(area.width).min(self.fb.cell_cols());
+        let rows = usize::from(area.height).min(self.fb.cell_rows());
+        let (mut cells, mut coded) = (Vec::new(), Vec::new());
+        let palette = Palette::new(self.level);
+        if self.level == ColorLevel::TrueColor {
+            glyph_cells(self.fb, &mut cells);
+        } else {
+            coded_cells(self.fb, &palette, &mut cells, &mut coded);
+        }
+        let w = self.fb.cell_cols();
+        for cy in 0..rows {
+            for cx in 0..cols {
+                let (mask, fg, bg) = if let Some(c) = coded.get(cy * w + cx) {
+                    (
+                        c.mask,
+                        Color::Indexed(c.fg as u8),
+                        Color::Indexed(c.bg as u8),
+                    )
+                } else {
+                    let chosen = cells[cy * w + cx];
+                    (chosen.mask, to_color(chosen.fg), to_color(chosen.bg))
+                };
+                buf[(area.x + cx as u16, area.y + cy as u16)]
+                    .set_char(glyph(glyphs, mask))
+                    .set_fg(fg)
+                    .set_bg(bg);
+            }
+        }
+    }
+}
+
 impl Widget for HalfBlockView<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         (&self).render(area, buf);
@@ -92,6 +134,17 @@ impl Widget for HalfBlockView<'_> {
 
 impl Widget for &HalfBlockView<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
+        if self.fb.glyphs() != Glyphs::Half {
+            if self.level == ColorLevel::Mono {
+                let half = as_half_blocks(self.fb);
+                HalfBlockView::new(&half)
+                    .level(self.level)
+                    .render(area, buf);
+            } else {
+                self.render_glyphs(area, buf);
+            }
+            return;
+        }
         let area = area.intersection(buf.area);
         let cols = usize::from(area.width).min(self.fb.width());
         let rows = usize::from(area.height).min(self.fb.cell_rows());

@@ -25,6 +25,10 @@ const CASES: &[(&str, &str)] = &[
         "2:10: display.colors: 'rainbow' is not a colour level (auto, truecolor, 256, 16 or mono)",
     ),
     (
+        "invalid_config_bad_glyphs",
+        "2:10: display.glyphs: 'braille' is not a glyph setting (half, quadrant, sextant or octant)",
+    ),
+    (
         "invalid_config_bad_key",
         "2:23: keys.forward: unknown key 'sup' (a single character like \"w\" or \"?\", or one of: space, up, down, left, right, enter, esc, tab, backspace, pageup, pagedown, home, end, insert, delete, f1-f12; \"shift+\" may prefix a named key)",
     ),
@@ -39,11 +43,11 @@ const CASES: &[(&str, &str)] = &[
     ("invalid_config_syntax", "1:8: unclosed table, expected `]`"),
     (
         "invalid_config_unknown_action",
-        "3:1: keys: unknown action 'fly' (known: forward, back, turn_left, turn_right, strafe_left, strafe_right, look_up, look_down, centre_pitch, crouch, jump, use_door, tag, night, pause, column_left, column_right, column_left_10, column_right_10, step_dda, run_to_hit, save_figure, minimap, ray_pane, colours, help, quit)",
+        "3:1: keys: unknown action 'fly' (known: forward, back, turn_left, turn_right, strafe_left, strafe_right, look_up, look_down, centre_pitch, crouch, jump, use_door, tag, night, pause, column_left, column_right, column_left_10, column_right_10, step_dda, run_to_hit, save_figure, minimap, ray_pane, colours, glyphs, help, quit)",
     ),
     (
         "invalid_config_unknown_field",
-        "2:1: unknown field `colours`, expected one of `colors`, `minimap`, `ray_pane`",
+        "2:1: unknown field `colours`, expected one of `colors`, `glyphs`, `minimap`, `ray_pane`",
     ),
     (
         "invalid_config_unknown_section",

@@ -26,6 +26,7 @@ mod flat_unchanged;
 mod fuzz_stable;
 mod game_play_pty;
 mod game_replay;
+mod glyphs_cli;
 mod golden;
 mod heights_json;
 mod heights_minimap_pty;

@@ -198,6 +198,7 @@ fn a_tag_shot_is_recorded_in_replays_as_fire() {
             fps: 30,
             seed: 7,
             speeds: halfcast::game::Speeds::default(),
+            glyphs: halfcast::Glyphs::Half,
         },
         frames: vec![
             FrameInput::default(),

@@ -390,3 +390,27 @@ fn the_lean_backend_sends_the_3d_view_as_lean_as_the_presenter() {
         assert!(l <= 1.05 * v, "{level}: lean backend {l} vs presenter {v}");
     }
 }
+
+/// Any ratatui app can show a framebuffer in octants: `HalfBlockView` draws an octant-grid
+/// frame as octant cells and `LeanBackend` sends those characters as drawn.
+#[test]
+fn an_octant_frame_reaches_the_terminal_through_the_lean_backend() {
+    let world = World::default_world();
+    let start = world.map.start;
+    let scene = Scene::new(
+        &world,
+        Camera::from_angle(start.pos(), start.angle_deg(), 66.0),
+    );
+    let mut fb = Framebuffer::for_glyphs(40, 12, halfcast::Glyphs::Octant);
+    scene.render_into(&mut fb, None);
+    let out = Capture::default();
+    let mut t = fixed(LeanBackend::new(out.clone(), ColorLevel::TrueColor).with_size(COLS, ROWS));
+    t.draw(|f| f.render_widget(HalfBlockView::new(&fb), Rect::new(0, 0, 40, 12)))
+        .unwrap();
+    let text = String::from_utf8(out.take()).unwrap();
+    let octants = text
+        .chars()
+        .filter(|&c| (0x1CD00..=0x1CDE5).contains(&u32::from(c)))
+        .count();
+    assert!(octants > 40, "{octants} octant cells");
+}

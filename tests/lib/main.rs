@@ -14,6 +14,7 @@ mod encode_roundtrip;
 mod game_creatures;
 mod game_items;
 mod game_render;
+mod glyph_grid;
 mod heights_golden;
 mod lamps_heights;
 mod lean_backend;

@@ -1,0 +1,442 @@
+//! Frames at a finer glyph setting (quadrants, sextants, octants): each cell becomes a mask and
+//! two colours ([`super::glyph_cell`]), mapped to the colour level's codes, diffed against what
+//! the terminal shows, and sent with the fewest colour changes.
+//!
+//! A cell is glyph + fg + bg. Every mask has its complement in the same set, so each changed
+//! cell may be sent either way round (`mask` in fg-on-bg, or its complement with the colours
+//! swapped); the writer takes whichever keeps more of the current pen, and a one-colour cell
+//! is a space on that background or `█` in that foreground, whichever is already set.
+
+use super::cursor::{write_move, Cursor};
+use super::glyph_cell::{choose, GlyphCell, MAX_PIXELS};
+use super::glyph_mask::{full_mask, glyph};
+use super::level::ColorLevel;
+use super::palette::{Code, Palette, DEFAULT, UNKNOWN};
+use super::sgr;
+use crate::color::{lab_dist2, oklab, Rgb};
+use crate::render::framebuffer::Framebuffer;
+use crate::render::glyphs::Glyphs;
+
+/// A cell as codes of one colour level: `mask`'s set bits show `fg`. Canonical like
+/// [`GlyphCell`] (bit 0 clear; one colour = mask 0 and `fg == bg`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CodedCell {
+    /// Which pixels show the foreground.
+    pub mask: u8,
+    /// Foreground code.
+    pub fg: Code,
+    /// Background code.
+    pub bg: Code,
+}
+
+/// What the encoder believes a cell shows before it has sent it.
+const UNSEEN: CodedCell = CodedCell {
+    mask: 0,
+    fg: UNKNOWN,
+    bg: UNKNOWN,
+};
+
+impl CodedCell {
+    /// `cell`'s colours as `palette` codes, canonical again (two colours may meet in one code).
+    #[must_use]
+    pub fn of(cell: GlyphCell, palette: &Palette) -> Self {
+        let (fg, bg) = (palette.code(cell.fg), palette.code(cell.bg));
+        if fg == bg || cell.mask == 0 {
+            Self {
+                mask: 0,
+                fg: bg,
+                bg,
+            }
+        } else {
+            Self {
+                mask: cell.mask,
+                fg,
+                bg,
+            }
+        }
+    }
+}
+
+impl CodedCell {
+    /// `cell` (chosen for `pixels`) at `palette`'s level: below truecolor its two colours become
+    /// the palette's nearest entries ([`CodedCell::of`]), and then each pixel shows whichever of
+    /// those two is nearer to it in OKLab, so the mask fits the colours the terminal will draw.
+    #[must_use]
+    pub fn fit(cell: GlyphCell, pixels: &[Rgb], palette: &Palette) -> Self {
+        let coded = Self::of(cell, palette);
+        if !palette.mixes() || coded.mask == 0 {
+            return coded;
+        }
+        let lab = |c: Rgb| oklab(c.linear());
+        let (f, b) = (lab(palette.rgb(coded.fg)), lab(palette.rgb(coded.bg)));
+        let full = ((1u16 << pixels.len()) - 1) as u8;
+        let mut mask = 0u8;
+        for (i, &p) in pixels.iter().enumerate() {
+            let l = lab(p);
+            if lab_dist2(l, f) < lab_dist2(l, b) {
+                mask |= 1 << i;
+            }
+        }
+        match mask {
+            0 => Self {
+                mask: 0,
+                fg: coded.bg,
+                bg: coded.bg,
+            },
+            m if m == full => Self {
+                mask: 0,
+                fg: coded.fg,
+                bg: coded.fg,
+            },
+            m if m & 1 != 0 => Self {
+                mask: !m & full,
+                fg: coded.bg,
+                bg: coded.fg,
+            },
+            m => Self { mask: m, ..coded },
+        }
+    }
+}
+
+/// Every cell of `fb` at `palette`'s level ([`glyph_cells`], then [`CodedCell::fit`]).
+pub fn coded_cells(
+    fb: &Framebuffer,
+    palette: &Palette,
+    chosen: &mut Vec<GlyphCell>,
+    out: &mut Vec<CodedCell>,
+) {
+    glyph_cells(fb, chosen);
+    out.clear();
+    let cols = fb.cell_cols().max(1);
+    let mut px = [Rgb::default(); MAX_PIXELS];
+    for (i, &c) in chosen.iter().enumerate() {
+        let n = cell_pixels(fb, i % cols, i / cols, &mut px);
+        out.push(CodedCell::fit(c, &px[..n], palette));
+    }
+}
+
+/// The pixels of cell (cx, cy) of a framebuffer at a glyph sub-grid, row-major.
+pub fn cell_pixels(fb: &Framebuffer, cx: usize, cy: usize, out: &mut [Rgb; MAX_PIXELS]) -> usize {
+    let (c, r) = fb.glyphs().cell_size();
+    for dy in 0..r {
+        for dx in 0..c {
+            out[dy * c + dx] = fb.get(cx * c + dx, cy * r + dy);
+        }
+    }
+    c * r
+}
+
+/// The last frame whose cells this thread chose, and those cells: a frame is drawn by the
+/// view widget, checked by the presenter and sent by the encoder, and each asks for the same
+/// cells, so the choice is made once per frame (a pure memo: the answer depends on the pixels).
+struct LastChoice {
+    size: (usize, usize, Glyphs),
+    pixels: Vec<Rgb>,
+    cells: Vec<GlyphCell>,
+}
+
+thread_local! {
+    static LAST: std::cell::RefCell<Option<LastChoice>> = const { std::cell::RefCell::new(None) };
+}
+
+/// Every cell of `fb`, chosen ([`choose`]), row-major.
+pub fn glyph_cells(fb: &Framebuffer, cells: &mut Vec<GlyphCell>) {
+    let size = (fb.width(), fb.height(), fb.glyphs());
+    let hit = LAST.with(|last| match &*last.borrow() {
+        Some(l) if l.size == size && l.pixels == fb.pixels() => {
+            cells.clone_from(&l.cells);
+            true
+        }
+        _ => false,
+    });
+    if hit {
+        return;
+    }
+    choose_all(fb, cells);
+    LAST.with(|last| {
+        let mut last = last.borrow_mut();
+        let l = last.get_or_insert_with(|| LastChoice {
+            size,
+            pixels: Vec::new(),
+            cells: Vec::new(),
+        });
+        l.size = size;
+        l.pixels.clear();
+        l.pixels.extend_from_slice(fb.pixels());
+        l.cells.clone_from(cells);
+    });
+}
+
+/// [`glyph_cells`] without the memo.
+fn choose_all(fb: &Framebuffer, cells: &mut Vec<GlyphCell>) {
+    let (cols, rows) = (fb.cell_cols(), fb.cell_rows());
+    cells.clear();
+    let mut px = [Rgb::default(); MAX_PIXELS];
+    for cy in 0..rows {
+        for cx in 0..cols {
+            let n = cell_pixels(fb, cx, cy, &mut px);
+            cells.push(choose(&px[..n]));
+        }
+    }
+}
+
+/// The picture a list of cells shows, at their glyph sub-grid (what the terminal draws).
+#[must_use]
+pub fn picture(cells: &[GlyphCell], cols: usize, glyphs: Glyphs) -> Framebuffer {
+    let (c, r) = glyphs.cell_size();
+    let rows = cells.len() / cols.max(1);
+    let mut fb = Framebuffer::for_glyphs(cols as u16, rows as u16, glyphs);
+    for (i, cell) in cells.iter().enumerate() {
+        let (cx, cy) = (i % cols, i / cols);
+        for dy in 0..r {
+            for dx in 0..c {
+                fb.set(cx * c + dx, cy * r + dy, cell.pixel(dy * c + dx));
+            }
+        }
+    }
+    fb
+}
+
+/// A framebuffer at a finer sub-grid as half-blocks: each cell's upper and lower pixel is the
+/// mean of the pixels whose centres lie in its upper or lower half (both, for a middle row).
+#[must_use]
+pub fn as_half_blocks(fb: &Framebuffer) -> Framebuffer {
+    let (c, r) = fb.glyphs().cell_size();
+    let (cols, rows) = (fb.cell_cols(), fb.cell_rows());
+    let mut half = Framebuffer::for_cells(cols as u16, rows as u16);
+    for cy in 0..rows {
+        for cx in 0..cols {
+            let part = |upper: bool| {
+                let ys = (0..r).filter(move |&dy| {
+                    let twice_centre = 2 * dy + 1;
+                    if upper {
+                        twice_centre <= r
+                    } else {
+                        twice_centre >= r
+                    }
+                });
+                Rgb::mean(ys.flat_map(|dy| (0..c).map(move |dx| fb.get(cx * c + dx, cy * r + dy))))
+            };
+            half.set(cx, 2 * cy, part(true));
+            half.set(cx, 2 * cy + 1, part(false));
+        }
+    }
+    half
+}
+
+/// The live encoder's state for glyph frames: what each cell shows and should show.
+#[derive(Debug, Default)]
+pub(crate) struct GlyphFrames {
+    glyphs: Glyphs,
+    cols: usize,
+    rows: usize,
+    origin: (u16, u16),
+    shown: Vec<CodedCell>,
+    intent: Vec<CodedCell>,
+    chosen: Vec<GlyphCell>,
+    /// True until a frame was sent since creation, resize or `invalidate`.
+    fresh: bool,
+}
+
+impl GlyphFrames {
+    /// Forgets what the terminal shows.
+    pub(crate) fn invalidate(&mut self) {
+        self.shown.fill(UNSEEN);
+        self.fresh = true;
+    }
+
+    /// The picture the terminal shows after the last frame (palette colours), at the sub-grid.
+    pub(crate) fn shown_frame(&self, palette: &Palette) -> Framebuffer {
+        let cells: Vec<GlyphCell> = self
+            .shown
+            .iter()
+            .map(|s| GlyphCell {
+                mask: s.mask,
+                fg: palette.rgb(s.fg),
+                bg: palette.rgb(s.bg),
+            })
+            .collect();
+        picture(&cells, self.cols, self.glyphs)
+    }
+
+    /// Appends to `out` the bytes that turn the view rectangle at `origin` into `fb` (nothing
+    /// when nothing changed); `sync` wraps them in synchronized-output markers.
+    pub(crate) fn encode(
+        &mut self,
+        fb: &Framebuffer,
+        origin: (u16, u16),
+        palette: &Palette,
+        sync: bool,
+        out: &mut Vec<u8>,
+    ) {
+        let (cols, rows, glyphs) = (fb.cell_cols(), fb.cell_rows(), fb.glyphs());
+        if (cols, rows, glyphs, origin) != (self.cols, self.rows, self.glyphs, self.origin)
+            || self.shown.len() != cols * rows
+        {
+            (self.cols, self.rows, self.glyphs, self.origin) = (cols, rows, glyphs, origin);
+            self.shown.clear();
+            self.shown.resize(cols * rows, UNSEEN);
+            self.fresh = true;
+        }
+        coded_cells(fb, palette, &mut self.chosen, &mut self.intent);
+        let level = palette.level();
+        let start = out.len();
+        if sync {
+            out.extend_from_slice(super::SYNC_BEGIN);
+        }
+        let mut pen = if self.fresh {
+            (UNKNOWN, UNKNOWN)
+        } else {
+            (DEFAULT, DEFAULT)
+        };
+        let mut cursor = Cursor::Unknown;
+        let mut drew = false;
+        let full = full_mask(glyphs);
+        for i in 0..self.intent.len() {
+            let want = self.intent[i];
+            if self.shown[i] == want {
+                continue;
+            }
+            let (x, y) = ((i % cols) as u16, (i / cols) as u16);
+            let (col, row) = (origin.0 + x, origin.1 + y);
+            write_move(out, cursor, col, row);
+            let (ch, colours) = pick_form(want, pen, full, level);
+            sgr::write(out, level, pen, colours);
+            pen = colours;
+            let mut buf = [0u8; 4];
+            out.extend_from_slice(glyph(glyphs, ch).encode_utf8(&mut buf).as_bytes());
+            cursor = Cursor::At { col: col + 1, row };
+            self.shown[i] = want;
+            drew = true;
+        }
+        if !drew {
+            out.truncate(start);
+            return;
+        }
+        self.fresh = false;
+        sgr::write(out, level, pen, (DEFAULT, DEFAULT));
+        if sync {
+            out.extend_from_slice(super::SYNC_END);
+        }
+    }
+}
+
+/// A whole glyph frame as printable lines (`render --format ansi`): every cell in the form
+/// [`GlyphFrames`] would pick, each row ending with a colour reset and a newline.
+#[must_use]
+pub fn full_lines(fb: &Framebuffer, palette: &Palette) -> Vec<u8> {
+    let glyphs = fb.glyphs();
+    let (cols, level, full) = (fb.cell_cols(), palette.level(), full_mask(glyphs));
+    let (mut chosen, mut cells) = (Vec::new(), Vec::new());
+    coded_cells(fb, palette, &mut chosen, &mut cells);
+    let mut out = Vec::with_capacity(cells.len() * 12);
+    for row in cells.chunks(cols.max(1)) {
+        let mut pen = (DEFAULT, DEFAULT);
+        for &c in row {
+            let (mask, colours) = pick_form(c, pen, full, level);
+            sgr::write(&mut out, level, pen, colours);
+            pen = colours;
+            let mut buf = [0u8; 4];
+            out.extend_from_slice(glyph(glyphs, mask).encode_utf8(&mut buf).as_bytes());
+        }
+        sgr::write(&mut out, level, pen, (DEFAULT, DEFAULT));
+        out.push(b'\n');
+    }
+    out
+}
+
+/// The mask to send and the pen to send it with: the form of `cell` that changes the fewest
+/// bytes of the current `pen`.
+fn pick_form(
+    cell: CodedCell,
+    pen: (Code, Code),
+    full: u8,
+    level: ColorLevel,
+) -> (u8, (Code, Code)) {
+    if cell.mask == 0 {
+        // One colour: a space on it, or a full block in it.
+        let c = cell.bg;
+        if pen.1 == c {
+            return (0, pen);
+        }
+        if pen.0 == c {
+            return (full, pen);
+        }
+        return (0, (pen.0, c));
+    }
+    let straight = (cell.fg, cell.bg);
+    let turned = (cell.bg, cell.fg);
+    if sgr::cost(level, pen, turned) < sgr::cost(level, pen, straight) {
+        (!cell.mask & full, turned)
+    } else {
+        (cell.mask, straight)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn frame(glyphs: Glyphs, f: impl Fn(usize, usize) -> Rgb) -> Framebuffer {
+        let mut fb = Framebuffer::for_glyphs(6, 3, glyphs);
+        for y in 0..fb.height() {
+            for x in 0..fb.width() {
+                fb.set(x, y, f(x, y));
+            }
+        }
+        fb
+    }
+
+    #[test]
+    fn a_still_frame_sends_nothing_the_second_time() {
+        for g in [Glyphs::Quadrant, Glyphs::Sextant, Glyphs::Octant] {
+            let fb = frame(g, |x, y| Rgb::new((x * 37) as u8, (y * 11) as u8, 90));
+            for level in [
+                ColorLevel::TrueColor,
+                ColorLevel::Ansi256,
+                ColorLevel::Ansi16,
+            ] {
+                let p = Palette::new(level);
+                let mut e = GlyphFrames::default();
+                let mut out = Vec::new();
+                e.encode(&fb, (0, 0), &p, true, &mut out);
+                assert!(!out.is_empty());
+                out.clear();
+                e.encode(&fb, (0, 0), &p, true, &mut out);
+                assert!(out.is_empty(), "{g} {level}");
+            }
+        }
+    }
+
+    #[test]
+    fn one_changed_pixel_resends_one_cell() {
+        let mut fb = frame(Glyphs::Octant, |_, _| Rgb::new(10, 20, 30));
+        let p = Palette::new(ColorLevel::TrueColor);
+        let mut e = GlyphFrames::default();
+        let mut out = Vec::new();
+        e.encode(&fb, (2, 1), &p, false, &mut out);
+        fb.set(3, 5, Rgb::new(255, 255, 255));
+        out.clear();
+        e.encode(&fb, (2, 1), &p, false, &mut out);
+        // Cell (1, 1): pixel (1, 1) of it, bit 3 = BLOCK OCTANT-4, white on the old colour.
+        assert_eq!(
+            String::from_utf8(out).unwrap(),
+            "\x1b[3;4H\x1b[38;2;255;255;255;48;2;10;20;30m\u{1CD03}\x1b[m"
+        );
+    }
+
+    #[test]
+    fn the_shown_picture_is_the_masks_in_their_colours() {
+        let fb = frame(Glyphs::Quadrant, |x, y| {
+            if (x + y) % 2 == 0 {
+                Rgb::new(200, 0, 0)
+            } else {
+                Rgb::new(0, 0, 200)
+            }
+        });
+        let p = Palette::new(ColorLevel::TrueColor);
+        let mut e = GlyphFrames::default();
+        e.encode(&fb, (0, 0), &p, false, &mut Vec::new());
+        assert_eq!(e.shown_frame(&p), fb);
+    }
+}

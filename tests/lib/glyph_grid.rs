@@ -1,0 +1,99 @@
+//! The glyph ladder's sub-grid: the same camera at every setting, walls square on screen, and
+//! one ray per pixel column.
+
+use halfcast::encode::{ColorLevel, EncodeOptions, Encoder};
+use halfcast::map::parse_map;
+use halfcast::world::{TextureSource, World};
+use halfcast::{Camera, Framebuffer, Glyphs, Rgb, Scene};
+
+/// A room with one wall block at (6, 3), seen face-on from (1.5, 3.5) looking east; floor and
+/// ceiling flat colours, so the wall's rows are the pixels of neither.
+fn room() -> World {
+    let text = "NO textures/bricks.png\nSO textures/bricks.png\nWE textures/stone.png\n\
+                EA textures/stone.png\nF 0,0,255\nC 0,255,0\n\n\
+                1111111111\n1000000001\n1000000001\n1E00001001\n1000000001\n1111111111\n";
+    let map = parse_map("room.cub", text.as_bytes()).unwrap();
+    World::load(map, &TextureSource::Embedded, true).unwrap().0
+}
+
+/// The block's face on screen in terminal cells: (width in columns, height in rows).
+fn face_in_cells(world: &World, cols: u16, rows: u16, glyphs: Glyphs) -> (f64, f64) {
+    let cam = Camera::from_angle(world.map.start.pos(), 0.0, 66.0);
+    let mut fb = Framebuffer::for_glyphs(cols, rows, glyphs);
+    let cast = Scene::new(world, cam).render_into(&mut fb, None);
+    // One ray per pixel column: 2W of them when the cell is two pixels wide.
+    assert_eq!(cast.columns.len(), fb.width());
+    let (cw, ch) = glyphs.cell_size();
+    let on_block: Vec<usize> = (0..fb.width())
+        .filter(|&x| cast.columns[x].cell == (6, 3))
+        .collect();
+    let centre = on_block[on_block.len() / 2];
+    let (floor, ceiling) = (Rgb::new(0, 0, 255), Rgb::new(0, 255, 0));
+    let wall_rows = (0..fb.height())
+        .filter(|&y| {
+            let c = fb.get(centre, y);
+            c != floor && c != ceiling
+        })
+        .count();
+    (
+        on_block.len() as f64 / cw as f64,
+        wall_rows as f64 / ch as f64,
+    )
+}
+
+#[test]
+fn a_wall_seen_face_on_is_square_at_every_setting() {
+    let world = room();
+    for glyphs in Glyphs::ALL {
+        let (w, h) = face_in_cells(&world, 120, 40, glyphs);
+        // A cell is twice as tall as wide: a square face is twice as many columns as rows.
+        // Expected: focal 120 / (2·tan 33°) = 92.4 columns per unit at distance 1, 4.5 away.
+        assert!((w - 20.5).abs() < 0.6, "{glyphs}: {w} columns");
+        assert!(
+            (h - w / 2.0).abs() < 0.6,
+            "{glyphs}: {w} columns × {h} rows"
+        );
+    }
+}
+
+#[test]
+fn a_still_camera_sends_nothing_after_the_first_frame_at_every_setting() {
+    let world = World::default_world();
+    let start = world.map.start;
+    let scene = Scene::new(
+        &world,
+        Camera::from_angle(start.pos(), start.angle_deg(), 66.0),
+    );
+    for glyphs in Glyphs::ALL {
+        for level in ColorLevel::ALL {
+            let mut fb = Framebuffer::for_glyphs(50, 23, glyphs);
+            let mut e = Encoder::new(EncodeOptions::new(level));
+            scene.render_into(&mut fb, None);
+            assert!(!e.encode(&fb, 0, 1).is_empty());
+            scene.render_into(&mut fb, None);
+            assert!(e.encode(&fb, 0, 1).is_empty(), "{glyphs} at {level}");
+        }
+    }
+}
+
+/// Golden pictures of the default view at 80×24 cells as the terminal shows it at each setting
+/// (each cell's mask in its two colours). Update after an intended change:
+/// `HALFCAST_UPDATE_GOLDEN=1 cargo test --test lib glyph_grid` (and look at every image).
+#[test]
+fn golden_default_view_at_each_setting() {
+    use halfcast::output::glyph_picture::shown_picture;
+    use halfcast::snapshot::{assert_png_golden, Tolerance};
+    let world = World::default_world();
+    let start = world.map.start;
+    let scene = Scene::new(
+        &world,
+        Camera::from_angle(start.pos(), start.angle_deg(), 66.0),
+    );
+    for glyphs in Glyphs::ALL {
+        let mut fb = Framebuffer::for_glyphs(80, 24, glyphs);
+        scene.render_into(&mut fb, None);
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join(format!("tests/images/glyphs/default_{glyphs}.png"));
+        assert_png_golden(&shown_picture(&fb), path, Tolerance::default());
+    }
+}
