@@ -58,6 +58,7 @@ const CASES: &[(&str, &str)] = &[
     ("invalid_no_space_after_f", "5:1: no space after identifier 'F' (write 'F r,g,b')"),
     ("invalid_not_closed", "10:5: map is not closed: floor cell at 10:5 touches void"),
     ("invalid_not_utf8", "2:7: file is not valid UTF-8 text"),
+    ("invalid_serve_rotation", "7:1: unknown identifier 'Q'"),
     ("invalid_tab_in_map", "9:1: bad map character '\\t'"),
     ("invalid_too_many_lights", "263:1: too many LIGHT lines; the limit is 256"),
     (
