@@ -12,6 +12,9 @@ mod cursor;
 pub(crate) mod encoder;
 pub(crate) mod inline;
 pub(crate) mod level;
+#[cfg(test)]
+mod mix_solver;
+pub(crate) mod mix_table;
 pub(crate) mod mixing;
 mod number;
 pub(crate) mod pacer;
