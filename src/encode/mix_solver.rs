@@ -77,9 +77,9 @@ pub const HALF_SHARES: [u8; 3] = [0, 8, 16];
 pub const MIX_256: Weights = Weights {
     pixel_l: 1.0,
     pixel_ab: 0.05,
-    mix_l: 1.0,
+    mix_l: 0.3,
     mix_ab: 2.0,
-    candidates: 16,
+    candidates: 32,
     candidate_ab: 0.1,
     half_cost: 3.0,
     fine_cost: 8.0,
