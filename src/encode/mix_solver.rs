@@ -75,8 +75,8 @@ pub const HALF_SHARES: [u8; 3] = [0, 8, 16];
 
 /// How 256-colour mixes are judged (see `docs/colour.md` for the figures behind them).
 pub const MIX_256: Weights = Weights {
-    pixel_l: 1.0,
-    pixel_ab: 0.05,
+    pixel_l: 1.3,
+    pixel_ab: 0.0,
     mix_l: 0.3,
     mix_ab: 2.0,
     candidates: 32,
