@@ -15,6 +15,9 @@ pub mod glyph_frame;
 pub mod glyph_mask;
 pub(crate) mod inline;
 pub(crate) mod level;
+#[cfg(test)]
+mod mix_solver;
+pub(crate) mod mix_table;
 pub(crate) mod mixing;
 mod number;
 pub(crate) mod pacer;

@@ -4,7 +4,8 @@
 use std::sync::{Arc, OnceLock};
 
 use super::level::ColorLevel;
-use super::mixing::{Mix, MixTable, Weights, FINE_SHARES, HALF_SHARES, MIX_16, MIX_256, SHARES};
+use super::mix_table::{self, MixTable};
+use super::mixing::{Mix, SHARES};
 use crate::color::Rgb;
 
 /// A colour as the terminal is told it: packed `0xRRGGBB` at truecolor, a palette index otherwise.
@@ -95,16 +96,15 @@ impl Palette {
     pub fn new(level: ColorLevel) -> Self {
         static LUT_256: OnceLock<Arc<Tables>> = OnceLock::new();
         static LUT_16: OnceLock<Arc<Tables>> = OnceLock::new();
-        let tables: Option<Arc<Tables>> =
-            match level {
-                ColorLevel::Ansi256 => Some(Arc::clone(LUT_256.get_or_init(|| {
-                    Arc::new(build_tables(&(16..=255).collect::<Vec<u8>>(), &MIX_256))
-                }))),
-                ColorLevel::Ansi16 => Some(Arc::clone(LUT_16.get_or_init(|| {
-                    Arc::new(build_tables(&(0..16).collect::<Vec<u8>>(), &MIX_16))
-                }))),
-                ColorLevel::TrueColor | ColorLevel::Mono => None,
-            };
+        let tables: Option<Arc<Tables>> = match level {
+            ColorLevel::Ansi256 => Some(Arc::clone(
+                LUT_256.get_or_init(|| Arc::new(build_tables(ColorLevel::Ansi256))),
+            )),
+            ColorLevel::Ansi16 => Some(Arc::clone(
+                LUT_16.get_or_init(|| Arc::new(build_tables(ColorLevel::Ansi16))),
+            )),
+            ColorLevel::TrueColor | ColorLevel::Mono => None,
+        };
         let mut bin = [0u8; 256];
         for (v, b) in bin.iter_mut().enumerate() {
             *b = ((v * (LUT_SIDE - 1) + 127) / 255) as u8;
@@ -201,7 +201,8 @@ const HALF_TOP: u8 = 0;
 const HALF_BOTTOM: u8 = SHARES / 2;
 
 /// For every bin centre, the nearest entry in OKLab; and the mix tables.
-fn build_tables(candidates: &[u8], weights: &Weights) -> Tables {
+fn build_tables(level: ColorLevel) -> Tables {
+    let candidates = &mix_table::entries(level);
     let labs: Vec<[f32; 3]> = candidates.iter().map(|&i| oklab(xterm_rgb(i))).collect();
     let centre = |i: usize| ((i * 255 + (LUT_SIDE - 1) / 2) / (LUT_SIDE - 1)) as u8;
     let mut near = vec![0u8; LUT_SIDE * LUT_SIDE * LUT_SIDE];
@@ -223,8 +224,8 @@ fn build_tables(candidates: &[u8], weights: &Weights) -> Tables {
     }
     Tables {
         near,
-        fine: MixTable::new(candidates, xterm_rgb, *weights, &FINE_SHARES),
-        halves: MixTable::new(candidates, xterm_rgb, *weights, &HALF_SHARES),
+        fine: MixTable::from_bytes(mix_table::shipped(level)[0]),
+        halves: MixTable::from_bytes(mix_table::shipped(level)[1]),
     }
 }
 

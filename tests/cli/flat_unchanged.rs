@@ -4,8 +4,9 @@
 //! (`tests/fixtures/flat_outputs.txt`, written by `HALFCAST_WRITE_FLAT_HASHES=1` on commit
 //! c716e55, the last before heights were drawn). The `ansi256` lines were re-pinned twice since,
 //! when surface-anchored dithering changed every rendered 256-colour frame on purpose (issue 12),
-//! and again when its lattice went to quarter-octave levels and its matrix to dashes, and a third
-//! time for per-pixel mixes (issue 20); the PNG, truecolor and JSON lines are still those of
+//! and again when its lattice went to quarter-octave levels and its matrix to dashes, a third
+//! time for per-pixel mixes (issue 20), and a fourth when those mixes began charging two hues side
+//! by side (issue 20, shipped tables); the PNG, truecolor and JSON lines are still those of
 //! c716e55.
 
 use crate::common;
