@@ -10,7 +10,7 @@
 
 use halfcast::bench::scielab::{self, Figures, Source};
 use halfcast::encode::palette::{xterm_rgb, ANSI16};
-use halfcast::encode::quantize::quantize;
+use halfcast::encode::quantize;
 use halfcast::encode::{full_frame, ColorLevel, EncodeOptions, Palette};
 use halfcast::world::door::DoorState;
 use halfcast::{Camera, Framebuffer, Rgb, Scene, Vec2, View, World};
