@@ -8,24 +8,12 @@
 //! tool's `--poses`; the first eight it can render count, as with its `--random 8`). `--dump`
 //! writes each view as source | shown | Floyd–Steinberg, three screen pixels per pixel, to look at.
 
-use halfcast::bench::scielab::{self, Figures, Source};
+use halfcast::bench::scielab::{self, Figures, Source, DEFAULT_MAP_VIEWS};
 use halfcast::encode::palette::{xterm_rgb, ANSI16};
 use halfcast::encode::quantize;
 use halfcast::encode::{full_frame, ColorLevel, EncodeOptions, Palette};
 use halfcast::world::door::DoorState;
 use halfcast::{Camera, Framebuffer, Rgb, Scene, Vec2, View, World};
-
-/// The tool's default-map poses.
-const POSES: [(f64, f64, f64); 8] = [
-    (15.5, 5.5, 90.0),
-    (15.5, 5.5, 125.0),
-    (15.5, 5.5, 0.0),
-    (10.5, 8.5, 200.0),
-    (20.5, 3.5, 270.0),
-    (5.5, 5.5, 45.0),
-    (12.5, 9.5, 160.0),
-    (24.5, 9.5, 30.0),
-];
 
 const SIZE: (u16, u16) = (120, 40);
 
@@ -57,7 +45,10 @@ fn render(world: &World, (x, y, a): (f64, f64, f64)) -> Option<Framebuffer> {
 fn frames_of(set: &str) -> Vec<Framebuffer> {
     if set == "default" {
         let world = World::default_world();
-        return POSES.iter().filter_map(|&p| render(&world, p)).collect();
+        return DEFAULT_MAP_VIEWS
+            .iter()
+            .filter_map(|&p| render(&world, p))
+            .collect();
     }
     if set == "frames" {
         // A turn, a walk and a strafe on the default map and on level1, frames 0, 10, 20.

@@ -16,6 +16,19 @@ use crate::render::framebuffer::Framebuffer;
 /// The two viewing conditions every figure is given at (pixels per degree of visual angle).
 pub const PPDS: [f64; 2] = [4.5, 9.0];
 
+/// The default map's views (x, y, angle in degrees) that `scielab.py --scenes` renders at
+/// 120×40: the one list the colour tests and `examples/colour_figures.rs` judge by.
+pub const DEFAULT_MAP_VIEWS: [(f64, f64, f64); 8] = [
+    (15.5, 5.5, 90.0),
+    (15.5, 5.5, 125.0),
+    (15.5, 5.5, 0.0),
+    (10.5, 8.5, 200.0),
+    (20.5, 3.5, 270.0),
+    (5.5, 5.5, 45.0),
+    (12.5, 9.5, 160.0),
+    (24.5, 9.5, 30.0),
+];
+
 /// sRGB (linear) → CIE XYZ (D65), as the tool writes it (four decimals).
 const M_XYZ: [[f64; 3]; 3] = [
     [0.4124, 0.3576, 0.1805],

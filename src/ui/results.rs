@@ -192,53 +192,46 @@ impl Board {
 
 impl Widget for &Board {
     fn render(self, area: Rect, buf: &mut Buffer) {
-        let lines = self.lines();
-        let text_width = lines.iter().map(Line::width).max().unwrap_or(0);
-        let block = Block::bordered()
-            .border_set(ratatui::symbols::border::PLAIN)
-            .border_style(Style::new().fg(Color::Rgb(110, 200, 230)))
-            .title(" L: leaderboard ")
-            .style(Style::new().bg(Color::Rgb(22, 24, 32)));
-        let size = (text_width.max(16) as u16 + 4, lines.len() as u16 + 2);
-        let Some(inner) = super::centred_box::draw(area, size, block, buf) else {
-            return;
-        };
-        let inner = Rect::new(
-            inner.x + 1,
-            inner.y,
-            inner.width.saturating_sub(1),
-            inner.height,
-        );
-        Paragraph::new(lines).render(inner, buf);
+        let border = Style::new().fg(Color::Rgb(110, 200, 230));
+        draw_boxed(area, buf, self.lines(), " L: leaderboard ", border, 16);
     }
 }
 
 impl Widget for &Results {
     fn render(self, area: Rect, buf: &mut Buffer) {
-        let lines = self.lines();
-        let text_width = lines.iter().map(Line::width).max().unwrap_or(0);
         let title = format!(" {} ", self.level);
-        let block = Block::bordered()
-            .border_set(ratatui::symbols::border::PLAIN)
-            .border_style(Style::new().fg(Color::Rgb(120, 255, 150)))
-            .title(title.clone())
-            .style(Style::new().bg(Color::Rgb(22, 24, 32)));
-        let size = (
-            text_width.max(title.len()) as u16 + 4,
-            lines.len() as u16 + 2,
-        );
-        let Some(inner) = super::centred_box::draw(area, size, block, buf) else {
-            return;
-        };
-        // A column of padding inside the border; the figures line up on the left.
-        let inner = Rect::new(
-            inner.x + 1,
-            inner.y,
-            inner.width.saturating_sub(1),
-            inner.height,
-        );
-        Paragraph::new(lines).render(inner, buf);
+        let border = Style::new().fg(Color::Rgb(120, 255, 150));
+        draw_boxed(area, buf, self.lines(), &title, border, title.len());
     }
+}
+
+/// A centred, bordered box of `lines` (at least `min_width` wide), with a column of padding
+/// inside the border so the figures line up on the left: the results and the leaderboard alike.
+fn draw_boxed(
+    area: Rect,
+    buf: &mut Buffer,
+    lines: Vec<Line<'static>>,
+    title: &str,
+    border: Style,
+    min_width: usize,
+) {
+    let text_width = lines.iter().map(Line::width).max().unwrap_or(0);
+    let block = Block::bordered()
+        .border_set(ratatui::symbols::border::PLAIN)
+        .border_style(border)
+        .title(title.to_owned())
+        .style(Style::new().bg(Color::Rgb(22, 24, 32)));
+    let size = (text_width.max(min_width) as u16 + 4, lines.len() as u16 + 2);
+    let Some(inner) = super::centred_box::draw(area, size, block, buf) else {
+        return;
+    };
+    let inner = Rect::new(
+        inner.x + 1,
+        inner.y,
+        inner.width.saturating_sub(1),
+        inner.height,
+    );
+    Paragraph::new(lines).render(inner, buf);
 }
 
 #[cfg(test)]

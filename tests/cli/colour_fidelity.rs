@@ -3,7 +3,7 @@
 
 use std::process::Command;
 
-use halfcast::bench::scielab::{self, Figures, Source};
+use halfcast::bench::scielab::{self, Figures, Source, DEFAULT_MAP_VIEWS};
 use halfcast::encode::palette::xterm_rgb;
 use halfcast::encode::quantize;
 use halfcast::encode::{ColorLevel, Palette};
@@ -224,18 +224,6 @@ fn bench_json_reports_fidelity_per_level() {
     assert!(mono["scielab_45"].is_null() && mono["chroma_kept"].is_null());
 }
 
-/// The default-map views `colourfidelity.py --scenes` measures, at its 120×40 size.
-const VIEWS: [(f64, f64, f64); 8] = [
-    (15.5, 5.5, 90.0),
-    (15.5, 5.5, 125.0),
-    (15.5, 5.5, 0.0),
-    (10.5, 8.5, 200.0),
-    (20.5, 3.5, 270.0),
-    (5.5, 5.5, 45.0),
-    (12.5, 9.5, 160.0),
-    (24.5, 9.5, 30.0),
-];
-
 /// What a terminal shows for `fb` at `level`: each cell's two codes as pixels.
 fn shown(palette: &Palette, fb: &Framebuffer) -> Framebuffer {
     let mut out = Framebuffer::new(fb.width(), fb.height());
@@ -256,7 +244,7 @@ fn surface_patterns_bring_the_default_maps_views_closer_at_256_colours() {
     let palette = Palette::new(ColorLevel::Ansi256);
     let mut dithered = Vec::new();
     let mut single = Vec::new();
-    for (x, y, a) in VIEWS {
+    for (x, y, a) in DEFAULT_MAP_VIEWS {
         let cam = Camera::from_angle(halfcast::Vec2::new(x, y), a, 66.0);
         let mut fb = Scene::new(&world, cam).render(120, 40);
         assert!(fb.phases().is_some(), "a rendered frame carries phases");
