@@ -3,73 +3,20 @@
 
 use crate::serve_support;
 
-use std::io::{BufRead, BufReader};
-use std::process::{Child, Command, Stdio};
+use std::process::Command;
 use std::sync::mpsc;
 use std::time::Duration;
 
+use crate::serve_process::{free_port, spawn as spawn_with, Guard};
 use serve_support::{header_has, Client};
 
 fn halfcast() -> Command {
     Command::new(env!("CARGO_BIN_EXE_halfcast"))
 }
 
-/// Kills the child if a test fails before stopping it.
-struct Guard(Child);
-
-impl Drop for Guard {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
-
-fn free_port() -> u16 {
-    std::net::TcpListener::bind("127.0.0.1:0")
-        .expect("bind")
-        .local_addr()
-        .expect("addr")
-        .port()
-}
-
 /// Starts the server and returns it with its stderr lines (as they come).
 fn spawn(port: u16, host_key: &std::path::Path) -> (Guard, mpsc::Receiver<String>) {
     spawn_with(port, host_key, &[], &[])
-}
-
-/// [`spawn`] with more flags and environment variables.
-fn spawn_with(
-    port: u16,
-    host_key: &std::path::Path,
-    extra: &[&str],
-    env: &[(&str, &str)],
-) -> (Guard, mpsc::Receiver<String>) {
-    let mut child = halfcast()
-        .args([
-            "serve",
-            "--listen",
-            &format!("127.0.0.1:{port}"),
-            "--host-key",
-        ])
-        .arg(host_key)
-        .args(extra)
-        .env_remove("HALFCAST_PASSWORD")
-        .envs(env.iter().copied())
-        .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("spawn halfcast serve");
-    let err = child.stderr.take().expect("stderr");
-    let (tx, rx) = mpsc::channel();
-    std::thread::spawn(move || {
-        for line in BufReader::new(err).lines().map_while(Result::ok) {
-            if tx.send(line).is_err() {
-                break;
-            }
-        }
-    });
-    (Guard(child), rx)
 }
 
 /// Collects lines until one contains `needle` (or the server's stderr ends / patience runs out).

@@ -4,10 +4,10 @@
 
 use crate::serve_support;
 
-use std::io::{BufRead, BufReader};
-use std::process::{Command, Stdio};
+use std::process::Command;
 use std::time::Duration;
 
+use crate::serve_process::spawn_server;
 use serve_support::{header_has, row_text, server, Client, PATIENCE};
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -36,31 +36,8 @@ async fn two_adas_become_ada_and_ada_2() {
 
 #[test]
 fn the_shutdown_summary_counts_sessions_still_running() {
-    let port = std::net::TcpListener::bind("127.0.0.1:0")
-        .and_then(|l| l.local_addr())
-        .expect("free port")
-        .port();
     let dir = tempfile::tempdir().expect("tempdir");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_halfcast"))
-        .args([
-            "serve",
-            "--listen",
-            &format!("127.0.0.1:{port}"),
-            "--host-key",
-        ])
-        .arg(dir.path().join("hk"))
-        .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("spawn halfcast serve");
-    let (tx, rx) = std::sync::mpsc::channel();
-    let err = child.stderr.take().expect("stderr");
-    std::thread::spawn(move || {
-        for line in BufReader::new(err).lines().map_while(Result::ok) {
-            let _ = tx.send(line);
-        }
-    });
+    let (mut server, port, rx) = spawn_server(dir.path(), &[]);
     let wait_for = |needle: &str, seen: &mut Vec<String>| loop {
         match rx.recv_timeout(PATIENCE) {
             Ok(l) if l.contains(needle) => return l,
@@ -69,7 +46,6 @@ fn the_shutdown_summary_counts_sessions_still_running() {
         }
     };
     let mut seen = Vec::new();
-    wait_for("listening on", &mut seen);
     let rt = tokio::runtime::Runtime::new().expect("runtime");
     // The client stays connected (and playing) while the server is told to stop.
     let client = rt.block_on(async {
@@ -88,16 +64,14 @@ fn the_shutdown_summary_counts_sessions_still_running() {
         "{renamed}"
     );
     let killed = Command::new("kill")
-        .args(["-TERM", &child.id().to_string()])
+        .args(["-TERM", &server.0.id().to_string()])
         .status();
     if killed.is_err() {
         eprintln!("skip: no `kill` command to send SIGTERM");
-        let _ = child.kill();
-        let _ = child.wait();
         return;
     }
     let summary = wait_for("served ", &mut seen);
-    let _ = child.wait();
+    let _ = server.0.wait();
     drop(client);
     // "served 2 connections (0 refused), N frames, M bytes"
     let frames: u64 = summary

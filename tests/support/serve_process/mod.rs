@@ -26,10 +26,14 @@ pub fn free_port() -> u16 {
         .port()
 }
 
-/// Starts `halfcast serve` with `extra` flags; returns it, its SSH port and its stderr lines
-/// once it listens.
-pub fn spawn_server(dir: &std::path::Path, extra: &[&str]) -> (Guard, u16, mpsc::Receiver<String>) {
-    let port = free_port();
+/// Starts `halfcast serve` on `port` with its host key at `host_key`, `extra` flags and `env`
+/// (HALFCAST_PASSWORD unset unless `env` gives it); returns it and its stderr lines as they come.
+pub fn spawn(
+    port: u16,
+    host_key: &std::path::Path,
+    extra: &[&str],
+    env: &[(&str, &str)],
+) -> (Guard, mpsc::Receiver<String>) {
     let mut child = Command::new(env!("CARGO_BIN_EXE_halfcast"))
         .args([
             "serve",
@@ -37,8 +41,10 @@ pub fn spawn_server(dir: &std::path::Path, extra: &[&str]) -> (Guard, u16, mpsc:
             &format!("127.0.0.1:{port}"),
             "--host-key",
         ])
-        .arg(dir.join("hk"))
+        .arg(host_key)
         .args(extra)
+        .env_remove("HALFCAST_PASSWORD")
+        .envs(env.iter().copied())
         .stdin(Stdio::null())
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
@@ -53,7 +59,14 @@ pub fn spawn_server(dir: &std::path::Path, extra: &[&str]) -> (Guard, u16, mpsc:
             }
         }
     });
-    let guard = Guard(child);
+    (Guard(child), rx)
+}
+
+/// Starts `halfcast serve` with `extra` flags and its host key in `dir`; returns it, its SSH
+/// port and its stderr lines once it listens.
+pub fn spawn_server(dir: &std::path::Path, extra: &[&str]) -> (Guard, u16, mpsc::Receiver<String>) {
+    let port = free_port();
+    let (guard, rx) = spawn(port, &dir.join("hk"), extra, &[]);
     let deadline = Instant::now() + PATIENCE;
     loop {
         let line = rx
