@@ -7,12 +7,18 @@
 //! {"frame":20,"command":"toggle_pause"}
 //! {"frame":21,"command":"move_column","by":-3}
 //! {"frame":22,"ui":"toggle_minimap"}
+//! {"frame":25,"ui":"set_glyphs","glyphs":"sextant"}
 //! {"frame":30,"size":[120,40]}
 //! {"end":40}
 //! ```
 //! `held` replaces the set of held actions from that frame on; commands and UI toggles happen
 //! once, at the start of their frame. Frame 0 is the start; frame N is drawn after N steps of
 //! 1/fps seconds each.
+//!
+//! The glyph key is recorded as the setting it led to (`set_glyphs`), since where it leads
+//! depends on the terminal it was pressed in (octants are skipped behind tmux). Recordings made
+//! before that hold the key itself (`cycle_glyphs`), which still replays as the plain cycle
+//! through all four settings, as it did when they were made.
 
 use std::fmt::Write;
 
@@ -39,8 +45,12 @@ pub enum UiCommand {
     CycleColours,
     /// The figure key: write the debugged column's figure to a file (local play only).
     SaveFigure,
-    /// The glyph key: the next block characters (half → quadrant → sextant → octant).
+    /// The glyph key: the next block characters (half → quadrant → sextant → octant). Live,
+    /// the session resolves it into [`UiCommand::SetGlyphs`] before recording; in a recording
+    /// (older ones only) it replays as the plain cycle.
     CycleGlyphs,
+    /// The block characters the glyph key switched to (what recordings keep).
+    SetGlyphs(Glyphs),
 }
 
 /// The format version this build writes and the newest it reads.
@@ -213,7 +223,13 @@ impl Replay {
                 let _ = writeln!(out, "{}", command_json(i, c));
             }
             for u in &f.ui {
-                let _ = writeln!(out, "{}", json!({"frame": i, "ui": ui_name(*u)}));
+                let line = match u {
+                    UiCommand::SetGlyphs(g) => {
+                        json!({"frame": i, "ui": "set_glyphs", "glyphs": g.name()})
+                    }
+                    _ => json!({"frame": i, "ui": ui_name(*u)}),
+                };
+                let _ = writeln!(out, "{line}");
             }
         }
         let _ = writeln!(out, "{}", json!({"end": self.frames.len()}));
@@ -442,6 +458,15 @@ fn parse_event(v: &Value, held: &mut Held, slot: &mut FrameInput) -> Result<(), 
         slot.input.commands.push(command);
     } else if let Some(u) = v.get("ui") {
         let name = u.as_str().unwrap_or_default();
+        if name == "set_glyphs" {
+            let glyphs = v
+                .get("glyphs")
+                .and_then(Value::as_str)
+                .ok_or("set_glyphs needs a \"glyphs\" name")?
+                .parse()?;
+            slot.ui.push(UiCommand::SetGlyphs(glyphs));
+            return Ok(());
+        }
         let (ui, _) = UI
             .iter()
             .find(|(_, n)| *n == name)
@@ -525,6 +550,37 @@ mod tests {
         assert_eq!(
             Replay::parse("r.hcr", &bad).unwrap_err().to_string(),
             "r.hcr:1: header: 'braille' is not a glyph setting (half, quadrant, sextant or octant)"
+        );
+    }
+
+    #[test]
+    fn the_glyph_key_is_kept_as_the_setting_it_led_to_and_old_key_lines_still_read() {
+        let mut r = sample();
+        r.frames[3].ui.push(UiCommand::SetGlyphs(Glyphs::Sextant));
+        r.frames[5].ui.push(UiCommand::SetGlyphs(Glyphs::Half));
+        let text = r.to_jsonl();
+        assert!(
+            text.contains("{\"frame\":3,\"ui\":\"set_glyphs\",\"glyphs\":\"sextant\"}\n"),
+            "{text}"
+        );
+        assert!(text.starts_with("{\"halfcast_replay\":1,"), "{text}");
+        assert_eq!(Replay::parse("r.hcr", &text).unwrap(), r);
+        // A recording from before holds the key; it reads as the key.
+        let old = text.replace(
+            "{\"frame\":5,\"ui\":\"set_glyphs\",\"glyphs\":\"half\"}",
+            "{\"frame\":5,\"ui\":\"cycle_glyphs\"}",
+        );
+        let back = Replay::parse("r.hcr", &old).unwrap();
+        assert_eq!(back.frames[5].ui, [UiCommand::CycleGlyphs]);
+        let bad = text.replace("\"sextant\"", "\"braille\"");
+        assert_eq!(
+            Replay::parse("r.hcr", &bad).unwrap_err().to_string(),
+            "r.hcr:6: 'braille' is not a glyph setting (half, quadrant, sextant or octant)"
+        );
+        let bare = text.replace(",\"glyphs\":\"sextant\"", "");
+        assert_eq!(
+            Replay::parse("r.hcr", &bare).unwrap_err().to_string(),
+            "r.hcr:6: set_glyphs needs a \"glyphs\" name"
         );
     }
 

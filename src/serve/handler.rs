@@ -71,6 +71,9 @@ pub struct ConnHandler {
     channel: Option<ChannelId>,
     term: String,
     colorterm: Option<String>,
+    /// `TMUX` and `HALFCAST_GLYPHS`, when the client sends them (for the glyph key's cycle).
+    tmux: Option<String>,
+    glyphs: Option<crate::render::glyphs::Glyphs>,
     size: watch::Sender<(u32, u32)>,
     data: Option<mpsc::Sender<Vec<u8>>>,
     started: bool,
@@ -100,6 +103,8 @@ impl ConnHandler {
             channel: None,
             term: String::new(),
             colorterm: None,
+            tmux: None,
+            glyphs: None,
             size,
             data: None,
             started: false,
@@ -296,12 +301,22 @@ impl russh::server::Handler for ConnHandler {
         value: &str,
         session: &mut Session,
     ) -> Result<(), Self::Error> {
-        // Only COLORTERM is read, to pick the colour level; nothing runs with the client's env.
-        if self.ours(channel) && name == "COLORTERM" && !self.started {
-            self.colorterm = Some(value.chars().take(32).collect());
-            return session.channel_success(channel);
+        // Only three names are read, each kept short; nothing runs with the client's env.
+        // COLORTERM picks the colour level; TMUX (tmux drops octants) and HALFCAST_GLYPHS (the
+        // block characters to start with) shape the glyph key's cycle.
+        if !self.ours(channel) || self.started {
+            return session.channel_failure(channel);
         }
-        session.channel_failure(channel)
+        match name {
+            "COLORTERM" => self.colorterm = Some(value.chars().take(32).collect()),
+            "TMUX" => self.tmux = Some(value.chars().take(64).collect()),
+            "HALFCAST_GLYPHS" => match value.parse() {
+                Ok(g) => self.glyphs = Some(g),
+                Err(_) => return session.channel_failure(channel),
+            },
+            _ => return session.channel_failure(channel),
+        }
+        session.channel_success(channel)
     }
 
     async fn shell_request(
@@ -328,6 +343,8 @@ impl russh::server::Handler for ConnHandler {
             spectator,
             term: self.term.clone(),
             colorterm: self.colorterm.clone(),
+            tmux: self.tmux.clone(),
+            glyphs: self.glyphs,
             handle: session.handle(),
             channel,
             world: sh.world.clone(),

@@ -22,7 +22,7 @@ use crate::ui::keys::InputMode;
 use crate::ui::layout::{Panes, Toggles};
 use crate::ui::render::render_view;
 use crate::ui::results::{Board, Results, Then};
-use crate::ui::screen::{draw, Screen};
+use crate::ui::screen::{draw, draw_notice, Screen};
 use crate::ui::stats::FrameStats;
 use crate::ui::status::BAR;
 use crate::world::World;
@@ -54,6 +54,8 @@ pub struct SessionScreen {
     pub toggles: Toggles,
     /// This client's block characters (U cycles them; each session its own).
     glyphs: Glyphs,
+    /// A note over the status line, and until when it shows.
+    notice: Option<(String, Instant)>,
 }
 
 /// Where a terminal of `size` puts the 3D view, below the header.
@@ -126,6 +128,7 @@ impl SessionScreen {
             out: Vec::new(),
             toggles: Toggles::default(),
             glyphs: Glyphs::Half,
+            notice: None,
         }
     }
 
@@ -139,6 +142,17 @@ impl SessionScreen {
     pub fn set_glyphs(&mut self, glyphs: Glyphs) {
         self.glyphs = glyphs;
         self.stats.glyphs = glyphs;
+    }
+
+    /// Shows `text` over the status line until `until`.
+    pub fn set_notice(&mut self, text: String, until: Instant) {
+        self.notice = Some((text, until));
+    }
+
+    /// Whether a note is over the status line at `now`.
+    #[must_use]
+    pub fn notice_showing(&self, now: Instant) -> bool {
+        self.notice.as_ref().is_some_and(|(_, until)| now < *until)
     }
 
     /// The map served.
@@ -247,6 +261,11 @@ impl SessionScreen {
                     results: results.as_ref(),
                 };
                 draw(&screen, &panes, body, &mut buf);
+                if let (Some((text, until)), Panes::Game { status, .. }) = (&self.notice, panes) {
+                    if started < *until {
+                        draw_notice(text, status, &mut buf);
+                    }
+                }
                 if let Panes::Game {
                     minimap: Some(r), ..
                 } = panes

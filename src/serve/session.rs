@@ -32,10 +32,13 @@ use super::world_task::{WorldHandle, WorldMsg};
 use crate::encode::{ColorLevel, ColourChoice, ColourReason};
 use crate::game::multi::players::{PlayerId, Snapshot};
 use crate::game::Held;
+use crate::render::glyphs::Glyphs;
+use crate::ui::glyph_cycle::GlyphCycle;
 use crate::ui::key_bytes::{InputEvent, InputParser};
 use crate::ui::key_route::{route, Routed};
 use crate::ui::keys::{Controls, InputMode, UiCommand};
 use crate::ui::layout::Toggles;
+use crate::ui::octant_support::{octant_dropper, TermEnv};
 use crate::ui::results::Board;
 use crate::world::World;
 
@@ -46,6 +49,10 @@ const ENTER: &[u8] = b"\x1b[?1049h\x1b[?25l\x1b[0m\x1b[2J\x1b[>11u\x1b[?u";
 pub const LEAVE: &[u8] = b"\x1b[<u\x1b[0m\x1b[?25h\x1b[?1049l";
 /// How long an unfinished escape sequence may wait before a lone ESC counts as the Esc key.
 const ESC_WAIT: Duration = Duration::from_millis(50);
+/// How long a note shows over the status line.
+const NOTICE_FOR: Duration = Duration::from_secs(4);
+/// How an SSH player asks for octants where the glyph key skips them.
+pub const FORCE_OCTANTS: &str = "ssh -o SetEnv=HALFCAST_GLYPHS=octant forces";
 
 /// What the session needs from the server; built by the connection handler at `shell`.
 pub struct SessionParams {
@@ -56,6 +63,11 @@ pub struct SessionParams {
     pub spectator: bool,
     pub term: String,
     pub colorterm: Option<String>,
+    /// `TMUX`, when the client sent it (an env request): tmux drops octants.
+    pub tmux: Option<String>,
+    /// `HALFCAST_GLYPHS`, when the client sent it: the block characters to start with (octant
+    /// there forces octants into the glyph key's cycle).
+    pub glyphs: Option<Glyphs>,
     pub handle: Handle,
     pub channel: ChannelId,
     pub world: WorldHandle,
@@ -297,12 +309,13 @@ fn keys_early(s: &mut State, bytes: &[u8]) -> Option<End> {
     s.on_keys(&keys, &Snapshot::default())
 }
 
-/// (snapshot version, size, colour level, eye, panes, leaderboard shown): everything a frame
-/// is drawn from.
+/// (snapshot version, size, colour level, block characters, note shown, eye, panes,
+/// leaderboard shown): everything a frame is drawn from.
 type Shown = (
     u64,
     (u16, u16),
     ColourChoice,
+    (Glyphs, bool),
     Option<PlayerId>,
     Toggles,
     Option<(Board, bool)>,
@@ -357,11 +370,18 @@ struct State {
     leaders: Option<Board>,
     /// Whether `L` put the leaderboard over the game.
     show_leaders: bool,
+    /// The glyph key's cycle for this client (without octant behind tmux, unless asked for).
+    glyph_cycle: GlyphCycle,
 }
 
 impl State {
     fn new(p: &SessionParams, size: (u32, u32)) -> Self {
         let colour = level_for_term(&p.term, p.colorterm.as_deref());
+        let glyphs = p.glyphs.unwrap_or_default();
+        let dropper = octant_dropper(TermEnv {
+            term: Some(&p.term),
+            tmux: p.tmux.as_deref(),
+        });
         Self {
             spectator: p.spectator,
             me: p.id,
@@ -376,11 +396,13 @@ impl State {
             screen: {
                 let mut screen = SessionScreen::new(&p.world_data, p.avatar_sheet, colour.level);
                 screen.set_colour(colour);
+                screen.set_glyphs(glyphs);
                 screen
             },
             shown: None,
             leaders: None,
             show_leaders: false,
+            glyph_cycle: GlyphCycle::new(dropper, glyphs, FORCE_OCTANTS),
         }
     }
 
@@ -413,7 +435,11 @@ impl State {
                 },
             }
         }
-        for ui in self.controls.take_ui() {
+        let mut uis = self.controls.take_ui();
+        if let Some(note) = self.glyph_cycle.resolve(&mut uis, self.screen.glyphs()) {
+            self.screen.set_notice(note, now + NOTICE_FOR);
+        }
+        for ui in uis {
             let toggles = &mut self.screen.toggles;
             match ui {
                 UiCommand::Quit => return Some(End::Quit),
@@ -423,6 +449,8 @@ impl State {
                 UiCommand::ToggleDebug => toggles.debug = !toggles.debug,
                 UiCommand::ToggleHelp => toggles.help = !toggles.help,
                 UiCommand::CycleColours => self.screen.set_colour(self.screen.colour().cycled()),
+                UiCommand::SetGlyphs(g) => self.screen.set_glyphs(g),
+                // Resolved into `SetGlyphs` by the glyph cycle above.
                 UiCommand::CycleGlyphs => self.screen.set_glyphs(self.screen.glyphs().cycled()),
                 // Over SSH the figure key is off: it would write on the server's disk.
                 UiCommand::SaveFigure => {}
@@ -508,6 +536,10 @@ impl State {
             snap.version,
             self.size,
             self.screen.colour(),
+            (
+                self.screen.glyphs(),
+                self.screen.notice_showing(Instant::now()),
+            ),
             eye,
             self.screen.toggles,
             self.leaders.clone().map(|b| (b, self.show_leaders)),

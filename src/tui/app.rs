@@ -15,6 +15,7 @@ use crate::game::{step, Command, GameState};
 use crate::present::Presenter;
 use crate::render::framebuffer::Framebuffer;
 use crate::replay::FrameInput;
+use crate::ui::glyph_cycle::GlyphCycle;
 use crate::ui::keys::{Controls, UiCommand};
 use crate::ui::layout::{Panes, Toggles, COMPACT_MIN_WIDTH};
 use crate::ui::render::render_view;
@@ -116,6 +117,8 @@ struct App {
     notice: Option<(String, Instant)>,
     /// The wanted panes that did not fit last frame, to notice a change.
     hidden: Vec<&'static str>,
+    /// The glyph key's cycle here (without octant inside tmux, unless asked for).
+    glyph_cycle: GlyphCycle,
 }
 
 /// How long a note stays on the status line.
@@ -158,6 +161,11 @@ pub fn run_loop(
         keys: setup.keys.clone(),
         notice: None,
         hidden: Vec::new(),
+        glyph_cycle: GlyphCycle::new(
+            super::octant_dropper_here(),
+            setup.glyphs,
+            "--glyphs octant forces",
+        ),
     };
     app.stats.level = Some(ColourChoice {
         level: options.encode.level,
@@ -198,7 +206,11 @@ pub fn run_loop(
         if sig != 0 {
             return Ok((Ending::Signal(sig as i32), app.stats, app.recording));
         }
-        let ui = app.controls.take_ui();
+        let mut ui = app.controls.take_ui();
+        // The glyph key becomes the setting it leads to here, which is what gets recorded.
+        if let Some(note) = app.glyph_cycle.resolve(&mut ui, app.stats.glyphs) {
+            app.notice = Some((note, Instant::now() + NOTICE_FOR));
+        }
         if app.ui_commands(&ui) {
             return Ok((Ending::Quit, app.stats, app.recording));
         }
@@ -400,6 +412,8 @@ impl App {
                     self.presenter.set_level(next.level);
                     self.stats.level = Some(next);
                 }
+                UiCommand::SetGlyphs(g) => self.stats.glyphs = g,
+                // Resolved into `SetGlyphs` by the glyph cycle before it gets here.
                 UiCommand::CycleGlyphs => self.stats.glyphs = self.stats.glyphs.cycled(),
                 // Needs the view's size: written once the frame is laid out.
                 UiCommand::SaveFigure => {}

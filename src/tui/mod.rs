@@ -60,6 +60,17 @@ pub struct Setup {
     pub glyphs: crate::render::glyphs::Glyphs,
 }
 
+/// What drops octants between this process and the screen, as its environment (`TERM`,
+/// `TMUX`) shows it; `ui::octant_support` holds the rule.
+fn octant_dropper_here() -> Option<crate::ui::octant_support::OctantDropper> {
+    let var = |k: &str| std::env::var(k).ok();
+    let (term, tmux) = (var("TERM"), var("TMUX"));
+    crate::ui::octant_support::octant_dropper(crate::ui::octant_support::TermEnv {
+        term: term.as_deref(),
+        tmux: tmux.as_deref(),
+    })
+}
+
 /// Registers the signals that end a session (SIGTERM, SIGINT; SIGHUP and SIGQUIT on unix)
 /// into one flag holding the signal's number.
 fn watch_signals() -> std::io::Result<Arc<AtomicUsize>> {

@@ -10,16 +10,21 @@
 //!   actions, [`keys`] turns key events into a game `Input` and [`UiCommand`]s, [`repeat`] tells
 //!   a held key from a tapped one where the terminal sends no releases.
 //! - [`colour_query`]: asking a terminal whether it shows 24-bit colour, over any byte stream.
+//! - Glyphs: `octant_support` tells from a session's environment whether octants are known to
+//!   be dropped on the way to the screen (tmux), and `glyph_cycle` is the glyph key's cycle
+//!   that then skips them.
 //! - [`replay_player`]: a recording played headlessly through these same screens.
 
 pub mod centred_box;
 pub mod colour_query;
+pub(crate) mod glyph_cycle;
 pub mod help;
 pub mod key_bytes;
 pub mod key_route;
 pub mod keymap;
 pub mod keys;
 pub mod layout;
+pub(crate) mod octant_support;
 pub mod render;
 pub mod repeat;
 pub mod replay_player;

@@ -93,6 +93,9 @@ impl Player {
                 UiCommand::ToggleMinimap => self.toggles.minimap = !self.toggles.minimap,
                 UiCommand::ToggleDebug => self.toggles.debug = !self.toggles.debug,
                 UiCommand::ToggleHelp => self.toggles.help = !self.toggles.help,
+                // Recordings keep the setting the key led to; older ones kept the key itself,
+                // pressed where the cycle had all four settings.
+                UiCommand::SetGlyphs(g) => self.stats.glyphs = g,
                 UiCommand::CycleGlyphs => self.stats.glyphs = self.stats.glyphs.cycled(),
                 // Frames are written at the level the replay command asks for.
                 UiCommand::CycleColours | UiCommand::SaveFigure => {}
@@ -151,5 +154,99 @@ pub fn play_all(world: Arc<World>, replay: &Replay, mut each: impl FnMut(&Frame)
             Some(frame) => each(&frame),
             None => break,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::game::Speeds;
+    use crate::render::glyphs::Glyphs;
+    use crate::replay::format::MapSource;
+    use crate::ui::glyph_cycle::GlyphCycle;
+    use crate::ui::octant_support::{octant_dropper, TermEnv};
+    use crate::vec2::Vec2;
+
+    fn header() -> Header {
+        Header {
+            map: MapSource::Embedded,
+            pos: Vec2::new(15.5, 5.5),
+            angle_deg: 90.0,
+            fov_deg: 66.0,
+            size: (40, 12),
+            fps: 30,
+            seed: 0,
+            speeds: Speeds::default(),
+            glyphs: Glyphs::Half,
+        }
+    }
+
+    /// Six frames with the glyph key pressed on frames 1 to 4, as the keys arrive.
+    fn four_presses() -> Vec<FrameInput> {
+        let mut frames = vec![FrameInput::default(); 6];
+        for f in &mut frames[1..5] {
+            f.ui.push(UiCommand::CycleGlyphs);
+        }
+        frames
+    }
+
+    /// The block characters each frame of `text` (a `.hcr` file) is drawn with.
+    fn replayed(text: &str) -> Vec<Glyphs> {
+        let replay = Replay::parse("r.hcr", text).expect("valid");
+        let mut seen = Vec::new();
+        play_all(Arc::new(World::default_world()), &replay, |f| {
+            seen.push(f.view.glyphs());
+        });
+        seen
+    }
+
+    #[test]
+    fn a_recording_made_behind_tmux_replays_its_settings_wherever_it_plays() {
+        // What the local loop does: the key becomes the setting it leads to, then is recorded.
+        let env = TermEnv {
+            term: Some("xterm-256color"),
+            tmux: Some("/tmp/tmux-1000/default,99,0"),
+        };
+        let mut cycle = GlyphCycle::new(octant_dropper(env), Glyphs::Half, "forces");
+        let mut now = Glyphs::Half;
+        let mut frames = four_presses();
+        let mut live = Vec::new();
+        for f in &mut frames {
+            cycle.resolve(&mut f.ui, now);
+            for u in &f.ui {
+                if let UiCommand::SetGlyphs(g) = u {
+                    now = *g;
+                }
+            }
+            live.push(now);
+        }
+        let text = Replay {
+            header: header(),
+            frames,
+        }
+        .to_jsonl();
+        assert!(
+            !text.contains("cycle_glyphs") && !text.contains("octant"),
+            "{text}"
+        );
+        use Glyphs::{Half, Quadrant, Sextant};
+        assert_eq!(live, [Half, Quadrant, Sextant, Half, Quadrant, Quadrant]);
+        // The player reads no environment: the file alone decides, so this is every replay.
+        assert_eq!(replayed(&text), live);
+    }
+
+    #[test]
+    fn an_older_recording_of_the_key_still_cycles_through_octant() {
+        let text = Replay {
+            header: header(),
+            frames: four_presses(),
+        }
+        .to_jsonl();
+        assert_eq!(text.matches("\"ui\":\"cycle_glyphs\"").count(), 4);
+        use Glyphs::{Half, Octant, Quadrant, Sextant};
+        assert_eq!(
+            replayed(&text),
+            [Half, Quadrant, Sextant, Octant, Half, Half]
+        );
     }
 }
