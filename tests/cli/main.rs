@@ -10,6 +10,8 @@ mod common;
 mod oracle;
 #[path = "../support/pty_support/mod.rs"]
 mod pty_support;
+#[path = "../support/tmux/mod.rs"]
+mod tmux;
 #[path = "../support/world_common/mod.rs"]
 #[allow(dead_code)] // each test binary uses its own part of the shared world helpers
 mod world_common;
@@ -27,6 +29,7 @@ mod fuzz_stable;
 mod game_play_pty;
 mod game_replay;
 mod glyphs_cli;
+mod glyphs_tmux;
 mod golden;
 mod heights_json;
 mod heights_minimap_pty;

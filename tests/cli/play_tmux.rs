@@ -1,72 +1,11 @@
 //! End-to-end under tmux (the "must show" scenario): 160×48, first screen, walk, quit.
 //! Skipped with a notice when tmux is not installed.
 
-use std::process::{Command, Output};
+use std::process::Command;
 use std::thread;
 use std::time::{Duration, Instant};
 
-/// A hang guard only (the test never asserts on speed).
-const PATIENCE: Duration = Duration::from_secs(60);
-
-struct Tmux {
-    socket: String,
-}
-
-impl Tmux {
-    /// A private tmux server for one test (named `halfcast-NAME-PID`), or `None` with a skip
-    /// notice when tmux is not installed.
-    fn new(name: &str) -> Option<Self> {
-        if Command::new("tmux").arg("-V").output().is_err() {
-            eprintln!("skipping: tmux is not installed");
-            return None;
-        }
-        Some(Self {
-            socket: format!("halfcast-{name}-{}", std::process::id()),
-        })
-    }
-
-    fn run(&self, args: &[&str]) -> Output {
-        Command::new("tmux")
-            .args(["-L", &self.socket, "-f", "/dev/null"])
-            .args(args)
-            .env_remove("TMUX")
-            .output()
-            .expect("run tmux")
-    }
-
-    fn text(&self, args: &[&str]) -> String {
-        String::from_utf8_lossy(&self.run(args).stdout).into_owned()
-    }
-
-    fn capture(&self, colours: bool) -> String {
-        if colours {
-            self.text(&["capture-pane", "-t", "t", "-p", "-e"])
-        } else {
-            self.text(&["capture-pane", "-t", "t", "-p"])
-        }
-    }
-
-    fn wait_for(&self, what: &str, ok: impl Fn(&str) -> bool) -> String {
-        let start = Instant::now();
-        loop {
-            let screen = self.capture(false);
-            if ok(&screen) {
-                return screen;
-            }
-            assert!(
-                start.elapsed() < PATIENCE,
-                "gave up waiting for {what}:\n{screen}"
-            );
-            thread::sleep(Duration::from_millis(50));
-        }
-    }
-}
-
-impl Drop for Tmux {
-    fn drop(&mut self) {
-        let _ = self.run(&["kill-server"]);
-    }
-}
+use crate::tmux::Tmux;
 
 fn status(screen: &str) -> String {
     screen
