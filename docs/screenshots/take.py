@@ -61,17 +61,21 @@ def check(halfcast, glyphs, shot, tmp):
     (cw, ch), (rw, rh) = (shot.width // 80, shot.height // 24), (ref.width // 80, ref.height // 24)
     sx, sy = {"half": (1, 2), "quadrant": (2, 2), "sextant": (2, 3), "octant": (2, 4)}[glyphs]
     s, r = shot.load(), ref.load()
+
+    def centre(w, h, col, row, i, j):  # the middle of sub-pixel (i, j) of a w x h cell
+        return col * w + int((i + 0.5) * w / sx), row * h + int((j + 0.5) * h / sy)
+
     centres = stray = 0
     for row in range(24):
         for col in range(80):
             colours = {r[col * rw + x, row * rh + y] for x in range(rw) for y in range(rh)}
             stray += sum(s[col * cw + x, row * ch + y] not in colours
                          for x in range(cw) for y in range(ch))
-            centres += sum(s[col * cw + int((i + 0.5) * cw / sx), row * ch + int((j + 0.5) * ch / sy)]
-                           != r[col * rw + int((i + 0.5) * rw / sx), row * rh + int((j + 0.5) * rh / sy)]
+            centres += sum(s[centre(cw, ch, col, row, i, j)] != r[centre(rw, rh, col, row, i, j)]
                            for i in range(sx) for j in range(sy))
     print(f"{glyphs}: cell {cw}x{ch} px; sub-pixel centres unlike halfcast's PNG: {centres} of "
-          f"{80 * 24 * sx * sy}; pixels neither of their cell's colours: {stray} of {shot.width * shot.height}")
+          f"{80 * 24 * sx * sy}; pixels neither of their cell's colours: {stray} of "
+          f"{shot.width * shot.height}")
 
 
 def labelled(images, names, columns):
