@@ -132,10 +132,11 @@ impl DiffReport {
         for d in &self.differing {
             changed[d.y * base.cols + d.x] = true;
         }
+        let (cell_w, cell_h) = fb.glyphs().cell_size();
         for y in 0..fb.height() {
             for x in 0..fb.width() {
                 let p = fb.get(x, y);
-                let mark = changed[(y / 2) * base.cols + x];
+                let mark = changed[(y / cell_h) * base.cols + x / cell_w];
                 fb.set(
                     x,
                     y,

@@ -12,7 +12,11 @@ pub use parse::{load, parse_frame, FrameFormat, MAX_FRAME, MAX_FRAME_BYTES};
 pub use text::{cell_code, from_cells_text, to_cells_text, CELLS_HEADER};
 
 use crate::color::Rgb;
+use crate::encode::glyph_cell::GlyphCell;
+use crate::encode::glyph_frame::picture;
+use crate::encode::glyph_mask::mask_of;
 use crate::render::framebuffer::Framebuffer;
+use crate::render::glyphs::Glyphs;
 
 /// One terminal cell as a person sees it: a glyph with a foreground and a background colour
 /// (`None` = the terminal's default colour).
@@ -45,8 +49,7 @@ impl TermCell {
 /// colours swapped draw the same picture, so the form whose first pixel is the background
 /// stands for both (other glyphs as they are).
 fn glyph_appearance(g: char, fg: Option<Rgb>, bg: Option<Rgb>) -> (char, Option<Rgb>, Option<Rgb>) {
-    use crate::encode::glyph_mask::{full_mask, glyph, mask_of};
-    use crate::render::glyphs::Glyphs;
+    use crate::encode::glyph_mask::{full_mask, glyph};
     for set in [Glyphs::Octant, Glyphs::Sextant] {
         if let Some(m) = mask_of(set, g) {
             if m & 1 != 0 {
@@ -128,9 +131,62 @@ impl TermFrame {
         &self.cells[y * self.cols + x]
     }
 
-    /// Back to pixels: upper and lower colour of each cell (default colours become black).
+    /// The finest glyph setting the frame's block characters need: half-blocks unless a cell
+    /// shows a quadrant, sextant or octant character (the first setting, coarsest first, that
+    /// has every block character used; text and other characters do not count).
+    #[must_use]
+    pub fn glyphs(&self) -> Glyphs {
+        let blocks: Vec<char> = {
+            let mut seen: Vec<char> = self
+                .cells
+                .iter()
+                .map(|c| c.glyph)
+                .filter(|&g| {
+                    mask_of(Glyphs::Octant, g).is_some() || mask_of(Glyphs::Sextant, g).is_some()
+                })
+                .collect();
+            seen.sort_unstable();
+            seen.dedup();
+            seen
+        };
+        Glyphs::ALL
+            .into_iter()
+            .find(|&set| blocks.iter().all(|&g| mask_of(set, g).is_some()))
+            .unwrap_or(Glyphs::Half)
+    }
+
+    /// Back to pixels at the frame's own glyph setting ([`TermFrame::glyphs`]): for half-blocks
+    /// the upper and lower colour of each cell; for finer settings each cell's mask painted in
+    /// its two colours on that setting's sub-grid, so a frame read back from ANSI compares pixel
+    /// for pixel with the framebuffer it came from. Default colours become black; a character
+    /// that is not a block character shows its foreground over the upper part of the cell and
+    /// its background under it, as at half-blocks.
     #[must_use]
     pub fn to_framebuffer(&self) -> Framebuffer {
+        let glyphs = self.glyphs();
+        if glyphs != Glyphs::Half {
+            let cells: Vec<GlyphCell> = self
+                .cells
+                .iter()
+                .map(|c| {
+                    let (fg, bg) = (c.fg.unwrap_or_default(), c.bg.unwrap_or_default());
+                    match mask_of(glyphs, c.glyph) {
+                        Some(mask) => GlyphCell { mask, fg, bg },
+                        None => {
+                            let (_, up, low) = c.appearance();
+                            let (c_cols, c_rows) = glyphs.cell_size();
+                            let upper = ((1u16 << (c_cols * (c_rows / 2))) - 1) as u8;
+                            GlyphCell {
+                                mask: upper,
+                                fg: up.unwrap_or_default(),
+                                bg: low.unwrap_or_default(),
+                            }
+                        }
+                    }
+                })
+                .collect();
+            return picture(&cells, self.cols, glyphs);
+        }
         let mut fb = Framebuffer::new(self.cols, self.rows * 2);
         for y in 0..self.rows {
             for x in 0..self.cols {
@@ -223,6 +279,54 @@ mod tests {
             bg: b,
         };
         assert_eq!(space.appearance(), full.appearance());
+    }
+
+    #[test]
+    fn two_colour_cells_round_trip_at_every_glyph_setting() {
+        // Each cell is exactly two colours in some pattern, so the chosen cells are exact and
+        // reading them back gives the same pixels at the same setting.
+        for glyphs in Glyphs::ALL {
+            let (c, r) = glyphs.cell_size();
+            let mut fb = Framebuffer::for_glyphs(5, 3, glyphs);
+            for cy in 0..3 {
+                for cx in 0..5 {
+                    let k = cy * 5 + cx;
+                    let mask = (k * 37 + 11) as u32;
+                    let (ink, paper) = (Rgb::new(200, 40, k as u8 * 9), Rgb::new(10, 90, 30));
+                    for dy in 0..r {
+                        for dx in 0..c {
+                            let on = mask >> ((dy * c + dx) % 8) & 1 == 1;
+                            fb.set(cx * c + dx, cy * r + dy, if on { ink } else { paper });
+                        }
+                    }
+                }
+            }
+            let back = TermFrame::from_framebuffer(&fb).to_framebuffer();
+            assert_eq!(back.glyphs(), glyphs);
+            assert_eq!(back.pixels(), fb.pixels(), "{glyphs}");
+        }
+    }
+
+    #[test]
+    fn the_setting_is_the_coarsest_with_every_block_character() {
+        let frame = |glyphs: &[char]| TermFrame {
+            cols: glyphs.len(),
+            rows: 1,
+            cells: glyphs
+                .iter()
+                .map(|&glyph| TermCell {
+                    glyph,
+                    fg: None,
+                    bg: None,
+                })
+                .collect(),
+        };
+        assert_eq!(frame(&['▀', '▄', 'a', ' ']).glyphs(), Glyphs::Half);
+        assert_eq!(frame(&['▀', '▌', '▚']).glyphs(), Glyphs::Quadrant);
+        assert_eq!(frame(&['▌', '\u{1FB00}']).glyphs(), Glyphs::Sextant);
+        // No setting draws both (`▀` splits a sextant cell's middle row): read as half-blocks.
+        assert_eq!(frame(&['▀', '\u{1FB00}']).glyphs(), Glyphs::Half);
+        assert_eq!(frame(&['▘', '\u{1CD00}']).glyphs(), Glyphs::Octant);
     }
 
     #[test]

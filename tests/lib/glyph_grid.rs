@@ -97,3 +97,36 @@ fn golden_default_view_at_each_setting() {
         assert_png_golden(&shown_picture(&fb), path, Tolerance::default());
     }
 }
+
+/// A frame sent to a terminal at any glyph setting reads back (through a terminal model) to the
+/// setting it was sent at and to the picture the terminal shows, pixel for pixel: what `diff` and
+/// snapshot tests of ANSI frames compare.
+#[cfg(feature = "vt100")]
+#[test]
+fn ansi_frames_read_back_at_their_glyph_setting() {
+    use halfcast::encode::full_frame;
+    use halfcast::termframe::{parse_frame, FrameFormat, TermFrame};
+    let world = World::default_world();
+    let cam = Camera::from_angle(world.map.start.pos(), 20.0, 66.0);
+    for glyphs in Glyphs::ALL {
+        let mut fb = Framebuffer::for_glyphs(48, 14, glyphs);
+        Scene::new(&world, cam).render_into(&mut fb, None);
+        let bytes = full_frame(&fb, &EncodeOptions::default());
+        let (frame, format) = parse_frame(&bytes).unwrap();
+        assert_eq!(format, FrameFormat::Ansi);
+        assert_eq!((frame.cols, frame.rows), (48, 14), "{glyphs}");
+        assert_eq!(frame.glyphs(), glyphs, "the setting the frame was sent at");
+        let shown = TermFrame::from_framebuffer(&fb).to_framebuffer();
+        let read = frame.to_framebuffer();
+        assert_eq!((read.width(), read.height()), (fb.width(), fb.height()));
+        assert_eq!(read.glyphs(), glyphs);
+        let differing = (0..read.height())
+            .flat_map(|y| (0..read.width()).map(move |x| (x, y)))
+            .filter(|&(x, y)| read.get(x, y) != shown.get(x, y))
+            .count();
+        assert_eq!(
+            differing, 0,
+            "{glyphs}: pixels read back unlike the cells sent"
+        );
+    }
+}
