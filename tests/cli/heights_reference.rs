@@ -560,8 +560,11 @@ struct RefLamp {
     hi: f64,
 }
 
+/// A cell's open span for light: (floor, ceiling), `None` for a wall.
+type Span = Option<(f64, f64)>;
+
 /// The open span of a cell for light: doors count open (0..1), solid cells none.
-fn light_span(case: &Case, i: i64, j: i64) -> Option<(f64, f64)> {
+fn light_span(case: &Case, i: i64, j: i64) -> Span {
     match case.cell(i, j) {
         Cell::Solid => None,
         Cell::Open { floor, ceil, .. } => Some((floor, ceil)),
@@ -585,11 +588,18 @@ fn lamp_light_at(case: &Case, lamps: &[RefLamp], p: Vec2, z: f64, three_d: bool)
         }
         let steps = (d / 0.004).ceil().max(1.0) as usize;
         let mut seen = true;
+        // Most steps stay in the cell of the step before: its span is looked up once.
+        let mut last: Option<((i64, i64), Span)> = None;
         for k in 0..=steps {
             let s = k as f64 / steps as f64;
             let q = l.pos + (p - l.pos) * s;
             let cell = (q.x.floor() as i64, q.y.floor() as i64);
-            let Some((floor, ceil)) = light_span(case, cell.0, cell.1) else {
+            let span = match last {
+                Some((c, span)) if c == cell => span,
+                _ => light_span(case, cell.0, cell.1),
+            };
+            last = Some((cell, span));
+            let Some((floor, ceil)) = span else {
                 seen = cell == own;
                 break;
             };
@@ -614,18 +624,34 @@ fn lamp_light_at(case: &Case, lamps: &[RefLamp], p: Vec2, z: f64, three_d: bool)
     sum.min(1.0)
 }
 
+/// Light samples already walked: (sample column, row, height's bits, 3-D rule) → level.
+type SampleMemo = std::collections::HashMap<(i64, i64, u64, bool), f64>;
+
 /// The lamp light the README documents for surface point `p` at height `z`, in 256ths: the rule
 /// of [`lamp_light_at`] taken at the light map's samples (4 per cell each way, at their centres)
 /// around `p`, blended bilinearly (samples past the map's edge clamped to it).
-fn reference_lamp_level(case: &Case, lamps: &[RefLamp], p: Vec2, z: f64, three_d: bool) -> u16 {
+/// `memo` keeps each sample's value for one case and its lamps (many pixels share a sample and
+/// a height: a floor's, a ceiling's), so the walk is done once per sample.
+fn reference_lamp_level(
+    case: &Case,
+    lamps: &[RefLamp],
+    memo: &mut SampleMemo,
+    p: Vec2,
+    z: f64,
+    three_d: bool,
+) -> u16 {
     let (sx, sy) = (p.x * 4.0 - 0.5, p.y * 4.0 - 0.5);
     let (x0, y0) = (sx.floor(), sy.floor());
     let (fx, fy) = (sx - x0, sy - y0);
     let (w, h) = ((case.w * 4 - 1) as f64, (case.h * 4 - 1) as f64);
-    let sample = |x: f64, y: f64| {
+    let mut sample = |x: f64, y: f64| {
         let (x, y) = (x.clamp(0.0, w), y.clamp(0.0, h));
-        let at = Vec2::new((x + 0.5) / 4.0, (y + 0.5) / 4.0);
-        (lamp_light_at(case, lamps, at, z, three_d) * 256.0).round()
+        *memo
+            .entry((x as i64, y as i64, z.to_bits(), three_d))
+            .or_insert_with(|| {
+                let at = Vec2::new((x + 0.5) / 4.0, (y + 0.5) / 4.0);
+                (lamp_light_at(case, lamps, at, z, three_d) * 256.0).round()
+            })
     };
     let top = sample(x0, y0) * (1.0 - fx) + sample(x0 + 1.0, y0) * fx;
     let bottom = sample(x0, y0 + 1.0) * (1.0 - fx) + sample(x0 + 1.0, y0 + 1.0) * fx;
@@ -716,6 +742,7 @@ fn lamps_light_every_surface_by_its_3d_distance_like_the_reference() {
         let hh = height as f64;
         let horizon = hh / 2.0 + (focal * pitch.to_radians().tan()).clamp(-hh, hh);
         let eye = floor + eye_z;
+        let mut memo = SampleMemo::new();
         for x in 0..width {
             let ray = d + plane * (2.0 * x as f64 / width as f64 - 1.0);
             for y in 0..height {
@@ -729,9 +756,11 @@ fn lamps_light_every_surface_by_its_3d_distance_like_the_reference() {
                     let s = if hit.side_y { s.scaled(184) } else { s };
                     s.apply(hit.paint)
                 };
-                let level = reference_lamp_level(&case, &lamps, p, hit.z, true);
+                let level = reference_lamp_level(&case, &lamps, &mut memo, p, hit.z, true);
                 let want = colour(level);
-                let flat = colour(reference_lamp_level(&case, &lamps, p, hit.z, false));
+                let flat = colour(reference_lamp_level(
+                    &case, &lamps, &mut memo, p, hit.z, false,
+                ));
                 let got = fb.get(x, y);
                 let far = |a: Rgb, b: Rgb| {
                     a.r.abs_diff(b.r)
