@@ -1,12 +1,15 @@
 //! One cell's glyph and two colours: which of its 4, 6 or 8 pixels show the foreground, and
 //! the two colours that keep the cell closest to its pixels.
 //!
-//! Colours are mixed in linear light (a group's colour is the mean light of its pixels) and
-//! judged in OKLab (the error is the sum of each pixel's squared OKLab distance to the colour
-//! its side of the mask shows). The split is a 2-means: start from the two pixels farthest
-//! apart, assign each pixel to the nearer colour, move each colour to its group's mean, and
-//! repeat until nothing moves (at most a few rounds over ≤ 8 pixels). Cells of one or two
-//! distinct colours are exact without any of that, and they are most cells.
+//! Colours are mixed in linear light: a group's colour is the mean light of its pixels, and the
+//! split is judged there too, by squared distances with each channel weighted for how much it
+//! counts ([`WEIGHT`]). Quadrants try all seven splits; sextants and octants use a 2-means:
+//! start from two pixels far apart, assign each pixel to the nearer colour, move each colour to
+//! its group's mean, and repeat until nothing moves (a few rounds over ≤ 8 pixels). Cells of
+//! one or two distinct colours are exact without any of that.
+//!
+//! Everything runs from tables built once (sRGB ↔ linear light), with no cube roots or powers
+//! per pixel: this runs for every cell of every frame.
 
 use crate::color::{channel_to_linear, lab_dist2, oklab, Linear, Rgb};
 
@@ -81,8 +84,7 @@ pub fn choose(pixels: &[Rgb]) -> GlyphCell {
         return GlyphCell::default();
     };
     // One or two distinct colours: the split is exact.
-    let other = pixels.iter().copied().find(|&c| c != first);
-    let Some(other) = other else {
+    let Some(other) = pixels.iter().copied().find(|&c| c != first) else {
         return GlyphCell::uniform(first);
     };
     if pixels.iter().all(|&c| c == first || c == other) {
@@ -93,7 +95,28 @@ pub fn choose(pixels: &[Rgb]) -> GlyphCell {
             bg: first,
         };
     }
-    two_means(pixels)
+    let t = tables();
+    let mut lin = [[0.0f32; 3]; MAX_PIXELS];
+    for (l, c) in lin.iter_mut().zip(pixels) {
+        *l = [
+            t.linear[usize::from(c.r)],
+            t.linear[usize::from(c.g)],
+            t.linear[usize::from(c.b)],
+        ];
+    }
+    let lin = &lin[..n];
+    let mask = if n <= 4 {
+        best_split(lin)
+    } else {
+        two_means(lin)
+    };
+    let (fg, bg) = (mean(lin, mask), mean(lin, !mask));
+    GlyphCell {
+        mask,
+        fg: t.to_srgb(fg),
+        bg: t.to_srgb(bg),
+    }
+    .canonical(n)
 }
 
 /// The bits of the pixels for which `f` holds.
@@ -105,43 +128,76 @@ fn mask_where(pixels: &[Rgb], f: impl Fn(Rgb) -> bool) -> u8 {
         .fold(0u8, |m, (i, _)| m | (1 << i))
 }
 
-/// The 2-means split of ≥ 3 distinct colours (see the module doc). Each distinct colour is
-/// taken to OKLab once; while the split moves, a group's centre is the mean of its members'
-/// OKLab (cheap, and close to the OKLab of their mean light at these small spreads); the colours
-/// shown are the groups' mean light.
-fn two_means(pixels: &[Rgb]) -> GlyphCell {
-    let n = pixels.len();
-    let mut lin = [[0.0f32; 3]; MAX_PIXELS];
-    let mut lab = [[0.0f32; 3]; MAX_PIXELS];
-    for (i, &c) in pixels.iter().enumerate() {
-        if let Some(j) = pixels[..i].iter().position(|&p| p == c) {
-            (lin[i], lab[i]) = (lin[j], lab[j]);
-        } else {
-            lin[i] = c.linear();
-            lab[i] = oklab(lin[i]);
+/// How much each channel of linear light counts when pixels are split: roughly the square roots
+/// of their shares of luminance, so green differences weigh most and blue least. Measured on the
+/// bench's walk path, splitting in this space keeps S-CIELAB at least as low as splitting in
+/// OKLab, for none of OKLab's cube roots.
+const WEIGHT: [f32; 3] = [0.25, 0.64, 0.1225];
+
+/// The split of ≥ 3 distinct colours (see the module doc): seeds are the pixel farthest from
+/// the cell's mean and the pixel farthest from that one; then each pixel goes to the nearer
+/// group centre and the centres move to their groups' means until nothing moves. The pixels
+/// are held channel by channel (eight lanes, the unused ones never counted), so each step
+/// runs over all of them at once.
+fn two_means(lin: &[Linear]) -> u8 {
+    let n = lin.len();
+    let full = ((1u16 << n) - 1) as u8;
+    let mut ch = [[0.0f32; MAX_PIXELS]; 3];
+    for (i, l) in lin.iter().enumerate() {
+        for c in 0..3 {
+            ch[c][i] = l[c];
         }
     }
-    // Seeds: the two pixels farthest apart.
-    let (mut a, mut b, mut far) = (0, 1, -1.0f32);
-    for i in 0..n {
-        for j in i + 1..n {
-            let d = lab_dist2(lab[i], lab[j]);
-            if d > far {
-                (a, b, far) = (i, j, d);
+    // The pixel farthest (weighted squared distance) from `p`.
+    let farthest = |p: Linear| {
+        let mut d = [0.0f32; MAX_PIXELS];
+        for i in 0..MAX_PIXELS {
+            let e = [ch[0][i] - p[0], ch[1][i] - p[1], ch[2][i] - p[2]];
+            d[i] = WEIGHT[0] * e[0] * e[0] + WEIGHT[1] * e[1] * e[1] + WEIGHT[2] * e[2] * e[2];
+        }
+        let mut best = (0, -1.0f32);
+        for (i, &d) in d[..n].iter().enumerate() {
+            if d > best.1 {
+                best = (i, d);
             }
         }
-    }
-    let full = ((1u16 << n) - 1) as u8;
-    let (mut ca, mut cb) = (lab[a], lab[b]);
+        best.0
+    };
+    // The pixels nearer `b` than `a`: those on `b`'s side of the plane halfway between them.
+    let nearer_b = |a: Linear, b: Linear| {
+        let axis = [0, 1, 2].map(|c| WEIGHT[c] * (b[c] - a[c]));
+        let mid = [0, 1, 2].map(|c| (a[c] + b[c]) / 2.0);
+        let mut side = [0.0f32; MAX_PIXELS];
+        for i in 0..MAX_PIXELS {
+            side[i] = axis[0] * (ch[0][i] - mid[0])
+                + axis[1] * (ch[1][i] - mid[1])
+                + axis[2] * (ch[2][i] - mid[2]);
+        }
+        let mut mask = 0u8;
+        for (i, &s) in side.iter().enumerate() {
+            mask |= u8::from(s > 0.0) << i;
+        }
+        mask & full
+    };
+    // The means of the pixels in `mask` and of the others.
+    let means = |mask: u8| {
+        let mut sums = [[0.0f32; 3]; 2];
+        for (i, l) in lin.iter().enumerate() {
+            let g = usize::from(mask >> i & 1);
+            for c in 0..3 {
+                sums[g][c] += l[c];
+            }
+        }
+        let k = mask.count_ones() as f32;
+        let rest = n as f32 - k;
+        (sums[0].map(|v| v / rest), sums[1].map(|v| v / k))
+    };
+    let a = farthest(mean(lin, full));
+    let b = farthest(lin[a]);
+    let (mut ca, mut cb) = (lin[a], lin[b]);
     let mut mask = 0u8;
     for _ in 0..4 {
-        let mut next = (0..n).fold(0u8, |m, i| {
-            if lab_dist2(lab[i], cb) < lab_dist2(lab[i], ca) {
-                m | (1 << i)
-            } else {
-                m
-            }
-        });
+        let mut next = nearer_b(ca, cb);
         if next == 0 {
             // Every pixel nearer `a`'s centre: the far seed keeps its own pixel.
             next = 1 << b;
@@ -152,61 +208,117 @@ fn two_means(pixels: &[Rgb]) -> GlyphCell {
             break;
         }
         mask = next;
-        ca = mean(&lab[..n], !mask);
-        cb = mean(&lab[..n], mask);
+        (ca, cb) = means(mask);
     }
-    let fg = to_srgb(mean(&lin[..n], mask));
-    let bg = to_srgb(mean(&lin[..n], !mask));
-    GlyphCell { mask, fg, bg }.canonical(n)
+    mask
 }
 
-/// The mean of the triples (light, or OKLab) whose bit is set in `mask`.
+/// The best split of a few pixels (quadrants: seven candidates) by trying each: the one whose
+/// groups' means leave the least weighted squared error. That error is the total square
+/// less each group's |sum|² / size, so the best split has the largest sum of those.
+fn best_split(lin: &[Linear]) -> u8 {
+    let n = lin.len();
+    let full = ((1u16 << n) - 1) as u8;
+    let sum = |mask: u8| {
+        let mut s = [0.0f32; 3];
+        for (i, l) in lin.iter().enumerate() {
+            if mask & (1 << i) != 0 {
+                for c in 0..3 {
+                    s[c] += l[c];
+                }
+            }
+        }
+        s
+    };
+    let total = sum(full);
+    let norm =
+        |s: Linear| WEIGHT[0] * s[0] * s[0] + WEIGHT[1] * s[1] * s[1] + WEIGHT[2] * s[2] * s[2];
+    let mut best = (0u8, f32::MIN);
+    // Pixel 0 always on the background side (canonical form), so each split is tried once.
+    for mask in (2..full).step_by(2) {
+        let k = mask.count_ones() as f32;
+        let s = sum(mask);
+        let o = [total[0] - s[0], total[1] - s[1], total[2] - s[2]];
+        let score = norm(s) / k + norm(o) / (n as f32 - k);
+        if score > best.1 {
+            best = (mask, score);
+        }
+    }
+    best.0
+}
+
+/// The mean of the colours whose bit is set in `mask`.
+#[inline]
 fn mean(lin: &[Linear], mask: u8) -> Linear {
     let mut sum = [0.0f32; 3];
-    let mut k = 0.0f32;
+    let mut k = 0u32;
     for (i, l) in lin.iter().enumerate() {
         if mask & (1 << i) != 0 {
             for c in 0..3 {
                 sum[c] += l[c];
             }
-            k += 1.0;
+            k += 1;
         }
     }
-    let k = k.max(1.0);
+    let k = k.max(1) as f32;
     [sum[0] / k, sum[1] / k, sum[2] / k]
 }
 
-/// Linear light back to the nearest 8-bit sRGB colour: a first guess from a table of 4096
-/// steps, then the nearest of it and its neighbours on the transfer curve.
-fn to_srgb(l: Linear) -> Rgb {
-    static GUESS: std::sync::OnceLock<Vec<u8>> = std::sync::OnceLock::new();
-    let guess = GUESS.get_or_init(|| {
-        let mut t = vec![0u8; 4096];
-        let mut v = 0u8;
-        for (i, g) in t.iter_mut().enumerate() {
+/// The sRGB transfer curve both ways, built once: 8-bit channel → linear light, and back.
+struct Tables {
+    /// Each 8-bit value in linear light.
+    linear: [f32; 256],
+    /// `upper[v]`: the linear light halfway between `v` and `v + 1`, where rounding back turns
+    /// from one to the other.
+    upper: [f32; 256],
+    /// A first guess of the value nearest a linear light `x`, at `x` · 4095.
+    guess: [u8; 4096],
+}
+
+fn tables() -> &'static Tables {
+    static TABLES: std::sync::OnceLock<Box<Tables>> = std::sync::OnceLock::new();
+    TABLES.get_or_init(|| {
+        let mut t = Box::new(Tables {
+            linear: [0.0; 256],
+            upper: [f32::INFINITY; 256],
+            guess: [0; 4096],
+        });
+        for v in 0..=255u8 {
+            t.linear[usize::from(v)] = channel_to_linear(v);
+        }
+        for v in 0..255 {
+            t.upper[v] = (t.linear[v] + t.linear[v + 1]) / 2.0;
+        }
+        let mut v = 0usize;
+        for (i, g) in t.guess.iter_mut().enumerate() {
             let x = i as f32 / 4095.0;
-            while v < 255 && channel_to_linear(v + 1) <= x {
+            while v < 255 && t.upper[v] < x {
                 v += 1;
             }
-            *g = v;
+            *g = v as u8;
         }
         t
-    });
-    let ch = |x: f32| -> u8 {
-        let g = guess[((x.clamp(0.0, 1.0) * 4095.0) as usize).min(4095)];
-        let mut best = g;
-        for c in [
-            g.saturating_sub(1),
-            g.saturating_add(1),
-            g.saturating_add(2),
-        ] {
-            if (channel_to_linear(c) - x).abs() < (channel_to_linear(best) - x).abs() {
-                best = c;
+    })
+}
+
+impl Tables {
+    /// Linear light back to the nearest 8-bit sRGB colour: the guess, then a step or two
+    /// along the curve's midpoints.
+    #[inline]
+    fn to_srgb(&self, l: Linear) -> Rgb {
+        let ch = |x: f32| -> u8 {
+            let x = x.clamp(0.0, 1.0);
+            let mut v = usize::from(self.guess[((x * 4095.0) as usize).min(4095)]);
+            while v < 255 && x > self.upper[v] {
+                v += 1;
             }
-        }
-        best
-    };
-    Rgb::new(ch(l[0]), ch(l[1]), ch(l[2]))
+            while v > 0 && x < self.upper[v - 1] {
+                v -= 1;
+            }
+            v as u8
+        };
+        Rgb::new(ch(l[0]), ch(l[1]), ch(l[2]))
+    }
 }
 
 /// The OKLab error of showing `pixels` as `cell`: the sum of squared distances.
@@ -264,7 +376,7 @@ mod tests {
     fn srgb_round_trips_through_linear_light() {
         for v in 0..=255u8 {
             let c = Rgb::new(v, v, v);
-            assert_eq!(to_srgb(c.linear()), c);
+            assert_eq!(tables().to_srgb(c.linear()), c);
         }
     }
 }
