@@ -79,10 +79,26 @@ impl GlyphCell {
 #[must_use]
 pub fn choose(pixels: &[Rgb]) -> GlyphCell {
     let n = pixels.len().min(MAX_PIXELS);
-    let pixels = &pixels[..n];
-    let Some(&first) = pixels.first() else {
-        return GlyphCell::default();
-    };
+    match n {
+        0 => GlyphCell::default(),
+        1 => choose_n::<1>(pixels),
+        2 => choose_n::<2>(pixels),
+        3 => choose_n::<3>(pixels),
+        4 => choose_n::<4>(pixels),
+        5 => choose_n::<5>(pixels),
+        6 => choose_n::<6>(pixels),
+        7 => choose_n::<7>(pixels),
+        _ => choose_n::<8>(pixels),
+    }
+}
+
+/// [`choose`] for exactly `N` pixels (the first `N` of `pixels`): with the count known, every
+/// loop over the pixels unrolls.
+#[must_use]
+#[inline]
+pub fn choose_n<const N: usize>(pixels: &[Rgb]) -> GlyphCell {
+    let pixels: &[Rgb; N] = pixels[..N].try_into().expect("N pixels");
+    let first = pixels[0];
     // One or two distinct colours: the split is exact.
     let Some(other) = pixels.iter().copied().find(|&c| c != first) else {
         return GlyphCell::uniform(first);
@@ -96,27 +112,26 @@ pub fn choose(pixels: &[Rgb]) -> GlyphCell {
         };
     }
     let t = tables();
-    let mut lin = [[0.0f32; 3]; MAX_PIXELS];
-    for (l, c) in lin.iter_mut().zip(pixels) {
-        *l = [
+    let lin: [Linear; N] = std::array::from_fn(|i| {
+        let c = pixels[i];
+        [
             t.linear[usize::from(c.r)],
             t.linear[usize::from(c.g)],
             t.linear[usize::from(c.b)],
-        ];
-    }
-    let lin = &lin[..n];
-    let mask = if n <= 4 {
-        best_split(lin)
+        ]
+    });
+    let mask = if N <= 4 {
+        best_split(&lin)
     } else {
-        two_means(lin)
+        two_means(&lin)
     };
-    let (fg, bg) = (mean(lin, mask), mean(lin, !mask));
+    let (bg, fg) = means(&lin, mask);
     GlyphCell {
         mask,
         fg: t.to_srgb(fg),
         bg: t.to_srgb(bg),
     }
-    .canonical(n)
+    .canonical(N)
 }
 
 /// The bits of the pixels for which `f` holds.
@@ -134,42 +149,45 @@ fn mask_where(pixels: &[Rgb], f: impl Fn(Rgb) -> bool) -> u8 {
 /// OKLab, for none of OKLab's cube roots.
 const WEIGHT: [f32; 3] = [0.25, 0.64, 0.1225];
 
-/// The split of ≥ 3 distinct colours (see the module doc): seeds are the pixel farthest from
-/// the cell's mean and the pixel farthest from that one; then each pixel goes to the nearer
-/// group centre and the centres move to their groups' means until nothing moves. The pixels
-/// are held channel by channel (eight lanes, the unused ones never counted), so each step
-/// runs over all of them at once.
-fn two_means(lin: &[Linear]) -> u8 {
-    let n = lin.len();
-    let full = ((1u16 << n) - 1) as u8;
-    let mut ch = [[0.0f32; MAX_PIXELS]; 3];
-    for (i, l) in lin.iter().enumerate() {
-        for c in 0..3 {
-            ch[c][i] = l[c];
+/// The split of ≥ 3 distinct colours (see the module doc): seeds are the darkest and the
+/// brightest pixel; then each pixel goes to the nearer group centre and the centres move to
+/// their groups' means until nothing moves. The pixels are held channel by channel, so each
+/// step runs over all of them at once.
+fn two_means<const N: usize>(lin: &[Linear; N]) -> u8 {
+    let full = ((1u16 << N) - 1) as u8;
+    let ch: [[f32; N]; 3] = [0, 1, 2].map(|c| lin.map(|l| l[c]));
+    // Seeds: the darkest and the brightest pixel (weighted light), found in one pass.
+    let mut light = [0.0f32; N];
+    for i in 0..N {
+        light[i] = WEIGHT[0] * ch[0][i] + WEIGHT[1] * ch[1][i] + WEIGHT[2] * ch[2][i];
+    }
+    let (mut a, mut b) = (0, 0);
+    for i in 1..N {
+        if light[i] < light[a] {
+            a = i;
+        }
+        if light[i] > light[b] {
+            b = i;
         }
     }
-    // The pixel farthest (weighted squared distance) from `p`.
-    let farthest = |p: Linear| {
-        let mut d = [0.0f32; MAX_PIXELS];
-        for i in 0..MAX_PIXELS {
-            let e = [ch[0][i] - p[0], ch[1][i] - p[1], ch[2][i] - p[2]];
-            d[i] = WEIGHT[0] * e[0] * e[0] + WEIGHT[1] * e[1] * e[1] + WEIGHT[2] * e[2] * e[2];
-        }
-        let mut best = (0, -1.0f32);
-        for (i, &d) in d[..n].iter().enumerate() {
-            if d > best.1 {
-                best = (i, d);
+    if a == b {
+        // Equal light, different colours: the pixel farthest from the first.
+        let mut far = 0.0f32;
+        for (i, l) in lin.iter().enumerate() {
+            let d = [0, 1, 2].map(|c| l[c] - lin[0][c]);
+            let d = WEIGHT[0] * d[0] * d[0] + WEIGHT[1] * d[1] * d[1] + WEIGHT[2] * d[2] * d[2];
+            if d > far {
+                (b, far) = (i, d);
             }
         }
-        best.0
-    };
-    // The pixels nearer `b` than `a`: those on `b`'s side of the plane halfway between them.
-    let nearer_b = |a: Linear, b: Linear| {
-        let axis = [0, 1, 2].map(|c| WEIGHT[c] * (b[c] - a[c]));
-        let mid = [0, 1, 2].map(|c| (a[c] + b[c]) / 2.0);
-        let mut side = [0.0f32; MAX_PIXELS];
-        for i in 0..MAX_PIXELS {
-            side[i] = axis[0] * (ch[0][i] - mid[0])
+    }
+    // The pixels nearer `cb` than `ca`: those on `cb`'s side of the plane halfway between.
+    let nearer_b = |ca: Linear, cb: Linear| {
+        let axis = [0, 1, 2].map(|c| WEIGHT[c] * (cb[c] - ca[c]));
+        let mid = [0, 1, 2].map(|c| (ca[c] + cb[c]) / 2.0);
+        let mut side = [0.0f32; N];
+        for (i, s) in side.iter_mut().enumerate() {
+            *s = axis[0] * (ch[0][i] - mid[0])
                 + axis[1] * (ch[1][i] - mid[1])
                 + axis[2] * (ch[2][i] - mid[2]);
         }
@@ -177,23 +195,8 @@ fn two_means(lin: &[Linear]) -> u8 {
         for (i, &s) in side.iter().enumerate() {
             mask |= u8::from(s > 0.0) << i;
         }
-        mask & full
+        mask
     };
-    // The means of the pixels in `mask` and of the others.
-    let means = |mask: u8| {
-        let mut sums = [[0.0f32; 3]; 2];
-        for (i, l) in lin.iter().enumerate() {
-            let g = usize::from(mask >> i & 1);
-            for c in 0..3 {
-                sums[g][c] += l[c];
-            }
-        }
-        let k = mask.count_ones() as f32;
-        let rest = n as f32 - k;
-        (sums[0].map(|v| v / rest), sums[1].map(|v| v / k))
-    };
-    let a = farthest(mean(lin, full));
-    let b = farthest(lin[a]);
     let (mut ca, mut cb) = (lin[a], lin[b]);
     let mut mask = 0u8;
     for _ in 0..4 {
@@ -208,7 +211,7 @@ fn two_means(lin: &[Linear]) -> u8 {
             break;
         }
         mask = next;
-        (ca, cb) = means(mask);
+        (ca, cb) = means(lin, mask);
     }
     mask
 }
@@ -216,8 +219,8 @@ fn two_means(lin: &[Linear]) -> u8 {
 /// The best split of a few pixels (quadrants: seven candidates) by trying each: the one whose
 /// groups' means leave the least weighted squared error. That error is the total square
 /// less each group's |sum|² / size, so the best split has the largest sum of those.
-fn best_split(lin: &[Linear]) -> u8 {
-    let n = lin.len();
+fn best_split<const N: usize>(lin: &[Linear; N]) -> u8 {
+    let n = N;
     let full = ((1u16 << n) - 1) as u8;
     let sum = |mask: u8| {
         let mut s = [0.0f32; 3];
@@ -247,21 +250,24 @@ fn best_split(lin: &[Linear]) -> u8 {
     best.0
 }
 
-/// The mean of the colours whose bit is set in `mask`.
+/// The means of the colours whose bit is clear in `mask` and of those whose bit is set (each
+/// black when its group is empty).
 #[inline]
-fn mean(lin: &[Linear], mask: u8) -> Linear {
-    let mut sum = [0.0f32; 3];
-    let mut k = 0u32;
+fn means<const N: usize>(lin: &[Linear; N], mask: u8) -> (Linear, Linear) {
+    let (mut all, mut set) = ([0.0f32; 3], [0.0f32; 3]);
     for (i, l) in lin.iter().enumerate() {
-        if mask & (1 << i) != 0 {
-            for c in 0..3 {
-                sum[c] += l[c];
-            }
-            k += 1;
+        let m = f32::from(mask >> i & 1);
+        for c in 0..3 {
+            all[c] += l[c];
+            set[c] += m * l[c];
         }
     }
-    let k = k.max(1) as f32;
-    [sum[0] / k, sum[1] / k, sum[2] / k]
+    let k = (mask & ((1u16 << N) - 1) as u8).count_ones() as f32;
+    let rest = N as f32 - k;
+    (
+        [0, 1, 2].map(|c| (all[c] - set[c]) / rest.max(1.0)),
+        set.map(|v| v / k.max(1.0)),
+    )
 }
 
 /// The sRGB transfer curve both ways, built once: 8-bit channel → linear light, and back.

@@ -8,7 +8,7 @@
 //! is a space on that background or `█` in that foreground, whichever is already set.
 
 use super::cursor::{write_move, Cursor};
-use super::glyph_cell::{choose, GlyphCell, MAX_PIXELS};
+use super::glyph_cell::{choose, choose_n, GlyphCell, MAX_PIXELS};
 use super::glyph_mask::{full_mask, glyph};
 use super::level::ColorLevel;
 use super::palette::{Code, Palette, DEFAULT, UNKNOWN};
@@ -140,14 +140,35 @@ pub fn cell_pixels(fb: &Framebuffer, cx: usize, cy: usize, out: &mut [Rgb; MAX_P
 /// then sent by the presenter is chosen once by each; the presenter hands its own choice to
 /// the encoder ([`crate::encode::Encoder::encode_chosen`]) rather than choosing again.
 pub fn glyph_cells(fb: &Framebuffer, cells: &mut Vec<GlyphCell>) {
+    match fb.glyphs().cell_size() {
+        (2, 2) => cells_of::<2, 4>(fb, cells),
+        (2, 3) => cells_of::<3, 6>(fb, cells),
+        (2, 4) => cells_of::<4, 8>(fb, cells),
+        _ => {
+            let (cols, rows) = (fb.cell_cols(), fb.cell_rows());
+            cells.clear();
+            let mut px = [Rgb::default(); MAX_PIXELS];
+            for cy in 0..rows {
+                for cx in 0..cols {
+                    let n = cell_pixels(fb, cx, cy, &mut px);
+                    cells.push(choose(&px[..n]));
+                }
+            }
+        }
+    }
+}
+
+/// [`glyph_cells`] for cells two pixels wide and `R` tall (`N` = 2·`R` pixels), read a row
+/// band at a time.
+fn cells_of<const R: usize, const N: usize>(fb: &Framebuffer, cells: &mut Vec<GlyphCell>) {
     let (cols, rows) = (fb.cell_cols(), fb.cell_rows());
     cells.clear();
     cells.reserve(cols * rows);
-    let mut px = [Rgb::default(); MAX_PIXELS];
     for cy in 0..rows {
+        let band: [&[Rgb]; R] = std::array::from_fn(|dy| &fb.row(cy * R + dy)[..2 * cols]);
         for cx in 0..cols {
-            let n = cell_pixels(fb, cx, cy, &mut px);
-            cells.push(choose(&px[..n]));
+            let px: [Rgb; N] = std::array::from_fn(|i| band[i / 2][2 * cx + i % 2]);
+            cells.push(choose_n::<N>(&px));
         }
     }
 }
