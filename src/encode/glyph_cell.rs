@@ -3,8 +3,8 @@
 //!
 //! Colours are mixed in linear light: a group's colour is the mean light of its pixels, and the
 //! split is judged there too, by squared distances with each channel weighted for how much it
-//! counts ([`WEIGHT`]). Quadrants try all seven splits; sextants and octants use a 2-means:
-//! start from two pixels far apart, assign each pixel to the nearer colour, move each colour to
+//! counts ([`WEIGHT`]). Quadrants and sextants try every split (7 and 31); octants use a 2-means:
+//! start from the darkest and the brightest pixel, assign each pixel to the nearer colour, move each colour to
 //! its group's mean, and repeat until nothing moves (a few rounds over ≤ 8 pixels). Cells of
 //! one or two distinct colours are exact without any of that.
 //!
@@ -120,7 +120,7 @@ pub fn choose_n<const N: usize>(pixels: &[Rgb]) -> GlyphCell {
             t.linear[usize::from(c.b)],
         ]
     });
-    let mask = if N <= 4 {
+    let mask = if N <= 6 {
         best_split(&lin)
     } else {
         two_means(&lin)
@@ -216,38 +216,74 @@ fn two_means<const N: usize>(lin: &[Linear; N]) -> u8 {
     mask
 }
 
-/// The best split of a few pixels (quadrants: seven candidates) by trying each: the one whose
-/// groups' means leave the least weighted squared error. That error is the total square
-/// less each group's |sum|² / size, so the best split has the largest sum of those.
+/// The best split of a few pixels (quadrants: 7 candidates, sextants: 31) by trying each:
+/// the one whose groups' means leave the least weighted squared error. That error is the total
+/// square less each group's |sum|² / size, so the best split has the largest sum of those.
+/// Pixel 0 stays on the background side (canonical form), so each split is tried once. The
+/// foreground sums of all splits are built by doubling (split `j + h` is split `j` plus pixel
+/// `p`, `h` = 2^(p−1)), then all scores are computed side by side.
 fn best_split<const N: usize>(lin: &[Linear; N]) -> u8 {
-    let n = N;
-    let full = ((1u16 << n) - 1) as u8;
-    let sum = |mask: u8| {
-        let mut s = [0.0f32; 3];
-        for (i, l) in lin.iter().enumerate() {
-            if mask & (1 << i) != 0 {
-                for c in 0..3 {
-                    s[c] += l[c];
-                }
+    let m = 1usize << (N - 1);
+    assert!(m <= SPLITS, "best_split takes at most six pixels");
+    let mut set = [[0.0f32; SPLITS]; 3];
+    for (p, l) in lin.iter().enumerate().skip(1) {
+        let h = 1 << (p - 1);
+        for c in 0..3 {
+            for j in 0..h {
+                set[c][j + h] = set[c][j] + l[c];
             }
         }
-        s
-    };
-    let total = sum(full);
-    let norm =
-        |s: Linear| WEIGHT[0] * s[0] * s[0] + WEIGHT[1] * s[1] * s[1] + WEIGHT[2] * s[2] * s[2];
-    let mut best = (0u8, f32::MIN);
-    // Pixel 0 always on the background side (canonical form), so each split is tried once.
-    for mask in (2..full).step_by(2) {
-        let k = mask.count_ones() as f32;
-        let s = sum(mask);
-        let o = [total[0] - s[0], total[1] - s[1], total[2] - s[2]];
-        let score = norm(s) / k + norm(o) / (n as f32 - k);
-        if score > best.1 {
-            best = (mask, score);
+    }
+    let total: Linear = [0, 1, 2].map(|c| set[c][m - 1] + lin[0][c]);
+    let (inv_set, inv_rest) = (&GroupSizes::<N>::INV_SET, &GroupSizes::<N>::INV_REST);
+    let mut score = [0.0f32; SPLITS];
+    for j in 0..m {
+        let (s, r) = (
+            [set[0][j], set[1][j], set[2][j]],
+            [0, 1, 2].map(|c| total[c] - set[c][j]),
+        );
+        let norm =
+            |v: Linear| WEIGHT[0] * v[0] * v[0] + WEIGHT[1] * v[1] * v[1] + WEIGHT[2] * v[2] * v[2];
+        score[j] = norm(s) * inv_set[j] + norm(r) * inv_rest[j];
+    }
+    let mut best = 1;
+    for j in 2..m {
+        if score[j] > score[best] {
+            best = j;
         }
     }
-    best.0
+    (best << 1) as u8
+}
+
+/// Most splits [`best_split`] tries: sextants' 2^5 (the empty one included).
+const SPLITS: usize = 32;
+
+/// 1 / the size of each group of split `j` of `N` pixels (`j` = the mask without pixel 0),
+/// worked out at compile time.
+struct GroupSizes<const N: usize>;
+
+impl<const N: usize> GroupSizes<N> {
+    /// 1 / the foreground's size (0 for the empty split, which is never best).
+    const INV_SET: [f32; SPLITS] = {
+        let mut t = [0.0f32; SPLITS];
+        let mut j = 1;
+        while j < SPLITS {
+            t[j] = 1.0 / j.count_ones() as f32;
+            j += 1;
+        }
+        t
+    };
+    /// 1 / the background's size (pixel 0 and the rest).
+    const INV_REST: [f32; SPLITS] = {
+        let mut t = [0.0f32; SPLITS];
+        let mut j = 0;
+        while j < SPLITS {
+            let rest = N as i64 - j.count_ones() as i64;
+            t[j] = if rest > 0 { 1.0 / rest as f32 } else { 0.0 };
+            j += 1;
+        }
+        t
+    };
 }
 
 /// The means of the colours whose bit is clear in `mask` and of those whose bit is set (each
