@@ -421,4 +421,65 @@ mod tests {
             assert_eq!(tables().to_srgb(c.linear()), c);
         }
     }
+
+    #[test]
+    fn linear_light_goes_back_to_the_nearest_srgb_value() {
+        let t = tables();
+        for i in 0..=2000 {
+            let x = i as f32 / 2000.0;
+            let nearest = (0..=255u8)
+                .min_by(|&a, &b| {
+                    let (da, db) = (
+                        (t.linear[a as usize] - x).abs(),
+                        (t.linear[b as usize] - x).abs(),
+                    );
+                    da.total_cmp(&db)
+                })
+                .unwrap();
+            let got = t.to_srgb([x; 3]).r;
+            let (dg, dn) = (
+                (t.linear[got as usize] - x).abs(),
+                (t.linear[nearest as usize] - x).abs(),
+            );
+            assert!(dg <= dn, "{x}: {got} against {nearest}");
+        }
+    }
+
+    /// The weighted squared error of showing `lin` split by `mask` in its groups' means.
+    fn split_error<const N: usize>(lin: &[Linear; N], mask: u8) -> f32 {
+        let (bg, fg) = means(lin, mask);
+        lin.iter()
+            .enumerate()
+            .map(|(i, l)| {
+                let m = if mask >> i & 1 == 1 { fg } else { bg };
+                (0..3)
+                    .map(|c| WEIGHT[c] * (l[c] - m[c]).powi(2))
+                    .sum::<f32>()
+            })
+            .sum()
+    }
+
+    #[test]
+    fn sextants_and_quadrants_get_the_best_split() {
+        // A fixed pseudo-random walk of colours; every split is tried by brute force.
+        let mut seed = 12_345u32;
+        let mut next = || {
+            seed = seed.wrapping_mul(1_103_515_245).wrapping_add(12_345);
+            (seed >> 16) as f32 / 65_536.0
+        };
+        for _ in 0..200 {
+            let six: [Linear; 6] = std::array::from_fn(|_| [next(), next(), next()]);
+            let got = split_error(&six, best_split(&six));
+            let best = (1..63u8)
+                .map(|m| split_error(&six, m))
+                .fold(f32::MAX, f32::min);
+            assert!(got <= best + 1e-5, "{got} > {best}");
+            let four: [Linear; 4] = std::array::from_fn(|i| six[i]);
+            let got = split_error(&four, best_split(&four));
+            let best = (1..15u8)
+                .map(|m| split_error(&four, m))
+                .fold(f32::MAX, f32::min);
+            assert!(got <= best + 1e-5, "{got} > {best}");
+        }
+    }
 }
