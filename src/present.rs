@@ -18,8 +18,11 @@ use ratatui::style::Modifier;
 
 use crate::color::Rgb;
 use crate::encode::cells::CellWriter;
+use crate::encode::glyph_cell::GlyphCell;
+use crate::encode::glyph_frame::glyph_cells;
 use crate::encode::{ColorLevel, EncodeOptions, Encoder, SYNC_BEGIN, SYNC_END};
 use crate::render::framebuffer::Framebuffer;
+use crate::render::glyphs::Glyphs;
 use crate::termframe::ratatui_rgb;
 use crate::widget::half_block::{to_color, UPPER_HALF};
 
@@ -34,6 +37,9 @@ pub struct Presenter {
     overlaid: bool,
     /// The view with a few cells painted over (see the module notes); reused between frames.
     painted: Framebuffer,
+    /// The view's cells at a finer glyph setting, chosen once a frame: checked against the
+    /// screen for overlays, then handed to the encoder.
+    chosen: Vec<GlyphCell>,
 }
 
 /// The most cells over the view, in rows of the view's width, that still go after the
@@ -54,6 +60,7 @@ impl Presenter {
             out: Vec::new(),
             overlaid: false,
             painted: Framebuffer::new(0, 0),
+            chosen: Vec::new(),
         }
     }
 
@@ -85,8 +92,12 @@ impl Presenter {
         let level = self.level();
         let view_area = view_area.intersection(area);
         let usable = view_area.area() > 0 && view.cell_cols() == usize::from(view_area.width);
+        self.chosen.clear();
+        if usable && view.glyphs() != Glyphs::Half {
+            glyph_cells(view, &mut self.chosen);
+        }
         let over = if usable {
-            covering(screen, view, view_area)
+            covering(screen, view, &self.chosen, view_area)
         } else {
             Vec::new()
         };
@@ -166,7 +177,12 @@ impl Presenter {
                 }
                 &self.painted
             };
-            let bytes = self.encoder.encode(shown, view_area.x, view_area.y);
+            let bytes = if over.is_empty() && !self.chosen.is_empty() {
+                self.encoder
+                    .encode_chosen(view, &self.chosen, view_area.x, view_area.y)
+            } else {
+                self.encoder.encode(shown, view_area.x, view_area.y)
+            };
             self.out.extend_from_slice(bytes);
             if !over.is_empty() {
                 // After the encoder's bytes, which end with the default colours (the cell
@@ -213,16 +229,18 @@ fn plain_ascii(buf: &mut Buffer) {
 }
 
 /// The cells drawn over the view, row by row: cells of the view area that are neither the
-/// view's own half-block nor left empty (callers may leave the view's cells blank).
-fn covering(screen: &Buffer, view: &Framebuffer, at: Rect) -> Vec<(u16, u16)> {
+/// view's own cell (`▀`, or at a finer glyph setting its `chosen` cell) nor left empty (callers
+/// may leave the view's cells blank).
+fn covering(
+    screen: &Buffer,
+    view: &Framebuffer,
+    chosen: &[GlyphCell],
+    at: Rect,
+) -> Vec<(u16, u16)> {
     let rows = usize::from(at.height).min(view.cell_rows());
     let blank = ratatui::buffer::Cell::default();
     let mut out = Vec::new();
     let glyphs = view.glyphs();
-    let mut chosen = Vec::new();
-    if glyphs != crate::render::glyphs::Glyphs::Half {
-        crate::encode::glyph_frame::glyph_cells(view, &mut chosen);
-    }
     for cy in 0..rows {
         for cx in 0..usize::from(at.width) {
             let (x, y) = (at.x + cx as u16, at.y + cy as u16);

@@ -1,6 +1,7 @@
 //! The frame encoder: keeps what the terminal shows and sends only the bytes that change it.
 
 use super::cursor::{write_move, Cursor};
+use super::glyph_cell::GlyphCell;
 use super::glyph_frame::GlyphFrames;
 use super::level::ColorLevel;
 use super::palette::{distance, Code, Palette, DEFAULT, UNKNOWN};
@@ -171,6 +172,29 @@ impl Encoder {
     /// and two colours per cell (in mono: as half-blocks of its mean colours). Switching setting
     /// redraws everything.
     pub fn encode(&mut self, fb: &Framebuffer, origin_col: u16, origin_row: u16) -> &[u8] {
+        self.encode_with(fb, None, origin_col, origin_row)
+    }
+
+    /// [`Encoder::encode`] of a frame at a finer glyph setting whose cells the caller already
+    /// chose ([`glyph_cells`](super::glyph_frame::glyph_cells) of `fb`), so they are not
+    /// chosen twice.
+    pub(crate) fn encode_chosen(
+        &mut self,
+        fb: &Framebuffer,
+        chosen: &[GlyphCell],
+        origin_col: u16,
+        origin_row: u16,
+    ) -> &[u8] {
+        self.encode_with(fb, Some(chosen), origin_col, origin_row)
+    }
+
+    fn encode_with(
+        &mut self,
+        fb: &Framebuffer,
+        chosen: Option<&[GlyphCell]>,
+        origin_col: u16,
+        origin_row: u16,
+    ) -> &[u8] {
         let fine = fb.glyphs() != Glyphs::Half && self.opts.level != ColorLevel::Mono;
         if fine != self.glyph_mode {
             self.glyph_mode = fine;
@@ -181,7 +205,7 @@ impl Encoder {
             let sync = self.opts.sync;
             let origin = (origin_col, origin_row);
             self.glyph
-                .encode(fb, origin, &self.palette, sync, &mut self.out);
+                .encode(fb, chosen, origin, &self.palette, sync, &mut self.out);
             return &self.out;
         }
         let halved;

@@ -8,7 +8,7 @@
 //! is a space on that background or `█` in that foreground, whichever is already set.
 
 use super::cursor::{write_move, Cursor};
-use super::glyph_cell::{choose, GlyphCell, MAX_PIXELS};
+use super::glyph_cell::{choose, choose_n, GlyphCell, MAX_PIXELS};
 use super::glyph_mask::{full_mask, glyph};
 use super::level::ColorLevel;
 use super::palette::{Code, Palette, DEFAULT, UNKNOWN};
@@ -106,7 +106,17 @@ pub fn coded_cells(
     out: &mut Vec<CodedCell>,
 ) {
     glyph_cells(fb, chosen);
+    fit_cells(fb, chosen, palette, out);
+}
+
+/// `chosen` (the cells of `fb`) at `palette`'s level ([`CodedCell::fit`]).
+fn fit_cells(fb: &Framebuffer, chosen: &[GlyphCell], palette: &Palette, out: &mut Vec<CodedCell>) {
     out.clear();
+    if !palette.mixes() {
+        // Truecolor: the colours are the codes, and no mask moves.
+        out.extend(chosen.iter().map(|&c| CodedCell::of(c, palette)));
+        return;
+    }
     let cols = fb.cell_cols().max(1);
     let mut px = [Rgb::default(); MAX_PIXELS];
     for (i, &c) in chosen.iter().enumerate() {
@@ -126,56 +136,39 @@ pub fn cell_pixels(fb: &Framebuffer, cx: usize, cy: usize, out: &mut [Rgb; MAX_P
     c * r
 }
 
-/// The last frame whose cells this thread chose, and those cells: a frame is drawn by the
-/// view widget, checked by the presenter and sent by the encoder, and each asks for the same
-/// cells, so the choice is made once per frame (a pure memo: the answer depends on the pixels).
-struct LastChoice {
-    size: (usize, usize, Glyphs),
-    pixels: Vec<Rgb>,
-    cells: Vec<GlyphCell>,
-}
-
-thread_local! {
-    static LAST: std::cell::RefCell<Option<LastChoice>> = const { std::cell::RefCell::new(None) };
-}
-
-/// Every cell of `fb`, chosen ([`choose`]), row-major.
+/// Every cell of `fb`, chosen ([`choose`]), row-major. A frame drawn by the view widget and
+/// then sent by the presenter is chosen once by each; the presenter hands its own choice to
+/// the encoder ([`crate::encode::Encoder::encode_chosen`]) rather than choosing again.
 pub fn glyph_cells(fb: &Framebuffer, cells: &mut Vec<GlyphCell>) {
-    let size = (fb.width(), fb.height(), fb.glyphs());
-    let hit = LAST.with(|last| match &*last.borrow() {
-        Some(l) if l.size == size && l.pixels == fb.pixels() => {
-            cells.clone_from(&l.cells);
-            true
+    match fb.glyphs().cell_size() {
+        (2, 2) => cells_of::<2, 4>(fb, cells),
+        (2, 3) => cells_of::<3, 6>(fb, cells),
+        (2, 4) => cells_of::<4, 8>(fb, cells),
+        _ => {
+            let (cols, rows) = (fb.cell_cols(), fb.cell_rows());
+            cells.clear();
+            let mut px = [Rgb::default(); MAX_PIXELS];
+            for cy in 0..rows {
+                for cx in 0..cols {
+                    let n = cell_pixels(fb, cx, cy, &mut px);
+                    cells.push(choose(&px[..n]));
+                }
+            }
         }
-        _ => false,
-    });
-    if hit {
-        return;
     }
-    choose_all(fb, cells);
-    LAST.with(|last| {
-        let mut last = last.borrow_mut();
-        let l = last.get_or_insert_with(|| LastChoice {
-            size,
-            pixels: Vec::new(),
-            cells: Vec::new(),
-        });
-        l.size = size;
-        l.pixels.clear();
-        l.pixels.extend_from_slice(fb.pixels());
-        l.cells.clone_from(cells);
-    });
 }
 
-/// [`glyph_cells`] without the memo.
-fn choose_all(fb: &Framebuffer, cells: &mut Vec<GlyphCell>) {
+/// [`glyph_cells`] for cells two pixels wide and `R` tall (`N` = 2·`R` pixels), read a row
+/// band at a time.
+fn cells_of<const R: usize, const N: usize>(fb: &Framebuffer, cells: &mut Vec<GlyphCell>) {
     let (cols, rows) = (fb.cell_cols(), fb.cell_rows());
     cells.clear();
-    let mut px = [Rgb::default(); MAX_PIXELS];
+    cells.reserve(cols * rows);
     for cy in 0..rows {
+        let band: [&[Rgb]; R] = std::array::from_fn(|dy| &fb.row(cy * R + dy)[..2 * cols]);
         for cx in 0..cols {
-            let n = cell_pixels(fb, cx, cy, &mut px);
-            cells.push(choose(&px[..n]));
+            let px: [Rgb; N] = std::array::from_fn(|i| band[i / 2][2 * cx + i % 2]);
+            cells.push(choose_n::<N>(&px));
         }
     }
 }
@@ -261,9 +254,13 @@ impl GlyphFrames {
 
     /// Appends to `out` the bytes that turn the view rectangle at `origin` into `fb` (nothing
     /// when nothing changed); `sync` wraps them in synchronized-output markers.
+    ///
+    /// `chosen`, when given, are `fb`'s cells as [`glyph_cells`] chooses them (a caller that
+    /// already chose them for its own use); otherwise they are chosen here.
     pub(crate) fn encode(
         &mut self,
         fb: &Framebuffer,
+        chosen: Option<&[GlyphCell]>,
         origin: (u16, u16),
         palette: &Palette,
         sync: bool,
@@ -278,7 +275,13 @@ impl GlyphFrames {
             self.shown.resize(cols * rows, UNSEEN);
             self.fresh = true;
         }
-        coded_cells(fb, palette, &mut self.chosen, &mut self.intent);
+        match chosen {
+            Some(cells) => fit_cells(fb, cells, palette, &mut self.intent),
+            None => {
+                glyph_cells(fb, &mut self.chosen);
+                fit_cells(fb, &self.chosen, palette, &mut self.intent);
+            }
+        }
         let level = palette.level();
         let start = out.len();
         if sync {
@@ -399,10 +402,10 @@ mod tests {
                 let p = Palette::new(level);
                 let mut e = GlyphFrames::default();
                 let mut out = Vec::new();
-                e.encode(&fb, (0, 0), &p, true, &mut out);
+                e.encode(&fb, None, (0, 0), &p, true, &mut out);
                 assert!(!out.is_empty());
                 out.clear();
-                e.encode(&fb, (0, 0), &p, true, &mut out);
+                e.encode(&fb, None, (0, 0), &p, true, &mut out);
                 assert!(out.is_empty(), "{g} {level}");
             }
         }
@@ -414,10 +417,10 @@ mod tests {
         let p = Palette::new(ColorLevel::TrueColor);
         let mut e = GlyphFrames::default();
         let mut out = Vec::new();
-        e.encode(&fb, (2, 1), &p, false, &mut out);
+        e.encode(&fb, None, (2, 1), &p, false, &mut out);
         fb.set(3, 5, Rgb::new(255, 255, 255));
         out.clear();
-        e.encode(&fb, (2, 1), &p, false, &mut out);
+        e.encode(&fb, None, (2, 1), &p, false, &mut out);
         // Cell (1, 1): pixel (1, 1) of it, bit 3 = BLOCK OCTANT-4, white on the old colour.
         assert_eq!(
             String::from_utf8(out).unwrap(),
@@ -436,7 +439,7 @@ mod tests {
         });
         let p = Palette::new(ColorLevel::TrueColor);
         let mut e = GlyphFrames::default();
-        e.encode(&fb, (0, 0), &p, false, &mut Vec::new());
+        e.encode(&fb, None, (0, 0), &p, false, &mut Vec::new());
         assert_eq!(e.shown_frame(&p), fb);
     }
 }
