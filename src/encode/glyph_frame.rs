@@ -369,11 +369,30 @@ fn pick_form(
     }
     let straight = (cell.fg, cell.bg);
     let turned = (cell.bg, cell.fg);
+    let turned_mask = !cell.mask & full;
+    if misdrawn(cell.mask, full) {
+        return (turned_mask, turned);
+    }
+    if misdrawn(turned_mask, full) {
+        return (cell.mask, straight);
+    }
     if sgr::cost(level, pen, turned) < sgr::cost(level, pen, straight) {
-        (!cell.mask & full, turned)
+        (turned_mask, turned)
     } else {
         (cell.mask, straight)
     }
+}
+
+/// Octant masks of one corner pixel, whose characters (the one-quarter blocks U+1CEA0, U+1CEA3,
+/// U+1CEA8 and U+1CEAB) terminals that draw octants get wrong: VTE 0.78 draws them on a 4×4
+/// grid, so a 10-pixel-wide cell splits 4 + 6 (measured, docs/output.md), and kitty before 0.47
+/// leaves them to the font. Their complements are ordinary octants, so such a cell is always
+/// sent the other way round.
+const MISDRAWN_OCTANTS: [u8; 4] = [0x01, 0x02, 0x40, 0x80];
+
+/// Whether `mask`, at a setting whose full mask is `full`, is one of [`MISDRAWN_OCTANTS`].
+fn misdrawn(mask: u8, full: u8) -> bool {
+    full == 0xFF && MISDRAWN_OCTANTS.contains(&mask)
 }
 
 #[cfg(test)]

@@ -130,3 +130,34 @@ fn ansi_frames_read_back_at_their_glyph_setting() {
         );
     }
 }
+
+/// Cells of one odd corner pixel never go out as the one-quarter blocks (U+1CEA0/A3/A8/AB),
+/// which VTE and older kitty draw wrongly, but as their complements with the colours swapped;
+/// the terminal still shows the same picture.
+#[cfg(feature = "vt100")]
+#[test]
+fn octant_corner_pixels_go_out_as_their_complements() {
+    use halfcast::encode::full_frame;
+    use halfcast::termframe::{parse_frame, TermFrame};
+    let quarter = ['\u{1CEA0}', '\u{1CEA3}', '\u{1CEA8}', '\u{1CEAB}'];
+    for corner in [(0, 0), (1, 0), (0, 3), (1, 3)] {
+        let mut fb = Framebuffer::for_glyphs(6, 3, Glyphs::Octant);
+        for y in 0..fb.height() {
+            for x in 0..fb.width() {
+                let odd = (x % 2, y % 4) == corner;
+                let c = if odd {
+                    Rgb::new(250, 250, 250)
+                } else {
+                    Rgb::new(20, 30, 40 + x as u8)
+                };
+                fb.set(x, y, c);
+            }
+        }
+        let bytes = full_frame(&fb, &EncodeOptions::default());
+        let text = String::from_utf8(bytes.clone()).unwrap();
+        assert!(text.chars().all(|c| !quarter.contains(&c)), "{corner:?}");
+        let (read, _) = parse_frame(&bytes).unwrap();
+        let shown = TermFrame::from_framebuffer(&fb).to_framebuffer();
+        assert_eq!(read.to_framebuffer().pixels(), shown.pixels(), "{corner:?}");
+    }
+}
