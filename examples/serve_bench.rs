@@ -4,14 +4,15 @@
 //!
 //! `cargo run --release --example serve_bench -- --clients 32 --secs 10 --term xterm-direct \
 //!     --compression none --cols 80 --rows 24 --server-threads 1 [--map PATH] \
-//!     [--metrics on] [--db on] [--round-secs N]`
+//!     [--metrics on] [--db on] [--round-secs N] [--idle N]`
 //!
 //! `--map` serves that map file (e.g. one with creatures, to see what game logic costs)
 //! instead of the embedded default. `--metrics on` installs the Prometheus recorder and its
 //! listener (on a free loopback port, scraped once a second as Prometheus would, more often),
 //! `--db on` keeps the SQLite leaderboard in a temporary file; `--round-secs N` ends each
 //! round after N seconds so rounds (and their leaderboard writes and results screens) happen
-//! during the run. The leaderboard thread's CPU counts as the server's.
+//! during the run. The leaderboard thread's CPU counts as the server's. `--idle N` makes the
+//! first N clients press no key at all (what an idle player costs the server).
 //!
 //! Prints one JSON object: server CPU, frames/s and bytes/s per client (payload and on the wire),
 //! frames the server sent and frame ticks it skipped (slow readers), connections refused.
@@ -45,6 +46,7 @@ struct Opts {
     metrics: bool,
     db: bool,
     round_secs: Option<u64>,
+    idle: usize,
 }
 
 fn opts() -> Opts {
@@ -61,6 +63,7 @@ fn opts() -> Opts {
         metrics: false,
         db: false,
         round_secs: None,
+        idle: 0,
     };
     let args: Vec<String> = std::env::args().skip(1).collect();
     for pair in args.chunks(2) {
@@ -80,6 +83,7 @@ fn opts() -> Opts {
             "--metrics" => o.metrics = v == "on",
             "--db" => o.db = v == "on",
             "--round-secs" => o.round_secs = Some(num(&v).clamp(1, 3600)),
+            "--idle" => o.idle = num(&v) as usize,
             other => panic!("unknown option {other}"),
         }
     }
@@ -174,6 +178,7 @@ fn main() {
             let pc = Arc::clone(pc);
             let term = o.term.clone();
             let (cols, rows) = (o.cols as u16, o.rows as u16);
+            let idle = i < o.idle;
             tasks.push(tokio::spawn(async move {
                 let (h, mut ch, wire) =
                     serve_support::open_counting(addr, &format!("bot{i}"), cols, rows, &term, alg)
@@ -200,10 +205,11 @@ fn main() {
                         },
                         () = tokio::time::sleep_until(wake) => {
                             if tokio::time::Instant::now() >= end { break; }
+                            next_key += Duration::from_millis(100);
+                            if idle { continue; }
                             lcg = lcg.wrapping_mul(1_103_515_245).wrapping_add(12345);
                             let key = MOVES[(lcg >> 16) as usize % MOVES.len()];
                             let _ = ch.data(&[key][..]).await;
-                            next_key += Duration::from_millis(100);
                         }
                     }
                 }
@@ -259,7 +265,7 @@ fn main() {
 \"target_fps\":{},\"server_threads\":{},\"server_cpu_percent\":{:.1},\"client_cpu_percent\":{:.1},\"fps_per_client_mean\":{:.1},\
 \"fps_per_client_min_seen\":{:.1},\"payload_bytes_per_s_per_client\":{:.0},\"wire_bytes_per_s_per_client\":{:.0},\
 \"server_frames_sent\":{},\"server_frame_ticks_skipped\":{},\"refused\":{},\
-\"clients_per_core_at_target_fps\":{:.1},\"metrics\":{},\"db\":{},\"round_secs\":{}}}",
+\"clients_per_core_at_target_fps\":{:.1},\"metrics\":{},\"db\":{},\"round_secs\":{},\"idle_clients\":{}}}",
         o.map.as_deref().unwrap_or("(embedded)"),
         creatures,
         o.clients,
@@ -283,6 +289,7 @@ fn main() {
         o.metrics,
         o.db,
         o.round_secs.unwrap_or(0),
+        o.idle.min(o.clients),
     );
 }
 

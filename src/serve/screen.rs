@@ -50,6 +50,8 @@ pub struct SessionScreen {
     stats: FrameStats,
     /// The frame's bytes: the presenter's, plus other players' name tags over the view.
     out: Vec<u8>,
+    /// The screen buffer the panes are drawn into, cleared and reused every frame.
+    buf: Buffer,
     /// Which panes this client shows (M, I and ? toggle them, as in the local TUI).
     pub toggles: Toggles,
     /// This client's block characters (U cycles them; each session its own).
@@ -126,6 +128,7 @@ impl SessionScreen {
             fb: Framebuffer::new(0, 0),
             stats,
             out: Vec::new(),
+            buf: Buffer::empty(Rect::default()),
             toggles: Toggles::default(),
             glyphs: Glyphs::Half,
             notice: None,
@@ -213,7 +216,12 @@ impl SessionScreen {
         mode: InputMode,
     ) -> &[u8] {
         let area = Rect::new(0, 0, size.0, size.1);
-        let mut buf = Buffer::empty(area);
+        let mut buf = std::mem::take(&mut self.buf);
+        if buf.area == area {
+            buf.reset();
+        } else {
+            buf = Buffer::empty(area);
+        }
         let panes = panes_for(size, self.toggles);
         let body = Rect::new(
             0,
@@ -296,6 +304,7 @@ impl SessionScreen {
         let bytes = self.presenter.frame(&buf, &self.fb, view);
         self.out.clear();
         self.out.extend_from_slice(bytes);
+        self.buf = buf;
         self.stats.record_bytes(self.out.len());
         self.times = (render_time, started.elapsed() - render_time);
         self.stats

@@ -372,6 +372,41 @@ struct State {
     show_leaders: bool,
     /// The glyph key's cycle for this client (without octant behind tmux, unless asked for).
     glyph_cycle: GlyphCycle,
+    /// The last header and what it was made from: it changes only when someone joins, leaves
+    /// or scores, so most frames reuse it.
+    header: Option<(HeaderFrom, String)>,
+}
+
+/// Everything [`State::header`] reads: names here, the eye's name, the scoreboard, the colour
+/// level, the size and whether it was clamped.
+#[derive(Debug, Clone, PartialEq)]
+struct HeaderFrom {
+    names: Vec<String>,
+    eye: Option<String>,
+    scoreboard: crate::game::multi::round::Scoreboard,
+    colour: ColourChoice,
+    size: (u16, u16),
+    clamped: bool,
+    /// Whether the map has a game (its scoreboard replaces the list of who is here).
+    game: bool,
+}
+
+impl HeaderFrom {
+    /// Whether a header made from `self` is the one `snap` through `eye` would make.
+    fn same(&self, snap: &Snapshot, eye: Option<&str>, now: &HeaderFrom) -> bool {
+        self.size == now.size
+            && self.clamped == now.clamped
+            && self.game == now.game
+            && self.colour == now.colour
+            && self.eye.as_deref() == eye
+            && self.scoreboard == snap.scoreboard
+            && self.names.len() == snap.players.len()
+            && self
+                .names
+                .iter()
+                .zip(&snap.players)
+                .all(|(n, p)| *n == p.name)
+    }
 }
 
 impl State {
@@ -403,6 +438,7 @@ impl State {
             leaders: None,
             show_leaders: false,
             glyph_cycle: GlyphCycle::new(dropper, glyphs, FORCE_OCTANTS),
+            header: None,
         }
     }
 
@@ -550,9 +586,32 @@ impl State {
         self.shown = Some(key);
         self.screen
             .set_leaders(self.leaders.clone(), self.show_leaders);
-        let header = self.header(snap, eye);
+        let eye_name = eye.and_then(|e| snap.player(e)).map(|p| p.name.as_str());
+        // The parts of the key that cost nothing to build; the names and board are compared
+        // in place.
+        let mut now = HeaderFrom {
+            names: Vec::new(),
+            eye: None,
+            scoreboard: Default::default(),
+            colour: self.screen.colour(),
+            size: self.size,
+            clamped: self.clamped,
+            game: self.screen.map().has_game(),
+        };
+        let fresh = self
+            .header
+            .as_ref()
+            .is_some_and(|(from, _)| from.same(snap, eye_name, &now));
+        if !fresh {
+            now.names = snap.players.iter().map(|p| p.name.clone()).collect();
+            now.eye = eye_name.map(str::to_owned);
+            now.scoreboard = snap.scoreboard.clone();
+            let text = self.header(snap, eye);
+            self.header = Some((now, text));
+        }
+        let header = self.header.as_ref().map_or("", |(_, h)| h.as_str());
         let mode = self.controls.mode();
-        out.extend_from_slice(self.screen.frame(snap, eye, &header, self.size, mode));
+        out.extend_from_slice(self.screen.frame(snap, eye, header, self.size, mode));
     }
 }
 
@@ -625,6 +684,28 @@ mod tests {
         assert_eq!(cycle(&snap, Some(9), true), Some(5));
         assert_eq!(cycle(&snap, Some(5), false), Some(9));
         assert_eq!(cycle(&Snapshot::default(), Some(5), true), None);
+    }
+
+    #[test]
+    fn the_header_is_made_again_when_someone_joins_or_the_size_changes() {
+        let mut ps = Players::new(Arc::new(World::default_world()));
+        ps.join(5, "a");
+        let snap = ps.snapshot();
+        let from = HeaderFrom {
+            names: vec!["a".into()],
+            eye: Some("a".into()),
+            scoreboard: snap.scoreboard.clone(),
+            colour: level_for_term("xterm-256color", None),
+            size: (80, 24),
+            clamped: false,
+            game: false,
+        };
+        assert!(from.same(&snap, Some("a"), &from.clone()));
+        let mut wider = from.clone();
+        wider.size = (81, 24);
+        assert!(!from.same(&snap, Some("a"), &wider));
+        ps.join(7, "b");
+        assert!(!from.same(&ps.snapshot(), Some("a"), &from.clone()));
     }
 
     #[test]
