@@ -111,28 +111,12 @@ fn inside_tmux_the_glyph_key_skips_octants_and_the_recording_replays_the_same_an
     let config = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/no-such-dir");
     // The game waits for Enter, so the pane's log starts before its first byte.
     let script = r#"read go; exec "$0" record --fps 20 --seed 1 -o "$1""#;
-    let started = tmux.run(&[
-        "new-session",
-        "-d",
-        "-e",
-        "TERM=xterm-256color",
-        "-e",
-        "COLORTERM=truecolor",
-        "-e",
-        &format!("XDG_CONFIG_HOME={config}"),
-        "-s",
-        "t",
-        "-x",
-        "80",
-        "-y",
-        "24",
-        "sh",
-        "-c",
-        script,
-        bin,
-        hcr.to_str().expect("utf-8 path"),
-    ]);
-    assert!(started.status.success(), "{started:?}");
+    let config = format!("XDG_CONFIG_HOME={config}");
+    tmux.start(
+        (80, 24),
+        &["TERM=xterm-256color", "COLORTERM=truecolor", &config],
+        &["sh", "-c", script, bin, hcr.to_str().expect("utf-8 path")],
+    );
     let piped = tmux.run(&[
         "pipe-pane",
         "-t",

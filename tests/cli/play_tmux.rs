@@ -24,23 +24,11 @@ fn under_tmux_the_first_screen_walks_and_quits_cleanly() {
     let bin = env!("CARGO_BIN_EXE_halfcast");
     // After the game, the shell reports its exit code and the terminal modes, then waits.
     let script = r#""$0"; echo "EXIT=$?"; stty -a; exec sleep 600"#;
-    let started = tmux.run(&[
-        "new-session",
-        "-d",
-        "-e",
-        "COLORTERM=truecolor",
-        "-s",
-        "t",
-        "-x",
-        "160",
-        "-y",
-        "48",
-        "sh",
-        "-c",
-        script,
-        bin,
-    ]);
-    assert!(started.status.success(), "{started:?}");
+    tmux.start(
+        (160, 48),
+        &["COLORTERM=truecolor"],
+        &["sh", "-c", script, bin],
+    );
 
     let first = tmux.wait_for("the first whole frame", |s| {
         s.contains("sideDistY") && s.contains("hit (15,0)") && status(s).contains("q quit")
@@ -94,19 +82,7 @@ fn a_closed_terminal_ends_the_game() {
     };
     let bin = env!("CARGO_BIN_EXE_halfcast");
     // Two arguments: tmux runs the game directly, so the pane's process is the game.
-    let started = tmux.run(&[
-        "new-session",
-        "-d",
-        "-s",
-        "t",
-        "-x",
-        "100",
-        "-y",
-        "30",
-        bin,
-        "play",
-    ]);
-    assert!(started.status.success(), "{started:?}");
+    tmux.start((100, 30), &[], &[bin, "play"]);
     tmux.wait_for("the first frame", |s| status(s).contains("q quit"));
     let pid = tmux.text(&["display-message", "-p", "-t", "t", "#{pane_pid}"]);
     let pid = pid.trim().to_owned();
@@ -167,23 +143,8 @@ fn under_tmux_at_80x24_taps_are_small_steps_and_the_help_shows() {
     };
     let bin = env!("CARGO_BIN_EXE_halfcast");
     let config = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/no-such-dir");
-    let started = tmux.run(&[
-        "new-session",
-        "-d",
-        "-e",
-        "TERM=xterm-256color",
-        "-e",
-        &format!("XDG_CONFIG_HOME={config}"),
-        "-s",
-        "t",
-        "-x",
-        "80",
-        "-y",
-        "24",
-        bin,
-        "play",
-    ]);
-    assert!(started.status.success(), "{started:?}");
+    let config = format!("XDG_CONFIG_HOME={config}");
+    tmux.start((80, 24), &["TERM=xterm-256color", &config], &[bin, "play"]);
     let first = tmux.wait_for("the first frame", |s| {
         s.contains("sideDist") && status(s).contains("q quit")
     });
@@ -225,26 +186,21 @@ fn under_tmux_xterm_256color_gets_256_by_the_term_rule() {
         return;
     };
     let bin = env!("CARGO_BIN_EXE_halfcast");
-    let started = tmux.run(&[
-        "new-session",
-        "-d",
-        "-s",
-        "t",
-        "-x",
-        "140",
-        "-y",
-        "30",
-        "env",
-        "-u",
-        "COLORTERM",
-        "-u",
-        "NO_COLOR",
-        "TERM=xterm-256color",
-        bin,
-        "--fps",
-        "30",
-    ]);
-    assert!(started.status.success(), "{started:?}");
+    tmux.start(
+        (140, 30),
+        &[],
+        &[
+            "env",
+            "-u",
+            "COLORTERM",
+            "-u",
+            "NO_COLOR",
+            "TERM=xterm-256color",
+            bin,
+            "--fps",
+            "30",
+        ],
+    );
     tmux.wait_for("256 (TERM)", |s| status(s).contains(" 256 (TERM)"));
     let _ = tmux.run(&["send-keys", "-t", "t", "o"]);
     tmux.wait_for("16 (O key)", |s| status(s).contains(" 16 (O key)"));

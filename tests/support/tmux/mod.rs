@@ -37,6 +37,20 @@ impl Tmux {
             .expect("run tmux")
     }
 
+    /// Starts the session `t`, detached, `cols`×`rows`, with `env` (`NAME=value`) set in it,
+    /// running `command`; asserts tmux accepted it.
+    pub fn start(&self, (cols, rows): (u16, u16), env: &[&str], command: &[&str]) {
+        let (cols, rows) = (cols.to_string(), rows.to_string());
+        let mut args = vec!["new-session", "-d"];
+        for e in env {
+            args.extend(["-e", e]);
+        }
+        args.extend(["-s", "t", "-x", &cols, "-y", &rows]);
+        args.extend(command);
+        let started = self.run(&args);
+        assert!(started.status.success(), "{started:?}");
+    }
+
     /// A tmux command's standard output.
     pub fn text(&self, args: &[&str]) -> String {
         String::from_utf8_lossy(&self.run(args).stdout).into_owned()
