@@ -6,10 +6,11 @@
 //!   connections counted apart); [`lifecycle`]: one connection's kill switch and login clock.
 //! - [`server`]: the accept loop; [`handler`]: the SSH side of one connection (pty, resize,
 //!   refusals); [`session`]: one terminal's loop (keys in, frames out, bounded).
-//! - [`world_task`]: the fixed-tick task owning [`players::Players`] (one `game::GameState` per
+//! - [`world_task`]: the fixed-tick task owning [`crate::game::multi::players::Players`] (one `game::GameState` per
 //!   player, moved by `game::step_shared`, and the doors they share); sessions send it the
 //!   `game::Input` of their keys and read its snapshots.
-//! - [`input`]: the raw key byte parser; [`keys`]: server keys, the rest to the TUI's key map.
+//! - [`crate::ui::key_bytes`]: the raw key byte parser; [`crate::ui::key_route`]: server keys, the rest
+//!   to the game screen's key map (both in the transport-free `ui` room).
 //! - [`screen`]: the TUI's panes under a header ([`header`] fits it to the width), through the
 //!   `Presenter`; [`avatars`]: other players as the world's 8-view sprite, and their names on
 //!   the minimap.
