@@ -239,23 +239,25 @@ impl<'a> DebugPane<'a> {
         self
     }
 
-    /// The items (setup, revealed steps, hit), with `expanded` steps written out and the others
-    /// folded to one line.
-    fn items(&self, expanded: &dyn Fn(usize) -> bool) -> Vec<Item> {
-        let mut out = vec![Item {
-            rows: self.setup_rows(),
-        }];
+    /// Item `k` of the setup (0), the revealed steps (1 to `shown`) and the hit (`shown` + 1),
+    /// with `expanded` steps written out and the others folded to one line.
+    fn item(&self, k: usize, expanded: &dyn Fn(usize) -> bool) -> Item {
         let shown = self.ray.shown;
-        for c in &self.derivation.choices[..shown] {
+        let rows = if k == 0 {
+            self.setup_rows()
+        } else if k <= shown {
+            let c = &self.derivation.choices[k - 1];
             let current = !self.ray.hit_reached && c.index == shown;
-            out.push(Item {
-                rows: self.step_rows(c, expanded(c.index), current),
-            });
-        }
-        out.push(Item {
-            rows: self.hit_rows(),
-        });
-        out
+            self.step_rows(c, expanded(c.index), current)
+        } else {
+            self.hit_rows()
+        };
+        Item { rows }
+    }
+
+    /// An item's rows, each wrapped to `width`.
+    fn wrapped(&self, item: &Item, width: usize) -> Vec<Vec<Line<'static>>> {
+        item.rows.iter().map(|r| self.wrap(r, width)).collect()
     }
 
     fn setup_rows(&self) -> Vec<Row> {
@@ -568,30 +570,41 @@ impl<'a> DebugPane<'a> {
         let stepping = !self.ray.hit_reached || self.scroll > 0;
         let all_open = |_: usize| true;
         let only_focus = |i: usize| i == focus;
-        let mut items = if stepping {
-            self.items(&only_focus)
+        let items = shown + 2;
+        let wrap_all = |expanded: &dyn Fn(usize) -> bool| -> Vec<Vec<Vec<Line<'static>>>> {
+            (0..items)
+                .map(|k| self.wrapped(&self.item(k, expanded), width))
+                .collect()
+        };
+        let wrapped = if stepping {
+            wrap_all(&only_focus)
         } else {
-            self.items(&all_open)
+            // Every step written out, as long as that fits; written out one item at a time, so a
+            // long ray stops at the first item past the pane instead of formatting every step.
+            let mut open = Vec::with_capacity(items);
+            let mut count = 0;
+            for k in 0..items {
+                let item = self.wrapped(&self.item(k, &all_open), width);
+                count += item.iter().map(Vec::len).sum::<usize>();
+                open.push(item);
+                if count > rows {
+                    break;
+                }
+            }
+            if count > rows {
+                // Too long to write every step out: fold all but the last.
+                wrap_all(&|i| i == shown)
+            } else {
+                open
+            }
         };
-        let count = |items: &[Item]| -> usize {
-            items
-                .iter()
-                .flat_map(|i| &i.rows)
-                .map(|r| self.wrap(r, width).len())
-                .sum()
-        };
-        if !stepping && count(&items) > rows {
-            // Too long to write every step out: fold all but the last.
-            items = self.items(&|i| i == shown);
-        }
         let mut lines = Vec::new();
         let mut starts = Vec::new();
         let mut focus_end = None;
-        for (i, item) in items.iter().enumerate() {
-            for r in &item.rows {
-                let wrapped = self.wrap(r, width);
-                starts.extend((0..wrapped.len()).map(|k| k == 0));
-                lines.extend(wrapped);
+        for (i, item) in wrapped.into_iter().enumerate() {
+            for row in item {
+                starts.extend((0..row.len()).map(|k| k == 0));
+                lines.extend(row);
             }
             if self.scroll > 0 && i == focus {
                 focus_end = Some(lines.len());
