@@ -39,7 +39,8 @@ pub(crate) struct PlayArgs {
     #[arg(long, value_parser = parse_level)]
     pub(crate) colors: Option<ColorLevel>,
     /// Block characters for the view: half (default), quadrant, sextant or octant (the U key
-    /// cycles them; `halfcast glyphs` shows which your terminal draws).
+    /// cycles them, skipping octant inside tmux, which drops those characters, unless you start
+    /// at octant; `halfcast glyphs` shows which your terminal draws).
     #[arg(long, value_parser = super::render::parse_glyphs)]
     pub(crate) glyphs: Option<halfcast::Glyphs>,
     /// Lossy: don't resend a cell whose colours moved less than N (0-255) since it was sent.
