@@ -56,14 +56,16 @@ fn a_wall_seen_face_on_is_square_at_every_setting() {
     }
 }
 
+/// The default map's camera as the game starts it.
+fn start_camera(world: &World) -> Camera {
+    let start = world.map.start;
+    Camera::from_angle(start.pos(), start.angle_deg(), 66.0)
+}
+
 #[test]
 fn a_still_camera_sends_nothing_after_the_first_frame_at_every_setting() {
     let world = World::default_world();
-    let start = world.map.start;
-    let scene = Scene::new(
-        &world,
-        Camera::from_angle(start.pos(), start.angle_deg(), 66.0),
-    );
+    let scene = Scene::new(&world, start_camera(&world));
     for glyphs in Glyphs::ALL {
         for level in ColorLevel::ALL {
             let mut fb = Framebuffer::for_glyphs(50, 23, glyphs);
@@ -84,11 +86,7 @@ fn golden_default_view_at_each_setting() {
     use halfcast::output::glyph_picture::shown_picture;
     use halfcast::snapshot::{assert_png_golden, Tolerance};
     let world = World::default_world();
-    let start = world.map.start;
-    let scene = Scene::new(
-        &world,
-        Camera::from_angle(start.pos(), start.angle_deg(), 66.0),
-    );
+    let scene = Scene::new(&world, start_camera(&world));
     for glyphs in Glyphs::ALL {
         let mut fb = Framebuffer::for_glyphs(80, 24, glyphs);
         scene.render_into(&mut fb, None);
