@@ -166,20 +166,30 @@ async fn results_land_in_the_database_show_next_round_and_scores_json_reads_them
     srv.shutdown().await;
 }
 
+/// `halfcast serve ARGS --listen 127.0.0.1:0 --host-key KEY`, run from the repository with no
+/// stdin, which must refuse to start (exit code 2): its standard error.
+fn serve_refused(args: &[&str], host_key: &Path) -> String {
+    let out = Command::new(env!("CARGO_BIN_EXE_halfcast"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .arg("serve")
+        .args(args)
+        .args(["--listen", "127.0.0.1:0", "--host-key"])
+        .arg(host_key)
+        .stdin(std::process::Stdio::null())
+        .output()
+        .expect("halfcast serve runs");
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    err
+}
+
 #[test]
 fn a_damaged_database_stops_the_start_with_a_clear_error_and_is_left_as_it_was() {
     let dir = tempfile::tempdir().expect("tempdir");
     let db = dir.path().join("halfcast.sqlite");
     let junk: Vec<u8> = (0..4096u32).map(|i| (i * 7 + 3) as u8).collect();
     std::fs::write(&db, &junk).unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_halfcast"))
-        .args(["serve", "--listen", "127.0.0.1:0", "--host-key"])
-        .arg(dir.path().join("hk"))
-        .stdin(std::process::Stdio::null())
-        .output()
-        .expect("halfcast serve runs");
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{err}");
+    let err = serve_refused(&[], &dir.path().join("hk"));
     let want = format!(
         "error: leaderboard {}: cannot read: file is not a database",
         db.display()
@@ -194,24 +204,14 @@ fn a_damaged_database_stops_the_start_with_a_clear_error_and_is_left_as_it_was()
 #[test]
 fn every_map_is_checked_before_listening_and_every_bad_one_named_at_file_line_col() {
     let dir = tempfile::tempdir().expect("tempdir");
-    let repo = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let out = Command::new(env!("CARGO_BIN_EXE_halfcast"))
-        .current_dir(repo)
-        .args([
-            "serve",
+    let err = serve_refused(
+        &[
             "tests/fixtures/game_serve_room.cub",
             "tests/fixtures/invalid_serve_rotation.cub",
             "tests/fixtures/no_such_map.cub",
-            "--listen",
-            "127.0.0.1:0",
-            "--host-key",
-        ])
-        .arg(dir.path().join("hk"))
-        .stdin(std::process::Stdio::null())
-        .output()
-        .expect("halfcast serve runs");
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{err}");
+        ],
+        &dir.path().join("hk"),
+    );
     assert_eq!(
         err,
         "error: tests/fixtures/invalid_serve_rotation.cub:7:1: unknown identifier 'Q'\n\
