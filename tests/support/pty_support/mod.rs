@@ -26,6 +26,10 @@ pub const NO_KITTY: &[u8] = b"\x1b[?62;22c";
 /// The probe answer of a terminal with it (current flags 0, then device attributes).
 pub const KITTY: &[u8] = b"\x1b[?0u\x1b[?62;22c";
 
+/// The start and end of a synchronized frame (DEC private mode 2026).
+const SYNC_BEGIN: &[u8] = b"\x1b[?2026h";
+const SYNC_END: &[u8] = b"\x1b[?2026l";
+
 /// Leaving the alternate screen: the last thing a session does before it exits.
 pub const LEAVE_ALT_SCREEN: &[u8] = b"\x1b[?1049l";
 
@@ -146,11 +150,19 @@ impl PtyRun {
         }
     }
 
-    /// The terminal model after all output so far (only new output is parsed each time).
+    /// The terminal model after all output so far (only new output is parsed each time), held
+    /// at the last whole frame: a terminal that knows DEC 2026 (`vt100` does not) shows nothing of
+    /// a synchronized frame until its end marker, so a read that ends mid-frame is not a screen.
     pub fn screen(&mut self) -> &vt100::Screen {
-        let new = self.out.lock().unwrap()[self.parsed..].to_vec();
-        self.parsed += new.len();
-        self.parser.process(&new);
+        let out = self.out.lock().unwrap();
+        let new = &out[self.parsed..];
+        let whole = match (last_index(new, SYNC_BEGIN), last_index(new, SYNC_END)) {
+            (Some(begin), end) if end.is_none_or(|end| end < begin) => begin,
+            _ => new.len(),
+        };
+        self.parser.process(&new[..whole]);
+        self.parsed += whole;
+        drop(out);
         self.parser.screen()
     }
 
