@@ -12,7 +12,7 @@
 //!   the cell diff like the panes (around the overlay), and the encoder starts afresh once the
 //!   overlay is gone.
 
-use ratatui::buffer::{Buffer, CellDiffOption};
+use ratatui::buffer::{Buffer, Cell, CellDiffOption};
 use ratatui::layout::Rect;
 use ratatui::style::Modifier;
 
@@ -24,7 +24,7 @@ use crate::encode::{ColorLevel, EncodeOptions, Encoder, SYNC_BEGIN, SYNC_END};
 use crate::render::framebuffer::Framebuffer;
 use crate::render::glyphs::Glyphs;
 use crate::termframe::ratatui_rgb;
-use crate::widget::half_block::{to_color, UPPER_HALF};
+use crate::widget::half_block::{to_color, UPPER_HALF, VIEW_CELL};
 
 /// Turns whole screens into the bytes that update a terminal from the previous screen.
 #[derive(Debug)]
@@ -116,10 +116,19 @@ impl Presenter {
                 };
                 if !overlaid {
                     c.set_diff_option(CellDiffOption::Skip);
-                } else if level == ColorLevel::Mono
-                    && c.symbol() == UPPER_HALF
-                    && cy < view.cell_rows()
-                {
+                    continue;
+                }
+                // Through the cell diff: the view's own cells as `HalfBlockView` draws them, and
+                // what was drawn over them (which may have kept their skip mark) sent too.
+                if *c == VIEW_CELL {
+                    *c = Cell::EMPTY;
+                    if usable && cy < view.cell_rows() {
+                        draw_view_cell(c, view, &self.chosen, (cx, cy));
+                    }
+                } else {
+                    c.set_diff_option(CellDiffOption::None);
+                }
+                if level == ColorLevel::Mono && c.symbol() == UPPER_HALF && cy < view.cell_rows() {
                     let (top, bottom) = view.cell(cx, cy);
                     c.set_char(crate::encode::quantize::mono_char(top, bottom));
                 }
@@ -202,6 +211,24 @@ impl Presenter {
     }
 }
 
+/// Cell `at` of the view as [`crate::widget::HalfBlockView`] draws it in 24-bit colour: `▀`
+/// over two pixels, or at a finer glyph setting its `chosen` cell's glyph.
+fn draw_view_cell(c: &mut Cell, view: &Framebuffer, chosen: &[GlyphCell], at: (usize, usize)) {
+    let (cx, cy) = at;
+    match chosen.get(cy * view.cell_cols() + cx) {
+        Some(g) => c
+            .set_char(crate::encode::glyph_mask::glyph(view.glyphs(), g.mask))
+            .set_fg(to_color(g.fg))
+            .set_bg(to_color(g.bg)),
+        None => {
+            let (top, bottom) = view.cell(cx, cy);
+            c.set_symbol(UPPER_HALF)
+                .set_fg(to_color(top))
+                .set_bg(to_color(bottom))
+        }
+    };
+}
+
 /// Mono shows plain ASCII: no attributes, and line-drawing symbols as `|`, `-`, `+`…
 /// (colours are dropped by the cell writer at mono).
 fn plain_ascii(buf: &mut Buffer) {
@@ -245,7 +272,9 @@ fn covering(
         for cx in 0..usize::from(at.width) {
             let (x, y) = (at.x + cx as u16, at.y + cy as u16);
             let c = &screen[(x, y)];
-            let is_view = if let Some(g) = chosen.get(cy * view.cell_cols() + cx) {
+            let is_view = if *c == VIEW_CELL {
+                true
+            } else if let Some(g) = chosen.get(cy * view.cell_cols() + cx) {
                 // What `HalfBlockView` draws for the cell at a finer glyph setting.
                 let mut s = [0u8; 4];
                 let ch = crate::encode::glyph_mask::glyph(glyphs, g.mask);
@@ -476,6 +505,65 @@ mod tests {
                 bytes_with < bytes_without + 6 * 40 + 4 * 8 * 40,
                 "{level:?}: {bytes_with} bytes with the banner, {bytes_without} without"
             );
+        }
+    }
+
+    #[test]
+    fn a_screen_left_for_the_presenter_sends_the_bytes_of_one_with_the_view_drawn() {
+        // The game draws its screens with the view's cells left as VIEW_CELL (so they are chosen
+        // once, here); replays draw the view itself. Both must reach the terminal alike: plain,
+        // under a banner (sent after the encoder), under a box (the cell diff), and through a
+        // cleared box that stays blank. (Text that sets no colour of its own would keep the view's
+        // colours under it where the view is drawn; the game's overlays clear or colour theirs.)
+        let at = Rect::new(3, 1, 10, 4);
+        let overlays: [fn(&mut Buffer); 4] = [
+            |_| {},
+            |b| {
+                let banner = Style::new()
+                    .fg(Color::Rgb(255, 226, 140))
+                    .bg(Color::Rgb(22, 24, 32));
+                b.set_string(4, 1, " got it ", banner);
+            },
+            |b| {
+                let boxed = Style::new().fg(Color::White).bg(Color::Rgb(22, 24, 32));
+                for y in 1..4 {
+                    b.set_string(3, y, "====HELP==", boxed);
+                }
+            },
+            |b| {
+                ratatui::widgets::Clear.render(Rect::new(4, 1, 8, 3), b);
+                b.set_string(5, 2, "box", Style::new());
+            },
+        ];
+        for level in [ColorLevel::TrueColor, ColorLevel::Ansi256, ColorLevel::Mono] {
+            for glyphs in [Glyphs::Half, Glyphs::Quadrant, Glyphs::Octant] {
+                let (mut drawn, mut left) = (
+                    Presenter::new(EncodeOptions::new(level)),
+                    Presenter::new(EncodeOptions::new(level)),
+                );
+                for (i, overlay) in overlays.iter().chain(&overlays).enumerate() {
+                    let mut v = Framebuffer::for_glyphs(at.width, at.height, glyphs);
+                    for y in 0..v.height() {
+                        for x in 0..v.width() {
+                            let c = (x * 23 + y * 41 + i * 17) as u8;
+                            v.set(x, y, Rgb::new(c, c.wrapping_mul(3), 90 + (x % 3) as u8));
+                        }
+                    }
+                    let mut with = screen("s");
+                    crate::widget::HalfBlockView::new(&v).render(at, &mut with);
+                    let mut without = screen("s");
+                    for p in at.positions() {
+                        without[p] = VIEW_CELL;
+                    }
+                    overlay(&mut with);
+                    overlay(&mut without);
+                    assert_eq!(
+                        String::from_utf8_lossy(left.frame(&without, &v, at)),
+                        String::from_utf8_lossy(drawn.frame(&with, &v, at)),
+                        "{level:?} {glyphs:?} frame {i}"
+                    );
+                }
+            }
         }
     }
 

@@ -15,7 +15,7 @@ use crate::render::cast::Cast;
 use crate::render::framebuffer::Framebuffer;
 use crate::render::sprite_projection::project_on;
 use crate::texture::builtin;
-use crate::widget::half_block::UPPER_HALF;
+use crate::widget::half_block::VIEW_CELL;
 use crate::widget::minimap::MapView;
 use crate::world::sprite::Sprite;
 use crate::world::World;
@@ -152,17 +152,19 @@ pub fn mark_players(
         if pr.depth > TAG_DISTANCE {
             continue;
         }
-        let rows = (h / 2) as i64;
-        let row = ((base - k - 1).div_euclid(2) - 1).clamp(0, rows - 1);
+        // The tag is in cells: a cell is `cw` × `ch` pixels at the view's glyph setting.
+        let (cw, ch) = fb.glyphs().cell_size();
+        let (cols, rows) = (fb.cell_cols() as i64, fb.cell_rows() as i64);
+        let row = ((base - k - 1).div_euclid(ch as i64) - 1).clamp(0, rows - 1);
         // Tag: whoever is "it" says so over their head.
         let label = if snap.it == Some(p.id) {
             format!("{} (it)", p.name)
         } else {
             p.name.clone()
         };
-        let name: String = label.chars().take(w).collect();
+        let name: String = label.chars().take(cols as usize).collect();
         let n = name.chars().count() as i64;
-        let col = (centre - n / 2).clamp(0, w as i64 - n);
+        let col = (centre.div_euclid(cw as i64) - n / 2).clamp(0, cols - n);
         tags.push(Tag {
             col: col as u16,
             row: row as u16,
@@ -174,8 +176,9 @@ pub fn mark_players(
 }
 
 /// Writes `tags` in the screen buffer over the view whose area is `view` (bold, in the player's
-/// colour on a dark backing), on the view's own cells only: an overlay drawn over the view (the
-/// help, a message) stays on top. The presenter sends such cells after the view's own bytes.
+/// colour on a dark backing), on the view's own cells only (those still [`VIEW_CELL`], as the
+/// screen is drawn for the presenter): an overlay drawn over the view (the help, a message)
+/// stays on top. The presenter sends such cells after the view's own bytes.
 pub fn draw_tags(buf: &mut Buffer, view: Rect, tags: &[Tag]) {
     for t in tags {
         let style = Style::new()
@@ -189,7 +192,7 @@ pub fn draw_tags(buf: &mut Buffer, view: Rect, tags: &[Tag]) {
                 break;
             }
             let cell = &mut buf[(x, y)];
-            if cell.symbol() == UPPER_HALF {
+            if *cell == VIEW_CELL {
                 cell.set_char(ch).set_style(style);
             }
         }

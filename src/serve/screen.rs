@@ -18,11 +18,12 @@ use crate::game::multi::round::RoundEnd;
 use crate::present::Presenter;
 use crate::render::framebuffer::Framebuffer;
 use crate::render::glyphs::Glyphs;
+use crate::ui::keymap::KeyMap;
 use crate::ui::keys::InputMode;
 use crate::ui::layout::{Panes, Toggles};
 use crate::ui::render::render_view;
 use crate::ui::results::{Board, Results, Then};
-use crate::ui::screen::{draw, draw_notice, Screen};
+use crate::ui::screen::{draw_for_presenter, draw_notice, Screen};
 use crate::ui::stats::FrameStats;
 use crate::ui::status::BAR;
 use crate::world::World;
@@ -268,7 +269,7 @@ impl SessionScreen {
                     input_mode: mode,
                     results: results.as_ref(),
                 };
-                draw(&screen, &panes, body, &mut buf);
+                draw_for_presenter(&screen, &panes, body, &mut buf, &KeyMap::default());
                 if let (Some((text, until)), Panes::Game { status, .. }) = (&self.notice, panes) {
                     if started < *until {
                         draw_notice(text, status, &mut buf);
@@ -457,10 +458,16 @@ mod tests {
         let Panes::Game { view, .. } = panes_for(size, Toggles::default()) else {
             panic!("too small")
         };
-        for level in [ColorLevel::TrueColor, ColorLevel::Ansi256, ColorLevel::Mono] {
+        // Every level, and octants too (their view cells are not `▀`, and the tag still shows).
+        let settings = [ColorLevel::TrueColor, ColorLevel::Ansi256, ColorLevel::Mono]
+            .map(|l| (l, Glyphs::Half))
+            .into_iter()
+            .chain([(ColorLevel::TrueColor, Glyphs::Octant)]);
+        for (level, glyphs) in settings {
             let (world, sheet, near) = facing(2.5);
             let bob = near.player(2).expect("bob").color;
             let mut s = SessionScreen::new(&world, sheet, level);
+            s.set_glyphs(glyphs);
             let mut p = vt100::Parser::new(size.1, size.0, 0);
             p.process(s.frame(&near, Some(1), "", size, InputMode::Emulated));
             let text = view_text(&p, view);

@@ -20,7 +20,7 @@ use crate::ui::keys::{Controls, UiCommand};
 use crate::ui::layout::{Panes, Toggles, COMPACT_MIN_WIDTH};
 use crate::ui::render::render_view;
 use crate::ui::results::{Results, Then};
-use crate::ui::screen::{draw_notice, draw_with_keys, Screen};
+use crate::ui::screen::{draw_for_presenter, draw_notice, Screen};
 use crate::ui::stats::FrameStats;
 
 /// How a play session ended.
@@ -348,7 +348,7 @@ pub fn run_loop(
             results: app.results.as_ref(),
         };
         let mut buf = Buffer::empty(area);
-        draw_with_keys(&screen, &panes, area, &mut buf, &app.keys);
+        draw_for_presenter(&screen, &panes, area, &mut buf, &app.keys);
         if let (Some((text, until)), Panes::Game { status, .. }) = (&app.notice, panes) {
             if now < *until {
                 draw_notice(text, status, &mut buf);

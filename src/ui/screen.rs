@@ -16,6 +16,7 @@ use crate::encode::ColorLevel;
 use crate::game::{Cursor, GameState};
 use crate::render::cast::Cast;
 use crate::render::framebuffer::Framebuffer;
+use crate::widget::half_block::VIEW_CELL;
 use crate::widget::minimap::Thing;
 use crate::widget::{DebugPane, HalfBlockView, Minimap, RevealedTrace};
 
@@ -45,6 +46,16 @@ pub fn draw_view(fb: &Framebuffer, area: Rect, buf: &mut Buffer) {
     HalfBlockView::new(fb).render(area, buf);
 }
 
+/// What the view's cells hold in the buffer a frame is drawn into.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum ViewCells {
+    /// The view as [`HalfBlockView`] draws it: the buffer alone is the whole screen.
+    Drawn,
+    /// [`VIEW_CELL`]: the presenter (`crate::present`) encodes the view straight from the
+    /// framebuffer, so nobody chooses its cells a second time.
+    Presented,
+}
+
 /// Draws a whole frame into `buf` within `area`, per `panes` (from [`Panes::compute`]), with
 /// the help listing the default keys.
 pub fn draw(screen: &Screen, panes: &Panes, area: Rect, buf: &mut Buffer) {
@@ -53,6 +64,30 @@ pub fn draw(screen: &Screen, panes: &Panes, area: Rect, buf: &mut Buffer) {
 
 /// [`draw`] with the help listing `keys` (the player's bindings).
 pub fn draw_with_keys(screen: &Screen, panes: &Panes, area: Rect, buf: &mut Buffer, keys: &KeyMap) {
+    draw_frame(screen, panes, area, buf, keys, ViewCells::Drawn);
+}
+
+/// [`draw_with_keys`] for a frame the presenter (`crate::present`) sends: the view's cells are
+/// left as [`VIEW_CELL`] (anything drawn over them stays on top), and the presenter puts the
+/// view there from the framebuffer.
+pub fn draw_for_presenter(
+    screen: &Screen,
+    panes: &Panes,
+    area: Rect,
+    buf: &mut Buffer,
+    keys: &KeyMap,
+) {
+    draw_frame(screen, panes, area, buf, keys, ViewCells::Presented);
+}
+
+fn draw_frame(
+    screen: &Screen,
+    panes: &Panes,
+    area: Rect,
+    buf: &mut Buffer,
+    keys: &KeyMap,
+    view_cells: ViewCells,
+) {
     let area = area.intersection(buf.area);
     Clear.render(area, buf);
     match *panes {
@@ -63,7 +98,14 @@ pub fn draw_with_keys(screen: &Screen, panes: &Panes, area: Rect, buf: &mut Buff
             debug,
             status,
         } => {
-            draw_view(screen.view, view.intersection(area), buf);
+            match view_cells {
+                ViewCells::Drawn => draw_view(screen.view, view.intersection(area), buf),
+                ViewCells::Presented => {
+                    for p in view.intersection(area).positions() {
+                        buf[p] = VIEW_CELL;
+                    }
+                }
+            }
             if let Some(text) = message_now(screen.state) {
                 draw_banner(text, view.intersection(area), buf);
             }

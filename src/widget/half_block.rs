@@ -1,7 +1,7 @@
 //! Shows a [`Framebuffer`] in a terminal buffer: one `▀` cell per two stacked pixels, or at a
 //! finer glyph setting one quadrant, sextant or octant cell per 2×2, 2×3 or 2×4 pixels.
 
-use ratatui::buffer::Buffer;
+use ratatui::buffer::{Buffer, Cell, CellDiffOption};
 use ratatui::layout::Rect;
 use ratatui::style::Color;
 use ratatui::widgets::Widget;
@@ -16,6 +16,15 @@ use crate::render::glyphs::Glyphs;
 
 /// The upper-half block: its foreground paints the upper pixel, its background the lower.
 pub const UPPER_HALF: &str = "▀";
+
+/// A view cell left for an encoder to draw (halfcast's presenter): blank, and skipped by
+/// ratatui's diff, which is ratatui's mark for a cell drawn by other means. A widget drawn over
+/// it changes it, so what is still exactly this cell shows the view.
+pub const VIEW_CELL: Cell = {
+    let mut c = Cell::EMPTY;
+    c.diff_option = CellDiffOption::Skip;
+    c
+};
 
 /// The terminal colour of a pixel (24-bit).
 #[must_use]
