@@ -204,6 +204,7 @@ impl Encoder {
             self.out.clear();
             let sync = self.opts.sync;
             let origin = (origin_col, origin_row);
+            self.glyph.delta = self.opts.delta;
             self.glyph
                 .encode(fb, chosen, origin, &self.palette, sync, &mut self.out);
             return &self.out;

@@ -11,7 +11,7 @@ use super::cursor::{write_move, Cursor};
 use super::glyph_cell::{choose, choose_n, GlyphCell, MAX_PIXELS};
 use super::glyph_mask::{full_mask, glyph};
 use super::level::ColorLevel;
-use super::palette::{Code, Palette, DEFAULT, UNKNOWN};
+use super::palette::{distance, Code, Palette, DEFAULT, UNKNOWN};
 use super::sgr;
 use crate::color::{lab_dist2, oklab, Rgb};
 use crate::render::framebuffer::Framebuffer;
@@ -229,6 +229,8 @@ pub(crate) struct GlyphFrames {
     chosen: Vec<GlyphCell>,
     /// True until a frame was sent since creation, resize or `invalidate`.
     fresh: bool,
+    /// The encoder's lossy `delta` lever (see [`super::EncodeOptions::delta`]).
+    pub(crate) delta: Option<u8>,
 }
 
 impl GlyphFrames {
@@ -256,7 +258,9 @@ impl GlyphFrames {
     /// when nothing changed); `sync` wraps them in synchronized-output markers.
     ///
     /// `chosen`, when given, are `fb`'s cells as [`glyph_cells`] chooses them (a caller that
-    /// already chose them for its own use); otherwise they are chosen here.
+    /// already chose them for its own use); otherwise they are chosen here. With
+    /// [`GlyphFrames::delta`], a cell none of whose pixels moved by that much or more
+    /// ([`distance`]) since it was sent is left as it is.
     pub(crate) fn encode(
         &mut self,
         fb: &Framebuffer,
@@ -297,7 +301,12 @@ impl GlyphFrames {
         let full = full_mask(glyphs);
         for i in 0..self.intent.len() {
             let want = self.intent[i];
-            if self.shown[i] == want {
+            let shown = self.shown[i];
+            if shown == want
+                || self
+                    .delta
+                    .is_some_and(|n| within(shown, want, full, n, palette))
+            {
                 continue;
             }
             let (x, y) = ((i % cols) as u16, (i / cols) as u16);
@@ -322,6 +331,23 @@ impl GlyphFrames {
             out.extend_from_slice(super::SYNC_END);
         }
     }
+}
+
+/// Whether every pixel of a cell showing `shown` would move by less than `n` ([`distance`])
+/// if it showed `want` instead: the lossy `--delta` lever at a finer glyph setting. A cell never
+/// sent is never close.
+fn within(shown: CodedCell, want: CodedCell, full: u8, n: u8, palette: &Palette) -> bool {
+    if shown.fg == UNKNOWN || shown.bg == UNKNOWN {
+        return false;
+    }
+    let near = |a: Code, b: Code| distance(palette.rgb(a), palette.rgb(b)) < u32::from(n);
+    // The four ways a pixel can go (ink or paper, to ink or paper), each checked if some pixel
+    // goes that way.
+    let (s, w) = (shown.mask & full, want.mask & full);
+    (s & w == 0 || near(shown.fg, want.fg))
+        && (s & !w & full == 0 || near(shown.fg, want.bg))
+        && (!s & w & full == 0 || near(shown.bg, want.fg))
+        && (!s & !w & full == 0 || near(shown.bg, want.bg))
 }
 
 /// A whole glyph frame as printable lines (`render --format ansi`): every cell in the form
@@ -428,6 +454,73 @@ mod tests {
                 assert!(out.is_empty(), "{g} {level}");
             }
         }
+    }
+
+    #[test]
+    fn with_delta_a_cell_is_resent_only_once_a_pixel_moved_that_far() {
+        let p = Palette::new(ColorLevel::TrueColor);
+        let base = |x: usize, y: usize| Rgb::new((x * 37) as u8, (y * 11) as u8, 90);
+        let mut e = GlyphFrames {
+            delta: Some(12),
+            ..GlyphFrames::default()
+        };
+        let mut out = Vec::new();
+        e.encode(
+            &frame(Glyphs::Octant, base),
+            None,
+            (0, 0),
+            &p,
+            false,
+            &mut out,
+        );
+        assert!(!out.is_empty(), "the first frame is always sent");
+        // Every pixel a little bluer (distance 2·4 = 8 < 12): nothing goes out.
+        let bluer = |x, y| {
+            let c = base(x, y);
+            Rgb::new(c.r, c.g, c.b + 4)
+        };
+        out.clear();
+        e.encode(
+            &frame(Glyphs::Octant, bluer),
+            None,
+            (0, 0),
+            &p,
+            false,
+            &mut out,
+        );
+        assert!(out.is_empty(), "{}", String::from_utf8_lossy(&out));
+        // One pixel much brighter: its cell alone is sent again.
+        let one = |x, y| {
+            if (x, y) == (3, 5) {
+                Rgb::new(250, 250, 250)
+            } else {
+                bluer(x, y)
+            }
+        };
+        out.clear();
+        e.encode(
+            &frame(Glyphs::Octant, one),
+            None,
+            (0, 0),
+            &p,
+            false,
+            &mut out,
+        );
+        let text = String::from_utf8_lossy(&out);
+        assert_eq!(text.matches('H').count(), 1, "one cell moved to: {text}");
+        assert!(text.starts_with("\x1b[2;2H"), "{text}");
+        // Without delta the small move is sent.
+        e.delta = None;
+        out.clear();
+        e.encode(
+            &frame(Glyphs::Octant, bluer),
+            None,
+            (0, 0),
+            &p,
+            false,
+            &mut out,
+        );
+        assert!(!out.is_empty());
     }
 
     #[test]
