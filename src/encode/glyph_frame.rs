@@ -465,29 +465,18 @@ mod tests {
             ..GlyphFrames::default()
         };
         let mut out = Vec::new();
-        e.encode(
-            &frame(Glyphs::Octant, base),
-            None,
-            (0, 0),
-            &p,
-            false,
-            &mut out,
-        );
+        let send = |e: &mut GlyphFrames, fb: &Framebuffer, out: &mut Vec<u8>| {
+            out.clear();
+            e.encode(fb, None, (0, 0), &p, false, out);
+        };
+        send(&mut e, &frame(Glyphs::Octant, base), &mut out);
         assert!(!out.is_empty(), "the first frame is always sent");
         // Every pixel a little bluer (distance 2·4 = 8 < 12): nothing goes out.
         let bluer = |x, y| {
             let c = base(x, y);
             Rgb::new(c.r, c.g, c.b + 4)
         };
-        out.clear();
-        e.encode(
-            &frame(Glyphs::Octant, bluer),
-            None,
-            (0, 0),
-            &p,
-            false,
-            &mut out,
-        );
+        send(&mut e, &frame(Glyphs::Octant, bluer), &mut out);
         assert!(out.is_empty(), "{}", String::from_utf8_lossy(&out));
         // One pixel much brighter: its cell alone is sent again.
         let one = |x, y| {
@@ -497,29 +486,13 @@ mod tests {
                 bluer(x, y)
             }
         };
-        out.clear();
-        e.encode(
-            &frame(Glyphs::Octant, one),
-            None,
-            (0, 0),
-            &p,
-            false,
-            &mut out,
-        );
+        send(&mut e, &frame(Glyphs::Octant, one), &mut out);
         let text = String::from_utf8_lossy(&out);
         assert_eq!(text.matches('H').count(), 1, "one cell moved to: {text}");
         assert!(text.starts_with("\x1b[2;2H"), "{text}");
         // Without delta the small move is sent.
         e.delta = None;
-        out.clear();
-        e.encode(
-            &frame(Glyphs::Octant, bluer),
-            None,
-            (0, 0),
-            &p,
-            false,
-            &mut out,
-        );
+        send(&mut e, &frame(Glyphs::Octant, bluer), &mut out);
         assert!(!out.is_empty());
     }
 
