@@ -35,8 +35,15 @@ fn main() {
             }
         })
         .collect();
-    let width = screens.iter().map(|s| s.width() * scale + GAP).sum::<usize>();
-    let height = screens.iter().map(|s| s.height() * scale).max().unwrap_or(0);
+    let width = screens
+        .iter()
+        .map(|s| s.width() * scale + GAP)
+        .sum::<usize>();
+    let height = screens
+        .iter()
+        .map(|s| s.height() * scale)
+        .max()
+        .unwrap_or(0);
     let mut sheet = Framebuffer::new(width.saturating_sub(GAP), height);
     let mut left = 0;
     for s in &screens {

@@ -93,7 +93,15 @@ impl Presenter {
         let view_area = view_area.intersection(area);
         let usable = view_area.area() > 0 && view.cell_cols() == usize::from(view_area.width);
         self.chosen.clear();
-        if usable && view.glyphs() != Glyphs::Half {
+        // The view's cells at a finer setting, chosen once here when anything needs them: the
+        // truecolor encoder, or a view area holding more than VIEW_CELL (a view drawn by the
+        // caller, to tell from what is drawn over it, or overlays, which may send the view
+        // through the cell diff). Where the palette mixes, the encoder works from the pixels.
+        if usable
+            && view.glyphs() != Glyphs::Half
+            && (level == ColorLevel::TrueColor
+                || view_area.positions().any(|p| screen[p] != VIEW_CELL))
+        {
             glyph_cells(view, &mut self.chosen);
         }
         let over = if usable {

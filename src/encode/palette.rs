@@ -183,6 +183,13 @@ impl Palette {
         self.tables.as_ref().map(|t| t.fine.mix(c))
     }
 
+    /// The mix of colour `c` where no surface wrote thresholds: none, half or all of the pixels
+    /// show `b` (`None` at truecolor and mono).
+    #[must_use]
+    pub fn half_mix_of(&self, c: Rgb) -> Option<Mix> {
+        self.tables.as_ref().map(|t| t.halves.mix(c))
+    }
+
     /// The RGB a code shows (the xterm default for palette indices).
     #[must_use]
     #[inline]
