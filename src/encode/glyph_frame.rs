@@ -355,7 +355,8 @@ impl GlyphFrames {
     /// when nothing changed); `sync` wraps them in synchronized-output markers.
     ///
     /// `chosen`, when given, are `fb`'s cells as [`glyph_cells`] chooses them (a caller that
-    /// already chose them for its own use); otherwise they are chosen here. With
+    /// already chose them for its own use); otherwise they are chosen here where the level needs
+    /// them (truecolor: [`coded_cells`] says how the others are made). With
     /// [`GlyphFrames::delta`], a cell none of whose pixels moved by that much or more
     /// ([`distance`]) since it was sent is left as it is.
     pub(crate) fn encode(
