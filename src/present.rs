@@ -87,8 +87,21 @@ impl Presenter {
     /// `view` the 3D view's pixels shown at `view_area` (empty area = no view).
     /// Cells of the view area that show something else (an overlay) are drawn on top of it.
     pub fn frame(&mut self, screen: &Buffer, view: &Framebuffer, view_area: Rect) -> &[u8] {
-        let area = screen.area;
         let mut next = screen.clone();
+        self.frame_taking(&mut next, view, view_area)
+    }
+
+    /// [`Presenter::frame`] without copying the screen: `screen` is kept as the terminal's
+    /// contents for the next frame's diff, and swapped for a buffer to draw the next screen into
+    /// (the one kept last frame, or an empty one; its contents are left over, reset it).
+    pub fn frame_taking(
+        &mut self,
+        screen: &mut Buffer,
+        view: &Framebuffer,
+        view_area: Rect,
+    ) -> &[u8] {
+        let mut next = std::mem::take(screen);
+        let area = next.area;
         let level = self.level();
         let view_area = view_area.intersection(area);
         let usable = view_area.area() > 0 && view.cell_cols() == usize::from(view_area.width);
@@ -97,7 +110,7 @@ impl Presenter {
             glyph_cells(view, &mut self.chosen);
         }
         let over = if usable {
-            covering(screen, view, &self.chosen, view_area)
+            covering(&next, view, &self.chosen, view_area)
         } else {
             Vec::new()
         };
@@ -154,6 +167,7 @@ impl Presenter {
                 self.cells.draw(&mut self.out, diff.into_iter());
             }
         }
+        *screen = previous;
         if usable && !overlaid {
             let shown = if over.is_empty() {
                 view
@@ -162,7 +176,9 @@ impl Presenter {
                 // terminal shows there (they are written over it right after).
                 self.painted.clone_from(view);
                 for &(x, y) in &over {
-                    let c = &screen[(x, y)];
+                    // Its colours: `next` differs from the screen drawn only in diff options and,
+                    // at mono, symbols and modifiers.
+                    let c = &next[(x, y)];
                     let (cx, cy) = (usize::from(x - view_area.x), usize::from(y - view_area.y));
                     let top = ratatui_rgb(c.fg).unwrap_or(Rgb::new(0, 0, 0));
                     let bottom = ratatui_rgb(c.bg).unwrap_or(Rgb::new(0, 0, 0));
@@ -340,6 +356,43 @@ mod tests {
             let seen = from_screen(term.screen(), 20, 6);
             let want = intended(&s, &v, at);
             same_screen(&seen, &want, i);
+        }
+    }
+
+    #[test]
+    fn frames_taking_the_screen_send_the_same_bytes_as_frames_copying_it() {
+        // The serve loop's way: draw into the buffer handed back, reset, every frame; through
+        // plain frames, a banner, a box over the view, a new size and back.
+        for level in [ColorLevel::TrueColor, ColorLevel::Ansi256, ColorLevel::Mono] {
+            let (mut copying, mut taking) = (
+                Presenter::new(EncodeOptions::new(level)),
+                Presenter::new(EncodeOptions::new(level)),
+            );
+            let at = Rect::new(3, 1, 10, 4);
+            let mut spare = Buffer::empty(Rect::default());
+            for i in 0..8u8 {
+                let v = view(i * 30);
+                let mut want = with_view(&format!("frame {i}"), &v, at);
+                match i {
+                    2 => want.set_string(5, 2, "HI", Style::new()),
+                    3 | 4 => {
+                        for y in 1..4 {
+                            want.set_string(3, y, "==========", Style::new());
+                        }
+                    }
+                    5 => want.resize(Rect::new(0, 0, 20, 5)),
+                    _ => {}
+                }
+                let copied = copying.frame(&want, &v, at).to_vec();
+                if spare.area == want.area {
+                    spare.reset();
+                } else {
+                    spare = Buffer::empty(want.area);
+                }
+                spare.content.clone_from_slice(&want.content);
+                let taken = taking.frame_taking(&mut spare, &v, at).to_vec();
+                assert_eq!(copied, taken, "{level:?} frame {i}");
+            }
         }
     }
 

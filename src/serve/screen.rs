@@ -301,7 +301,8 @@ impl SessionScreen {
             buf.set_style(row, BAR);
             Paragraph::new(Line::raw(header)).render(row, &mut buf);
         }
-        let bytes = self.presenter.frame(&buf, &self.fb, view);
+        // The presenter keeps this screen for its next diff and hands back last frame's buffer.
+        let bytes = self.presenter.frame_taking(&mut buf, &self.fb, view);
         self.out.clear();
         self.out.extend_from_slice(bytes);
         self.buf = buf;
