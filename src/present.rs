@@ -6,8 +6,8 @@
 //! Anything drawn over the view must stay on top, but the encoder paints the whole view region.
 //! - A few cells (a game message's banner, at most two rows' worth): the encoder sends the view
 //!   with those cells painted in their own colours (so it resends the scene once they go), and
-//!   the cells themselves follow its bytes in every frame. The view keeps the encoder's bytes and
-//!   look while a message shows.
+//!   the cells themselves follow its bytes in every frame the encoder writes to or the cells
+//!   change in. The view keeps the encoder's bytes and look while a message shows.
 //! - More (the help box, the results): while the screen buffer shows them, the view goes through
 //!   the cell diff like the panes (around the overlay), and the encoder starts afresh once the
 //!   overlay is gone.
@@ -35,6 +35,8 @@ pub struct Presenter {
     out: Vec<u8>,
     /// Whether the last frame had an overlay over the view (drawn without the encoder).
     overlaid: bool,
+    /// The few cells drawn after the encoder's bytes last frame (a banner).
+    over: Vec<(u16, u16)>,
     /// The view with a few cells painted over (see the module notes); reused between frames.
     painted: Framebuffer,
     /// The view's cells at a finer glyph setting, chosen once a frame: checked against the
@@ -59,6 +61,7 @@ impl Presenter {
             previous: None,
             out: Vec::new(),
             overlaid: false,
+            over: Vec::new(),
             painted: Framebuffer::new(0, 0),
             chosen: Vec::new(),
         }
@@ -167,6 +170,10 @@ impl Presenter {
                 self.cells.draw(&mut self.out, diff.into_iter());
             }
         }
+        // The cells over the view are on the terminal as they are now when they were drawn last
+        // frame too and nothing has been written over them since.
+        let over_kept =
+            over == self.over && over.iter().all(|&(x, y)| previous[(x, y)] == next[(x, y)]);
         *screen = previous;
         if usable && !overlaid {
             let shown = if over.is_empty() {
@@ -199,8 +206,9 @@ impl Presenter {
             } else {
                 self.encoder.encode(shown, view_area.x, view_area.y)
             };
+            let encoded = !bytes.is_empty();
             self.out.extend_from_slice(bytes);
-            if !over.is_empty() {
+            if !over.is_empty() && (encoded || !over_kept) {
                 // After the encoder's bytes, which end with the default colours (the cell
                 // writer's plain pen) but leave the cursor anywhere.
                 self.cells.forget_cursor();
@@ -213,6 +221,11 @@ impl Presenter {
         if level != ColorLevel::Mono {
             self.out.extend_from_slice(SYNC_END);
         }
+        self.over = if usable && !overlaid {
+            over
+        } else {
+            Vec::new()
+        };
         self.previous = Some(next);
         &self.out
     }
@@ -476,6 +489,36 @@ mod tests {
             .bg(Color::Rgb(22, 24, 32));
         b.set_string(at.x + 1, at.y, " got it ", style);
         b
+    }
+
+    #[test]
+    fn a_banner_over_a_still_view_is_sent_once_and_again_when_it_changes() {
+        for level in [ColorLevel::TrueColor, ColorLevel::Ansi256, ColorLevel::Mono] {
+            let at = Rect::new(3, 1, 10, 4);
+            let mut p = Presenter::new(EncodeOptions::new(level));
+            let mut term = vt100::Parser::new(6, 20, 0);
+            let v = view(60);
+            let banner = with_banner(&v, at);
+            term.process(p.frame(&with_view("s", &v, at), &v, at));
+            term.process(p.frame(&banner, &v, at));
+            let nothing: &[u8] = if level == ColorLevel::Mono {
+                b""
+            } else {
+                &[SYNC_BEGIN, SYNC_END].concat()
+            };
+            assert_eq!(p.frame(&banner, &v, at), nothing, "{level:?}");
+            // Another text in the same cells, and the same banner over a changed view.
+            let mut other = banner.clone();
+            other.set_string(5, 1, "GOT", Style::new());
+            for (b, v) in [(&other, view(60)), (&other, view(90))] {
+                let bytes = p.frame(b, &v, at).to_vec();
+                assert_ne!(bytes, nothing, "{level:?}");
+                term.process(&bytes);
+                let seen = from_screen(term.screen(), 20, 6);
+                let top: String = (0..10).map(|x| seen.cell(x + 3, 1).glyph).collect();
+                assert!(top.contains("GOT"), "{level:?}: {top}");
+            }
+        }
     }
 
     #[test]

@@ -12,7 +12,7 @@ use ratatui::text::Line;
 use ratatui::widgets::{Block, Paragraph, Widget, Wrap};
 
 use super::avatars;
-use crate::encode::{ColorLevel, ColourChoice, ColourReason, EncodeOptions};
+use crate::encode::{ColorLevel, ColourChoice, ColourReason, EncodeOptions, SYNC_BEGIN, SYNC_END};
 use crate::game::multi::players::{PlayerId, Snapshot};
 use crate::game::multi::round::RoundEnd;
 use crate::present::Presenter;
@@ -80,6 +80,15 @@ pub fn view_rect(panes: &Panes) -> Rect {
         Panes::Game { view, .. } => view,
         Panes::TooSmall(_) => Rect::default(),
     }
+}
+
+/// Whether a presenter's frame changes nothing on the terminal (only the synchronized update's
+/// markers around nothing): such a frame is not sent at all.
+fn is_unchanged(bytes: &[u8]) -> bool {
+    bytes.is_empty()
+        || bytes.len() == SYNC_BEGIN.len() + SYNC_END.len()
+            && bytes.starts_with(SYNC_BEGIN)
+            && bytes.ends_with(SYNC_END)
 }
 
 /// A finished round as the results screen shows it.
@@ -206,7 +215,8 @@ impl SessionScreen {
     }
 
     /// The bytes that bring the client's screen (`size` columns × rows) to this frame: the
-    /// world through `eye`'s eyes (or a waiting message when nobody is there to follow).
+    /// world through `eye`'s eyes (or a waiting message when nobody is there to follow); none
+    /// when the screen would not change.
     pub fn frame(
         &mut self,
         snap: &Snapshot,
@@ -304,7 +314,9 @@ impl SessionScreen {
         // The presenter keeps this screen for its next diff and hands back last frame's buffer.
         let bytes = self.presenter.frame_taking(&mut buf, &self.fb, view);
         self.out.clear();
-        self.out.extend_from_slice(bytes);
+        if !is_unchanged(bytes) {
+            self.out.extend_from_slice(bytes);
+        }
         self.buf = buf;
         self.stats.record_bytes(self.out.len());
         self.times = (render_time, started.elapsed() - render_time);
@@ -403,6 +415,36 @@ mod tests {
         let mid = view.x + view.width / 2;
         assert_ne!(col(&with, mid), col(&without, mid), "bob is drawn");
         assert_eq!(col(&with, view.x), col(&without, view.x));
+    }
+
+    #[test]
+    fn a_frame_that_changes_nothing_sends_nothing_and_the_next_change_is_sent() {
+        let (world, sheet) = served();
+        let mut ps = Players::new(Arc::new(world.clone()));
+        ps.join(1, "ann");
+        let snap = ps.snapshot();
+        let size = (80, 24);
+        for level in [ColorLevel::TrueColor, ColorLevel::Ansi256, ColorLevel::Mono] {
+            let mut s = SessionScreen::new(&world, sheet, level);
+            let mut p = vt100::Parser::new(size.1, size.0, 0);
+            p.process(s.frame(&snap, Some(1), "hdr", size, InputMode::Emulated));
+            // The second frame shows the first one's figures; after it, the same world draws
+            // the same screen until the status line's fps window ends (every half second).
+            p.process(s.frame(&snap, Some(1), "hdr", size, InputMode::Emulated));
+            let still = (0..6).any(|_| {
+                s.frame(&snap, Some(1), "hdr", size, InputMode::Emulated)
+                    .is_empty()
+            });
+            assert!(still, "{level}: every frame of a still world sent bytes");
+            let before = p.screen().contents();
+            let mut turned = snap.clone();
+            let cam = &mut turned.players[0].state.camera;
+            *cam = crate::Camera::from_angle(cam.pos, 123.0, crate::camera::DEFAULT_FOV_DEG);
+            let bytes = s.frame(&turned, Some(1), "hdr", size, InputMode::Emulated);
+            assert!(!bytes.is_empty(), "{level}: the turn was not sent");
+            p.process(bytes);
+            assert_ne!(p.screen().contents(), before, "{level}");
+        }
     }
 
     #[test]
