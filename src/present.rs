@@ -108,6 +108,11 @@ impl Presenter {
         let level = self.level();
         let view_area = view_area.intersection(area);
         let usable = view_area.area() > 0 && view.cell_cols() == usize::from(view_area.width);
+        if !usable {
+            // No view this frame: the cell diff writes over where it was, so the next view is
+            // sent whole.
+            self.encoder.invalidate();
+        }
         self.chosen.clear();
         if usable && view.glyphs() != Glyphs::Half {
             glyph_cells(view, &mut self.chosen);

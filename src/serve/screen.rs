@@ -227,9 +227,9 @@ impl SessionScreen {
     ) -> &[u8] {
         let area = Rect::new(0, 0, size.0, size.1);
         let mut buf = std::mem::take(&mut self.buf);
-        if buf.area == area {
-            buf.reset();
-        } else {
+        // Last frame's cells are cleared below: the game's screen clears its whole body itself.
+        let reused = buf.area == area;
+        if !reused {
             buf = Buffer::empty(area);
         }
         let panes = panes_for(size, self.toggles);
@@ -247,6 +247,14 @@ impl SessionScreen {
         }
         match eye.and_then(|id| snap.player(id).map(|p| (id, p))) {
             Some((id, p)) => {
+                if reused {
+                    // `draw` clears the body; the header's rows are left.
+                    for cell in &mut buf.content
+                        [..usize::from(size.0) * usize::from(HEADER_ROWS.min(size.1))]
+                    {
+                        cell.reset();
+                    }
+                }
                 if let Some(world) = Arc::get_mut(&mut self.world) {
                     avatars::place(world, self.base_sprites, self.avatar_sheet, snap, id);
                 }
@@ -297,6 +305,9 @@ impl SessionScreen {
                 }
             }
             None => {
+                if reused {
+                    buf.reset();
+                }
                 view = Rect::default();
                 let y = body.y + body.height / 2;
                 let msg = Rect::new(body.x, y, body.width, body.bottom().saturating_sub(y));
@@ -444,6 +455,50 @@ mod tests {
             assert!(!bytes.is_empty(), "{level}: the turn was not sent");
             p.process(bytes);
             assert_ne!(p.screen().contents(), before, "{level}");
+        }
+    }
+
+    #[test]
+    fn a_reused_screen_buffer_keeps_nothing_of_the_last_frame() {
+        // A long header, a short one, the waiting message, and so on: each screen as a fresh
+        // session draws it, the status line aside (its timings differ between sessions).
+        let (world, sheet) = served();
+        let mut ps = Players::new(Arc::new(world.clone()));
+        ps.join(1, "ann");
+        let snap = ps.snapshot();
+        let size = (80, 24);
+        let mut s = SessionScreen::new(&world, sheet, ColorLevel::Ansi256);
+        let mut p = vt100::Parser::new(size.1, size.0, 0);
+        let long = "a long header that runs well past the short one";
+        p.process(s.frame(&snap, Some(1), long, size, InputMode::Emulated));
+        let none = Snapshot::default();
+        // Each frame draws into the buffer of the frame before last.
+        for (snap, eye, header) in [
+            (&snap, Some(1), "short"),
+            (&none, None, "waiting"),
+            (&snap, Some(1), long),
+            (&snap, Some(1), "short"),
+            (&none, None, "waiting"),
+        ] {
+            p.process(s.frame(snap, eye, header, size, InputMode::Emulated));
+            let mut fresh = SessionScreen::new(&world, sheet, ColorLevel::Ansi256);
+            let mut q = vt100::Parser::new(size.1, size.0, 0);
+            q.process(fresh.frame(snap, eye, header, size, InputMode::Emulated));
+            // Every cell as it looks (a space written or never written look alike).
+            let cells = |p: &vt100::Parser| -> Vec<String> {
+                (0..size.1 - 1)
+                    .flat_map(|y| (0..size.0).map(move |x| (y, x)))
+                    .map(|(y, x)| {
+                        let c = p.screen().cell(y, x).expect("cell");
+                        let mut text = c.contents();
+                        if text.is_empty() {
+                            text.push(' ');
+                        }
+                        format!("{y},{x} {text:?} {:?} {:?}", c.fgcolor(), c.bgcolor())
+                    })
+                    .collect()
+            };
+            assert_eq!(cells(&p), cells(&q), "{header}");
         }
     }
 
