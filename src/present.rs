@@ -6,8 +6,8 @@
 //! Anything drawn over the view must stay on top, but the encoder paints the whole view region.
 //! - A few cells (a game message's banner, at most two rows' worth): the encoder sends the view
 //!   with those cells painted in their own colours (so it resends the scene once they go), and
-//!   the cells themselves follow its bytes in every frame. The view keeps the encoder's bytes and
-//!   look while a message shows.
+//!   the cells themselves follow its bytes in every frame the encoder writes to or the cells
+//!   change in. The view keeps the encoder's bytes and look while a message shows.
 //! - More (the help box, the results): while the screen buffer shows them, the view goes through
 //!   the cell diff like the panes (around the overlay), and the encoder starts afresh once the
 //!   overlay is gone.
@@ -35,6 +35,8 @@ pub struct Presenter {
     out: Vec<u8>,
     /// Whether the last frame had an overlay over the view (drawn without the encoder).
     overlaid: bool,
+    /// The few cells drawn after the encoder's bytes last frame (a banner).
+    over: Vec<(u16, u16)>,
     /// The view with a few cells painted over (see the module notes); reused between frames.
     painted: Framebuffer,
     /// The view's cells at a finer glyph setting, chosen once a frame: checked against the
@@ -59,6 +61,7 @@ impl Presenter {
             previous: None,
             out: Vec::new(),
             overlaid: false,
+            over: Vec::new(),
             painted: Framebuffer::new(0, 0),
             chosen: Vec::new(),
         }
@@ -87,11 +90,29 @@ impl Presenter {
     /// `view` the 3D view's pixels shown at `view_area` (empty area = no view).
     /// Cells of the view area that show something else (an overlay) are drawn on top of it.
     pub fn frame(&mut self, screen: &Buffer, view: &Framebuffer, view_area: Rect) -> &[u8] {
-        let area = screen.area;
         let mut next = screen.clone();
+        self.frame_taking(&mut next, view, view_area)
+    }
+
+    /// [`Presenter::frame`] without copying the screen: `screen` is kept as the terminal's
+    /// contents for the next frame's diff, and swapped for a buffer to draw the next screen into
+    /// (the one kept last frame, or an empty one; its contents are left over, reset it).
+    pub fn frame_taking(
+        &mut self,
+        screen: &mut Buffer,
+        view: &Framebuffer,
+        view_area: Rect,
+    ) -> &[u8] {
+        let mut next = std::mem::take(screen);
+        let area = next.area;
         let level = self.level();
         let view_area = view_area.intersection(area);
         let usable = view_area.area() > 0 && view.cell_cols() == usize::from(view_area.width);
+        if !usable {
+            // No view this frame: the cell diff writes over where it was, so the next view is
+            // sent whole.
+            self.encoder.invalidate();
+        }
         self.chosen.clear();
         // The view's cells at a finer setting, chosen once here when anything needs them: the
         // truecolor encoder, or a view area holding more than VIEW_CELL (a view drawn by the
@@ -105,7 +126,7 @@ impl Presenter {
             glyph_cells(view, &mut self.chosen);
         }
         let over = if usable {
-            covering(screen, view, &self.chosen, view_area)
+            covering(&next, view, &self.chosen, view_area)
         } else {
             Vec::new()
         };
@@ -171,6 +192,11 @@ impl Presenter {
                 self.cells.draw(&mut self.out, diff.into_iter());
             }
         }
+        // The cells over the view are on the terminal as they are now when they were drawn last
+        // frame too and nothing has been written over them since.
+        let over_kept =
+            over == self.over && over.iter().all(|&(x, y)| previous[(x, y)] == next[(x, y)]);
+        *screen = previous;
         if usable && !overlaid {
             let shown = if over.is_empty() {
                 view
@@ -179,7 +205,9 @@ impl Presenter {
                 // terminal shows there (they are written over it right after).
                 self.painted.clone_from(view);
                 for &(x, y) in &over {
-                    let c = &screen[(x, y)];
+                    // Its colours: `next` differs from the screen drawn only in diff options and,
+                    // at mono, symbols and modifiers.
+                    let c = &next[(x, y)];
                     let (cx, cy) = (usize::from(x - view_area.x), usize::from(y - view_area.y));
                     let top = ratatui_rgb(c.fg).unwrap_or(Rgb::new(0, 0, 0));
                     let bottom = ratatui_rgb(c.bg).unwrap_or(Rgb::new(0, 0, 0));
@@ -200,8 +228,9 @@ impl Presenter {
             } else {
                 self.encoder.encode(shown, view_area.x, view_area.y)
             };
+            let encoded = !bytes.is_empty();
             self.out.extend_from_slice(bytes);
-            if !over.is_empty() {
+            if !over.is_empty() && (encoded || !over_kept) {
                 // After the encoder's bytes, which end with the default colours (the cell
                 // writer's plain pen) but leave the cursor anywhere.
                 self.cells.forget_cursor();
@@ -214,6 +243,11 @@ impl Presenter {
         if level != ColorLevel::Mono {
             self.out.extend_from_slice(SYNC_END);
         }
+        self.over = if usable && !overlaid {
+            over
+        } else {
+            Vec::new()
+        };
         self.previous = Some(next);
         &self.out
     }
@@ -380,6 +414,43 @@ mod tests {
         }
     }
 
+    #[test]
+    fn frames_taking_the_screen_send_the_same_bytes_as_frames_copying_it() {
+        // The serve loop's way: draw into the buffer handed back, reset, every frame; through
+        // plain frames, a banner, a box over the view, a new size and back.
+        for level in [ColorLevel::TrueColor, ColorLevel::Ansi256, ColorLevel::Mono] {
+            let (mut copying, mut taking) = (
+                Presenter::new(EncodeOptions::new(level)),
+                Presenter::new(EncodeOptions::new(level)),
+            );
+            let at = Rect::new(3, 1, 10, 4);
+            let mut spare = Buffer::empty(Rect::default());
+            for i in 0..8u8 {
+                let v = view(i * 30);
+                let mut want = with_view(&format!("frame {i}"), &v, at);
+                match i {
+                    2 => want.set_string(5, 2, "HI", Style::new()),
+                    3 | 4 => {
+                        for y in 1..4 {
+                            want.set_string(3, y, "==========", Style::new());
+                        }
+                    }
+                    5 => want.resize(Rect::new(0, 0, 20, 5)),
+                    _ => {}
+                }
+                let copied = copying.frame(&want, &v, at).to_vec();
+                if spare.area == want.area {
+                    spare.reset();
+                } else {
+                    spare = Buffer::empty(want.area);
+                }
+                spare.content.clone_from_slice(&want.content);
+                let taken = taking.frame_taking(&mut spare, &v, at).to_vec();
+                assert_eq!(copied, taken, "{level:?} frame {i}");
+            }
+        }
+    }
+
     /// The panes of [`screen`] with the view's half-blocks drawn at `at`, as `draw` does.
     fn with_view(text: &str, v: &Framebuffer, at: Rect) -> Buffer {
         let mut b = screen(text);
@@ -460,6 +531,36 @@ mod tests {
             .bg(Color::Rgb(22, 24, 32));
         b.set_string(at.x + 1, at.y, " got it ", style);
         b
+    }
+
+    #[test]
+    fn a_banner_over_a_still_view_is_sent_once_and_again_when_it_changes() {
+        for level in [ColorLevel::TrueColor, ColorLevel::Ansi256, ColorLevel::Mono] {
+            let at = Rect::new(3, 1, 10, 4);
+            let mut p = Presenter::new(EncodeOptions::new(level));
+            let mut term = vt100::Parser::new(6, 20, 0);
+            let v = view(60);
+            let banner = with_banner(&v, at);
+            term.process(p.frame(&with_view("s", &v, at), &v, at));
+            term.process(p.frame(&banner, &v, at));
+            let nothing: &[u8] = if level == ColorLevel::Mono {
+                b""
+            } else {
+                &[SYNC_BEGIN, SYNC_END].concat()
+            };
+            assert_eq!(p.frame(&banner, &v, at), nothing, "{level:?}");
+            // Another text in the same cells, and the same banner over a changed view.
+            let mut other = banner.clone();
+            other.set_string(5, 1, "GOT", Style::new());
+            for (b, v) in [(&other, view(60)), (&other, view(90))] {
+                let bytes = p.frame(b, &v, at).to_vec();
+                assert_ne!(bytes, nothing, "{level:?}");
+                term.process(&bytes);
+                let seen = from_screen(term.screen(), 20, 6);
+                let top: String = (0..10).map(|x| seen.cell(x + 3, 1).glyph).collect();
+                assert!(top.contains("GOT"), "{level:?}: {top}");
+            }
+        }
     }
 
     #[test]

@@ -1,8 +1,11 @@
 //! The pixel grid every renderer writes and every output reads: W × 2H for a W × H-cell view
 //! in half-blocks, or the finer sub-grid of another [`Glyphs`] setting (2W × 2H, 2W × 3H, 2W × 4H).
 
+use std::sync::Arc;
+
 use crate::color::Rgb;
 use crate::render::glyphs::Glyphs;
+use crate::render::light::{Lighting, ShadeTable};
 
 /// Row-major RGB pixels; two pixel rows make one terminal cell row.
 ///
@@ -18,6 +21,8 @@ pub struct Framebuffer {
     phases: Option<Vec<u8>>,
     /// How many pixels a terminal cell shows (half-blocks unless made for another setting).
     glyphs: Glyphs,
+    /// The last frame's distance table and the light it samples, reused while the light stays.
+    shades: Option<(Lighting, Arc<ShadeTable>)>,
 }
 
 impl PartialEq for Framebuffer {
@@ -42,6 +47,7 @@ impl Framebuffer {
             pixels: vec![Rgb::default(); width * height],
             phases: None,
             glyphs: Glyphs::Half,
+            shades: None,
         }
     }
 
@@ -62,6 +68,19 @@ impl Framebuffer {
         let size = (usize::from(cols) * c, usize::from(rows) * r);
         if (size, glyphs) != ((self.width, self.height), self.glyphs) {
             *self = Self::for_glyphs(cols, rows, glyphs);
+        }
+    }
+
+    /// The distance table for `light`: the one kept from the last frame drawn here while the
+    /// light is the same (building it was a few % of a small frame's time), else a new one.
+    pub fn shade_table(&mut self, light: &Lighting) -> Arc<ShadeTable> {
+        match &self.shades {
+            Some((kept, table)) if kept == light => Arc::clone(table),
+            _ => {
+                let table = Arc::new(ShadeTable::new(light));
+                self.shades = Some((*light, Arc::clone(&table)));
+                table
+            }
         }
     }
 
@@ -215,6 +234,7 @@ impl Framebuffer {
             pixels,
             phases: None,
             glyphs: Glyphs::Half,
+            shades: None,
         }
     }
 }
@@ -222,6 +242,26 @@ impl Framebuffer {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_shade_table_is_kept_while_the_light_stays_and_made_anew_when_it_changes() {
+        let mut fb = Framebuffer::for_cells(3, 2);
+        let fog = Lighting {
+            fog: Some(crate::map::Fog {
+                colour: Rgb::new(10, 20, 30),
+                density: 0.3,
+            }),
+            ..Lighting::default()
+        };
+        let first = fb.shade_table(&fog);
+        assert!(Arc::ptr_eq(&first, &fb.shade_table(&fog)));
+        assert_eq!(*first, ShadeTable::new(&fog));
+        let night = Lighting { night: true, ..fog };
+        let other = fb.shade_table(&night);
+        assert_eq!(*other, ShadeTable::new(&night));
+        assert_ne!(*other, *first);
+        assert_eq!(*fb.shade_table(&fog), ShadeTable::new(&fog));
+    }
 
     #[test]
     fn cell_reads_upper_and_lower_pixel() {

@@ -26,7 +26,8 @@ pub fn rasterize_heights(scene: &Scene, cast: &Cast, fb: &mut Framebuffer) -> Ve
         return Vec::new();
     }
     let proj = Projection::with_pixel_height(&scene.camera, &scene.view, (w, h), fb.pixel_height());
-    let table = ShadeTable::new(&scene.light);
+    let table = fb.shade_table(&scene.light);
+    let table = &*table;
     let lamps = scene.lamp_light();
     // Faces write their dither phases (floors and ceilings carry none, as on flat maps), and
     // none may be left over from a previous frame in this buffer.
@@ -44,7 +45,7 @@ pub fn rasterize_heights(scene: &Scene, cast: &Cast, fb: &mut Framebuffer) -> Ve
     let painter = Painter {
         scene,
         proj,
-        table: &table,
+        table,
         lamps,
         moving: scene.point_lights(),
         per_row,
@@ -68,7 +69,7 @@ pub fn rasterize_heights(scene: &Scene, cast: &Cast, fb: &mut Framebuffer) -> Ve
             width: w,
         },
         fb,
-        &table,
+        table,
     )
 }
 

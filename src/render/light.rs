@@ -133,7 +133,7 @@ impl Shade {
     }
 }
 
-/// [`Lighting`] sampled every 1/8 cell out to 64 cells, built once per frame.
+/// [`Lighting`] sampled every 1/8 cell out to 64 cells; a framebuffer keeps it while the light stays.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ShadeTable {
     entries: Box<[Shade; LEN]>,

@@ -118,12 +118,13 @@ pub fn rasterize_frame(
     let focal = scene.camera.focal_length(w) / fb.pixel_height();
     let view = scene.view.clamped();
     let horizon = view.horizon(focal, h);
-    let table = ShadeTable::new(&scene.light);
+    let table = fb.shade_table(&scene.light);
+    let table = &*table;
     let spans: Vec<WallSpan> = hits
         .iter()
         .map(|hit| wall_span_at(hit.perp_dist, focal, h, horizon, view.eye()))
         .collect();
-    floor_and_ceiling(scene, &spans, fb, focal, horizon, view.eye(), &table);
+    floor_and_ceiling(scene, &spans, fb, focal, horizon, view.eye(), table);
     let lamps = scene.lamp_light();
     let moving = scene.point_lights();
     for (x, (hit, span)) in hits.iter().zip(&spans).enumerate() {
@@ -160,7 +161,7 @@ pub fn rasterize_frame(
         }
         wall_phases(hits, span, x, fb);
     }
-    draw_sprites(scene, Occluders::Columns(hits), fb, &table)
+    draw_sprites(scene, Occluders::Columns(hits), fb, table)
 }
 
 /// Draws one wall column from its texture column, top to bottom, row `y` lit by `shade(y)`

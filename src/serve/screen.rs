@@ -12,7 +12,7 @@ use ratatui::text::Line;
 use ratatui::widgets::{Block, Paragraph, Widget, Wrap};
 
 use super::avatars;
-use crate::encode::{ColorLevel, ColourChoice, ColourReason, EncodeOptions};
+use crate::encode::{ColorLevel, ColourChoice, ColourReason, EncodeOptions, SYNC_BEGIN, SYNC_END};
 use crate::game::multi::players::{PlayerId, Snapshot};
 use crate::game::multi::round::RoundEnd;
 use crate::present::Presenter;
@@ -81,6 +81,15 @@ pub fn view_rect(panes: &Panes) -> Rect {
         Panes::Game { view, .. } => view,
         Panes::TooSmall(_) => Rect::default(),
     }
+}
+
+/// Whether a presenter's frame changes nothing on the terminal (only the synchronized update's
+/// markers around nothing): such a frame is not sent at all.
+fn is_unchanged(bytes: &[u8]) -> bool {
+    bytes.is_empty()
+        || bytes.len() == SYNC_BEGIN.len() + SYNC_END.len()
+            && bytes.starts_with(SYNC_BEGIN)
+            && bytes.ends_with(SYNC_END)
 }
 
 /// A finished round as the results screen shows it.
@@ -207,7 +216,8 @@ impl SessionScreen {
     }
 
     /// The bytes that bring the client's screen (`size` columns × rows) to this frame: the
-    /// world through `eye`'s eyes (or a waiting message when nobody is there to follow).
+    /// world through `eye`'s eyes (or a waiting message when nobody is there to follow); none
+    /// when the screen would not change.
     pub fn frame(
         &mut self,
         snap: &Snapshot,
@@ -218,9 +228,9 @@ impl SessionScreen {
     ) -> &[u8] {
         let area = Rect::new(0, 0, size.0, size.1);
         let mut buf = std::mem::take(&mut self.buf);
-        if buf.area == area {
-            buf.reset();
-        } else {
+        // Last frame's cells are cleared below: the game's screen clears its whole body itself.
+        let reused = buf.area == area;
+        if !reused {
             buf = Buffer::empty(area);
         }
         let panes = panes_for(size, self.toggles);
@@ -238,6 +248,14 @@ impl SessionScreen {
         }
         match eye.and_then(|id| snap.player(id).map(|p| (id, p))) {
             Some((id, p)) => {
+                if reused {
+                    // `draw` clears the body; the header's rows are left.
+                    for cell in &mut buf.content
+                        [..usize::from(size.0) * usize::from(HEADER_ROWS.min(size.1))]
+                    {
+                        cell.reset();
+                    }
+                }
                 if let Some(world) = Arc::get_mut(&mut self.world) {
                     avatars::place(world, self.base_sprites, self.avatar_sheet, snap, id);
                 }
@@ -288,6 +306,9 @@ impl SessionScreen {
                 }
             }
             None => {
+                if reused {
+                    buf.reset();
+                }
                 view = Rect::default();
                 let y = body.y + body.height / 2;
                 let msg = Rect::new(body.x, y, body.width, body.bottom().saturating_sub(y));
@@ -302,9 +323,12 @@ impl SessionScreen {
             buf.set_style(row, BAR);
             Paragraph::new(Line::raw(header)).render(row, &mut buf);
         }
-        let bytes = self.presenter.frame(&buf, &self.fb, view);
+        // The presenter keeps this screen for its next diff and hands back last frame's buffer.
+        let bytes = self.presenter.frame_taking(&mut buf, &self.fb, view);
         self.out.clear();
-        self.out.extend_from_slice(bytes);
+        if !is_unchanged(bytes) {
+            self.out.extend_from_slice(bytes);
+        }
         self.buf = buf;
         self.stats.record_bytes(self.out.len());
         self.times = (render_time, started.elapsed() - render_time);
@@ -403,6 +427,80 @@ mod tests {
         let mid = view.x + view.width / 2;
         assert_ne!(col(&with, mid), col(&without, mid), "bob is drawn");
         assert_eq!(col(&with, view.x), col(&without, view.x));
+    }
+
+    #[test]
+    fn a_frame_that_changes_nothing_sends_nothing_and_the_next_change_is_sent() {
+        let (world, sheet) = served();
+        let mut ps = Players::new(Arc::new(world.clone()));
+        ps.join(1, "ann");
+        let snap = ps.snapshot();
+        let size = (80, 24);
+        for level in [ColorLevel::TrueColor, ColorLevel::Ansi256, ColorLevel::Mono] {
+            let mut s = SessionScreen::new(&world, sheet, level);
+            let mut p = vt100::Parser::new(size.1, size.0, 0);
+            p.process(s.frame(&snap, Some(1), "hdr", size, InputMode::Emulated));
+            // The second frame shows the first one's figures; after it, the same world draws
+            // the same screen until the status line's fps window ends (every half second).
+            p.process(s.frame(&snap, Some(1), "hdr", size, InputMode::Emulated));
+            let still = (0..6).any(|_| {
+                s.frame(&snap, Some(1), "hdr", size, InputMode::Emulated)
+                    .is_empty()
+            });
+            assert!(still, "{level}: every frame of a still world sent bytes");
+            let before = p.screen().contents();
+            let mut turned = snap.clone();
+            let cam = &mut turned.players[0].state.camera;
+            *cam = crate::Camera::from_angle(cam.pos, 123.0, crate::camera::DEFAULT_FOV_DEG);
+            let bytes = s.frame(&turned, Some(1), "hdr", size, InputMode::Emulated);
+            assert!(!bytes.is_empty(), "{level}: the turn was not sent");
+            p.process(bytes);
+            assert_ne!(p.screen().contents(), before, "{level}");
+        }
+    }
+
+    #[test]
+    fn a_reused_screen_buffer_keeps_nothing_of_the_last_frame() {
+        // A long header, a short one, the waiting message, and so on: each screen as a fresh
+        // session draws it, the status line aside (its timings differ between sessions).
+        let (world, sheet) = served();
+        let mut ps = Players::new(Arc::new(world.clone()));
+        ps.join(1, "ann");
+        let snap = ps.snapshot();
+        let size = (80, 24);
+        let mut s = SessionScreen::new(&world, sheet, ColorLevel::Ansi256);
+        let mut p = vt100::Parser::new(size.1, size.0, 0);
+        let long = "a long header that runs well past the short one";
+        p.process(s.frame(&snap, Some(1), long, size, InputMode::Emulated));
+        let none = Snapshot::default();
+        // Each frame draws into the buffer of the frame before last.
+        for (snap, eye, header) in [
+            (&snap, Some(1), "short"),
+            (&none, None, "waiting"),
+            (&snap, Some(1), long),
+            (&snap, Some(1), "short"),
+            (&none, None, "waiting"),
+        ] {
+            p.process(s.frame(snap, eye, header, size, InputMode::Emulated));
+            let mut fresh = SessionScreen::new(&world, sheet, ColorLevel::Ansi256);
+            let mut q = vt100::Parser::new(size.1, size.0, 0);
+            q.process(fresh.frame(snap, eye, header, size, InputMode::Emulated));
+            // Every cell as it looks (a space written or never written look alike).
+            let cells = |p: &vt100::Parser| -> Vec<String> {
+                (0..size.1 - 1)
+                    .flat_map(|y| (0..size.0).map(move |x| (y, x)))
+                    .map(|(y, x)| {
+                        let c = p.screen().cell(y, x).expect("cell");
+                        let mut text = c.contents();
+                        if text.is_empty() {
+                            text.push(' ');
+                        }
+                        format!("{y},{x} {text:?} {:?} {:?}", c.fgcolor(), c.bgcolor())
+                    })
+                    .collect()
+            };
+            assert_eq!(cells(&p), cells(&q), "{header}");
+        }
     }
 
     #[test]

@@ -354,7 +354,7 @@ pub fn run_loop(
                 draw_notice(text, status, &mut buf);
             }
         }
-        let bytes = app.presenter.frame(&buf, &app.fb, view);
+        let bytes = app.presenter.frame_taking(&mut buf, &app.fb, view);
         if let Err(e) = session.write_frame(bytes) {
             // A full terminal gave way to a signal: end like any signalled frame.
             let sig = signal.load(Ordering::SeqCst);

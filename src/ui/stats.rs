@@ -13,11 +13,12 @@ const MAX_SAMPLES: usize = 1 << 20;
 pub struct FrameStats {
     /// Frames per second over the last window.
     pub fps: f64,
-    /// Smoothed time to cast and rasterize the 3D view, in ms.
+    /// Smoothed time to cast and rasterize the 3D view, in ms, as of the last window (the
+    /// figures shown change with the fps, not every frame: a still screen stays still).
     pub render_ms: f64,
-    /// Smoothed time to build, diff and write the terminal frame, in ms.
+    /// Smoothed time to build, diff and write the terminal frame, in ms, as of the last window.
     pub draw_ms: f64,
-    /// Smoothed bytes sent to the terminal per frame.
+    /// Smoothed bytes sent to the terminal per frame, as of the last window.
     pub bytes_per_frame: f64,
     /// Output rate over the last window, in kbit/s.
     pub kbit_s: f64,
@@ -25,6 +26,8 @@ pub struct FrameStats {
     pub level: Option<crate::encode::ColourChoice>,
     /// The view's block characters (shown in the status line; the U key cycles them).
     pub glyphs: crate::render::glyphs::Glyphs,
+    /// The smoothed figures, every frame; shown as of the last window.
+    smoothed: Smoothed,
     window_bytes: u64,
     window_start: Option<Instant>,
     window_frames: u32,
@@ -33,36 +36,50 @@ pub struct FrameStats {
     samples: Vec<(f32, f32)>,
 }
 
+/// Render and draw ms and bytes per frame, smoothed over recent frames.
+#[derive(Debug, Clone, Copy, Default)]
+struct Smoothed {
+    render_ms: f64,
+    draw_ms: f64,
+    bytes_per_frame: f64,
+}
+
+/// `old` moved a tenth of the way to `new` (`new` itself when there is nothing yet).
+fn smooth(old: f64, new: f64) -> f64 {
+    if old == 0.0 {
+        new
+    } else {
+        old * 0.9 + new * 0.1
+    }
+}
+
 impl FrameStats {
     /// Records the bytes one frame sent (before [`FrameStats::record`] for that frame).
     pub fn record_bytes(&mut self, bytes: usize) {
-        let b = bytes as f64;
-        self.bytes_per_frame = if self.bytes_per_frame == 0.0 {
-            b
-        } else {
-            self.bytes_per_frame * 0.9 + b * 0.1
-        };
+        self.smoothed.bytes_per_frame = smooth(self.smoothed.bytes_per_frame, bytes as f64);
+        if self.bytes_per_frame == 0.0 {
+            // The first figure shows at once; later ones with the window.
+            self.bytes_per_frame = self.smoothed.bytes_per_frame;
+        }
         self.window_bytes += bytes as u64;
     }
 
     /// Records one finished frame.
     pub fn record(&mut self, now: Instant, render: Duration, draw: Duration) {
         let (r, d) = (render.as_secs_f64() * 1e3, draw.as_secs_f64() * 1e3);
-        let smooth = |old: f64, new: f64| {
-            if old == 0.0 {
-                new
-            } else {
-                old * 0.9 + new * 0.1
-            }
-        };
-        self.render_ms = smooth(self.render_ms, r);
-        self.draw_ms = smooth(self.draw_ms, d);
+        let first = self.window_start.is_none();
+        self.smoothed.render_ms = smooth(self.smoothed.render_ms, r);
+        self.smoothed.draw_ms = smooth(self.smoothed.draw_ms, d);
+        if first {
+            self.show_smoothed();
+        }
         let start = *self.window_start.get_or_insert(now);
         self.window_frames += 1;
         let elapsed = now.duration_since(start);
         if elapsed >= FPS_WINDOW {
             self.fps = f64::from(self.window_frames) / elapsed.as_secs_f64();
             self.kbit_s = self.window_bytes as f64 * 8.0 / 1000.0 / elapsed.as_secs_f64();
+            self.show_smoothed();
             self.window_start = Some(now);
             self.window_frames = 0;
             self.window_bytes = 0;
@@ -71,6 +88,15 @@ impl FrameStats {
         self.last = Some(now);
         if self.samples.len() < MAX_SAMPLES {
             self.samples.push((r as f32, d as f32));
+        }
+    }
+
+    /// Shows the smoothed figures (at the first frame and each window's end).
+    fn show_smoothed(&mut self) {
+        self.render_ms = self.smoothed.render_ms;
+        self.draw_ms = self.smoothed.draw_ms;
+        if self.smoothed.bytes_per_frame > 0.0 {
+            self.bytes_per_frame = self.smoothed.bytes_per_frame;
         }
     }
 
@@ -127,5 +153,39 @@ mod tests {
         let line = s.summary();
         assert!(line.starts_with("61 frames in 1.0 s (60.0 fps)"), "{line}");
         assert!(line.contains("render ms: mean 2.00 p50 2.00"), "{line}");
+    }
+
+    #[test]
+    fn the_shown_figures_change_only_when_the_fps_window_ends() {
+        let t0 = Instant::now();
+        let mut s = FrameStats::default();
+        s.record_bytes(1000);
+        s.record(t0, Duration::from_millis(2), Duration::from_millis(4));
+        let first = (s.render_ms, s.draw_ms, s.bytes_per_frame);
+        assert_eq!(first, (2.0, 4.0, 1000.0));
+        // Slower, bigger frames within the window: the figures shown hold.
+        let frame = Duration::from_millis(33);
+        for i in 1..10 {
+            s.record_bytes(5000);
+            s.record(
+                t0 + frame * i,
+                Duration::from_millis(8),
+                Duration::from_millis(9),
+            );
+            assert_eq!(
+                (s.render_ms, s.draw_ms, s.bytes_per_frame),
+                first,
+                "frame {i}"
+            );
+        }
+        // The window ends: they move to the smoothed figures at once.
+        s.record_bytes(5000);
+        s.record(
+            t0 + frame * 16,
+            Duration::from_millis(8),
+            Duration::from_millis(9),
+        );
+        assert!(s.render_ms > 2.0 && s.draw_ms > 4.0 && s.bytes_per_frame > 1000.0);
+        assert!(s.fps > 0.0);
     }
 }

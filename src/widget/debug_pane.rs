@@ -256,8 +256,72 @@ impl<'a> DebugPane<'a> {
     }
 
     /// An item's rows, each wrapped to `width`.
-    fn wrapped(&self, item: &Item, width: usize) -> Vec<Vec<Line<'static>>> {
-        item.rows.iter().map(|r| self.wrap(r, width)).collect()
+    fn wrapped(&self, item: Item, width: usize) -> Vec<Vec<Line<'static>>> {
+        item.rows.into_iter().map(|r| self.wrap(r, width)).collect()
+    }
+
+    /// Whether item `k` is a folded step of one line: one chunk, so it never wraps, and no
+    /// face of the heights in its cell. Its line count is known without writing it.
+    fn one_line(&self, k: usize, expanded: &dyn Fn(usize) -> bool) -> bool {
+        if k == 0 || k > self.ray.shown {
+            return false;
+        }
+        let c = &self.derivation.choices[k - 1];
+        !expanded(c.index)
+            && self
+                .heights
+                .as_ref()
+                .is_none_or(|h| h.faces.iter().all(|f| f.face.cell != c.cell))
+    }
+
+    /// Every item wrapped to `width` with `expanded` steps written out, except folded steps
+    /// [`window`] cuts from a pane of `rows` rows: those are one empty line each (they only
+    /// count). `setup` is item 0 when it is already written.
+    fn wrap_items(
+        &self,
+        expanded: &dyn Fn(usize) -> bool,
+        width: usize,
+        rows: usize,
+        focus: usize,
+        mut setup: Option<Vec<Vec<Line<'static>>>>,
+    ) -> Vec<Vec<Vec<Line<'static>>>> {
+        let items = self.ray.shown + 2;
+        let mut written: Vec<Option<Vec<Vec<Line<'static>>>>> = (0..items)
+            .map(|k| match setup.take() {
+                Some(s) if k == 0 => Some(s),
+                _ if self.one_line(k, expanded) => None,
+                _ => Some(self.wrapped(self.item(k, expanded), width)),
+            })
+            .collect();
+        let count = |w: &Option<Vec<Vec<Line<'static>>>>| {
+            w.as_ref()
+                .map_or(1, |rows| rows.iter().map(Vec::len).sum::<usize>())
+        };
+        // The lines `window` shows, as it picks them.
+        let total: usize = written.iter().map(count).sum();
+        let focus_end = if self.scroll > 0 {
+            written.iter().take(focus + 1).map(count).sum()
+        } else {
+            total
+        };
+        let (lo, hi) = if total <= rows || rows == 0 {
+            (0, total)
+        } else {
+            let end = focus_end.max(rows).min(total);
+            (end - rows, end)
+        };
+        let mut at = 0;
+        for (k, w) in written.iter_mut().enumerate() {
+            let n = count(w);
+            if w.is_none() && at < hi && at + n > lo {
+                *w = Some(self.wrapped(self.item(k, expanded), width));
+            }
+            at += n;
+        }
+        written
+            .into_iter()
+            .map(|w| w.unwrap_or_else(|| vec![vec![Line::default()]]))
+            .collect()
     }
 
     fn setup_rows(&self) -> Vec<Row> {
@@ -569,22 +633,16 @@ impl<'a> DebugPane<'a> {
         let focus = last.saturating_sub(self.scroll);
         let stepping = !self.ray.hit_reached || self.scroll > 0;
         let all_open = |_: usize| true;
-        let only_focus = |i: usize| i == focus;
         let items = shown + 2;
-        let wrap_all = |expanded: &dyn Fn(usize) -> bool| -> Vec<Vec<Vec<Line<'static>>>> {
-            (0..items)
-                .map(|k| self.wrapped(&self.item(k, expanded), width))
-                .collect()
-        };
         let wrapped = if stepping {
-            wrap_all(&only_focus)
+            self.wrap_items(&|i| i == focus, width, rows, focus, None)
         } else {
             // Every step written out, as long as that fits; written out one item at a time, so a
             // long ray stops at the first item past the pane instead of formatting every step.
             let mut open = Vec::with_capacity(items);
             let mut count = 0;
             for k in 0..items {
-                let item = self.wrapped(&self.item(k, &all_open), width);
+                let item = self.wrapped(self.item(k, &all_open), width);
                 count += item.iter().map(Vec::len).sum::<usize>();
                 open.push(item);
                 if count > rows {
@@ -592,8 +650,10 @@ impl<'a> DebugPane<'a> {
                 }
             }
             if count > rows {
-                // Too long to write every step out: fold all but the last.
-                wrap_all(&|i| i == shown)
+                // Too long to write every step out: fold all but the last (the setup is the
+                // same either way).
+                let setup = open.swap_remove(0);
+                self.wrap_items(&|i| i == shown, width, rows, focus, Some(setup))
             } else {
                 open
             }
@@ -614,7 +674,7 @@ impl<'a> DebugPane<'a> {
         // Cut at the top, the pane still says which ray it follows.
         let d = &self.derivation;
         let pinned = self.wrap(
-            &Row::new().chunk("rayDir", NAME).and(
+            Row::new().chunk("rayDir", NAME).and(
                 format!(" = ({}, {})", num(d.ray_dir.x), num(d.ray_dir.y)),
                 VALUE,
             ),
@@ -624,16 +684,17 @@ impl<'a> DebugPane<'a> {
     }
 
     /// One row wrapped to `width`: chunks fill a line, the rest continue indented by two.
-    fn wrap(&self, row: &Row, width: usize) -> Vec<Line<'static>> {
-        let fix = |s: &Span<'static>| -> Span<'static> {
+    fn wrap(&self, row: Row, width: usize) -> Vec<Line<'static>> {
+        let current = row.current;
+        let fix = |s: Span<'static>| -> Span<'static> {
             if self.ascii {
                 Span::styled(to_ascii(&s.content), s.style)
             } else {
-                s.clone()
+                s
             }
         };
         let bg = |s: Span<'static>| {
-            if row.current {
+            if current {
                 let st = s.style.bg(CURRENT_BG).add_modifier(Modifier::BOLD);
                 s.style(st)
             } else {
@@ -642,8 +703,8 @@ impl<'a> DebugPane<'a> {
         };
         let mut out: Vec<Vec<Span<'static>>> = vec![Vec::new()];
         let mut used = 0;
-        for chunk in &row.chunks {
-            let spans: Vec<Span<'static>> = chunk.iter().map(fix).collect();
+        for chunk in row.chunks {
+            let spans: Vec<Span<'static>> = chunk.into_iter().map(fix).collect();
             let w: usize = spans.iter().map(|s| s.content.chars().count()).sum();
             if used > 0 && used + w > width {
                 // Continue on a new line, indented, without the chunk's leading spaces.
@@ -724,7 +785,7 @@ fn window(
             out.extend(pinned.iter().cloned());
         }
     }
-    out.extend(lines[start..end].iter().cloned());
+    out.extend(lines.into_iter().take(end).skip(start));
     if end < total && rows > 1 {
         let last = out.len() - 1;
         out[last] = Line::styled(format!("{down} {} more below", total - end + 1), LABEL);
@@ -914,5 +975,108 @@ mod tests {
         assert_eq!(fmt_height(1.0), "1");
         assert_eq!(fmt_height(-0.5), "-0.5");
         assert_eq!(fmt_height(-0.0001), "0");
+    }
+
+    /// The pane's lines as [`DebugPane::lines`] picked them before it skipped folded steps the
+    /// window cuts: every item written, then the window.
+    fn every_item_written(pane: &DebugPane, rows: usize) -> Vec<Line<'static>> {
+        let width = pane.width.max(16);
+        let shown = pane.ray.shown;
+        let last = shown + usize::from(pane.ray.hit_reached);
+        let focus = last.saturating_sub(pane.scroll);
+        let stepping = !pane.ray.hit_reached || pane.scroll > 0;
+        let write = |expanded: &dyn Fn(usize) -> bool| -> Vec<Vec<Vec<Line<'static>>>> {
+            (0..shown + 2)
+                .map(|k| pane.wrapped(pane.item(k, expanded), width))
+                .collect()
+        };
+        let open = write(&|_| true);
+        let count: usize = open.iter().flatten().map(Vec::len).sum();
+        let wrapped = if stepping {
+            write(&|i| i == focus)
+        } else if count > rows {
+            write(&|i| i == shown)
+        } else {
+            open
+        };
+        let (mut lines, mut starts, mut focus_end) = (Vec::new(), Vec::new(), None);
+        for (i, item) in wrapped.into_iter().enumerate() {
+            for row in item {
+                starts.extend((0..row.len()).map(|k| k == 0));
+                lines.extend(row);
+            }
+            if pane.scroll > 0 && i == focus {
+                focus_end = Some(lines.len());
+            }
+        }
+        let focus_end = focus_end.unwrap_or(lines.len());
+        let d = &pane.derivation;
+        let pinned = pane.wrap(
+            Row::new().chunk("rayDir", NAME).and(
+                format!(" = ({}, {})", num(d.ray_dir.x), num(d.ray_dir.y)),
+                VALUE,
+            ),
+            width,
+        );
+        window(lines, &starts, &pinned, rows, focus_end, pane.ascii)
+    }
+
+    #[test]
+    fn skipping_the_folded_steps_the_window_cuts_changes_no_line() {
+        let plain = World::default_world();
+        let heights = heights_world();
+        let mut checked = 0;
+        for (w, pos) in [
+            (&plain, Vec2::new(15.5, 5.5)),
+            (&heights, Vec2::new(1.5, 1.5)),
+        ] {
+            let doors = crate::world::door::DoorState::new(&w.map);
+            for angle in [0.0, 7.0, 33.0, 95.0, 181.0, 270.0] {
+                let cam = Camera::from_angle(pos, angle, 66.0);
+                let proj = crate::render::height_cast::Projection::new(
+                    &cam,
+                    &crate::render::view::View::default(),
+                    40,
+                    24,
+                );
+                let cast = crate::render::height_cast::cast_heights(
+                    &w.map,
+                    &doors,
+                    &cam,
+                    &proj,
+                    40,
+                    Some(20),
+                );
+                let flat = trace_column(&w.map, &cam, 20, 40);
+                let t = cast.trace.as_ref().unwrap_or(&flat);
+                for shown in [0, 1, 2, 4, t.steps.len()] {
+                    for scroll in [0, 1, 3] {
+                        for (width, rows) in [(28, 9), (28, 20), (48, 6), (48, 25), (60, 60)] {
+                            for ascii in [false, true] {
+                                let mut pane = DebugPane::new(
+                                    RevealedTrace::partial(t, shown),
+                                    w,
+                                    &cam,
+                                    (40, 12),
+                                )
+                                .scroll(scroll)
+                                .ascii(ascii);
+                                if std::ptr::eq(w, &heights) {
+                                    pane = pane.heights(&cast.heights[20]);
+                                }
+                                let pane = DebugPane { width, ..pane };
+                                assert_eq!(
+                                    pane.lines(rows),
+                                    every_item_written(&pane, rows),
+                                    "angle {angle} shown {shown} scroll {scroll} {width}x{rows}"
+                                );
+                                checked += 1;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert!(checked > 500);
     }
 }
