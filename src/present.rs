@@ -121,7 +121,7 @@ impl Presenter {
         if usable
             && view.glyphs() != Glyphs::Half
             && (level == ColorLevel::TrueColor
-                || view_area.positions().any(|p| screen[p] != VIEW_CELL))
+                || view_area.positions().any(|p| next[p] != VIEW_CELL))
         {
             glyph_cells(view, &mut self.chosen);
         }

@@ -287,7 +287,7 @@ impl SessionScreen {
                     input_mode: mode,
                     results: results.as_ref(),
                 };
-                draw_for_presenter(&screen, &panes, body, &mut buf, &KeyMap::default());
+                draw_for_presenter(&screen, &panes, body, &mut buf, KeyMap::shared_default());
                 if let (Some((text, until)), Panes::Game { status, .. }) = (&self.notice, panes) {
                     if started < *until {
                         draw_notice(text, status, &mut buf);

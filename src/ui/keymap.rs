@@ -298,6 +298,16 @@ pub struct KeyMap {
     bound: Vec<(&'static str, Vec<Key>)>,
 }
 
+impl KeyMap {
+    /// The default bindings, built once: screens that list them every frame (the SSH sessions'
+    /// help box) would otherwise parse every binding each frame (about 1 % of the server).
+    #[must_use]
+    pub fn shared_default() -> &'static Self {
+        static DEFAULT_KEYS: std::sync::OnceLock<KeyMap> = std::sync::OnceLock::new();
+        DEFAULT_KEYS.get_or_init(KeyMap::default)
+    }
+}
+
 impl Default for KeyMap {
     fn default() -> Self {
         Self {

@@ -59,15 +59,7 @@ enum ViewCells {
 /// Draws a whole frame into `buf` within `area`, per `panes` (from [`Panes::compute`]), with
 /// the help listing the default keys.
 pub fn draw(screen: &Screen, panes: &Panes, area: Rect, buf: &mut Buffer) {
-    // Built once: parsing the default bindings every frame cost the server about 1 %.
-    static DEFAULT_KEYS: std::sync::OnceLock<KeyMap> = std::sync::OnceLock::new();
-    draw_with_keys(
-        screen,
-        panes,
-        area,
-        buf,
-        DEFAULT_KEYS.get_or_init(KeyMap::default),
-    );
+    draw_with_keys(screen, panes, area, buf, KeyMap::shared_default());
 }
 
 /// [`draw`] with the help listing `keys` (the player's bindings).
