@@ -17,6 +17,13 @@
 //! Prints one JSON object: server CPU, frames/s and bytes/s per client (payload and on the wire),
 //! frames the server sent and frame ticks it skipped (slow readers), connections refused.
 
+/// What `--help` (and a bad option) prints.
+const USAGE: &str = "usage: serve_bench [--clients N] [--secs S] [--term TERM] [--compression none|zlib@openssh.com]
+       [--cols C] [--rows R] [--fps F] [--server-threads T] [--map PATH]
+       [--metrics on] [--db on] [--round-secs N] [--idle N]
+Connects N russh clients over loopback to an in-process server for S seconds and prints one
+JSON object: server CPU, frames and bytes per client, clients per core at the target fps.";
+
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -66,9 +73,22 @@ fn opts() -> Opts {
         idle: 0,
     };
     let args: Vec<String> = std::env::args().skip(1).collect();
+    let usage = |why: &str| -> ! {
+        eprintln!("serve_bench: {why}\n\n{USAGE}");
+        std::process::exit(2)
+    };
+    if args.iter().any(|a| a == "--help" || a == "-h") {
+        println!("{USAGE}");
+        std::process::exit(0);
+    }
     for pair in args.chunks(2) {
-        let v = pair.get(1).cloned().unwrap_or_default();
-        let num = |v: &str| v.parse::<u64>().expect("a number");
+        let Some(v) = pair.get(1).cloned() else {
+            usage(&format!("{} needs a value", pair[0]))
+        };
+        let num = |v: &str| {
+            v.parse::<u64>()
+                .unwrap_or_else(|_| usage(&format!("{} takes a number, not {v:?}", pair[0])))
+        };
         match pair[0].as_str() {
             // Bounded on purpose: this is a loopback load test, not a flood tool.
             "--clients" => o.clients = num(&v).clamp(1, 256) as usize,
@@ -84,7 +104,7 @@ fn opts() -> Opts {
             "--db" => o.db = v == "on",
             "--round-secs" => o.round_secs = Some(num(&v).clamp(1, 3600)),
             "--idle" => o.idle = num(&v) as usize,
-            other => panic!("unknown option {other}"),
+            other => usage(&format!("unknown option {other}")),
         }
     }
     o
