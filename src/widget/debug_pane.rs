@@ -658,6 +658,18 @@ impl<'a> DebugPane<'a> {
                 open
             }
         };
+        self.windowed(wrapped, focus, width, rows)
+    }
+
+    /// The wrapped items laid out as the pane's `rows` rows: their lines in order, cut to the
+    /// window that ends at the focus item (moved back by the scroll), `rayDir` pinned on top.
+    fn windowed(
+        &self,
+        wrapped: Vec<Vec<Vec<Line<'static>>>>,
+        focus: usize,
+        width: usize,
+        rows: usize,
+    ) -> Vec<Line<'static>> {
         let mut lines = Vec::new();
         let mut starts = Vec::new();
         let mut focus_end = None;
@@ -999,26 +1011,7 @@ mod tests {
         } else {
             open
         };
-        let (mut lines, mut starts, mut focus_end) = (Vec::new(), Vec::new(), None);
-        for (i, item) in wrapped.into_iter().enumerate() {
-            for row in item {
-                starts.extend((0..row.len()).map(|k| k == 0));
-                lines.extend(row);
-            }
-            if pane.scroll > 0 && i == focus {
-                focus_end = Some(lines.len());
-            }
-        }
-        let focus_end = focus_end.unwrap_or(lines.len());
-        let d = &pane.derivation;
-        let pinned = pane.wrap(
-            Row::new().chunk("rayDir", NAME).and(
-                format!(" = ({}, {})", num(d.ray_dir.x), num(d.ray_dir.y)),
-                VALUE,
-            ),
-            width,
-        );
-        window(lines, &starts, &pinned, rows, focus_end, pane.ascii)
+        pane.windowed(wrapped, focus, width, rows)
     }
 
     #[test]
