@@ -13,7 +13,7 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Paragraph, Widget};
+use ratatui::widgets::Widget;
 
 use super::revealed::RevealedTrace;
 use crate::camera::Camera;
@@ -815,8 +815,15 @@ impl Widget for DebugPane<'_> {
             width: usize::from(area.width),
             ..self
         };
-        let lines = pane.lines(usize::from(area.height));
-        Paragraph::new(lines).render(area, buf);
+        // The lines are wrapped and cut to the area already: each goes straight to its row
+        // (a Paragraph would lay them out again, every frame of every SSH session).
+        for (row, line) in pane.lines(usize::from(area.height)).iter().enumerate() {
+            let y = area.y + row as u16;
+            if y >= area.bottom() {
+                break;
+            }
+            buf.set_line(area.x, y, line, area.width);
+        }
     }
 }
 
