@@ -14,7 +14,7 @@
 
 use ratatui::buffer::{Buffer, Cell, CellDiffOption};
 use ratatui::layout::Rect;
-use ratatui::style::Modifier;
+use ratatui::style::{Color, Modifier};
 
 use crate::color::Rgb;
 use crate::encode::cells::CellWriter;
@@ -152,7 +152,8 @@ impl Presenter {
                 if *c == VIEW_CELL {
                     *c = Cell::EMPTY;
                     if usable && cy < view.cell_rows() {
-                        draw_view_cell(c, view, &self.chosen, (cx, cy));
+                        let (ch, fg, bg) = view_look(view, &self.chosen, (cx, cy));
+                        c.set_char(ch).set_fg(fg).set_bg(bg);
                     }
                 } else {
                     c.set_diff_option(CellDiffOption::None);
@@ -253,22 +254,23 @@ impl Presenter {
     }
 }
 
-/// Cell `at` of the view as [`crate::widget::HalfBlockView`] draws it in 24-bit colour: `▀`
-/// over two pixels, or at a finer glyph setting its `chosen` cell's glyph.
-fn draw_view_cell(c: &mut Cell, view: &Framebuffer, chosen: &[GlyphCell], at: (usize, usize)) {
+/// Cell `at` of the view as [`crate::widget::HalfBlockView`] draws it in 24-bit colour: its
+/// character, foreground and background (`▀` over two pixels, or at a finer glyph setting its
+/// `chosen` cell's glyph). What the cell diff sends for the view, and what tells a view drawn
+/// by the caller from what is drawn over it.
+fn view_look(view: &Framebuffer, chosen: &[GlyphCell], at: (usize, usize)) -> (char, Color, Color) {
     let (cx, cy) = at;
     match chosen.get(cy * view.cell_cols() + cx) {
-        Some(g) => c
-            .set_char(crate::encode::glyph_mask::glyph(view.glyphs(), g.mask))
-            .set_fg(to_color(g.fg))
-            .set_bg(to_color(g.bg)),
+        Some(g) => (
+            crate::encode::glyph_mask::glyph(view.glyphs(), g.mask),
+            to_color(g.fg),
+            to_color(g.bg),
+        ),
         None => {
             let (top, bottom) = view.cell(cx, cy);
-            c.set_symbol(UPPER_HALF)
-                .set_fg(to_color(top))
-                .set_bg(to_color(bottom))
+            ('▀', to_color(top), to_color(bottom))
         }
-    };
+    }
 }
 
 /// Mono shows plain ASCII: no attributes, and line-drawing symbols as `|`, `-`, `+`…
@@ -309,23 +311,13 @@ fn covering(
     let rows = usize::from(at.height).min(view.cell_rows());
     let blank = ratatui::buffer::Cell::default();
     let mut out = Vec::new();
-    let glyphs = view.glyphs();
     for cy in 0..rows {
         for cx in 0..usize::from(at.width) {
             let (x, y) = (at.x + cx as u16, at.y + cy as u16);
             let c = &screen[(x, y)];
-            let is_view = if *c == VIEW_CELL {
-                true
-            } else if let Some(g) = chosen.get(cy * view.cell_cols() + cx) {
-                // What `HalfBlockView` draws for the cell at a finer glyph setting.
-                let mut s = [0u8; 4];
-                let ch = crate::encode::glyph_mask::glyph(glyphs, g.mask);
-                c.symbol() == ch.encode_utf8(&mut s)
-                    && c.fg == to_color(g.fg)
-                    && c.bg == to_color(g.bg)
-            } else {
-                let (top, bottom) = view.cell(cx, cy);
-                c.symbol() == UPPER_HALF && c.fg == to_color(top) && c.bg == to_color(bottom)
+            let is_view = *c == VIEW_CELL || {
+                let (ch, fg, bg) = view_look(view, chosen, (cx, cy));
+                c.symbol() == ch.encode_utf8(&mut [0u8; 4]) && c.fg == fg && c.bg == bg
             };
             if !is_view && *c != blank {
                 out.push((x, y));
