@@ -93,13 +93,9 @@ impl CodedCell {
         }
         // The two asked for most (the first asked on ties): `a` the more.
         let top = |skip: Option<usize>| {
-            (0..kinds).filter(|&i| Some(i) != skip).fold(
-                None,
-                |best: Option<usize>, i| match best {
-                    Some(j) if asked[j].1 >= asked[i].1 => Some(j),
-                    _ => Some(i),
-                },
-            )
+            (0..kinds)
+                .filter(|&i| Some(i) != skip)
+                .max_by_key(|&i| (asked[i].1, std::cmp::Reverse(i)))
         };
         let first = top(None).unwrap_or(0);
         let a = asked[first].0;
