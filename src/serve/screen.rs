@@ -348,6 +348,15 @@ mod tests {
         avatars::with_avatar_sheet(World::default_world())
     }
 
+    /// The served world with ann its only player.
+    fn ann_alone() -> (World, usize, Snapshot) {
+        let (world, sheet) = served();
+        let mut ps = Players::new(Arc::new(world.clone()));
+        ps.join(1, "ann");
+        let snap = ps.snapshot();
+        (world, sheet, snap)
+    }
+
     fn show(bytes: &[u8], size: (u16, u16)) -> vt100::Parser {
         let mut p = vt100::Parser::new(size.1, size.0, 0);
         p.process(bytes);
@@ -431,10 +440,7 @@ mod tests {
 
     #[test]
     fn a_frame_that_changes_nothing_sends_nothing_and_the_next_change_is_sent() {
-        let (world, sheet) = served();
-        let mut ps = Players::new(Arc::new(world.clone()));
-        ps.join(1, "ann");
-        let snap = ps.snapshot();
+        let (world, sheet, snap) = ann_alone();
         let size = (80, 24);
         for level in [ColorLevel::TrueColor, ColorLevel::Ansi256, ColorLevel::Mono] {
             let mut s = SessionScreen::new(&world, sheet, level);
@@ -463,10 +469,7 @@ mod tests {
     fn a_reused_screen_buffer_keeps_nothing_of_the_last_frame() {
         // A long header, a short one, the waiting message, and so on: each screen as a fresh
         // session draws it, the status line aside (its timings differ between sessions).
-        let (world, sheet) = served();
-        let mut ps = Players::new(Arc::new(world.clone()));
-        ps.join(1, "ann");
-        let snap = ps.snapshot();
+        let (world, sheet, snap) = ann_alone();
         let size = (80, 24);
         let mut s = SessionScreen::new(&world, sheet, ColorLevel::Ansi256);
         let mut p = vt100::Parser::new(size.1, size.0, 0);
