@@ -8,8 +8,9 @@
 #
 # Writes OUT_DIR/tmux-80x24.png (truecolor | 256) and OUT_DIR/tmux-160x48.png
 # (truecolor | 256 | 16) of the start view, and OUT_DIR/tmux-wood-120x40.png (truecolor | 256 |
-# 16) facing the wood door and the barrel, the hardest colours for the palette. Needs tmux; not
-# part of CI.
+# 16) facing the wood door and the barrel, the hardest colours for the palette, and
+# OUT_DIR/tmux-heights-120x40.png (truecolor | 256) of maps/heights.cub's warm floor. Needs tmux;
+# not part of CI.
 set -euo pipefail
 bin=$(realpath "${1:-target/release/halfcast}")
 out=${2:-docs/screenshots}
@@ -18,6 +19,9 @@ sock="halfcast-shots-$$"
 trap 'tmux -L "$sock" kill-server 2>/dev/null || true; rm -rf "$tmp"' EXIT
 
 printf 'set -g status off\nset -g default-terminal tmux-256color\n' >"$tmp/tmux.conf"
+# A session that outlives every capture, so killing a capture's session never stops the server
+# while the next one starts (tmux then says "server exited unexpectedly").
+tmux -L "$sock" -f "$tmp/tmux.conf" new-session -d -s keep "sleep 600"
 
 # One capture: the game at COLSxROWS in a fresh tmux window, COLORTERM unset unless asked for,
 # after it has settled.
@@ -41,8 +45,12 @@ wood=(--pos 12.5,9.5 --angle 160)
 capture 120x40 truecolor "$tmp/wood-true.ans" "${wood[@]}"
 capture 120x40 "" "$tmp/wood-256.ans" "${wood[@]}"
 capture 120x40 "" "$tmp/wood-16.ans" "${wood[@]}" --colors 16
+heights=(maps/heights.cub --pos 7.49,6.70 --angle 161.8)
+capture 120x40 truecolor "$tmp/heights-true.ans" "${heights[@]}"
+capture 120x40 "" "$tmp/heights-256.ans" "${heights[@]}"
 
 sheet() { cargo run -q --release --features vt100 --example screen_sheet -- "$@"; }
 sheet "$out/tmux-80x24.png" 3 "$tmp/80-true.ans" "$tmp/80-256.ans"
 sheet "$out/tmux-160x48.png" 2 "$tmp/160-true.ans" "$tmp/160-256.ans" "$tmp/160-16.ans"
 sheet "$out/tmux-wood-120x40.png" 2 "$tmp/wood-true.ans" "$tmp/wood-256.ans" "$tmp/wood-16.ans"
+sheet "$out/tmux-heights-120x40.png" 2 "$tmp/heights-true.ans" "$tmp/heights-256.ans"

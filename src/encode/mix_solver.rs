@@ -86,6 +86,16 @@ pub const MIX_256: Weights = Weights {
     pair_hue: 1.0,
 };
 
+/// How 256-colour mixes are judged where no surface wrote thresholds (floors, ceilings, frames
+/// from elsewhere): as [`MIX_256`], but each pixel's own a/b error counts too. There a half share
+/// shows as alternate pixel rows fixed to the screen, and two entries far apart in colour (grey
+/// and orange for a warm floor) drew stripes a person sees at once; the charge keeps a half mix
+/// to entries near the colour.
+pub const MIX_256_HALVES: Weights = Weights {
+    pixel_ab: 0.2,
+    ..MIX_256
+};
+
 /// How 16-colour mixes are judged.
 pub const MIX_16: Weights = Weights {
     pixel_l: 1.0,
@@ -315,11 +325,11 @@ impl Solver {
     }
 }
 
-/// The weights a level's mixes are judged by.
-fn weights_of(level: ColorLevel) -> Weights {
+/// The weights a level's mixes are judged by: its fine table's, then its halves table's.
+fn weights_of(level: ColorLevel) -> [Weights; 2] {
     match level {
-        ColorLevel::Ansi16 => MIX_16,
-        _ => MIX_256,
+        ColorLevel::Ansi16 => [MIX_16, MIX_16],
+        _ => [MIX_256, MIX_256_HALVES],
     }
 }
 
@@ -327,10 +337,10 @@ fn weights_of(level: ColorLevel) -> Weights {
 /// threshold), and none/half/all (the rest).
 #[must_use]
 pub(crate) fn solvers(level: ColorLevel) -> [Solver; 2] {
-    let (e, w) = (entries(level), weights_of(level));
+    let (e, [fine, halves]) = (entries(level), weights_of(level));
     [
-        Solver::new(&e, xterm_rgb, w, &FINE_SHARES),
-        Solver::new(&e, xterm_rgb, w, &HALF_SHARES),
+        Solver::new(&e, xterm_rgb, fine, &FINE_SHARES),
+        Solver::new(&e, xterm_rgb, halves, &HALF_SHARES),
     ]
 }
 

@@ -119,6 +119,25 @@ mod tests {
     }
 
     #[test]
+    fn a_warm_floor_with_no_pattern_shows_no_stripes_of_far_colours() {
+        // Where no surface wrote a pattern a half share draws alternate pixel rows, fixed to the
+        // screen: heights.cub's warm floor came out as grey and orange stripes (an entry 53 a/b
+        // units off the colour). Along a ramp of such warm greys every entry a cell shows stays
+        // near the colour (18 at most when this was written).
+        let palette = Palette::new(ColorLevel::Ansi256);
+        let lab = |c: Rgb| crate::encode::mix_solver::lab(c.linear());
+        for r in 40..200u16 {
+            let c = Rgb::new(r as u8, (r * 9 / 10) as u8, (r * 78 / 100) as u8);
+            let (want, mix) = (lab(c), palette.half_mix_of(c).unwrap());
+            for entry in [mix.a, mix.b] {
+                let got = lab(palette.rgb(u32::from(entry)));
+                let off = (got[1] - want[1]).hypot(got[2] - want[2]);
+                assert!(off <= 25.0, "{c:?}: entry {entry} is {off:.1} off in a/b");
+            }
+        }
+    }
+
+    #[test]
     fn truecolor_cells_are_the_pixels() {
         let fb = field(Rgb::new(1, 2, 3), 4, 4, true);
         let mut cells = Vec::new();

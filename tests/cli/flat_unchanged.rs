@@ -5,9 +5,10 @@
 //! c716e55, the last before heights were drawn). The `ansi256` lines were re-pinned twice since,
 //! when surface-anchored dithering changed every rendered 256-colour frame on purpose (issue 12),
 //! and again when its lattice went to quarter-octave levels and its matrix to dashes, a third
-//! time for per-pixel mixes (issue 20), and a fourth when those mixes began charging two hues side
-//! by side (issue 20, shipped tables); the PNG, truecolor and JSON lines are still those of
-//! c716e55.
+//! time for per-pixel mixes (issue 20), a fourth when those mixes began charging two hues side
+//! by side (issue 20, shipped tables), and a fifth when the mixes of pixels no surface wrote a
+//! pattern for (floors, ceilings) began charging each pixel's own colour error (issue 20: no
+//! orange stripes on warm floors); the PNG, truecolor and JSON lines are still those of c716e55.
 
 use crate::common;
 
