@@ -125,10 +125,10 @@ impl Presenter {
         {
             glyph_cells(view, &mut self.chosen);
         }
-        let over = if usable {
+        let (over, skipped) = if usable {
             covering(&next, view, &self.chosen, view_area)
         } else {
-            Vec::new()
+            (Vec::new(), false)
         };
         let few = over.len() <= usize::from(view_area.width) * FEW_ROWS;
         let overlaid = !few;
@@ -137,30 +137,38 @@ impl Presenter {
             self.previous = None;
             self.overlaid = overlaid;
         }
-        for y in view_area.top()..view_area.bottom() {
-            for x in view_area.left()..view_area.right() {
-                let (cx, cy) = (usize::from(x - view_area.x), usize::from(y - view_area.y));
-                let Some(c) = next.cell_mut((x, y)) else {
-                    continue;
-                };
-                if !overlaid {
+        if !overlaid && !skipped {
+            // The encoder draws the view: the cell diff skips all of it (a row at a time).
+            for y in view_area.top()..view_area.bottom() {
+                for c in &mut next.content[row_cells(area, view_area, y)] {
                     c.set_diff_option(CellDiffOption::Skip);
-                    continue;
                 }
-                // Through the cell diff: the view's own cells as `HalfBlockView` draws them, and
-                // what was drawn over them (which may have kept their skip mark) sent too.
-                if *c == VIEW_CELL {
-                    *c = Cell::EMPTY;
-                    if usable && cy < view.cell_rows() {
-                        let (ch, fg, bg) = view_look(view, &self.chosen, (cx, cy));
-                        c.set_char(ch).set_fg(fg).set_bg(bg);
+            }
+        } else if overlaid {
+            for y in view_area.top()..view_area.bottom() {
+                for x in view_area.left()..view_area.right() {
+                    let (cx, cy) = (usize::from(x - view_area.x), usize::from(y - view_area.y));
+                    let Some(c) = next.cell_mut((x, y)) else {
+                        continue;
+                    };
+                    // Through the cell diff: the view's own cells as `HalfBlockView` draws them, and
+                    // what was drawn over them (which may have kept their skip mark) sent too.
+                    if *c == VIEW_CELL {
+                        *c = Cell::EMPTY;
+                        if usable && cy < view.cell_rows() {
+                            let (ch, fg, bg) = view_look(view, &self.chosen, (cx, cy));
+                            c.set_char(ch).set_fg(fg).set_bg(bg);
+                        }
+                    } else {
+                        c.set_diff_option(CellDiffOption::None);
                     }
-                } else {
-                    c.set_diff_option(CellDiffOption::None);
-                }
-                if level == ColorLevel::Mono && c.symbol() == UPPER_HALF && cy < view.cell_rows() {
-                    let (top, bottom) = view.cell(cx, cy);
-                    c.set_char(crate::encode::quantize::mono_char(top, bottom));
+                    if level == ColorLevel::Mono
+                        && c.symbol() == UPPER_HALF
+                        && cy < view.cell_rows()
+                    {
+                        let (top, bottom) = view.cell(cx, cy);
+                        c.set_char(crate::encode::quantize::mono_char(top, bottom));
+                    }
                 }
             }
         }
@@ -299,22 +307,41 @@ fn plain_ascii(buf: &mut Buffer) {
     }
 }
 
+/// Where row `y` of `at` (within `area`) lies in the cells of a buffer over `area`.
+fn row_cells(area: Rect, at: Rect, y: u16) -> std::ops::Range<usize> {
+    let start = usize::from(y - area.y) * usize::from(area.width) + usize::from(at.x - area.x);
+    start..start + usize::from(at.width)
+}
+
 /// The cells drawn over the view, row by row: cells of the view area that are neither the
 /// view's own cell (`▀`, or at a finer glyph setting its `chosen` cell) nor left empty (callers
-/// may leave the view's cells blank).
+/// may leave the view's cells blank); and whether every cell of the view area is already
+/// skipped by the cell diff (as [`VIEW_CELL`] is, and what is drawn over it keeps), read in the
+/// same pass so the view's cells need no second one to be marked.
 fn covering(
     screen: &Buffer,
     view: &Framebuffer,
     chosen: &[GlyphCell],
     at: Rect,
-) -> Vec<(u16, u16)> {
+) -> (Vec<(u16, u16)>, bool) {
     let rows = usize::from(at.height).min(view.cell_rows());
     let blank = ratatui::buffer::Cell::default();
     let mut out = Vec::new();
+    // Rows of the area below the view's own rows are only read for their marks.
+    let skipped = (at.y + rows as u16..at.bottom()).all(|y| {
+        screen.content[row_cells(screen.area, at, y)]
+            .iter()
+            .all(|c| c.diff_option == CellDiffOption::Skip)
+    });
+    let mut skipped_too = true;
     for cy in 0..rows {
-        for cx in 0..usize::from(at.width) {
-            let (x, y) = (at.x + cx as u16, at.y + cy as u16);
-            let c = &screen[(x, y)];
+        let y = at.y + cy as u16;
+        for (cx, c) in screen.content[row_cells(screen.area, at, y)]
+            .iter()
+            .enumerate()
+        {
+            let x = at.x + cx as u16;
+            skipped_too &= c.diff_option == CellDiffOption::Skip;
             let is_view = *c == VIEW_CELL || {
                 let (ch, fg, bg) = view_look(view, chosen, (cx, cy));
                 c.symbol() == ch.encode_utf8(&mut [0u8; 4]) && c.fg == fg && c.bg == bg
@@ -324,7 +351,7 @@ fn covering(
             }
         }
     }
-    out
+    (out, skipped && skipped_too)
 }
 
 #[cfg(test)]

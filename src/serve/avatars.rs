@@ -248,7 +248,7 @@ pub fn label_minimap(
             .fg(colour)
             .bg(Color::Rgb(14, 14, 18))
             .add_modifier(Modifier::BOLD);
-        buf.set_stringn(x + 1, y, &p.name, room, style);
+        crate::widget::text::put_str(buf, x + 1, y, &p.name, room, style);
     }
 }
 

@@ -321,7 +321,7 @@ impl SessionScreen {
         if size.1 > HEADER_ROWS {
             let row = Rect::new(0, 0, size.0, HEADER_ROWS);
             buf.set_style(row, BAR);
-            Paragraph::new(Line::raw(header)).render(row, &mut buf);
+            crate::widget::text::line_row(Line::raw(header), row, &mut buf);
         }
         // The presenter keeps this screen for its next diff and hands back last frame's buffer.
         let bytes = self.presenter.frame_taking(&mut buf, &self.fb, view);

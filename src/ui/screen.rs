@@ -1,6 +1,6 @@
 //! The draw stage of a frame: lays the panes out in a terminal buffer. Reads state only.
 
-use ratatui::buffer::Buffer;
+use ratatui::buffer::{Buffer, Cell};
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
@@ -89,7 +89,12 @@ fn draw_frame(
     view_cells: ViewCells,
 ) {
     let area = area.intersection(buf.area);
-    Clear.render(area, buf);
+    // The view's cells left to the presenter are filled once, not cleared first.
+    let presented = match (*panes, view_cells) {
+        (Panes::Game { view, .. }, ViewCells::Presented) => view.intersection(area),
+        _ => Rect::default(),
+    };
+    clear_around(area, presented, buf);
     match *panes {
         Panes::TooSmall(r) => too_small(r.intersection(area), buf),
         Panes::Game {
@@ -98,13 +103,8 @@ fn draw_frame(
             debug,
             status,
         } => {
-            match view_cells {
-                ViewCells::Drawn => draw_view(screen.view, view.intersection(area), buf),
-                ViewCells::Presented => {
-                    for p in view.intersection(area).positions() {
-                        buf[p] = VIEW_CELL;
-                    }
-                }
+            if view_cells == ViewCells::Drawn {
+                draw_view(screen.view, view.intersection(area), buf);
             }
             if let Some(text) = message_now(screen.state) {
                 draw_banner(text, view.intersection(area), buf);
@@ -139,7 +139,7 @@ fn draw_frame(
                 status.width,
             );
             buf.set_style(status, BAR);
-            Paragraph::new(line).render(status, buf);
+            crate::widget::text::line_row(line, status, buf);
             if screen.toggles.help {
                 HelpOverlay {
                     mode: screen.input_mode,
@@ -151,6 +151,30 @@ fn draw_frame(
                 results.render(view.intersection(area), buf);
             }
         }
+    }
+}
+
+/// What `Clear` does to `area` (every cell reset), but with the cells of `view` (within `area`)
+/// set to [`VIEW_CELL`] instead, row by row over the buffer's cells: every frame of every SSH
+/// session clears its screen, and `Clear` walks it a column at a time through `buf[(x, y)]`.
+fn clear_around(area: Rect, view: Rect, buf: &mut Buffer) {
+    let width = usize::from(buf.area.width);
+    let (x0, y0) = (buf.area.x, buf.area.y);
+    let at = |x: u16, y: u16| usize::from(y - y0) * width + usize::from(x - x0);
+    for y in area.top()..area.bottom() {
+        let row =
+            &mut buf.content[at(area.left(), y)..at(area.left(), y) + usize::from(area.width)];
+        if view.is_empty() || y < view.top() || y >= view.bottom() {
+            row.fill(Cell::EMPTY);
+            continue;
+        }
+        let (l, r) = (
+            usize::from(view.left() - area.left()),
+            usize::from(view.right() - area.left()),
+        );
+        row[..l].fill(Cell::EMPTY);
+        row[l..r].fill(VIEW_CELL);
+        row[r..].fill(Cell::EMPTY);
     }
 }
 

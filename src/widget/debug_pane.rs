@@ -822,7 +822,7 @@ impl Widget for DebugPane<'_> {
             if y >= area.bottom() {
                 break;
             }
-            buf.set_line(area.x, y, line, area.width);
+            super::text::put_line(buf, area.x, y, line, area.width);
         }
     }
 }

@@ -657,7 +657,7 @@ fn write_label(view: &MapView, m: &Marker, label: &str, area: Rect, buf: &mut Bu
             m.colour.r, m.colour.g, m.colour.b,
         ))
         .bg(ratatui::style::Color::Rgb(VOID.r, VOID.g, VOID.b));
-    buf.set_stringn(x, y, label, room, style);
+    super::text::put_str(buf, x, y, label, room, style);
 }
 
 #[cfg(test)]

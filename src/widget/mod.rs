@@ -8,6 +8,7 @@ pub(crate) mod half_block;
 pub(crate) mod minimap;
 pub(crate) mod plot;
 pub(crate) mod revealed;
+pub(crate) mod text;
 
 pub use debug_pane::DebugPane;
 pub use half_block::HalfBlockView;
