@@ -32,6 +32,10 @@ use halfcast::serve::{start, ServeConfig};
 use halfcast::World;
 use russh::{compression, ChannelMsg};
 
+/// The allocator the `halfcast` binary serves with (src/main.rs), so the figures are the server's.
+#[global_allocator]
+static ALLOC: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 /// The same client the integration tests use (one copy of the SSH client code).
 #[path = "../tests/support/serve_support/mod.rs"]
 #[allow(dead_code)] // the load test drives the server and counted connections, not the test client
