@@ -4,10 +4,8 @@
 //! name tags) is redrawn every frame of every SSH session, and is nearly all ASCII.
 
 use ratatui::buffer::Buffer;
-use ratatui::layout::{Alignment, Rect};
 use ratatui::style::Style;
 use ratatui::text::Line;
-use ratatui::widgets::{Paragraph, Widget};
 
 /// Whether `c` is always a grapheme of its own one cell wide: printable ASCII and Latin-1, the
 /// arrows, the box drawing lines and a few signs the panes use (`−`, `…`, `⏎`). None of them joins
@@ -79,7 +77,10 @@ pub fn put_line(buf: &mut Buffer, x: u16, y: u16, line: &Line<'_>, max_width: u1
 /// `Paragraph::new(line).render(row, buf)` for a one-row `row`: a left-aligned line of
 /// [`one_cell`] characters is written straight to its cells (a paragraph lays it out and truncates it to the
 /// same cells); anything else goes through the paragraph.
-pub fn line_row(line: Line<'_>, row: Rect, buf: &mut Buffer) {
+#[cfg(any(feature = "ui", test))]
+pub fn line_row(line: Line<'_>, row: ratatui::layout::Rect, buf: &mut Buffer) {
+    use ratatui::layout::Alignment;
+    use ratatui::widgets::{Paragraph, Widget};
     let row = row.intersection(buf.area);
     let plain = matches!(line.alignment, None | Some(Alignment::Left))
         && line.iter().all(|s| plain(&s.content));
@@ -93,8 +94,10 @@ pub fn line_row(line: Line<'_>, row: Rect, buf: &mut Buffer) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use ratatui::layout::Rect;
     use ratatui::style::{Color, Modifier};
     use ratatui::text::Span;
+    use ratatui::widgets::{Paragraph, Widget};
 
     fn lines() -> Vec<Line<'static>> {
         let a = Style::new().fg(Color::Rgb(200, 100, 50));
