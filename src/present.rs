@@ -24,7 +24,7 @@ use crate::encode::{ColorLevel, EncodeOptions, Encoder, SYNC_BEGIN, SYNC_END};
 use crate::render::framebuffer::Framebuffer;
 use crate::render::glyphs::Glyphs;
 use crate::termframe::ratatui_rgb;
-use crate::widget::half_block::{to_color, UPPER_HALF, VIEW_CELL};
+use crate::widget::half_block::{row_cells, to_color, UPPER_HALF, VIEW_CELL};
 
 /// Turns whole screens into the bytes that update a terminal from the previous screen.
 #[derive(Debug)]
@@ -305,12 +305,6 @@ fn plain_ascii(buf: &mut Buffer) {
             cell.set_symbol(ascii);
         }
     }
-}
-
-/// Where row `y` of `at` (within `area`) lies in the cells of a buffer over `area`.
-fn row_cells(area: Rect, at: Rect, y: u16) -> std::ops::Range<usize> {
-    let start = usize::from(y - area.y) * usize::from(area.width) + usize::from(at.x - area.x);
-    start..start + usize::from(at.width)
 }
 
 /// The cells drawn over the view, row by row: cells of the view area that are neither the

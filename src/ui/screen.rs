@@ -16,7 +16,7 @@ use crate::encode::ColorLevel;
 use crate::game::{Cursor, GameState};
 use crate::render::cast::Cast;
 use crate::render::framebuffer::Framebuffer;
-use crate::widget::half_block::VIEW_CELL;
+use crate::widget::half_block::{row_cells, VIEW_CELL};
 use crate::widget::minimap::Thing;
 use crate::widget::{DebugPane, HalfBlockView, Minimap, RevealedTrace};
 
@@ -158,12 +158,8 @@ fn draw_frame(
 /// set to [`VIEW_CELL`] instead, row by row over the buffer's cells: every frame of every SSH
 /// session clears its screen, and `Clear` walks it a column at a time through `buf[(x, y)]`.
 fn clear_around(area: Rect, view: Rect, buf: &mut Buffer) {
-    let width = usize::from(buf.area.width);
-    let (x0, y0) = (buf.area.x, buf.area.y);
-    let at = |x: u16, y: u16| usize::from(y - y0) * width + usize::from(x - x0);
     for y in area.top()..area.bottom() {
-        let row =
-            &mut buf.content[at(area.left(), y)..at(area.left(), y) + usize::from(area.width)];
+        let row = &mut buf.content[row_cells(buf.area, area, y)];
         if view.is_empty() || y < view.top() || y >= view.bottom() {
             row.fill(Cell::EMPTY);
             continue;

@@ -26,6 +26,14 @@ pub const VIEW_CELL: Cell = {
     c
 };
 
+/// Where row `y` of `at` lies in the cells of a buffer over `area` (`at` within `area`): the view's
+/// cells and the panes around them are walked a row slice at a time, not a cell lookup each.
+#[must_use]
+pub fn row_cells(area: Rect, at: Rect, y: u16) -> std::ops::Range<usize> {
+    let start = usize::from(y - area.y) * usize::from(area.width) + usize::from(at.x - area.x);
+    start..start + usize::from(at.width)
+}
+
 /// The terminal colour of a pixel (24-bit).
 #[must_use]
 #[inline]
