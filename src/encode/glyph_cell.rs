@@ -54,23 +54,26 @@ impl GlyphCell {
     /// The same picture in canonical form (see the type's doc) for a cell of `n` pixels.
     #[must_use]
     pub fn canonical(self, n: usize) -> Self {
-        let full = ((1u16 << n) - 1) as u8;
-        let mask = self.mask & full;
-        if mask == 0 || self.fg == self.bg {
-            return Self::uniform(self.bg);
-        }
-        if mask == full {
-            return Self::uniform(self.fg);
-        }
-        if mask & 1 != 0 {
-            Self {
-                mask: !mask & full,
-                fg: self.bg,
-                bg: self.fg,
-            }
-        } else {
-            Self { mask, ..self }
-        }
+        let (mask, fg, bg) = canonical(self.mask, self.fg, self.bg, n);
+        Self { mask, fg, bg }
+    }
+}
+
+/// A two-colour cell of `n` pixels (`mask`'s set bits show `fg`) in canonical form, whatever its
+/// colours are (RGB or palette codes): bit 0 clear, and one colour as mask 0 with `fg == bg`, so
+/// equal pictures are equal cells.
+#[must_use]
+pub fn canonical<T: PartialEq + Copy>(mask: u8, fg: T, bg: T, n: usize) -> (u8, T, T) {
+    let full = ((1u16 << n) - 1) as u8;
+    let mask = mask & full;
+    if mask == 0 || fg == bg {
+        (0, bg, bg)
+    } else if mask == full {
+        (0, fg, fg)
+    } else if mask & 1 != 0 {
+        (!mask & full, bg, fg)
+    } else {
+        (mask, fg, bg)
     }
 }
 

@@ -8,7 +8,7 @@
 //! is a space on that background or `█` in that foreground, whichever is already set.
 
 use super::cursor::{write_move, Cursor};
-use super::glyph_cell::{choose, choose_n, GlyphCell, MAX_PIXELS};
+use super::glyph_cell::{canonical, choose, choose_n, GlyphCell, MAX_PIXELS};
 use super::glyph_mask::{full_mask, glyph};
 use super::level::ColorLevel;
 use super::palette::{distance, Code, Palette, DEFAULT, UNKNOWN};
@@ -118,30 +118,8 @@ impl CodedCell {
             };
             mask |= u8::from(shows_b) << i;
         }
-        let full = ((1u16 << n) - 1) as u8;
-        let (a, b) = (Code::from(a), Code::from(b));
-        match mask {
-            0 => Self {
-                mask: 0,
-                fg: a,
-                bg: a,
-            },
-            m if m == full => Self {
-                mask: 0,
-                fg: b,
-                bg: b,
-            },
-            m if m & 1 != 0 => Self {
-                mask: !m & full,
-                fg: a,
-                bg: b,
-            },
-            m => Self {
-                mask: m,
-                fg: b,
-                bg: a,
-            },
-        }
+        let (mask, fg, bg) = canonical(mask, Code::from(b), Code::from(a), n);
+        Self { mask, fg, bg }
     }
 }
 
