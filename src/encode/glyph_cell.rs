@@ -4,13 +4,15 @@
 //! Colours are mixed in linear light: a group's colour is the mean light of its pixels, and the
 //! split is judged there too, by squared distances with each channel weighted for how much it
 //! counts ([`WEIGHT`]). Quadrants and sextants try every split (7 and 31); octants use a 2-means:
-//! start from the darkest and the brightest pixel, assign each pixel to the nearer colour, move each colour to
-//! its group's mean, and repeat until nothing moves (a few rounds over ≤ 8 pixels). Cells of
-//! one or two distinct colours are exact without any of that.
+//! start from the darkest and the brightest pixel, assign each pixel to the nearer colour, move
+//! each colour to its group's mean, and repeat until nothing moves (a few rounds over ≤ 8
+//! pixels). Cells of one or two distinct colours are exact without any of that.
 //!
-//! Everything runs from tables built once (sRGB ↔ linear light), with no cube roots or powers
-//! per pixel: this runs for every cell of every frame.
+//! This runs for every cell of every frame, so everything runs from tables built once (sRGB ↔
+//! linear light), with no cube roots or powers per pixel, and a frame's cells of three or more
+//! colours are split eight at a time, one per vector lane ([`super::lane_split`]).
 
+use super::lane_split::{self, Pixels, Split, LANES};
 use crate::color::{channel_to_linear, lab_dist2, oklab, Linear, Rgb};
 
 /// Most pixels a cell has (octants: 2×4).
@@ -96,218 +98,83 @@ pub fn choose(pixels: &[Rgb]) -> GlyphCell {
 }
 
 /// [`choose`] for exactly `N` pixels (the first `N` of `pixels`): with the count known, every
-/// loop over the pixels unrolls.
+/// loop over the pixels unrolls. For many cells, [`choose_all`] is several times faster.
 #[must_use]
 #[inline]
 pub fn choose_n<const N: usize>(pixels: &[Rgb]) -> GlyphCell {
     let pixels: &[Rgb; N] = pixels[..N].try_into().expect("N pixels");
-    let first = pixels[0];
-    // One or two distinct colours: the split is exact.
-    let Some(other) = pixels.iter().copied().find(|&c| c != first) else {
-        return GlyphCell::uniform(first);
-    };
-    if pixels.iter().all(|&c| c == first || c == other) {
-        let mask = mask_where(pixels, |c| c == other);
-        return GlyphCell {
-            mask,
-            fg: other,
-            bg: first,
-        };
+    if let Some(cell) = exact(pixels) {
+        return cell;
     }
+    // One cell in the side-by-side split (the other lanes hold black, and are not read).
     let t = tables();
-    let lin: [Linear; N] = std::array::from_fn(|i| {
-        let c = pixels[i];
-        [
-            t.linear[usize::from(c.r)],
-            t.linear[usize::from(c.g)],
-            t.linear[usize::from(c.b)],
-        ]
-    });
-    let mask = if N <= 6 {
-        best_split(&lin)
-    } else {
-        two_means(&lin)
-    };
-    let (bg, fg) = means(&lin, mask);
-    GlyphCell {
-        mask,
-        fg: t.to_srgb(fg),
-        bg: t.to_srgb(bg),
-    }
-    .canonical(N)
+    let mut px: Pixels<N> = lane_split::pixels();
+    lane_split::put(&mut px, 0, &pixels.map(|c| t.to_linear(c)));
+    t.cell_of::<N>(&lane_split::split(&px), 0)
 }
 
-/// The bits of the pixels for which `f` holds.
-fn mask_where(pixels: &[Rgb], f: impl Fn(Rgb) -> bool) -> u8 {
-    pixels
-        .iter()
-        .enumerate()
-        .filter(|&(_, &c)| f(c))
-        .fold(0u8, |m, (i, _)| m | (1 << i))
+/// Every cell of `cells` (each `N` pixels, row-major) in order, as [`choose_n`] would choose
+/// it, appended to `out`; cells of three or more colours are split [`LANES`] at a time.
+pub fn choose_all<const N: usize>(cells: impl Iterator<Item = [Rgb; N]>, out: &mut Vec<GlyphCell>) {
+    let t = tables();
+    let mut px: Pixels<N> = lane_split::pixels();
+    let mut waiting = [0usize; LANES];
+    let mut n = 0;
+    let solve = |px: &Pixels<N>, waiting: &[usize], out: &mut Vec<GlyphCell>| {
+        let split = lane_split::split(px);
+        for (k, &at) in waiting.iter().enumerate() {
+            out[at] = t.cell_of::<N>(&split, k);
+        }
+    };
+    for pixels in cells {
+        if let Some(cell) = exact(&pixels) {
+            out.push(cell);
+            continue;
+        }
+        waiting[n] = out.len();
+        out.push(GlyphCell::default());
+        lane_split::put(&mut px, n, &pixels.map(|c| t.to_linear(c)));
+        n += 1;
+        if n == LANES {
+            solve(&px, &waiting, out);
+            n = 0;
+        }
+    }
+    if n > 0 {
+        // The lanes past `n` still hold earlier cells: solved again, and not read.
+        solve(&px, &waiting[..n], out);
+    }
+}
+
+/// The cell of `pixels` when they hold one or two distinct colours: the split is exact.
+#[inline]
+fn exact<const N: usize>(pixels: &[Rgb; N]) -> Option<GlyphCell> {
+    // Colours as one number each, and a bit per pixel, so the tests run over all pixels at once.
+    let key = pixels.map(|c| u32::from(c.r) | u32::from(c.g) << 8 | u32::from(c.b) << 16);
+    let bits = |f: &dyn Fn(u32) -> bool| {
+        key.iter()
+            .enumerate()
+            .fold(0u32, |m, (i, &k)| m | u32::from(f(k)) << i)
+    };
+    let first = key[0];
+    let differ = bits(&|k| k != first);
+    if differ == 0 {
+        return Some(GlyphCell::uniform(pixels[0]));
+    }
+    let at = differ.trailing_zeros() as usize;
+    let other = key[at];
+    (bits(&|k| k != first && k != other) == 0).then(|| GlyphCell {
+        mask: differ as u8,
+        fg: pixels[at],
+        bg: pixels[0],
+    })
 }
 
 /// How much each channel of linear light counts when pixels are split: roughly the square roots
 /// of their shares of luminance, so green differences weigh most and blue least. Measured on the
 /// bench's walk path, splitting in this space keeps S-CIELAB at least as low as splitting in
 /// OKLab, for none of OKLab's cube roots.
-const WEIGHT: [f32; 3] = [0.25, 0.64, 0.1225];
-
-/// The split of ≥ 3 distinct colours (see the module doc): seeds are the darkest and the
-/// brightest pixel; then each pixel goes to the nearer group centre and the centres move to
-/// their groups' means until nothing moves. The pixels are held channel by channel, so each
-/// step runs over all of them at once.
-fn two_means<const N: usize>(lin: &[Linear; N]) -> u8 {
-    let full = ((1u16 << N) - 1) as u8;
-    let ch: [[f32; N]; 3] = [0, 1, 2].map(|c| lin.map(|l| l[c]));
-    // Seeds: the darkest and the brightest pixel (weighted light), found in one pass.
-    let mut light = [0.0f32; N];
-    for i in 0..N {
-        light[i] = WEIGHT[0] * ch[0][i] + WEIGHT[1] * ch[1][i] + WEIGHT[2] * ch[2][i];
-    }
-    let (mut a, mut b) = (0, 0);
-    for i in 1..N {
-        if light[i] < light[a] {
-            a = i;
-        }
-        if light[i] > light[b] {
-            b = i;
-        }
-    }
-    if a == b {
-        // Equal light, different colours: the pixel farthest from the first.
-        let mut far = 0.0f32;
-        for (i, l) in lin.iter().enumerate() {
-            let d = [0, 1, 2].map(|c| l[c] - lin[0][c]);
-            let d = WEIGHT[0] * d[0] * d[0] + WEIGHT[1] * d[1] * d[1] + WEIGHT[2] * d[2] * d[2];
-            if d > far {
-                (b, far) = (i, d);
-            }
-        }
-    }
-    // The pixels nearer `cb` than `ca`: those on `cb`'s side of the plane halfway between.
-    let nearer_b = |ca: Linear, cb: Linear| {
-        let axis = [0, 1, 2].map(|c| WEIGHT[c] * (cb[c] - ca[c]));
-        let mid = [0, 1, 2].map(|c| (ca[c] + cb[c]) / 2.0);
-        let mut side = [0.0f32; N];
-        for (i, s) in side.iter_mut().enumerate() {
-            *s = axis[0] * (ch[0][i] - mid[0])
-                + axis[1] * (ch[1][i] - mid[1])
-                + axis[2] * (ch[2][i] - mid[2]);
-        }
-        let mut mask = 0u8;
-        for (i, &s) in side.iter().enumerate() {
-            mask |= u8::from(s > 0.0) << i;
-        }
-        mask
-    };
-    let (mut ca, mut cb) = (lin[a], lin[b]);
-    let mut mask = 0u8;
-    for _ in 0..4 {
-        let mut next = nearer_b(ca, cb);
-        if next == 0 {
-            // Every pixel nearer `a`'s centre: the far seed keeps its own pixel.
-            next = 1 << b;
-        } else if next == full {
-            next = full & !(1 << a);
-        }
-        if next == mask {
-            break;
-        }
-        mask = next;
-        (ca, cb) = means(lin, mask);
-    }
-    mask
-}
-
-/// The best split of a few pixels (quadrants: 7 candidates, sextants: 31) by trying each:
-/// the one whose groups' means leave the least weighted squared error. That error is the total
-/// square less each group's |sum|² / size, so the best split has the largest sum of those.
-/// Pixel 0 stays on the background side (canonical form), so each split is tried once. The
-/// foreground sums of all splits are built by doubling (split `j + h` is split `j` plus pixel
-/// `p`, `h` = 2^(p−1)), then all scores are computed side by side.
-fn best_split<const N: usize>(lin: &[Linear; N]) -> u8 {
-    let m = 1usize << (N - 1);
-    assert!(m <= SPLITS, "best_split takes at most six pixels");
-    let mut set = [[0.0f32; SPLITS]; 3];
-    for (p, l) in lin.iter().enumerate().skip(1) {
-        let h = 1 << (p - 1);
-        for c in 0..3 {
-            for j in 0..h {
-                set[c][j + h] = set[c][j] + l[c];
-            }
-        }
-    }
-    let total: Linear = [0, 1, 2].map(|c| set[c][m - 1] + lin[0][c]);
-    let (inv_set, inv_rest) = (&GroupSizes::<N>::INV_SET, &GroupSizes::<N>::INV_REST);
-    let mut score = [0.0f32; SPLITS];
-    for j in 0..m {
-        let (s, r) = (
-            [set[0][j], set[1][j], set[2][j]],
-            [0, 1, 2].map(|c| total[c] - set[c][j]),
-        );
-        let norm =
-            |v: Linear| WEIGHT[0] * v[0] * v[0] + WEIGHT[1] * v[1] * v[1] + WEIGHT[2] * v[2] * v[2];
-        score[j] = norm(s) * inv_set[j] + norm(r) * inv_rest[j];
-    }
-    let mut best = 1;
-    for j in 2..m {
-        if score[j] > score[best] {
-            best = j;
-        }
-    }
-    (best << 1) as u8
-}
-
-/// Most splits [`best_split`] tries: sextants' 2^5 (the empty one included).
-const SPLITS: usize = 32;
-
-/// 1 / the size of each group of split `j` of `N` pixels (`j` = the mask without pixel 0),
-/// worked out at compile time.
-struct GroupSizes<const N: usize>;
-
-impl<const N: usize> GroupSizes<N> {
-    /// 1 / the foreground's size (0 for the empty split, which is never best).
-    const INV_SET: [f32; SPLITS] = {
-        let mut t = [0.0f32; SPLITS];
-        let mut j = 1;
-        while j < SPLITS {
-            t[j] = 1.0 / j.count_ones() as f32;
-            j += 1;
-        }
-        t
-    };
-    /// 1 / the background's size (pixel 0 and the rest).
-    const INV_REST: [f32; SPLITS] = {
-        let mut t = [0.0f32; SPLITS];
-        let mut j = 0;
-        while j < SPLITS {
-            let rest = N as i64 - j.count_ones() as i64;
-            t[j] = if rest > 0 { 1.0 / rest as f32 } else { 0.0 };
-            j += 1;
-        }
-        t
-    };
-}
-
-/// The means of the colours whose bit is clear in `mask` and of those whose bit is set (each
-/// black when its group is empty).
-#[inline]
-fn means<const N: usize>(lin: &[Linear; N], mask: u8) -> (Linear, Linear) {
-    let (mut all, mut set) = ([0.0f32; 3], [0.0f32; 3]);
-    for (i, l) in lin.iter().enumerate() {
-        let m = f32::from(mask >> i & 1);
-        for c in 0..3 {
-            all[c] += l[c];
-            set[c] += m * l[c];
-        }
-    }
-    let k = (mask & ((1u16 << N) - 1) as u8).count_ones() as f32;
-    let rest = N as f32 - k;
-    (
-        [0, 1, 2].map(|c| (all[c] - set[c]) / rest.max(1.0)),
-        set.map(|v| v / k.max(1.0)),
-    )
-}
+pub(super) const WEIGHT: [f32; 3] = [0.25, 0.64, 0.1225];
 
 /// The sRGB transfer curve both ways, built once: 8-bit channel → linear light, and back.
 struct Tables {
@@ -347,19 +214,39 @@ fn tables() -> &'static Tables {
 }
 
 impl Tables {
-    /// Linear light back to the nearest 8-bit sRGB colour: the guess, then a step or two
-    /// along the curve's midpoints.
+    /// A colour in linear light.
+    #[inline]
+    fn to_linear(&self, c: Rgb) -> Linear {
+        [
+            self.linear[usize::from(c.r)],
+            self.linear[usize::from(c.g)],
+            self.linear[usize::from(c.b)],
+        ]
+    }
+
+    /// Lane `k` of a side-by-side split as a cell of `N` pixels (canonical).
+    #[inline]
+    fn cell_of<const N: usize>(&self, split: &Split, k: usize) -> GlyphCell {
+        let colour = |c: &[[f32; LANES]; 3]| self.to_srgb([c[0][k], c[1][k], c[2][k]]);
+        GlyphCell {
+            mask: split.mask[k] as u8,
+            fg: colour(&split.set),
+            bg: colour(&split.clear),
+        }
+        .canonical(N)
+    }
+
+    /// Linear light back to the nearest 8-bit sRGB colour: the guess, then at most one step up
+    /// or down along the curve's midpoints. One step is enough because no guess bucket (1/4095
+    /// of linear light) holds more than one midpoint: the curve is steepest near black, at
+    /// about 0.8 sRGB steps per bucket. Without loops there is no branch to mispredict.
     #[inline]
     fn to_srgb(&self, l: Linear) -> Rgb {
         let ch = |x: f32| -> u8 {
             let x = x.clamp(0.0, 1.0);
-            let mut v = usize::from(self.guess[((x * 4095.0) as usize).min(4095)]);
-            while v < 255 && x > self.upper[v] {
-                v += 1;
-            }
-            while v > 0 && x < self.upper[v - 1] {
-                v -= 1;
-            }
+            let v = usize::from(self.guess[((x * 4095.0) as usize).min(4095)]);
+            let v = v + usize::from(x > self.upper[v]);
+            let v = v - usize::from(v > 0 && x < self.upper[v.saturating_sub(1)]);
             v as u8
         };
         Rgb::new(ch(l[0]), ch(l[1]), ch(l[2]))
@@ -448,6 +335,20 @@ mod tests {
         }
     }
 
+    /// The means (in linear light) of the pixels whose bit is clear and of those whose bit is
+    /// set, each black when empty: written plainly, as a reference.
+    fn means<const N: usize>(lin: &[Linear; N], mask: u8) -> (Linear, Linear) {
+        let mean = |set: bool| {
+            let group: Vec<&Linear> = (0..N)
+                .filter(|&i| (mask >> i & 1 == 1) == set)
+                .map(|i| &lin[i])
+                .collect();
+            let n = group.len().max(1) as f32;
+            [0, 1, 2].map(|c| group.iter().map(|l| l[c]).sum::<f32>() / n)
+        };
+        (mean(false), mean(true))
+    }
+
     /// The weighted squared error of showing `lin` split by `mask` in its groups' means.
     fn split_error<const N: usize>(lin: &[Linear; N], mask: u8) -> f32 {
         let (bg, fg) = means(lin, mask);
@@ -462,27 +363,181 @@ mod tests {
             .sum()
     }
 
+    /// A fixed pseudo-random walk of colours.
+    fn colours() -> impl FnMut() -> Rgb {
+        let mut seed = 12_345u32;
+        let mut next = move || {
+            seed = seed.wrapping_mul(1_103_515_245).wrapping_add(12_345);
+            (seed >> 16) as u8
+        };
+        move || Rgb::new(next(), next(), next())
+    }
+
+    fn linear<const N: usize>(px: &[Rgb; N]) -> [Linear; N] {
+        px.map(|c| tables().to_linear(c))
+    }
+
+    /// Linear light back to sRGB by walking the midpoints as far as it takes.
+    fn to_srgb_walking(x: f32) -> u8 {
+        let t = tables();
+        let x = x.clamp(0.0, 1.0);
+        let mut v = usize::from(t.guess[((x * 4095.0) as usize).min(4095)]);
+        while v < 255 && x > t.upper[v] {
+            v += 1;
+        }
+        while v > 0 && x < t.upper[v - 1] {
+            v -= 1;
+        }
+        v as u8
+    }
+
+    #[test]
+    fn one_step_from_the_guess_reaches_the_nearest_value() {
+        let t = tables();
+        let near = |x: f32| {
+            let mut v = [x; 9];
+            for i in 1..=4 {
+                v[2 * i - 1] = f32::from_bits(x.to_bits().saturating_sub(i as u32));
+                v[2 * i] = f32::from_bits(x.to_bits() + i as u32);
+            }
+            v
+        };
+        // Every place where the answer or the guess changes, a few ulps either side, and a
+        // dense sweep between.
+        let edges = t.upper[..255].iter().copied();
+        let buckets = (0..=4096).map(|i| i as f32 / 4095.0);
+        let sweep = (0..=1_000_000).map(|i| i as f32 / 1_000_000.0);
+        for x in edges.chain(buckets).flat_map(near).chain(sweep) {
+            let got = t.to_srgb([x, x, x]).r;
+            assert_eq!(got, to_srgb_walking(x), "{x}");
+        }
+        for x in [-1.0, -0.0, 1.0, 2.0, f32::INFINITY] {
+            assert_eq!(t.to_srgb([x, x, x]).r, to_srgb_walking(x), "{x}");
+        }
+    }
+
     #[test]
     fn sextants_and_quadrants_get_the_best_split() {
-        // A fixed pseudo-random walk of colours; every split is tried by brute force.
-        let mut seed = 12_345u32;
-        let mut next = || {
-            seed = seed.wrapping_mul(1_103_515_245).wrapping_add(12_345);
-            (seed >> 16) as f32 / 65_536.0
-        };
+        // Every split tried by brute force.
+        let mut colour = colours();
         for _ in 0..200 {
-            let six: [Linear; 6] = std::array::from_fn(|_| [next(), next(), next()]);
-            let got = split_error(&six, best_split(&six));
+            let six: [Rgb; 6] = std::array::from_fn(|_| colour());
+            let lin = linear(&six);
+            let got = split_error(&lin, choose_n::<6>(&six).mask);
             let best = (1..63u8)
-                .map(|m| split_error(&six, m))
+                .map(|m| split_error(&lin, m))
                 .fold(f32::MAX, f32::min);
             assert!(got <= best + 1e-5, "{got} > {best}");
-            let four: [Linear; 4] = std::array::from_fn(|i| six[i]);
-            let got = split_error(&four, best_split(&four));
+            let four: [Rgb; 4] = std::array::from_fn(|i| six[i]);
+            let lin = linear(&four);
+            let got = split_error(&lin, choose_n::<4>(&four).mask);
             let best = (1..15u8)
-                .map(|m| split_error(&four, m))
+                .map(|m| split_error(&lin, m))
                 .fold(f32::MAX, f32::min);
             assert!(got <= best + 1e-5, "{got} > {best}");
+        }
+    }
+
+    /// The octant 2-means written one cell at a time, plainly, as the module doc says it.
+    fn two_means_alone(lin: &[Linear; 8]) -> u8 {
+        let light = |l: &Linear| WEIGHT[0] * l[0] + WEIGHT[1] * l[1] + WEIGHT[2] * l[2];
+        let dist = |x: &Linear, y: &Linear| {
+            (0..3)
+                .map(|c| WEIGHT[c] * (x[c] - y[c]) * (x[c] - y[c]))
+                .sum::<f32>()
+        };
+        let (mut a, mut b) = (0, 0);
+        for i in 1..8 {
+            if light(&lin[i]) < light(&lin[a]) {
+                a = i;
+            }
+            if light(&lin[i]) > light(&lin[b]) {
+                b = i;
+            }
+        }
+        if a == b {
+            b = (1..8).fold(0, |far, i| {
+                if dist(&lin[i], &lin[0]) > dist(&lin[far], &lin[0]) {
+                    i
+                } else {
+                    far
+                }
+            });
+        }
+        let (mut ca, mut cb) = (lin[a], lin[b]);
+        let mut mask = 0u8;
+        for _ in 0..4 {
+            let mut next = (0..8)
+                .filter(|&i| dist(&lin[i], &cb) < dist(&lin[i], &ca))
+                .fold(0u8, |m, i| m | 1 << i);
+            if next == 0 {
+                next = 1 << b;
+            } else if next == 0xff {
+                next = !(1 << a);
+            }
+            if next == mask {
+                break;
+            }
+            mask = next;
+            (ca, cb) = means(lin, mask);
+        }
+        mask
+    }
+
+    #[test]
+    fn octants_split_as_a_two_means_of_one_cell_would() {
+        let mut colour = colours();
+        let mut cells: Vec<[Rgb; 8]> = (0..2000)
+            .map(|_| std::array::from_fn(|_| colour()))
+            .collect();
+        // Cells of equal light: greys and their shuffles, which take the farthest-pixel seed.
+        for g in [10u8, 100, 200] {
+            let grey = Rgb::new(g, g, g);
+            cells.push([grey, K, W, grey, K, W, grey, grey]);
+        }
+        let mut differ = 0;
+        for px in &cells {
+            let lin = linear(px);
+            let want = two_means_alone(&lin);
+            let got = choose_n::<8>(px);
+            // Canonical form may flip the mask; the plain version's distances are not
+            // bit-for-bit the side-of-a-plane test, so a pixel on the plane may go either way.
+            let same = got.mask == want || got.mask == !want;
+            if !same {
+                differ += 1;
+                let (g, w) = (split_error(&lin, got.mask), split_error(&lin, want));
+                assert!(
+                    (g - w).abs() <= 1e-4 * w.max(1e-6),
+                    "{px:?}: {g} against {w}"
+                );
+            }
+        }
+        assert!(differ <= cells.len() / 100, "{differ} of {}", cells.len());
+    }
+
+    proptest::proptest! {
+        /// A cell's glyph and colours do not depend on the cells it is solved beside.
+        #[test]
+        fn cells_solved_side_by_side_match_cells_solved_alone(
+            seeds in proptest::collection::vec((0u32..6, proptest::array::uniform8(0u8..=255)), 1..40),
+        ) {
+            // Few distinct channel values, so one- and two-colour cells come up too.
+            let cell = |&(kind, v): &(u32, [u8; 8])| -> [Rgb; 8] {
+                std::array::from_fn(|i| {
+                    let x = if kind < 2 { v[i] % (kind as u8 + 2) * 90 } else { v[i] };
+                    Rgb::new(x, v[(i + kind as usize) % 8], v[7 - i])
+                })
+            };
+            let cells: Vec<[Rgb; 8]> = seeds.iter().map(cell).collect();
+            let mut together = Vec::new();
+            choose_all::<8>(cells.iter().copied(), &mut together);
+            let alone: Vec<GlyphCell> = cells.iter().map(|px| choose_n::<8>(px)).collect();
+            proptest::prop_assert_eq!(&together, &alone);
+            let six: Vec<[Rgb; 6]> = cells.iter().map(|px| std::array::from_fn(|i| px[i])).collect();
+            let mut together = Vec::new();
+            choose_all::<6>(six.iter().copied(), &mut together);
+            let alone: Vec<GlyphCell> = six.iter().map(|px| choose_n::<6>(px)).collect();
+            proptest::prop_assert_eq!(&together, &alone);
         }
     }
 }

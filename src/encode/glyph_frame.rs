@@ -8,7 +8,7 @@
 //! is a space on that background or `█` in that foreground, whichever is already set.
 
 use super::cursor::{write_move, Cursor};
-use super::glyph_cell::{canonical, choose, choose_n, GlyphCell, MAX_PIXELS};
+use super::glyph_cell::{canonical, choose, choose_all, GlyphCell, MAX_PIXELS};
 use super::glyph_mask::{full_mask, glyph};
 use super::level::ColorLevel;
 use super::palette::{distance, Code, Palette, DEFAULT, UNKNOWN};
@@ -237,10 +237,8 @@ fn cells_of<const R: usize, const N: usize>(fb: &Framebuffer, cells: &mut Vec<Gl
     cells.reserve(cols * rows);
     for cy in 0..rows {
         let band: [&[Rgb]; R] = std::array::from_fn(|dy| &fb.row(cy * R + dy)[..2 * cols]);
-        for cx in 0..cols {
-            let px: [Rgb; N] = std::array::from_fn(|i| band[i / 2][2 * cx + i % 2]);
-            cells.push(choose_n::<N>(&px));
-        }
+        let pixels = (0..cols).map(|cx| std::array::from_fn(|i| band[i / 2][2 * cx + i % 2]));
+        choose_all::<N>(pixels, cells);
     }
 }
 

@@ -14,6 +14,7 @@ pub mod glyph_cell;
 pub mod glyph_frame;
 pub mod glyph_mask;
 pub(crate) mod inline;
+mod lane_split;
 pub(crate) mod level;
 #[cfg(test)]
 mod mix_solver;
