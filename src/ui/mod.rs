@@ -17,6 +17,9 @@
 
 pub mod centred_box;
 pub mod colour_query;
+// The game and the SSH sessions own a glyph cycle each and read their terminal's octant
+// support; with `ui` alone (on-screen replays) neither is used.
+#[cfg(any(feature = "tui", feature = "serve", test))]
 pub(crate) mod glyph_cycle;
 pub mod help;
 pub mod key_bytes;
@@ -24,6 +27,7 @@ pub mod key_route;
 pub mod keymap;
 pub mod keys;
 pub mod layout;
+#[cfg(any(feature = "tui", feature = "serve", test))]
 pub(crate) mod octant_support;
 pub mod render;
 pub mod repeat;
