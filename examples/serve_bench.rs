@@ -6,7 +6,8 @@
 //!     --compression none --cols 80 --rows 24 --server-threads 1 [--map PATH] \
 //!     [--metrics on] [--db on] [--round-secs N] [--idle N]`
 //!
-//! `--map` serves that map file (e.g. one with creatures, to see what game logic costs)
+//! `--glyphs quadrant|sextant|octant` has every client ask for that view setting (the
+//! `HALFCAST_GLYPHS` variable `ssh -o SetEnv=…` sends). `--map` serves that map file (e.g. one with creatures, to see what game logic costs)
 //! instead of the embedded default. `--metrics on` installs the Prometheus recorder and its
 //! listener (on a free loopback port, scraped once a second as Prometheus would, more often),
 //! `--db on` keeps the SQLite leaderboard in a temporary file; `--round-secs N` ends each
@@ -20,7 +21,7 @@
 /// What `--help` (and a bad option) prints.
 const USAGE: &str = "usage: serve_bench [--clients N] [--secs S] [--term TERM] [--compression none|zlib@openssh.com]
        [--cols C] [--rows R] [--fps F] [--server-threads T] [--map PATH]
-       [--metrics on] [--db on] [--round-secs N] [--idle N]
+       [--metrics on] [--db on] [--round-secs N] [--idle N] [--glyphs half|quadrant|sextant|octant]
 Connects N russh clients over loopback to an in-process server for S seconds and prints one
 JSON object: server CPU, frames and bytes per client, clients per core at the target fps.";
 
@@ -58,6 +59,7 @@ struct Opts {
     db: bool,
     round_secs: Option<u64>,
     idle: usize,
+    glyphs: String,
 }
 
 fn opts() -> Opts {
@@ -75,6 +77,7 @@ fn opts() -> Opts {
         db: false,
         round_secs: None,
         idle: 0,
+        glyphs: "half".into(),
     };
     let args: Vec<String> = std::env::args().skip(1).collect();
     let usage = |why: &str| -> ! {
@@ -108,6 +111,12 @@ fn opts() -> Opts {
             "--db" => o.db = v == "on",
             "--round-secs" => o.round_secs = Some(num(&v).clamp(1, 3600)),
             "--idle" => o.idle = num(&v) as usize,
+            "--glyphs" => match v.as_str() {
+                "half" | "quadrant" | "sextant" | "octant" => o.glyphs = v,
+                _ => usage(&format!(
+                    "--glyphs takes half, quadrant, sextant or octant, not {v:?}"
+                )),
+            },
             other => usage(&format!("unknown option {other}")),
         }
     }
@@ -201,12 +210,20 @@ fn main() {
         for (i, pc) in per.iter().enumerate() {
             let pc = Arc::clone(pc);
             let term = o.term.clone();
+            let glyphs = o.glyphs.clone();
             let (cols, rows) = (o.cols as u16, o.rows as u16);
             let idle = i < o.idle;
             tasks.push(tokio::spawn(async move {
-                let (h, mut ch, wire) =
-                    serve_support::open_counting(addr, &format!("bot{i}"), cols, rows, &term, alg)
-                        .await;
+                let env = [("HALFCAST_GLYPHS", glyphs.as_str())];
+                let (h, mut ch, wire) = serve_support::open_counting(
+                    addr,
+                    &format!("bot{i}"),
+                    (cols, rows),
+                    &term,
+                    &env,
+                    alg,
+                )
+                .await;
                 *pc.wire.lock().expect("wire") = Some(wire);
                 let end = tokio::time::Instant::now() + Duration::from_secs(secs);
                 let mut next_key = tokio::time::Instant::now();
@@ -289,7 +306,7 @@ fn main() {
 \"target_fps\":{},\"server_threads\":{},\"server_cpu_percent\":{:.1},\"client_cpu_percent\":{:.1},\"fps_per_client_mean\":{:.1},\
 \"fps_per_client_min_seen\":{:.1},\"payload_bytes_per_s_per_client\":{:.0},\"wire_bytes_per_s_per_client\":{:.0},\
 \"server_frames_sent\":{},\"server_frame_ticks_skipped\":{},\"refused\":{},\
-\"clients_per_core_at_target_fps\":{:.1},\"metrics\":{},\"db\":{},\"round_secs\":{},\"idle_clients\":{}}}",
+\"clients_per_core_at_target_fps\":{:.1},\"metrics\":{},\"db\":{},\"round_secs\":{},\"idle_clients\":{},\"glyphs\":\"{}\"}}",
         o.map.as_deref().unwrap_or("(embedded)"),
         creatures,
         o.clients,
@@ -314,6 +331,7 @@ fn main() {
         o.db,
         o.round_secs.unwrap_or(0),
         o.idle.min(o.clients),
+        o.glyphs,
     );
 }
 

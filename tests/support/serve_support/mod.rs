@@ -134,7 +134,7 @@ impl Client {
         cols: u16,
         rows: u16,
     ) -> Result<Self, String> {
-        let (handle, channel) = open_shell(handle, user, term, cols, rows).await?;
+        let (handle, channel) = open_shell(handle, user, term, (cols, rows), &[]).await?;
         Ok(Self::new(handle, channel, cols, rows))
     }
 
@@ -230,8 +230,8 @@ async fn open_shell(
     mut handle: client::Handle<Trusting>,
     user: &str,
     term: &str,
-    cols: u16,
-    rows: u16,
+    (cols, rows): (u16, u16),
+    env: &[(&str, &str)],
 ) -> Result<(client::Handle<Trusting>, russh::Channel<client::Msg>), String> {
     let auth = handle
         .authenticate_none(user)
@@ -248,6 +248,12 @@ async fn open_shell(
         .request_pty(true, term, u32::from(cols), u32::from(rows), 0, 0, &[])
         .await
         .map_err(|e| format!("pty: {e}"))?;
+    for (name, value) in env {
+        channel
+            .set_env(true, *name, *value)
+            .await
+            .map_err(|e| format!("env {name}: {e}"))?;
+    }
     channel
         .request_shell(true)
         .await
@@ -335,12 +341,13 @@ pub fn colours(s: &vt100::Screen) -> Vec<(u8, u8, u8)> {
 /// compression and encryption), offering only `compression`; the load test reads the channel
 /// itself.
 #[allow(dead_code)] // examples/serve_bench's load test; the serve tests read through `Client`
+/// Opens a shell like [`Client::connect_with`] does, first sending `env` (as `ssh -o SetEnv`).
 pub async fn open_counting(
     addr: std::net::SocketAddr,
     user: &str,
-    cols: u16,
-    rows: u16,
+    (cols, rows): (u16, u16),
     term: &str,
+    env: &[(&str, &str)],
     compression: russh::compression::Name,
 ) -> (
     client::Handle<Trusting>,
@@ -348,7 +355,7 @@ pub async fn open_counting(
     Arc<std::sync::atomic::AtomicU64>,
 ) {
     let (handle, read) = connect_counting_raw(addr, compression).await;
-    let (handle, channel) = open_shell(handle, user, term, cols, rows)
+    let (handle, channel) = open_shell(handle, user, term, (cols, rows), env)
         .await
         .unwrap_or_else(|e| panic!("{e}"));
     (handle, channel, read)
