@@ -11,7 +11,7 @@ use crate::render::light::{Shade, ShadeTable};
 use crate::render::point_light;
 use crate::render::scene::Scene;
 use crate::vec2::Vec2;
-use crate::world::{Paint, World};
+use crate::world::{Fill, World};
 
 /// Brightness (of 256) of faces hit on a y side, so corners read as corners.
 pub const Y_SIDE_SHADE: u16 = 184;
@@ -238,6 +238,8 @@ fn floor_and_ceiling(
         // they gain), and no phase left from the last frame either.
         fb.phase_row_mut(y).fill(NEUTRAL_PHASE);
         let row = fb.row_mut(y);
+        // Neighbouring pixels mostly share a map cell: its paint is looked up once per run.
+        let mut here: Option<((i64, i64), Fill)> = None;
         for (x, px) in row.iter_mut().enumerate() {
             let span = &spans[x].rows;
             if y >= span.0 && y < span.1 {
@@ -246,14 +248,22 @@ fn floor_and_ceiling(
             let fx = start.x + step.x * x as f64;
             let fy = start.y + step.y * x as f64;
             let (ci, cj) = (fast_floor(fx), fast_floor(fy));
-            let zone = match world.map.cell(ci, cj) {
-                Cell::Floor { zone } => zone,
-                _ => 0,
-            };
-            let paint = if is_floor {
-                world.floor_paint(zone)
-            } else {
-                world.ceiling_paint(zone)
+            let fill = match here {
+                Some((cell, fill)) if cell == (ci, cj) => fill,
+                _ => {
+                    let zone = match world.map.cell(ci, cj) {
+                        Cell::Floor { zone } => zone,
+                        _ => 0,
+                    };
+                    let paint = if is_floor {
+                        world.floor_paint(zone)
+                    } else {
+                        world.ceiling_paint(zone)
+                    };
+                    let fill = world.fill(paint);
+                    here = Some(((ci, cj), fill));
+                    fill
+                }
             };
             let shade = match lamps {
                 Some(lamps) if moving.is_empty() => shade.lit(lamps.at(Vec2::new(fx, fy))),
@@ -265,10 +275,7 @@ fn floor_and_ceiling(
                     shade.lit(point_light::add(lamp, point_light::level(moving, at, z)))
                 }
             };
-            *px = shade.apply(match paint {
-                Paint::Colour(c) => c,
-                Paint::Texture(i) => world.textures[i].sample_unit(fx - ci as f64, fy - cj as f64),
-            });
+            *px = shade.apply(fill.at_unit(fx - ci as f64, fy - cj as f64));
         }
     }
 }
@@ -329,5 +336,48 @@ mod tests {
     fn spans_clamp_to_the_screen_when_very_close() {
         let s = wall_span(0.0, 40.0, 60);
         assert_eq!(s.rows, (0, 60));
+    }
+
+    /// Two floor zones side by side, seen from the line between them: every floor row shows
+    /// the left zone's colour on the left and the right one's on the right, however the row
+    /// crosses cells (the caster keeps a cell's paint only while it stays in that cell).
+    #[test]
+    fn a_floor_row_shows_each_zone_it_crosses() {
+        use crate::camera::Camera;
+        use crate::color::Rgb;
+        use crate::map::parse_map;
+        use crate::world::TextureSource;
+        let text = "NO textures/bricks.png\nSO textures/bricks.png\nWE textures/stone.png\n\
+                    EA textures/stone.png\nF 0,0,255\nFa 255,0,0\nFb 0,255,0\nC 40,40,40\n\n\
+                    1111111111\n1aaaabbbb1\n1aaaabbbb1\n1aaaabbbb1\n1aaaabbbb1\n1aaaabbbb1\n\
+                    1Naaabbbb1\n1111111111\n";
+        let map = parse_map("zones.cub", text.as_bytes()).unwrap();
+        let world = World::load(map, &TextureSource::Embedded, true).unwrap().0;
+        // On the boundary x = 5 between the zones, looking north (up the map).
+        let cam = Camera::from_angle(Vec2::new(5.0, 6.9), 90.0, 66.0);
+        let mut fb = Framebuffer::new(120, 80);
+        Scene::new(&world, cam).render_into(&mut fb, None);
+        let red = |c: Rgb| c.r > 0 && c.g == 0 && c.b == 0;
+        let green = |c: Rgb| c.g > 0 && c.r == 0 && c.b == 0;
+        let mut rows_with_both = 0;
+        for y in 40..80 {
+            let row = fb.row(y);
+            let (left, right) = (&row[..54], &row[66..]);
+            assert!(
+                !left.iter().any(|&c| green(c)),
+                "row {y}: zone b on the left"
+            );
+            assert!(
+                !right.iter().any(|&c| red(c)),
+                "row {y}: zone a on the right"
+            );
+            if left.iter().any(|&c| red(c)) && right.iter().any(|&c| green(c)) {
+                rows_with_both += 1;
+            }
+        }
+        assert!(
+            rows_with_both >= 30,
+            "{rows_with_both} rows show both zones"
+        );
     }
 }

@@ -64,6 +64,28 @@ pub enum Paint {
     Texture(usize),
 }
 
+/// A [`Paint`] with its texture looked up: what a floor caster keeps while its row stays in one
+/// map cell, so no pixel pays for the lookup.
+#[derive(Debug, Clone, Copy)]
+pub enum Fill<'a> {
+    /// A flat colour.
+    Colour(Rgb),
+    /// A texture.
+    Texture(&'a Texture),
+}
+
+impl Fill<'_> {
+    /// The colour at (u, v), both in [0, 1).
+    #[must_use]
+    #[inline]
+    pub fn at_unit(self, u: f64, v: f64) -> Rgb {
+        match self {
+            Fill::Colour(c) => c,
+            Fill::Texture(t) => t.sample_unit(u, v),
+        }
+    }
+}
+
 /// A map plus its decoded textures, indexed for the per-pixel loops.
 #[derive(Debug, Clone)]
 pub struct World {
@@ -337,6 +359,16 @@ impl World {
             .get(usize::from(zone))
             .copied()
             .unwrap_or(self.floor[0])
+    }
+
+    /// `paint` with its texture looked up.
+    #[must_use]
+    #[inline]
+    pub fn fill(&self, paint: Paint) -> Fill<'_> {
+        match paint {
+            Paint::Colour(c) => Fill::Colour(c),
+            Paint::Texture(i) => Fill::Texture(&self.textures[i]),
+        }
     }
 
     /// Ceiling paint of a zone.
