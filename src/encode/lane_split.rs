@@ -57,12 +57,12 @@ pub fn put<const N: usize>(px: &mut Pixels<N>, k: usize, cell: &[[f32; 3]; N]) {
 /// for up to six pixels, a 2-means for more.
 #[must_use]
 pub fn split<const N: usize>(px: &Pixels<N>) -> Split {
-    let member = if N <= 6 {
-        best_split(px)
+    let (member, (clear, set)) = if N <= 6 {
+        let member = best_split(px);
+        (member, means(px, &member))
     } else {
         two_means(px)
     };
-    let (clear, set) = means(px, &member);
     let bits = member.iter().enumerate().fold(V::ZERO, |m, (p, &set)| {
         m + (set & V::splat((1u32 << p) as f32))
     });
@@ -148,8 +148,10 @@ impl<const N: usize> GroupSizes<N> {
 /// Splits each lane's `N` pixels: seeds are the darkest and the brightest pixel by weighted
 /// light (where all are equally light, the first pixel and the one farthest from it); then
 /// each pixel goes to the nearer centre and the centres move to their groups' means, until no
-/// lane moves or [`ROUNDS`] have run. Neither group is ever left empty.
-fn two_means<const N: usize>(px: &Pixels<N>) -> [V; N] {
+/// lane moves or [`ROUNDS`] have run. Neither group is ever left empty. Returns the groups and
+/// their means (the centres of the last round: the first round always moves every lane, so they
+/// are the means of the groups returned).
+fn two_means<const N: usize>(px: &Pixels<N>) -> ([V; N], ([V; 3], [V; 3])) {
     let w = WEIGHT.map(V::splat);
     let at = |p: usize| -> [V; 3] { [px[0][p], px[1][p], px[2][p]] };
     let light: [V; N] =
@@ -196,7 +198,7 @@ fn two_means<const N: usize>(px: &Pixels<N>) -> [V; N] {
         member = next;
         (a, b) = means(px, &member);
     }
-    member
+    (member, (a, b))
 }
 
 /// For each pixel, the lanes where it lies nearer `b` than `a` (on `b`'s side of the plane
