@@ -89,11 +89,11 @@ impl Painter<'_> {
     /// picking the texel (world-anchored) and the lamp light.
     fn flat(&self, f: &FlatSpan, x: usize, ray: Vec2, fb: &mut Framebuffer, depth: &mut [f32]) {
         let world = self.scene.world;
-        let paint = if f.ceiling {
+        let fill = world.fill(if f.ceiling {
             world.ceiling_paint(f.zone)
         } else {
             world.floor_paint(f.zone)
-        };
+        });
         let w = fb.width();
         let rise = self.proj.eye - f.z;
         let pos = self.scene.camera.pos;
@@ -120,13 +120,10 @@ impl Painter<'_> {
                 };
                 shade = shade.lit(point_light::add(lamp, glow));
             }
-            let c = match paint {
-                Paint::Colour(c) => c,
-                Paint::Texture(i) => world.textures[i].sample_unit(
-                    at.x - fast_floor(at.x) as f64,
-                    at.y - fast_floor(at.y) as f64,
-                ),
-            };
+            let c = fill.at_unit(
+                at.x - fast_floor(at.x) as f64,
+                at.y - fast_floor(at.y) as f64,
+            );
             fb.set(x, y, shade.apply(c));
             if keep_depth {
                 depth[y * w + x] = dist as f32;
