@@ -12,6 +12,7 @@ use crate::render::scene::Scene;
 use crate::render::sprite_projection::{
     far_to_near, frame_index, project_on, view_index, Culled, Projection,
 };
+use crate::texture::texel_index;
 
 /// What became of one sprite in a frame (the JSON `sprites` array is built from these).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -157,7 +158,7 @@ fn draw_one(
         let (colours, alphas) = sheet.column(tx);
         let mut v = v_start;
         for y in p.rows.0..p.rows.1 {
-            let ty = y0 + (v as usize).min(cell_h - 1);
+            let ty = y0 + texel_index(v).min(cell_h - 1);
             v += v_step;
             let a = alphas[ty];
             if a == 0 {

@@ -15,6 +15,7 @@ use crate::render::light::{Shade, ShadeTable};
 use crate::render::point_light::{self, PointLight};
 use crate::render::raster::{face_texture_x, heading_of, Y_SIDE_SHADE};
 use crate::render::scene::Scene;
+use crate::texture::texel_index;
 use crate::vec2::Vec2;
 use crate::world::lightmap::{Corners, LightMap, Probe};
 use crate::world::Paint;
@@ -266,7 +267,7 @@ impl Painter<'_> {
                 let step = per_row - fast_floor(per_row) as f64;
                 let th_f = th as f64;
                 for y in f.rows.0..f.rows.1 {
-                    let v = (u * th_f) as usize;
+                    let v = texel_index(u * th_f);
                     u += step;
                     if u >= 1.0 {
                         u -= 1.0;

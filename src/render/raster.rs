@@ -10,6 +10,7 @@ use crate::render::framebuffer::{Framebuffer, NEUTRAL_PHASE};
 use crate::render::light::{Shade, ShadeTable};
 use crate::render::point_light;
 use crate::render::scene::Scene;
+use crate::texture::texel_index;
 use crate::vec2::Vec2;
 use crate::world::{Fill, World};
 
@@ -179,7 +180,7 @@ fn wall_stripe(
     let th = tex.height();
     let scale = th as f64 / span.height;
     for y in span.rows.0..span.rows.1 {
-        let v = ((y as f64 + 0.5 - span.top) * scale) as usize;
+        let v = texel_index((y as f64 + 0.5 - span.top) * scale);
         let c = column[v.min(th - 1)];
         fb.set(x, y, shade(y).apply(c));
     }

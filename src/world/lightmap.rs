@@ -8,6 +8,7 @@
 //! level per sample, exactly as before heights existed.
 
 use crate::map::{LightDef, Map};
+use crate::texture::texel_index;
 use crate::vec2::Vec2;
 use crate::world::door::DoorState;
 use crate::world::lamp_falloff::{falloff, FULL};
@@ -163,7 +164,7 @@ impl LightMap {
         if !inside {
             return self.at_z(p, z);
         }
-        let (x0, y0) = (sx as usize, sy as usize);
+        let (x0, y0) = (texel_index(sx), texel_index(sy));
         let fx = ((sx - x0 as f64) * 256.0) as u32;
         let fy = ((sy - y0 as f64) * 256.0) as u32;
         let i = y0 * self.width + x0;
@@ -194,7 +195,7 @@ impl LightMap {
             return self.at_edge(sx, sy, level);
         }
         // Truncation is ⌊⌋ here (both positive) and avoids a libm call per floor pixel.
-        let (x0, y0) = (sx as usize, sy as usize);
+        let (x0, y0) = (texel_index(sx), texel_index(sy));
         let fx = ((sx - x0 as f64) * 256.0) as u32;
         let fy = ((sy - y0 as f64) * 256.0) as u32;
         let i = y0 * self.width + x0;
