@@ -12,6 +12,8 @@ pub mod sprite_art;
 /// creatures' and the pickups' drawings.
 pub const ART_SIZE: usize = 64;
 
+use std::sync::Arc;
+
 use crate::color::Rgb;
 
 /// Levels kept per colour channel of a wall, floor or ceiling texel: 128 (7 bits), so a texel is
@@ -36,7 +38,9 @@ pub fn posterize(v: u8) -> u8 {
 pub struct Texture {
     width: usize,
     height: usize,
-    texels: Vec<Rgb>,
+    /// Shared: every clone of a world (one per SSH session) reads the same texels, so they are
+    /// copied once and sit in the cache once.
+    texels: Arc<[Rgb]>,
     /// Mean colour, kept for overviews (the minimap) that paint a whole surface in one colour.
     mean: Rgb,
 }
@@ -57,7 +61,7 @@ impl Texture {
         Self {
             width,
             height,
-            texels,
+            texels: texels.into(),
             mean,
         }
     }
@@ -149,6 +153,20 @@ pub fn texel_index(v: f64) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_clone_reads_the_same_texels() {
+        let a = Texture::from_fn(4, 3, |x, y| Rgb::new(x as u8 * 60, y as u8 * 60, 9));
+        let b = a.clone();
+        assert!(Arc::ptr_eq(&a.texels, &b.texels));
+        assert_eq!(a, b);
+        // So a world's clone (one per SSH session) copies no texels.
+        let world = crate::World::default_world();
+        let copy = world.clone();
+        for (t, u) in world.textures.iter().zip(&copy.textures) {
+            assert!(Arc::ptr_eq(&t.texels, &u.texels));
+        }
+    }
 
     #[test]
     fn texel_index_picks_what_a_usize_conversion_picks_once_clamped() {

@@ -3,6 +3,8 @@
 //! Walls stay on the opaque [`super::Texture`]; only sprites pay for alpha. A sheet of
 //! `views` columns and `frames` rows holds one picture per (view, frame), all the same size.
 
+use std::sync::Arc;
+
 use crate::color::Rgb;
 use crate::map::ColourKey;
 
@@ -11,9 +13,10 @@ use crate::map::ColourKey;
 pub struct SpriteSheet {
     width: usize,
     height: usize,
-    texels: Vec<Rgb>,
+    /// Shared between clones, as [`super::Texture`]'s are.
+    texels: Arc<[Rgb]>,
     /// 0 = see-through, 255 = opaque; same layout as `texels`.
-    alpha: Vec<u8>,
+    alpha: Arc<[u8]>,
     /// Mean colour of the mostly opaque texels, for overviews (the minimap).
     mean: Rgb,
 }
@@ -40,8 +43,8 @@ impl SpriteSheet {
         Self {
             width,
             height,
-            texels,
-            alpha,
+            texels: texels.into(),
+            alpha: alpha.into(),
             mean,
         }
     }
@@ -114,6 +117,14 @@ impl SpriteSheet {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_clone_reads_the_same_texels() {
+        let a = SpriteSheet::from_fn(4, 3, |x, y| (Rgb::new(x as u8, y as u8, 0), 200));
+        let b = a.clone();
+        assert!(Arc::ptr_eq(&a.texels, &b.texels) && Arc::ptr_eq(&a.alpha, &b.alpha));
+        assert_eq!(a, b);
+    }
 
     #[test]
     fn png_round_trip_keeps_alpha() {
