@@ -20,7 +20,27 @@ pub const GLYPH_SIZES: [(u16, u16); 2] = [(80, 24), (240, 68)];
 const FIDELITY_EVERY: usize = 10;
 
 /// Timing passes over the path; each frame keeps its fastest (the machine may be shared).
-const REPEATS: usize = 3;
+const REPEATS: usize = 7;
+
+/// One setting's measurements at one size: per frame its fastest render and encode, and from
+/// the first pass the bytes sent and the judged pictures' figures.
+struct Timed {
+    render: Vec<f64>,
+    encode: Vec<f64>,
+    bytes: Vec<f64>,
+    figures: Vec<scielab::Figures>,
+}
+
+impl Timed {
+    fn new(frames: usize) -> Self {
+        Self {
+            render: vec![f64::MAX; frames],
+            encode: vec![f64::MAX; frames],
+            bytes: Vec::new(),
+            figures: Vec::new(),
+        }
+    }
+}
 
 fn ms(t: Instant) -> f64 {
     t.elapsed().as_secs_f64() * 1000.0
@@ -42,36 +62,43 @@ pub fn run_glyphs(frames: usize, level: ColorLevel) -> Vec<GlyphRun> {
                 Source::at_ppds(&fb, OCTANT_PPDS)
             })
             .collect();
-        let mut half: Option<GlyphRun> = None;
-        for glyphs in Glyphs::ALL {
-            let mut render = vec![f64::MAX; cams.len()];
-            let mut encode = vec![f64::MAX; cams.len()];
-            let mut bytes = Vec::new();
-            let mut figures = Vec::new();
-            for pass in 0..REPEATS {
+        // Each pass times every setting in turn, so a burst of other work on the machine
+        // lands on one pass of each at most, and each frame keeps its fastest time.
+        let mut timed: Vec<Timed> = Glyphs::ALL.iter().map(|_| Timed::new(cams.len())).collect();
+        for pass in 0..REPEATS {
+            for (glyphs, t) in Glyphs::ALL.into_iter().zip(&mut timed) {
                 let mut enc = Encoder::new(EncodeOptions::new(level));
                 let mut fb = Framebuffer::for_glyphs(cols, rows, glyphs);
                 for (i, &cam) in cams.iter().enumerate() {
-                    let t = Instant::now();
+                    let start = Instant::now();
                     Scene::new(&world, cam).render_into(&mut fb, None);
-                    render[i] = render[i].min(ms(t));
-                    let t = Instant::now();
+                    t.render[i] = t.render[i].min(ms(start));
+                    let start = Instant::now();
                     let n = enc.encode(&fb, 0, 0).len();
-                    encode[i] = encode[i].min(ms(t));
+                    t.encode[i] = t.encode[i].min(ms(start));
                     if pass > 0 {
                         continue;
                     }
                     if i > 0 {
-                        bytes.push(n as f64);
+                        t.bytes.push(n as f64);
                     }
                     if i % FIDELITY_EVERY == 0 {
                         if let Some(shown) = enc.shown_frame() {
                             let shown = at_octant_grid(&with_glyphs(shown, glyphs));
-                            figures.push(sources[i / FIDELITY_EVERY].compare(&shown));
+                            t.figures.push(sources[i / FIDELITY_EVERY].compare(&shown));
                         }
                     }
                 }
             }
+        }
+        let mut half: Option<GlyphRun> = None;
+        for (glyphs, t) in Glyphs::ALL.into_iter().zip(timed) {
+            let Timed {
+                render,
+                encode,
+                bytes,
+                figures,
+            } = t;
             let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
             let fid = scielab::mean(&figures).unwrap_or_default();
             let (render_ms, encode_ms) = (mean(&render[1..]), mean(&encode[1..]));

@@ -67,3 +67,45 @@ fn the_test_card_shows_every_set() {
     }
     assert!(has_octant(&text));
 }
+
+#[test]
+fn bench_glyphs_measures_every_setting_at_both_sizes_against_half_blocks() {
+    let out = halfcast_ok(&["bench", "--glyphs", "--json", "--frame-count", "2"]);
+    let runs: Vec<serde_json::Value> = serde_json::from_slice(&out.stdout).unwrap();
+    let names = ["half", "quadrant", "sextant", "octant"];
+    let shape: Vec<(String, u64, u64)> = runs
+        .iter()
+        .map(|r| {
+            let g = r["glyphs"].as_str().unwrap().to_owned();
+            (g, r["cols"].as_u64().unwrap(), r["rows"].as_u64().unwrap())
+        })
+        .collect();
+    let want: Vec<(String, u64, u64)> = [(80, 24), (240, 68)]
+        .iter()
+        .flat_map(|&(c, r)| names.iter().map(move |g| ((*g).to_owned(), c, r)))
+        .collect();
+    assert_eq!(shape, want);
+    let f = |r: &serde_json::Value, k: &str| r[k].as_f64().unwrap_or_else(|| panic!("{k}: {r}"));
+    for r in &runs {
+        for k in [
+            "render_ms",
+            "encode_ms",
+            "bytes_per_frame",
+            "scielab_9",
+            "scielab_18",
+        ] {
+            assert!(f(r, k) > 0.0, "{k}: {r}");
+        }
+        let fps = 1000.0 / (f(r, "render_ms") + f(r, "encode_ms"));
+        assert!((f(r, "fps") - fps).abs() < 1e-6 * fps, "{r}");
+        if r["glyphs"] == "half" {
+            for k in ["error_vs_half", "bytes_vs_half", "time_vs_half"] {
+                assert_eq!(f(r, k), 1.0, "{k}: {r}");
+            }
+        }
+        if r["glyphs"] == "octant" {
+            // Four times the pixels: the picture comes much closer to the octant-grid render.
+            assert!(f(r, "error_vs_half") < 0.5, "{r}");
+        }
+    }
+}
