@@ -35,6 +35,8 @@ fn main() {
             for _ in 0..passes {
                 let mut enc = Encoder::new(EncodeOptions::new(ColorLevel::TrueColor));
                 let mut fb = Framebuffer::for_glyphs(cols, rows, glyphs);
+                // Truecolor reads no dither phases: the game and the server skip them there.
+                fb.set_phases_wanted(false);
                 for (i, &cam) in cams.iter().enumerate() {
                     let t = Instant::now();
                     Scene::new(&world, cam).render_into(&mut fb, None);

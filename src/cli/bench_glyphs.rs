@@ -69,6 +69,8 @@ pub fn run_glyphs(frames: usize, level: ColorLevel) -> Vec<GlyphRun> {
             for (glyphs, t) in Glyphs::ALL.into_iter().zip(&mut timed) {
                 let mut enc = Encoder::new(EncodeOptions::new(level));
                 let mut fb = Framebuffer::for_glyphs(cols, rows, glyphs);
+                // As the game and the server do: phases only where the level reads them.
+                fb.set_phases_wanted(level.mixes());
                 for (i, &cam) in cams.iter().enumerate() {
                     let start = Instant::now();
                     Scene::new(&world, cam).render_into(&mut fb, None);

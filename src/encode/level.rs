@@ -17,6 +17,13 @@ pub enum ColorLevel {
 }
 
 impl ColorLevel {
+    /// Whether colours are drawn as mixes of palette entries (256 and 16 colours): the levels
+    /// whose encoders read the dither phases renderers write.
+    #[must_use]
+    pub fn mixes(self) -> bool {
+        matches!(self, ColorLevel::Ansi256 | ColorLevel::Ansi16)
+    }
+
     /// Every level, best first (for benches and tests that cover the whole ladder).
     pub const ALL: [ColorLevel; 4] = [
         ColorLevel::TrueColor,

@@ -147,6 +147,7 @@ fn draw_one(
     // Dither phases on the sprite's own (u, v), a lattice about a pixel fine.
     let per_u = dither_phase::lattice(width);
     let per_v = dither_phase::lattice(p.bottom - p.top);
+    let phases = fb.wants_phases();
     for x in p.cols.0..p.cols.1 {
         if let Occluders::Columns(hits) = occluders {
             if hits.get(x).is_none_or(|hit| p.depth >= hit.perp_dist) {
@@ -190,12 +191,14 @@ fn draw_one(
                 }
             };
             fb.set(x, y, out);
-            let pv = (y as f64 + 0.5 - p.top) / (p.bottom - p.top);
-            let phase = dither_phase::at(
-                dither_phase::index(u, per_u),
-                dither_phase::index(pv, per_v),
-            );
-            fb.set_phase(x, y, phase);
+            if phases {
+                let pv = (y as f64 + 0.5 - p.top) / (p.bottom - p.top);
+                let phase = dither_phase::at(
+                    dither_phase::index(u, per_u),
+                    dither_phase::index(pv, per_v),
+                );
+                fb.set_phase(x, y, phase);
+            }
         }
     }
     drawn

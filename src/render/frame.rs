@@ -53,3 +53,53 @@ impl Scene<'_> {
         fb
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::camera::Camera;
+    use crate::map::parse_map;
+    use crate::render::framebuffer::Framebuffer;
+    use crate::render::glyphs::Glyphs;
+    use crate::render::scene::Scene;
+    use crate::world::{TextureSource, World};
+
+    /// Without phases (truecolor and mono callers) every renderer draws the same picture and
+    /// writes no phase plane; with them (the default) walls and sprites write theirs.
+    #[test]
+    fn a_frame_without_phases_is_the_same_picture_with_none_written() {
+        let heights = parse_map(
+            "heights.cub",
+            include_bytes!("../../maps/heights.cub").as_slice(),
+        )
+        .unwrap();
+        let heights = World::load(heights, &TextureSource::Embedded, false)
+            .unwrap()
+            .0;
+        for world in [World::default_world(), heights] {
+            let start = world.map.start;
+            for angle in [0.0, 100.0, 200.0, 300.0] {
+                let cam = Camera::from_angle(start.pos(), start.angle_deg() + angle, 66.0);
+                for glyphs in [Glyphs::Half, Glyphs::Octant] {
+                    let mut with = Framebuffer::for_glyphs(60, 20, glyphs);
+                    let mut without = Framebuffer::for_glyphs(60, 20, glyphs);
+                    without.set_phases_wanted(false);
+                    Scene::new(&world, cam).render_into(&mut with, None);
+                    Scene::new(&world, cam).render_into(&mut without, None);
+                    assert_eq!(with, without, "{} at {angle}°", world.map.name);
+                    assert!(without.phases().is_none(), "{}", world.map.name);
+                    if angle == 0.0 {
+                        assert!(with.phases().is_some(), "{}", world.map.name);
+                    }
+                }
+            }
+        }
+        // A resize keeps the choice; turning phases off drops those written.
+        let mut fb = Framebuffer::for_cells(10, 4);
+        fb.set_phase(0, 0, 3);
+        fb.set_phases_wanted(false);
+        assert!(fb.phases().is_none());
+        fb.resize_cells(12, 5, Glyphs::Sextant);
+        fb.resize(30, 8);
+        assert!(!fb.wants_phases());
+    }
+}

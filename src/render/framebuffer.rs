@@ -19,6 +19,8 @@ pub struct Framebuffer {
     /// Per-pixel dither phase, tied to the surface the pixel shows; `None` until a renderer
     /// writes one.
     phases: Option<Vec<u8>>,
+    /// Whether renderers write phases at all ([`Framebuffer::wants_phases`]).
+    phases_wanted: bool,
     /// How many pixels a terminal cell shows (half-blocks unless made for another setting).
     glyphs: Glyphs,
     /// The last frame's distance table and the light it samples, reused while the light stays.
@@ -46,6 +48,7 @@ impl Framebuffer {
             height,
             pixels: vec![Rgb::default(); width * height],
             phases: None,
+            phases_wanted: true,
             glyphs: Glyphs::Half,
             shades: None,
         }
@@ -67,7 +70,26 @@ impl Framebuffer {
         let (c, r) = glyphs.cell_size();
         let size = (usize::from(cols) * c, usize::from(rows) * r);
         if (size, glyphs) != ((self.width, self.height), self.glyphs) {
+            let wanted = self.phases_wanted;
             *self = Self::for_glyphs(cols, rows, glyphs);
+            self.phases_wanted = wanted;
+        }
+    }
+
+    /// Whether renderers should write dither phases. Only an encoder that draws colours as mixes
+    /// of palette entries (256 and 16 colours) reads them, so a caller that shows frames at
+    /// truecolor or in mono turns them off and the renderers skip that work (about a tenth of
+    /// a render). On by default.
+    #[must_use]
+    pub fn wants_phases(&self) -> bool {
+        self.phases_wanted
+    }
+
+    /// Sets [`Framebuffer::wants_phases`]; turning them off drops the phases already written.
+    pub fn set_phases_wanted(&mut self, wanted: bool) {
+        self.phases_wanted = wanted;
+        if !wanted {
+            self.phases = None;
         }
     }
 
@@ -125,7 +147,9 @@ impl Framebuffer {
     /// reuse is free.
     pub fn resize(&mut self, width: usize, height: usize) {
         if (width, height, Glyphs::Half) != (self.width, self.height, self.glyphs) {
+            let wanted = self.phases_wanted;
             *self = Self::new(width, height);
+            self.phases_wanted = wanted;
         }
     }
 
@@ -233,6 +257,7 @@ impl Framebuffer {
             height: img.height() as usize,
             pixels,
             phases: None,
+            phases_wanted: true,
             glyphs: Glyphs::Half,
             shades: None,
         }

@@ -137,7 +137,7 @@ impl Painter<'_> {
     /// ([`crate::render::dither_phase`]), so the 256- and 16-colour patterns lie on the faces.
     fn face_phases(&self, f: &FaceSpan, x: usize, ray: Vec2, fb: &mut Framebuffer) {
         let t = f.perp_dist;
-        if !(t > 0.0 && t.is_finite()) {
+        if !(fb.wants_phases() && t > 0.0 && t.is_finite()) {
             return;
         }
         // Pixels per unit along the face: where the next column's ray meets the face's line.

@@ -160,7 +160,9 @@ pub fn rasterize_frame(
             let shade = side(shade);
             wall_stripe(scene.world, hit, span, x, fb, |_| shade);
         }
-        wall_phases(hits, span, x, fb);
+        if fb.wants_phases() {
+            wall_phases(hits, span, x, fb);
+        }
     }
     draw_sprites(scene, Occluders::Columns(hits), fb, table)
 }
@@ -237,7 +239,9 @@ fn floor_and_ceiling(
         let step = across * dist;
         // Floors and ceilings carry no pattern (measured: patterns there cost more bytes than
         // they gain), and no phase left from the last frame either.
-        fb.phase_row_mut(y).fill(NEUTRAL_PHASE);
+        if fb.wants_phases() {
+            fb.phase_row_mut(y).fill(NEUTRAL_PHASE);
+        }
         let row = fb.row_mut(y);
         // Neighbouring pixels mostly share a map cell: its paint is looked up once per run.
         let mut here: Option<((i64, i64), Fill)> = None;

@@ -271,6 +271,7 @@ impl SessionScreen {
                     self.glyphs
                 };
                 self.fb.resize_cells(view.width, view.height, glyphs);
+                self.fb.set_phases_wanted(self.presenter.level().mixes());
                 let cast = render_view(&state, &mut self.fb);
                 let tags = avatars::mark_players(&mut self.fb, &state, &cast, snap, id);
                 render_time = started.elapsed();

@@ -333,6 +333,7 @@ pub fn run_loop(
             app.stats.glyphs
         };
         app.fb.resize_cells(view.width, view.height, glyphs);
+        app.fb.set_phases_wanted(app.presenter.level().mixes());
         let cast = render_view(&app.state, &mut app.fb);
         let render_time = t.elapsed();
 
