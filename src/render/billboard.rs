@@ -12,7 +12,7 @@ use crate::render::scene::Scene;
 use crate::render::sprite_projection::{
     far_to_near, frame_index, project_on, view_index, Culled, Projection,
 };
-use crate::texture::texel_index;
+use crate::world::texel_index;
 
 /// What became of one sprite in a frame (the JSON `sprites` array is built from these).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -15,9 +15,9 @@ use crate::render::light::{Shade, ShadeTable};
 use crate::render::point_light::{self, PointLight};
 use crate::render::raster::{face_texture_x, heading_of, Y_SIDE_SHADE};
 use crate::render::scene::Scene;
-use crate::texture::texel_index;
 use crate::vec2::Vec2;
 use crate::world::lightmap::{Corners, LightMap, Probe};
+use crate::world::texel_index;
 use crate::world::Paint;
 
 /// Paints `cast` (from [`crate::render::height_cast::cast_heights`] at `fb`'s size) and the sprites.

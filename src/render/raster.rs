@@ -10,8 +10,8 @@ use crate::render::framebuffer::{Framebuffer, NEUTRAL_PHASE};
 use crate::render::light::{Shade, ShadeTable};
 use crate::render::point_light;
 use crate::render::scene::Scene;
-use crate::texture::texel_index;
 use crate::vec2::Vec2;
+use crate::world::texel_index;
 use crate::world::{Fill, World};
 
 /// Brightness (of 256) of faces hit on a y side, so corners read as corners.
