@@ -379,8 +379,7 @@ impl GlyphFrames {
             let (ch, colours) = pick_form(want, pen, full, level);
             sgr::write(out, level, pen, colours);
             pen = colours;
-            let mut buf = [0u8; 4];
-            out.extend_from_slice(glyph(glyphs, ch).encode_utf8(&mut buf).as_bytes());
+            push_char(out, glyph(glyphs, ch));
             cursor = Cursor::At { col: col + 1, row };
             self.shown[i] = want;
             drew = true;
@@ -394,6 +393,19 @@ impl GlyphFrames {
         if sync {
             out.extend_from_slice(super::SYNC_END);
         }
+    }
+}
+
+/// Appends `ch` in UTF-8. Copying `encode_utf8`'s slice is a `memcpy` call per cell (its
+/// length is only known at run time); a copy of each fixed length is a move or two.
+#[inline]
+fn push_char(out: &mut Vec<u8>, ch: char) {
+    let mut buf = [0u8; 4];
+    match ch.encode_utf8(&mut buf).len() {
+        1 => out.push(buf[0]),
+        2 => out.extend_from_slice(&buf[..2]),
+        3 => out.extend_from_slice(&buf[..3]),
+        _ => out.extend_from_slice(&buf),
     }
 }
 
@@ -429,8 +441,7 @@ pub fn full_lines(fb: &Framebuffer, palette: &Palette) -> Vec<u8> {
             let (mask, colours) = pick_form(c, pen, full, level);
             sgr::write(&mut out, level, pen, colours);
             pen = colours;
-            let mut buf = [0u8; 4];
-            out.extend_from_slice(glyph(glyphs, mask).encode_utf8(&mut buf).as_bytes());
+            push_char(&mut out, glyph(glyphs, mask));
         }
         sgr::write(&mut out, level, pen, (DEFAULT, DEFAULT));
         out.push(b'\n');
