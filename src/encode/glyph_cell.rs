@@ -12,7 +12,7 @@
 //! linear light), with no cube roots or powers per pixel, and a frame's cells of three or more
 //! colours are split eight at a time, one per vector lane ([`super::lane_split`]).
 
-use super::lane_split::{self, Pixels, Split, LANES};
+use super::lane_split::{self, Pixels, Split, SplitSums, LANES};
 use crate::color::{channel_to_linear, lab_dist2, oklab, Linear, Rgb};
 
 /// Most pixels a cell has (octants: 2×4).
@@ -110,7 +110,7 @@ pub fn choose_n<const N: usize>(pixels: &[Rgb]) -> GlyphCell {
     let t = tables();
     let mut px: Pixels<N> = lane_split::pixels();
     lane_split::put(&mut px, 0, &pixels.map(|c| t.to_linear(c)));
-    t.cell_of::<N>(&lane_split::split(&px), 0)
+    t.cell_of::<N>(&lane_split::split(&px, &mut SplitSums::default()), 0)
 }
 
 /// Every cell of `cells` (each `N` pixels, row-major) in order, as [`choose_n`] would choose
@@ -120,8 +120,9 @@ pub fn choose_all<const N: usize>(cells: impl Iterator<Item = [Rgb; N]>, out: &m
     let mut px: Pixels<N> = lane_split::pixels();
     let mut waiting = [0usize; LANES];
     let mut n = 0;
-    let solve = |px: &Pixels<N>, waiting: &[usize], out: &mut Vec<GlyphCell>| {
-        let split = lane_split::split(px);
+    let mut sums = SplitSums::default();
+    let mut solve = |px: &Pixels<N>, waiting: &[usize], out: &mut Vec<GlyphCell>| {
+        let split = lane_split::split(px, &mut sums);
         for (k, &at) in waiting.iter().enumerate() {
             out[at] = t.cell_of::<N>(&split, k);
         }
@@ -244,7 +245,7 @@ impl Tables {
     fn to_srgb(&self, l: Linear) -> Rgb {
         let ch = |x: f32| -> u8 {
             let x = x.clamp(0.0, 1.0);
-            let v = usize::from(self.guess[((x * 4095.0) as usize).min(4095)]);
+            let v = usize::from(self.guess[usize::from((x * 4095.0) as u16).min(4095)]);
             let v = v + usize::from(x > self.upper[v]);
             let v = v - usize::from(v > 0 && x < self.upper[v.saturating_sub(1)]);
             v as u8

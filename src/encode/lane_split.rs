@@ -53,12 +53,23 @@ pub fn put<const N: usize>(px: &mut Pixels<N>, k: usize, cell: &[[f32; 3]; N]) {
     }
 }
 
+/// Room for [`best_split`]'s sums of every split, made once for many calls: zeroing it per
+/// batch of cells was a few percent of a sextant frame, and each call writes every entry it
+/// reads but the first, which stays zero.
+pub struct SplitSums([[V; SPLITS]; 3]);
+
+impl Default for SplitSums {
+    fn default() -> Self {
+        Self([[V::ZERO; SPLITS]; 3])
+    }
+}
+
 /// Splits each lane's `N` pixels (3 to 8) into the two groups that show them best: every split
 /// for up to six pixels, a 2-means for more.
 #[must_use]
-pub fn split<const N: usize>(px: &Pixels<N>) -> Split {
+pub fn split<const N: usize>(px: &Pixels<N>, sums: &mut SplitSums) -> Split {
     let (member, (clear, set)) = if N <= 6 {
-        let member = best_split(px);
+        let member = best_split(px, sums);
         (member, means(px, &member))
     } else {
         two_means(px)
@@ -79,11 +90,11 @@ pub fn split<const N: usize>(px: &Pixels<N>) -> Split {
 /// those. Pixel 0 stays outside the second group (canonical form), so each split is tried once;
 /// the second group's sums of all splits are built by doubling (split `j + h` is split `j` plus
 /// pixel `p`, `h` = 2^(p−1)). Ties go to the first split.
-fn best_split<const N: usize>(px: &Pixels<N>) -> [V; N] {
+fn best_split<const N: usize>(px: &Pixels<N>, sums: &mut SplitSums) -> [V; N] {
     let m = 1usize << (N - 1);
     assert!(m <= SPLITS, "best_split takes at most six pixels");
     let w = WEIGHT.map(V::splat);
-    let mut set = [[V::ZERO; SPLITS]; 3];
+    let set = &mut sums.0;
     for (sums, channel) in set.iter_mut().zip(px) {
         for (p, &v) in channel.iter().enumerate().skip(1) {
             let h = 1 << (p - 1);
