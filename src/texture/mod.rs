@@ -142,8 +142,9 @@ impl Texture {
 
 /// A texel index from a coordinate in texels, rounded down (0 for negatives and NaN). The
 /// per-pixel samplers convert through this: `f64 as u32` is a clamp and one conversion on
-/// x86-64, where `f64 as usize` is about eight instructions, and every caller clamps the index
-/// to its texture, so the two agree wherever it matters (they differ only from 2³² up).
+/// x86-64, where `f64 as usize` is about eight instructions. Every caller keeps the index
+/// within its texture (it clamps it, or the light map checks the coordinate first), so the two
+/// agree wherever it matters: they differ only from 2³² up.
 #[must_use]
 #[inline]
 pub fn texel_index(v: f64) -> usize {
