@@ -14,6 +14,7 @@
 
 use super::lane_split::{self, Pixels, Split, SplitSums, LANES};
 use crate::color::{channel_to_linear, lab_dist2, oklab, Linear, Rgb};
+use wide::f32x8 as V;
 
 /// Most pixels a cell has (octants: 2×4).
 pub const MAX_PIXELS: usize = 8;
@@ -110,7 +111,7 @@ pub fn choose_n<const N: usize>(pixels: &[Rgb]) -> GlyphCell {
     let t = tables();
     let mut px: Pixels<N> = lane_split::pixels();
     lane_split::put(&mut px, 0, &pixels.map(|c| t.to_linear(c)));
-    t.cell_of::<N>(&lane_split::split(&px, &mut SplitSums::default()), 0)
+    t.cells_of::<N>(&lane_split::split(&px, &mut SplitSums::default()))[0]
 }
 
 /// Every cell of `cells` (each `N` pixels, row-major) in order, as [`choose_n`] would choose
@@ -122,9 +123,9 @@ pub fn choose_all<const N: usize>(cells: impl Iterator<Item = [Rgb; N]>, out: &m
     let mut n = 0;
     let mut sums = SplitSums::default();
     let mut solve = |px: &Pixels<N>, waiting: &[usize], out: &mut Vec<GlyphCell>| {
-        let split = lane_split::split(px, &mut sums);
-        for (k, &at) in waiting.iter().enumerate() {
-            out[at] = t.cell_of::<N>(&split, k);
+        let cells = t.cells_of::<N>(&lane_split::split(px, &mut sums));
+        for (&at, &cell) in waiting.iter().zip(&cells) {
+            out[at] = cell;
         }
     };
     for pixels in cells {
@@ -225,32 +226,39 @@ impl Tables {
         ]
     }
 
-    /// Lane `k` of a side-by-side split as a cell of `N` pixels (canonical).
+    /// Every lane of a side-by-side split as a cell of `N` pixels (canonical).
     #[inline]
-    fn cell_of<const N: usize>(&self, split: &Split, k: usize) -> GlyphCell {
-        let colour = |c: &[[f32; LANES]; 3]| self.to_srgb([c[0][k], c[1][k], c[2][k]]);
-        GlyphCell {
-            mask: split.mask[k] as u8,
-            fg: colour(&split.set),
-            bg: colour(&split.clear),
-        }
-        .canonical(N)
+    fn cells_of<const N: usize>(&self, split: &Split) -> [GlyphCell; LANES] {
+        let (set, clear) = (self.to_srgb(&split.set), self.to_srgb(&split.clear));
+        let rgb = |c: &[[u8; LANES]; 3], k: usize| Rgb::new(c[0][k], c[1][k], c[2][k]);
+        std::array::from_fn(|k| {
+            GlyphCell {
+                mask: split.mask[k] as u8,
+                fg: rgb(&set, k),
+                bg: rgb(&clear, k),
+            }
+            .canonical(N)
+        })
     }
 
-    /// Linear light back to the nearest 8-bit sRGB colour: the guess, then at most one step up
-    /// or down along the curve's midpoints. One step is enough because no guess bucket (1/4095
-    /// of linear light) holds more than one midpoint: the curve is steepest near black, at
-    /// about 0.8 sRGB steps per bucket. Without loops there is no branch to mispredict.
+    /// Linear light back to the nearest 8-bit sRGB value, every lane of three channels: the
+    /// guess, then at most one step up or down along the curve's midpoints. One step is enough
+    /// because no guess bucket (1/4095 of linear light) holds more than one midpoint: the curve
+    /// is steepest near black, at about 0.8 sRGB steps per bucket. Clamping and finding each
+    /// guess run on all lanes at once; without loops there is no branch to mispredict.
     #[inline]
-    fn to_srgb(&self, l: Linear) -> Rgb {
-        let ch = |x: f32| -> u8 {
-            let x = x.clamp(0.0, 1.0);
-            let v = usize::from(self.guess[usize::from((x * 4095.0) as u16).min(4095)]);
-            let v = v + usize::from(x > self.upper[v]);
-            let v = v - usize::from(v > 0 && x < self.upper[v.saturating_sub(1)]);
-            v as u8
-        };
-        Rgb::new(ch(l[0]), ch(l[1]), ch(l[2]))
+    fn to_srgb(&self, light: &[[f32; LANES]; 3]) -> [[u8; LANES]; 3] {
+        light.map(|channel| {
+            let x = V::from(channel).fast_max(V::ZERO).fast_min(V::ONE);
+            let at = (x * V::splat(4095.0)).fast_trunc_int().to_array();
+            let x = x.to_array();
+            std::array::from_fn(|k| {
+                let v = usize::from(self.guess[(at[k] as usize).min(4095)]);
+                let v = v + usize::from(x[k] > self.upper[v]);
+                let v = v - usize::from(v > 0 && x[k] < self.upper[v.saturating_sub(1)]);
+                v as u8
+            })
+        })
     }
 }
 
@@ -309,7 +317,7 @@ mod tests {
     fn srgb_round_trips_through_linear_light() {
         for v in 0..=255u8 {
             let c = Rgb::new(v, v, v);
-            assert_eq!(tables().to_srgb(c.linear()), c);
+            assert_eq!(srgb(c.linear()), c);
         }
     }
 
@@ -327,7 +335,7 @@ mod tests {
                     da.total_cmp(&db)
                 })
                 .unwrap();
-            let got = t.to_srgb([x; 3]).r;
+            let got = srgb([x; 3]).r;
             let (dg, dn) = (
                 (t.linear[got as usize] - x).abs(),
                 (t.linear[nearest as usize] - x).abs(),
@@ -378,6 +386,18 @@ mod tests {
         px.map(|c| tables().to_linear(c))
     }
 
+    /// One colour back to sRGB through [`Tables::to_srgb`], in every lane.
+    fn srgb(l: Linear) -> Rgb {
+        let lanes = tables().to_srgb(&l.map(|v| [v; LANES]));
+        for k in 1..LANES {
+            assert_eq!(
+                [lanes[0][k], lanes[1][k], lanes[2][k]],
+                [lanes[0][0], lanes[1][0], lanes[2][0]]
+            );
+        }
+        Rgb::new(lanes[0][0], lanes[1][0], lanes[2][0])
+    }
+
     /// Linear light back to sRGB by walking the midpoints as far as it takes.
     fn to_srgb_walking(x: f32) -> u8 {
         let t = tables();
@@ -409,11 +429,11 @@ mod tests {
         let buckets = (0..=4096).map(|i| i as f32 / 4095.0);
         let sweep = (0..=1_000_000).map(|i| i as f32 / 1_000_000.0);
         for x in edges.chain(buckets).flat_map(near).chain(sweep) {
-            let got = t.to_srgb([x, x, x]).r;
+            let got = srgb([x, x, x]).r;
             assert_eq!(got, to_srgb_walking(x), "{x}");
         }
         for x in [-1.0, -0.0, 1.0, 2.0, f32::INFINITY] {
-            assert_eq!(t.to_srgb([x, x, x]).r, to_srgb_walking(x), "{x}");
+            assert_eq!(srgb([x, x, x]).r, to_srgb_walking(x), "{x}");
         }
     }
 
