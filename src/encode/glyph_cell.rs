@@ -3,7 +3,7 @@
 //!
 //! Colours are mixed in linear light: a group's colour is the mean light of its pixels, and the
 //! split is judged there too, by squared distances with each channel weighted for how much it
-//! counts ([`WEIGHT`]). Quadrants and sextants try every split (7 and 31); octants use a 2-means:
+//! counts ([`lane_split::WEIGHT`]). Quadrants and sextants try every split (7 and 31); octants use a 2-means:
 //! start from the darkest and the brightest pixel, assign each pixel to the nearer colour, move
 //! each colour to its group's mean, and repeat until nothing moves (a few rounds over ≤ 8
 //! pixels). Cells of one or two distinct colours are exact without any of that.
@@ -172,12 +172,6 @@ fn exact<const N: usize>(pixels: &[Rgb; N]) -> Option<GlyphCell> {
     })
 }
 
-/// How much each channel of linear light counts when pixels are split: roughly the square roots
-/// of their shares of luminance, so green differences weigh most and blue least. Measured on the
-/// bench's walk path, splitting in this space keeps S-CIELAB at least as low as splitting in
-/// OKLab, for none of OKLab's cube roots.
-pub(super) const WEIGHT: [f32; 3] = [0.25, 0.64, 0.1225];
-
 /// The sRGB transfer curve both ways, built once: 8-bit channel → linear light, and back.
 struct Tables {
     /// Each 8-bit value in linear light.
@@ -275,6 +269,7 @@ pub fn error(pixels: &[Rgb], cell: &GlyphCell) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::encode::lane_split::WEIGHT;
 
     const K: Rgb = Rgb::new(0, 0, 0);
     const W: Rgb = Rgb::new(255, 255, 255);
