@@ -153,23 +153,26 @@ pub fn choose_all<const N: usize>(cells: impl Iterator<Item = [Rgb; N]>, out: &m
 fn exact<const N: usize>(pixels: &[Rgb; N]) -> Option<GlyphCell> {
     // Colours as one number each, and a bit per pixel, so the tests run over all pixels at once.
     let key = pixels.map(|c| u32::from(c.r) | u32::from(c.g) << 8 | u32::from(c.b) << 16);
-    let bits = |f: &dyn Fn(u32) -> bool| {
-        key.iter()
-            .enumerate()
-            .fold(0u32, |m, (i, &k)| m | u32::from(f(k)) << i)
-    };
     let first = key[0];
-    let differ = bits(&|k| k != first);
+    let differ = bits(&key, |k| k != first);
     if differ == 0 {
         return Some(GlyphCell::uniform(pixels[0]));
     }
     let at = differ.trailing_zeros() as usize;
     let other = key[at];
-    (bits(&|k| k != first && k != other) == 0).then(|| GlyphCell {
+    (bits(&key, |k| k != first && k != other) == 0).then(|| GlyphCell {
         mask: differ as u8,
         fg: pixels[at],
         bg: pixels[0],
     })
+}
+
+/// A bit for each of `key`'s values for which `f` holds (bit `i` for value `i`).
+#[inline]
+fn bits<const N: usize>(key: &[u32; N], f: impl Fn(u32) -> bool) -> u32 {
+    key.iter()
+        .enumerate()
+        .fold(0u32, |m, (i, &k)| m | u32::from(f(k)) << i)
 }
 
 /// The sRGB transfer curve both ways, built once: 8-bit channel → linear light, and back.
