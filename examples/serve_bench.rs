@@ -30,7 +30,7 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use halfcast::serve::{start, ServeConfig};
-use halfcast::World;
+use halfcast::{Glyphs, World};
 use russh::{compression, ChannelMsg};
 
 /// The allocator the `halfcast` binary serves with (src/main.rs), so the figures are the server's.
@@ -59,7 +59,7 @@ struct Opts {
     db: bool,
     round_secs: Option<u64>,
     idle: usize,
-    glyphs: String,
+    glyphs: Glyphs,
 }
 
 fn opts() -> Opts {
@@ -77,7 +77,7 @@ fn opts() -> Opts {
         db: false,
         round_secs: None,
         idle: 0,
-        glyphs: "half".into(),
+        glyphs: Glyphs::Half,
     };
     let args: Vec<String> = std::env::args().skip(1).collect();
     let usage = |why: &str| -> ! {
@@ -111,11 +111,9 @@ fn opts() -> Opts {
             "--db" => o.db = v == "on",
             "--round-secs" => o.round_secs = Some(num(&v).clamp(1, 3600)),
             "--idle" => o.idle = num(&v) as usize,
-            "--glyphs" => match v.as_str() {
-                "half" | "quadrant" | "sextant" | "octant" => o.glyphs = v,
-                _ => usage(&format!(
-                    "--glyphs takes half, quadrant, sextant or octant, not {v:?}"
-                )),
+            "--glyphs" => match v.parse::<Glyphs>() {
+                Ok(g) => o.glyphs = g,
+                Err(why) => usage(&format!("--glyphs: {why}")),
             },
             other => usage(&format!("unknown option {other}")),
         }
@@ -210,11 +208,11 @@ fn main() {
         for (i, pc) in per.iter().enumerate() {
             let pc = Arc::clone(pc);
             let term = o.term.clone();
-            let glyphs = o.glyphs.clone();
+            let glyphs = o.glyphs.name();
             let (cols, rows) = (o.cols as u16, o.rows as u16);
             let idle = i < o.idle;
             tasks.push(tokio::spawn(async move {
-                let env = [("HALFCAST_GLYPHS", glyphs.as_str())];
+                let env = [("HALFCAST_GLYPHS", glyphs)];
                 let (h, mut ch, wire) = serve_support::open_counting(
                     addr,
                     &format!("bot{i}"),
@@ -331,7 +329,7 @@ fn main() {
         o.db,
         o.round_secs.unwrap_or(0),
         o.idle.min(o.clients),
-        o.glyphs,
+        o.glyphs.name(),
     );
 }
 
