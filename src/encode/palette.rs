@@ -135,11 +135,11 @@ impl Palette {
         (bin(c.r) << (2 * LUT_BITS)) | (bin(c.g) << LUT_BITS) | bin(c.b)
     }
 
-    /// Whether cells are drawn with mixes ([`Palette::cell_at`]): at 256 and 16 colours.
+    /// Whether cells are drawn with mixes ([`Palette::cell_at`]): [`ColorLevel::mixes`].
     #[must_use]
     #[inline]
     pub fn mixes(&self) -> bool {
-        self.tables.is_some()
+        self.level.mixes()
     }
 
     /// The `[top, bottom]` codes of a cell showing pixels `top` over `bottom` whose upper pixel
