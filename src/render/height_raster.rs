@@ -17,8 +17,7 @@ use crate::render::raster::{face_texture_x, heading_of, Y_SIDE_SHADE};
 use crate::render::scene::Scene;
 use crate::vec2::Vec2;
 use crate::world::lightmap::{Corners, LightMap, Probe};
-use crate::world::texel_index;
-use crate::world::Paint;
+use crate::world::{texel_index, Paint};
 
 /// Paints `cast` (from [`crate::render::height_cast::cast_heights`] at `fb`'s size) and the sprites.
 pub fn rasterize_heights(scene: &Scene, cast: &Cast, fb: &mut Framebuffer) -> Vec<SpriteOutcome> {

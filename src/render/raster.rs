@@ -11,8 +11,7 @@ use crate::render::light::{Shade, ShadeTable};
 use crate::render::point_light;
 use crate::render::scene::Scene;
 use crate::vec2::Vec2;
-use crate::world::texel_index;
-use crate::world::{Fill, World};
+use crate::world::{texel_index, Fill, World};
 
 /// Brightness (of 256) of faces hit on a y side, so corners read as corners.
 pub const Y_SIDE_SHADE: u16 = 184;

@@ -19,14 +19,14 @@ use crate::texture::decode::{
 use crate::texture::key_tint::{key_colour, tinted};
 use crate::texture::sheet::SpriteSheet;
 use crate::texture::{builtin, Texture};
-
-/// Texel indices as the world's samplers make them, for the rasterizers' own texture reads
-/// (they reach textures through the world).
-pub use crate::texture::texel_index;
 use crate::vec2::Vec2;
 use crate::world::door::DoorState;
 use crate::world::lightmap::LightMap;
 use crate::world::sprite::Sprite;
+
+/// Texel indices as the world's samplers make them, for the rasterizers' own texture reads
+/// (they reach textures through the world).
+pub use crate::texture::texel_index;
 
 /// The default map, compiled in so the binary needs no files.
 pub const DEFAULT_MAP: &str = include_str!("../../maps/default.cub");
