@@ -338,10 +338,9 @@ pub fn colours(s: &vt100::Screen) -> Vec<(u8, u8, u8)> {
 }
 
 /// Opens a pty shell as `user` over a stream that counts wire bytes received (after SSH
-/// compression and encryption), offering only `compression`; the load test reads the channel
-/// itself.
+/// compression and encryption), offering only `compression`, and sends `env` first (as
+/// `ssh -o SetEnv` does); the load test reads the channel itself.
 #[allow(dead_code)] // examples/serve_bench's load test; the serve tests read through `Client`
-/// Opens a shell like [`Client::connect_with`] does, first sending `env` (as `ssh -o SetEnv`).
 pub async fn open_counting(
     addr: std::net::SocketAddr,
     user: &str,
