@@ -7,8 +7,8 @@
 //!     [--metrics on] [--db on] [--round-secs N] [--idle N]`
 //!
 //! `--glyphs quadrant|sextant|octant` has every client ask for that view setting (the
-//! `HALFCAST_GLYPHS` variable `ssh -o SetEnv=…` sends). `--map` serves that map file (e.g. one with creatures, to see what game logic costs)
-//! instead of the embedded default. `--metrics on` installs the Prometheus recorder and its
+//! `HALFCAST_GLYPHS` variable `ssh -o SetEnv=…` sends). `--map` serves that map file (e.g. one
+//! with creatures, to see what game logic costs) instead of the embedded default. `--metrics on` installs the Prometheus recorder and its
 //! listener (on a free loopback port, scraped once a second as Prometheus would, more often),
 //! `--db on` keeps the SQLite leaderboard in a temporary file; `--round-secs N` ends each
 //! round after N seconds so rounds (and their leaderboard writes and results screens) happen
