@@ -157,9 +157,31 @@ fn draw_one(
         let u = (x as f64 - p.left) / width;
         let tx = x0 + ((u * cell_w as f64) as usize).min(cell_w - 1);
         let (colours, alphas) = sheet.column(tx);
+        // The frame's rows of this column that are not clear: none, or a span to walk. Rows
+        // above it are passed by stepping `v` alone, and the walk stops below it (`v` only
+        // grows down the stripe).
+        let seen = sheet.opaque_rows(tx);
+        let (first, end) = (
+            seen.start.saturating_sub(y0).min(cell_h),
+            seen.end.saturating_sub(y0).min(cell_h),
+        );
+        if first >= end {
+            continue;
+        }
+        let grows = v_step > 0.0;
         let mut v = v_start;
-        for y in p.rows.0..p.rows.1 {
-            let ty = y0 + texel_index(v).min(cell_h - 1);
+        let mut from = p.rows.0;
+        while grows && from < p.rows.1 && v < first as f64 {
+            v += v_step;
+            from += 1;
+        }
+        let pu = dither_phase::index(u, per_u);
+        for y in from..p.rows.1 {
+            let t = texel_index(v).min(cell_h - 1);
+            if grows && t >= end {
+                break;
+            }
+            let ty = y0 + t;
             v += v_step;
             let a = alphas[ty];
             if a == 0 {
@@ -193,10 +215,7 @@ fn draw_one(
             fb.set(x, y, out);
             if phases {
                 let pv = (y as f64 + 0.5 - p.top) / (p.bottom - p.top);
-                let phase = dither_phase::at(
-                    dither_phase::index(u, per_u),
-                    dither_phase::index(pv, per_v),
-                );
+                let phase = dither_phase::at(pu, dither_phase::index(pv, per_v));
                 fb.set_phase(x, y, phase);
             }
         }

@@ -19,6 +19,9 @@ pub struct SpriteSheet {
     alpha: Arc<[u8]>,
     /// Mean colour of the mostly opaque texels, for overviews (the minimap).
     mean: Rgb,
+    /// Per column, the rows from its first to its last texel that is not fully clear (empty
+    /// for a clear column): a sprite stripe need not walk the clear rows above and below.
+    opaque: Arc<[(u32, u32)]>,
 }
 
 impl SpriteSheet {
@@ -38,14 +41,23 @@ impl SpriteSheet {
                 alpha.push(a);
             }
         }
-        let opaque = texels.iter().zip(&alpha).filter(|&(_, &a)| a >= 128);
-        let mean = Rgb::mean(opaque.map(|(&c, _)| c));
+        let mostly = texels.iter().zip(&alpha).filter(|&(_, &a)| a >= 128);
+        let mean = Rgb::mean(mostly.map(|(&c, _)| c));
+        let opaque = alpha
+            .chunks(height.max(1))
+            .map(|column| {
+                let first = column.iter().position(|&a| a > 0).unwrap_or(0);
+                let end = column.iter().rposition(|&a| a > 0).map_or(0, |i| i + 1);
+                (first as u32, end as u32)
+            })
+            .collect();
         Self {
             width,
             height,
             texels: texels.into(),
             alpha: alpha.into(),
             mean,
+            opaque,
         }
     }
 
@@ -111,6 +123,15 @@ impl SpriteSheet {
     pub fn column(&self, x: usize) -> (&[Rgb], &[u8]) {
         let r = x * self.height..(x + 1) * self.height;
         (&self.texels[r.clone()], &self.alpha[r])
+    }
+
+    /// The rows of column `x` from its first to its last texel that is not fully clear, as a
+    /// range (empty when the whole column is clear).
+    #[must_use]
+    #[inline]
+    pub fn opaque_rows(&self, x: usize) -> std::ops::Range<usize> {
+        let (first, end) = self.opaque.get(x).copied().unwrap_or_default();
+        first as usize..end as usize
     }
 }
 
