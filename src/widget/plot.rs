@@ -1,6 +1,7 @@
 //! Tiny drawing primitives on a [`Framebuffer`] used as a canvas (the minimap's pixels).
 
 use crate::color::Rgb;
+use crate::render::fast_floor::fast_floor;
 use crate::render::framebuffer::Framebuffer;
 
 /// Mixes `over` onto `under` with opacity `alpha` in 0..=256.
@@ -32,10 +33,7 @@ pub fn line(fb: &mut Framebuffer, from: (f64, f64), to: (f64, f64), c: Rgb, alph
     let mut last = None;
     for i in 0..=n {
         let t = i as f64 / n as f64;
-        let p = (
-            (from.0 + dx * t).floor() as i64,
-            (from.1 + dy * t).floor() as i64,
-        );
+        let p = (fast_floor(from.0 + dx * t), fast_floor(from.1 + dy * t));
         if last != Some(p) {
             blend(fb, p.0, p.1, c, alpha);
             last = Some(p);
@@ -60,13 +58,15 @@ pub fn disc(fb: &mut Framebuffer, at: (f64, f64), radius: f64, c: Rgb, alpha: u1
     if !(radius.is_finite() && at.0.is_finite() && at.1.is_finite()) || radius > 1e4 {
         return;
     }
+    // The bounding box, cut to the canvas (the minimap's sprites are mostly off it).
+    let (w, h) = (fb.width() as i64, fb.height() as i64);
     let (x0, x1) = (
-        (at.0 - radius).floor() as i64,
-        (at.0 + radius).ceil() as i64,
+        fast_floor(at.0 - radius).max(0),
+        (-fast_floor(-(at.0 + radius))).min(w),
     );
     let (y0, y1) = (
-        (at.1 - radius).floor() as i64,
-        (at.1 + radius).ceil() as i64,
+        fast_floor(at.1 - radius).max(0),
+        (-fast_floor(-(at.1 + radius))).min(h),
     );
     for y in y0..y1 {
         for x in x0..x1 {
@@ -101,5 +101,27 @@ mod tests {
         line(&mut fb, (0.0, 0.0), (f64::INFINITY, 1.0), white, 256);
         dot(&mut fb, (0.0, 0.0), 3, white);
         assert!(fb.row(2).iter().all(|&p| p == white));
+    }
+
+    #[test]
+    fn discs_cut_by_the_canvas_keep_exactly_the_pixel_centres_inside() {
+        let white = Rgb::new(255, 255, 255);
+        for &(at, r) in &[
+            ((2.5, 2.5), 1.5),
+            ((-0.7, 3.2), 2.3),
+            ((6.1, -1.4), 3.0),
+            ((-9.0, -9.0), 2.0),
+            ((4.0, 5.9), 0.8),
+        ] {
+            let mut fb = Framebuffer::new(6, 5);
+            disc(&mut fb, at, r, white, 256);
+            for y in 0..5 {
+                for x in 0..6 {
+                    let (dx, dy) = (x as f64 + 0.5 - at.0, y as f64 + 0.5 - at.1);
+                    let inside = dx * dx + dy * dy <= r * r;
+                    assert_eq!(fb.get(x, y) == white, inside, "{at:?} {r} at ({x}, {y})");
+                }
+            }
+        }
     }
 }
