@@ -24,7 +24,7 @@ use crate::encode::{ColorLevel, EncodeOptions, Encoder, SYNC_BEGIN, SYNC_END};
 use crate::render::framebuffer::Framebuffer;
 use crate::render::glyphs::Glyphs;
 use crate::termframe::ratatui_rgb;
-use crate::widget::half_block::{row_cells, to_color, UPPER_HALF, VIEW_CELL};
+use crate::widget::half_block::{is_view_cell, row_cells, to_color, UPPER_HALF};
 
 /// Turns whole screens into the bytes that update a terminal from the previous screen.
 #[derive(Debug)]
@@ -121,7 +121,7 @@ impl Presenter {
         if usable
             && view.glyphs() != Glyphs::Half
             && (level == ColorLevel::TrueColor
-                || view_area.positions().any(|p| next[p] != VIEW_CELL))
+                || view_area.positions().any(|p| !is_view_cell(&next[p])))
         {
             glyph_cells(view, &mut self.chosen);
         }
@@ -153,7 +153,7 @@ impl Presenter {
                     };
                     // Through the cell diff: the view's own cells as `HalfBlockView` draws them, and
                     // what was drawn over them (which may have kept their skip mark) sent too.
-                    if *c == VIEW_CELL {
+                    if is_view_cell(c) {
                         *c = Cell::EMPTY;
                         if usable && cy < view.cell_rows() {
                             let (ch, fg, bg) = view_look(view, &self.chosen, (cx, cy));
@@ -310,7 +310,7 @@ fn plain_ascii(buf: &mut Buffer) {
 /// The cells drawn over the view, row by row: cells of the view area that are neither the
 /// view's own cell (`▀`, or at a finer glyph setting its `chosen` cell) nor left empty (callers
 /// may leave the view's cells blank); and whether every cell of the view area is already
-/// skipped by the cell diff (as [`VIEW_CELL`] is, and what is drawn over it keeps), read in the
+/// skipped by the cell diff (as [`VIEW_CELL`](crate::widget::half_block::VIEW_CELL) is, and what is drawn over it keeps), read in the
 /// same pass so the view's cells need no second one to be marked.
 fn covering(
     screen: &Buffer,
@@ -336,7 +336,7 @@ fn covering(
         {
             let x = at.x + cx as u16;
             skipped_too &= c.diff_option == CellDiffOption::Skip;
-            let is_view = *c == VIEW_CELL || {
+            let is_view = is_view_cell(c) || {
                 let (ch, fg, bg) = view_look(view, chosen, (cx, cy));
                 c.symbol() == ch.encode_utf8(&mut [0u8; 4]) && c.fg == fg && c.bg == bg
             };
@@ -353,6 +353,7 @@ mod tests {
     use super::*;
     use crate::color::Rgb;
     use crate::termframe::{from_screen, TermFrame};
+    use crate::widget::half_block::VIEW_CELL;
     use ratatui::style::{Color, Style};
     use ratatui::widgets::Widget;
 

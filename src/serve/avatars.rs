@@ -15,7 +15,7 @@ use crate::render::cast::Cast;
 use crate::render::framebuffer::Framebuffer;
 use crate::render::sprite_projection::project_on;
 use crate::texture::builtin;
-use crate::widget::half_block::VIEW_CELL;
+use crate::widget::half_block::is_view_cell;
 use crate::widget::minimap::MapView;
 use crate::world::sprite::Sprite;
 use crate::world::World;
@@ -176,7 +176,7 @@ pub fn mark_players(
 }
 
 /// Writes `tags` in the screen buffer over the view whose area is `view` (bold, in the player's
-/// colour on a dark backing), on the view's own cells only (those still [`VIEW_CELL`], as the
+/// colour on a dark backing), on the view's own cells only (those still [`VIEW_CELL`](crate::widget::half_block::VIEW_CELL), as the
 /// screen is drawn for the presenter): an overlay drawn over the view (the help, a message)
 /// stays on top. The presenter sends such cells after the view's own bytes.
 pub fn draw_tags(buf: &mut Buffer, view: Rect, tags: &[Tag]) {
@@ -192,7 +192,7 @@ pub fn draw_tags(buf: &mut Buffer, view: Rect, tags: &[Tag]) {
                 break;
             }
             let cell = &mut buf[(x, y)];
-            if *cell == VIEW_CELL {
+            if is_view_cell(cell) {
                 cell.set_char(ch).set_style(style);
             }
         }

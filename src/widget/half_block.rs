@@ -26,6 +26,20 @@ pub const VIEW_CELL: Cell = {
     c
 };
 
+/// Whether `cell` is still exactly [`VIEW_CELL`]: `*cell == VIEW_CELL`, with the cheap fields
+/// first and the symbol read without a string comparison. The presenter asks this of every
+/// view cell of every frame, and ratatui's `==` is a call that compares every field.
+#[must_use]
+#[inline]
+pub fn is_view_cell(cell: &Cell) -> bool {
+    #[allow(deprecated)] // ratatui's old skip flag is still part of a cell's equality
+    let skip = cell.skip;
+    cell.diff_option == CellDiffOption::Skip
+        && !skip
+        && cell.style() == VIEW_CELL.style()
+        && cell.symbol().as_bytes() == b" "
+}
+
 /// Where row `y` of `at` lies in the cells of a buffer over `area` (`at` within `area`): the view's
 /// cells and the panes around them are walked a row slice at a time, not a cell lookup each.
 #[must_use]
@@ -207,6 +221,50 @@ impl Widget for &HalfBlockView<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_quick_view_cell_test_agrees_with_equality() {
+        use ratatui::style::{Color, Modifier};
+        let mut cells = vec![VIEW_CELL, Cell::EMPTY, Cell::default()];
+        let mut spaced = VIEW_CELL;
+        spaced.set_symbol(" ");
+        cells.push(spaced);
+        let changes: [fn(&mut Cell); 6] = [
+            |c| {
+                c.set_char('x');
+            },
+            |c| {
+                c.set_symbol("  ");
+            },
+            |c| {
+                c.set_fg(Color::Red);
+            },
+            |c| {
+                c.set_bg(Color::Rgb(0, 0, 0));
+            },
+            |c| {
+                c.modifier = Modifier::BOLD;
+            },
+            |c| {
+                c.set_diff_option(CellDiffOption::None);
+            },
+        ];
+        for change in changes {
+            let mut c = VIEW_CELL;
+            change(&mut c);
+            cells.push(c);
+        }
+        #[allow(deprecated)]
+        {
+            let mut c = VIEW_CELL;
+            c.skip = true;
+            cells.push(c);
+        }
+        for c in &cells {
+            assert_eq!(is_view_cell(c), *c == VIEW_CELL, "{c:?}");
+        }
+        assert_eq!(cells.iter().filter(|c| is_view_cell(c)).count(), 2);
+    }
 
     fn pattern(cols: u16, rows: u16) -> Framebuffer {
         let mut fb = Framebuffer::for_cells(cols, rows);
