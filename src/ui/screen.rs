@@ -248,10 +248,51 @@ fn pane(title: Line<'static>) -> Block<'static> {
         .title(title)
 }
 
+/// Draws a pane's frame, exactly as `pane(title).render(r, buf)` does, and returns the area
+/// inside it. Every frame of every SSH session draws two; ratatui's `Block` restyles its whole
+/// area and reaches each border cell through a lookup of its own, this walks row slices.
+fn draw_pane(r: Rect, title: Line<'static>, buf: &mut Buffer) -> Rect {
+    let area = r.intersection(buf.area);
+    let inner = Block::bordered().inner(r);
+    if area.width < 2 || area.height < 2 {
+        // Sides and corners on the same cells: ratatui's order decides which is drawn.
+        pane(title).render(r, buf);
+        return inner;
+    }
+    let set = ratatui::symbols::border::ROUNDED;
+    let (top, bottom) = (area.top(), area.bottom() - 1);
+    for y in top..=bottom {
+        let row = &mut buf.content[row_cells(buf.area, area, y)];
+        let last = row.len() - 1;
+        let (left, middle, right) = if y == top {
+            (set.top_left, Some(set.horizontal_top), set.top_right)
+        } else if y == bottom {
+            (
+                set.bottom_left,
+                Some(set.horizontal_bottom),
+                set.bottom_right,
+            )
+        } else {
+            (set.vertical_left, None, set.vertical_right)
+        };
+        row[0].set_symbol(left).set_style(BORDER);
+        if let Some(m) = middle {
+            for c in &mut row[1..last] {
+                c.set_symbol(m).set_style(BORDER);
+            }
+        }
+        row[last].set_symbol(right).set_style(BORDER);
+    }
+    let room = area.width - 2;
+    if room > 0 {
+        let width = u16::try_from(title.width()).unwrap_or(u16::MAX).min(room);
+        title.render(Rect::new(area.x + 1, top, width, 1), buf);
+    }
+    inner
+}
+
 fn draw_minimap(screen: &Screen, revealed: Option<RevealedTrace>, r: Rect, buf: &mut Buffer) {
-    let block = pane(Line::from(Span::styled(" map ", TITLE)));
-    let inner = block.inner(r);
-    block.render(r, buf);
+    let inner = draw_pane(r, Line::from(Span::styled(" map ", TITLE)), buf);
     let s = screen.state;
     let things = minimap_things(s);
     let mut map = Minimap::new(&s.world, &s.camera, &screen.cast.columns)
@@ -286,9 +327,7 @@ fn draw_debug(
             Style::new().fg(Color::Rgb(255, 214, 64)),
         ));
     }
-    let block = pane(Line::from(title));
-    let inner = block.inner(r);
-    block.render(r, buf);
+    let inner = draw_pane(r, Line::from(title), buf);
     if let Some(t) = revealed {
         let cells = (usize::from(view_cells.0), usize::from(view_cells.1));
         let mono = screen.stats.level.map(|c| c.level) == Some(ColorLevel::Mono);
@@ -328,4 +367,45 @@ fn too_small(r: Rect, buf: &mut Buffer) {
         .wrap(Wrap { trim: true })
         .centered()
         .render(msg, buf);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_pane_frame_is_drawn_as_ratatuis_block_draws_it() {
+        let titles = || {
+            [
+                Line::from(Span::styled(" map ", TITLE)),
+                Line::from(vec![
+                    Span::styled(" ray ", TITLE),
+                    Span::styled("- column 12 ", BORDER),
+                ]),
+                Line::default(),
+            ]
+        };
+        let screen = Rect::new(0, 0, 12, 7);
+        // What was there before (the frame restyles cells, it does not replace them).
+        let mut under = Buffer::empty(screen);
+        under.set_string(0, 2, "abcdefghijkl", Style::new().bg(Color::Rgb(9, 8, 7)));
+        under.set_style(
+            Rect::new(3, 0, 4, 7),
+            Style::new().add_modifier(Modifier::BOLD),
+        );
+        for (w, h) in (0..=12).flat_map(|w| (0..=7).map(move |h| (w, h))) {
+            for (x, y) in [(0, 0), (2, 1), (9, 5)] {
+                for (a, b) in titles().into_iter().zip(titles()) {
+                    let r = Rect::new(x, y, w, h);
+                    let mut ours = under.clone();
+                    let mut theirs = under.clone();
+                    let inner = draw_pane(r, a, &mut ours);
+                    let block = pane(b);
+                    assert_eq!(inner, block.inner(r), "{r:?}");
+                    block.render(r, &mut theirs);
+                    assert_eq!(ours, theirs, "{r:?}");
+                }
+            }
+        }
+    }
 }
