@@ -310,8 +310,9 @@ fn plain_ascii(buf: &mut Buffer) {
 /// The cells drawn over the view, row by row: cells of the view area that are neither the
 /// view's own cell (`▀`, or at a finer glyph setting its `chosen` cell) nor left empty (callers
 /// may leave the view's cells blank); and whether every cell of the view area is already
-/// skipped by the cell diff (as [`VIEW_CELL`](crate::widget::half_block::VIEW_CELL) is, and what is drawn over it keeps), read in the
-/// same pass so the view's cells need no second one to be marked.
+/// skipped by the cell diff (as [`VIEW_CELL`](crate::widget::half_block::VIEW_CELL) is, and what
+/// is drawn over it keeps), read in the same pass so the view's cells need no second one to be
+/// marked.
 fn covering(
     screen: &Buffer,
     view: &Framebuffer,

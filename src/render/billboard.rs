@@ -244,6 +244,71 @@ mod tests {
         assert_eq!(sprite_base(&map, &map.sprite_defs[1]), 0.5);
     }
 
+    /// A sheet's clear rows above and below its opaque ones, and its clear columns, are stepped
+    /// over rather than walked: the pixels must be those of the same sheet walked whole. The
+    /// whole walk is forced by a second sheet whose clear texels are opaque green instead; where
+    /// it shows the red band, the first must show the same pixel, elsewhere what is behind.
+    #[test]
+    fn stepping_over_clear_rows_and_columns_draws_the_pixels_a_whole_walk_draws() {
+        use crate::camera::Camera;
+        use crate::texture::sheet::SpriteSheet;
+        use crate::world::sprite::Sprite;
+        use crate::world::World;
+        let base = World::default_world();
+        let start = base.map.start;
+        let sheet = |clear: Option<Rgb>| {
+            SpriteSheet::from_fn(8, 16, move |x, y| {
+                if x != 3 && (5..9).contains(&y) && !(x == 6 && y == 8) {
+                    (Rgb::new(255, 0, 0), 255)
+                } else {
+                    clear.map_or((Rgb::default(), 0), |c| (c, 255))
+                }
+            })
+        };
+        let (mut red_seen, mut green_seen) = (0, 0);
+        for (turn, ahead, tall) in [(0.0, 1.3, 1.0), (10.0, 2.5, 0.6), (-20.0, 0.8, 1.4)] {
+            let cam = Camera::from_angle(start.pos(), start.angle_deg() + turn, 66.0);
+            let mut def = base.sprites[0].def.clone();
+            def.pos = cam.pos + cam.dir * ahead;
+            (def.scale, def.offset, def.views, def.frames) = ((0.8, tall), 0.1, 1, 1);
+            def.blend = Blend::Normal;
+            let draw = |sheet: Option<SpriteSheet>| {
+                let mut world = base.clone();
+                world.sprites.clear();
+                if let Some(sheet) = sheet {
+                    world.sheets.push(sheet);
+                    let sheet = world.sheets.len() - 1;
+                    world.sprites.push(Sprite {
+                        def: def.clone(),
+                        sheet,
+                    });
+                }
+                let mut fb = Framebuffer::new(90, 60);
+                Scene::new(&world, cam).render_into(&mut fb, None);
+                fb
+            };
+            let (behind, band, whole) = (
+                draw(None),
+                draw(Some(sheet(None))),
+                draw(Some(sheet(Some(Rgb::new(0, 255, 0))))),
+            );
+            for y in 0..60 {
+                for x in 0..90 {
+                    let w = whole.get(x, y);
+                    let red = w != behind.get(x, y) && w.r > w.g;
+                    red_seen += usize::from(red);
+                    green_seen += usize::from(w.g > w.r);
+                    let want = if red { w } else { behind.get(x, y) };
+                    assert_eq!(band.get(x, y), want, "turn {turn} at ({x}, {y})");
+                }
+            }
+        }
+        assert!(
+            red_seen > 100 && green_seen > 100,
+            "{red_seen} {green_seen}"
+        );
+    }
+
     #[test]
     fn mixing_by_alpha() {
         let (bg, fg) = (Rgb::new(0, 100, 200), Rgb::new(200, 100, 0));

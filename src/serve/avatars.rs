@@ -176,9 +176,9 @@ pub fn mark_players(
 }
 
 /// Writes `tags` in the screen buffer over the view whose area is `view` (bold, in the player's
-/// colour on a dark backing), on the view's own cells only (those still [`VIEW_CELL`](crate::widget::half_block::VIEW_CELL), as the
-/// screen is drawn for the presenter): an overlay drawn over the view (the help, a message)
-/// stays on top. The presenter sends such cells after the view's own bytes.
+/// colour on a dark backing), on the view's own cells only (those still
+/// [`VIEW_CELL`](crate::widget::half_block::VIEW_CELL), as the screen is drawn for the
+/// presenter): an overlay drawn over the view (the help, a message) stays on top. The presenter sends such cells after the view's own bytes.
 pub fn draw_tags(buf: &mut Buffer, view: Rect, tags: &[Tag]) {
     for t in tags {
         let style = Style::new()

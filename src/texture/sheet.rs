@@ -140,6 +140,24 @@ mod tests {
     use super::*;
 
     #[test]
+    fn each_column_knows_its_rows_from_the_first_to_the_last_texel_not_clear() {
+        // Column 0 clear; column 1 faint at rows 1 and 4 (clear between); column 2 all opaque.
+        let s = SpriteSheet::from_fn(3, 6, |x, y| {
+            let a = match x {
+                0 => 0,
+                1 if y == 1 || y == 4 => 3,
+                1 => 0,
+                _ => 255,
+            };
+            (Rgb::new(1, 2, 3), a)
+        });
+        assert!(s.opaque_rows(0).is_empty());
+        assert_eq!(s.opaque_rows(1), 1..5);
+        assert_eq!(s.opaque_rows(2), 0..6);
+        assert!(s.opaque_rows(3).is_empty(), "past the last column");
+    }
+
+    #[test]
     fn a_clone_reads_the_same_texels() {
         let a = SpriteSheet::from_fn(4, 3, |x, y| (Rgb::new(x as u8, y as u8, 0), 200));
         let b = a.clone();

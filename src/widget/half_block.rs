@@ -26,9 +26,9 @@ pub const VIEW_CELL: Cell = {
     c
 };
 
-/// Whether `cell` is still exactly [`VIEW_CELL`]: `*cell == VIEW_CELL`, with the cheap fields
-/// first and the symbol read without a string comparison. The presenter asks this of every
-/// view cell of every frame, and ratatui's `==` is a call that compares every field.
+/// Whether `cell` is still exactly [`VIEW_CELL`]: `*cell == VIEW_CELL`, the cheap fields first
+/// and the symbol against one constant byte. The presenter asks this of every view cell of
+/// every frame, and ratatui's `==` is a call that compares every field and both symbols.
 #[must_use]
 #[inline]
 pub fn is_view_cell(cell: &Cell) -> bool {
