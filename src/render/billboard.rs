@@ -256,9 +256,11 @@ mod tests {
         use crate::world::World;
         let base = World::default_world();
         let start = base.map.start;
+        // Two animation frames of 16 rows, each with its own band; the second is drawn.
         let sheet = |clear: Option<Rgb>| {
-            SpriteSheet::from_fn(8, 16, move |x, y| {
-                if x != 3 && (5..9).contains(&y) && !(x == 6 && y == 8) {
+            SpriteSheet::from_fn(8, 32, move |x, y| {
+                let band = if y < 16 { 10..14 } else { 21..25 };
+                if x != 3 && band.contains(&y) && !(x == 6 && y == 24) {
                     (Rgb::new(255, 0, 0), 255)
                 } else {
                     clear.map_or((Rgb::default(), 0), |c| (c, 255))
@@ -270,7 +272,7 @@ mod tests {
             let cam = Camera::from_angle(start.pos(), start.angle_deg() + turn, 66.0);
             let mut def = base.sprites[0].def.clone();
             def.pos = cam.pos + cam.dir * ahead;
-            (def.scale, def.offset, def.views, def.frames) = ((0.8, tall), 0.1, 1, 1);
+            (def.scale, def.offset, def.views, def.frames, def.fps) = ((0.8, tall), 0.1, 1, 2, 1.0);
             def.blend = Blend::Normal;
             let draw = |sheet: Option<SpriteSheet>| {
                 let mut world = base.clone();
@@ -284,7 +286,9 @@ mod tests {
                     });
                 }
                 let mut fb = Framebuffer::new(90, 60);
-                Scene::new(&world, cam).render_into(&mut fb, None);
+                Scene::new(&world, cam)
+                    .at_time(1.5)
+                    .render_into(&mut fb, None);
                 fb
             };
             let (behind, band, whole) = (
@@ -292,6 +296,9 @@ mod tests {
                 draw(Some(sheet(None))),
                 draw(Some(sheet(Some(Rgb::new(0, 255, 0))))),
             );
+            let phases = |fb: &Framebuffer| fb.phases().expect("phases are wanted").to_vec();
+            let (behind_phases, band_phases, whole_phases) =
+                (phases(&behind), phases(&band), phases(&whole));
             for y in 0..60 {
                 for x in 0..90 {
                     let w = whole.get(x, y);
@@ -300,6 +307,13 @@ mod tests {
                     green_seen += usize::from(w.g > w.r);
                     let want = if red { w } else { behind.get(x, y) };
                     assert_eq!(band.get(x, y), want, "turn {turn} at ({x}, {y})");
+                    let i = y * 90 + x;
+                    let phase = if red {
+                        whole_phases[i]
+                    } else {
+                        behind_phases[i]
+                    };
+                    assert_eq!(band_phases[i], phase, "turn {turn} phase at ({x}, {y})");
                 }
             }
         }

@@ -382,6 +382,7 @@ mod tests {
                     Span::styled(" ray ", TITLE),
                     Span::styled("- column 12 ", BORDER),
                 ]),
+                Line::from(Span::styled(" \u{5730}\u{56f3} map ", TITLE)),
                 Line::default(),
             ]
         };

@@ -62,11 +62,11 @@ pub fn disc(fb: &mut Framebuffer, at: (f64, f64), radius: f64, c: Rgb, alpha: u1
     let (w, h) = (fb.width() as i64, fb.height() as i64);
     let (x0, x1) = (
         fast_floor(at.0 - radius).max(0),
-        (-fast_floor(-(at.0 + radius))).min(w),
+        fast_floor(-(at.0 + radius)).saturating_neg().min(w),
     );
     let (y0, y1) = (
         fast_floor(at.1 - radius).max(0),
-        (-fast_floor(-(at.1 + radius))).min(h),
+        fast_floor(-(at.1 + radius)).saturating_neg().min(h),
     );
     for y in y0..y1 {
         for x in x0..x1 {
@@ -112,6 +112,8 @@ mod tests {
             ((6.1, -1.4), 3.0),
             ((-9.0, -9.0), 2.0),
             ((4.0, 5.9), 0.8),
+            ((1e19, 2.0), 1.0),
+            ((-1e19, 2.0), 1.0),
         ] {
             let mut fb = Framebuffer::new(6, 5);
             disc(&mut fb, at, r, white, 256);
