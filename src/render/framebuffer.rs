@@ -70,10 +70,17 @@ impl Framebuffer {
         let (c, r) = glyphs.cell_size();
         let size = (usize::from(cols) * c, usize::from(rows) * r);
         if (size, glyphs) != ((self.width, self.height), self.glyphs) {
-            let wanted = self.phases_wanted;
-            *self = Self::for_glyphs(cols, rows, glyphs);
-            self.phases_wanted = wanted;
+            self.renew(Self::for_glyphs(cols, rows, glyphs));
         }
+    }
+
+    /// Becomes `fresh` (a new size or glyph setting) but keeps whether phases are wanted: that
+    /// is the caller's choice, not part of the picture.
+    fn renew(&mut self, fresh: Self) {
+        *self = Self {
+            phases_wanted: self.phases_wanted,
+            ..fresh
+        };
     }
 
     /// Whether renderers should write dither phases. Only an encoder that draws colours as mixes
@@ -147,9 +154,7 @@ impl Framebuffer {
     /// reuse is free.
     pub fn resize(&mut self, width: usize, height: usize) {
         if (width, height, Glyphs::Half) != (self.width, self.height, self.glyphs) {
-            let wanted = self.phases_wanted;
-            *self = Self::new(width, height);
-            self.phases_wanted = wanted;
+            self.renew(Self::new(width, height));
         }
     }
 

@@ -60,14 +60,9 @@ pub fn disc(fb: &mut Framebuffer, at: (f64, f64), radius: f64, c: Rgb, alpha: u1
     }
     // The bounding box, cut to the canvas (the minimap's sprites are mostly off it).
     let (w, h) = (fb.width() as i64, fb.height() as i64);
-    let (x0, x1) = (
-        fast_floor(at.0 - radius).max(0),
-        fast_floor(-(at.0 + radius)).saturating_neg().min(w),
-    );
-    let (y0, y1) = (
-        fast_floor(at.1 - radius).max(0),
-        fast_floor(-(at.1 + radius)).saturating_neg().min(h),
-    );
+    let ceil = |v: f64| fast_floor(-v).saturating_neg();
+    let (x0, x1) = (fast_floor(at.0 - radius).max(0), ceil(at.0 + radius).min(w));
+    let (y0, y1) = (fast_floor(at.1 - radius).max(0), ceil(at.1 + radius).min(h));
     for y in y0..y1 {
         for x in x0..x1 {
             let (dx, dy) = (x as f64 + 0.5 - at.0, y as f64 + 0.5 - at.1);
