@@ -83,6 +83,7 @@ impl Rig {
             toggles: Toggles::default(),
             input_mode: InputMode::Emulated,
             results: None,
+            ray_text: None,
         };
         let before = self.bytes.0.get();
         let panes = self.panes;

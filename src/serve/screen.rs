@@ -3,6 +3,7 @@
 //! and put on the wire by the same `Presenter` (ratatui's diff for the panes, the byte-lean
 //! encoder for the view).
 
+use std::cell::RefCell;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -26,6 +27,7 @@ use crate::ui::results::{Board, Results, Then};
 use crate::ui::screen::{draw_for_presenter, draw_notice, Screen};
 use crate::ui::stats::FrameStats;
 use crate::ui::status::BAR;
+use crate::widget::KeptLines;
 use crate::world::World;
 
 /// Rows above the TUI's panes: the header.
@@ -47,6 +49,8 @@ pub struct SessionScreen {
     base_sprites: usize,
     avatar_sheet: usize,
     presenter: Presenter,
+    /// The ray pane's lines, kept from frame to frame.
+    ray_text: RefCell<KeptLines>,
     fb: Framebuffer,
     stats: FrameStats,
     /// The frame's bytes: the presenter's, plus other players' name tags over the view.
@@ -135,6 +139,7 @@ impl SessionScreen {
             times: Default::default(),
             avatar_sheet,
             presenter: Presenter::new(EncodeOptions::new(level)),
+            ray_text: RefCell::default(),
             fb: Framebuffer::new(0, 0),
             stats,
             out: Vec::new(),
@@ -287,6 +292,7 @@ impl SessionScreen {
                     toggles: self.toggles,
                     input_mode: mode,
                     results: results.as_ref(),
+                    ray_text: Some(&self.ray_text),
                 };
                 draw_for_presenter(&screen, &panes, body, &mut buf, KeyMap::shared_default());
                 if let (Some((text, until)), Panes::Game { status, .. }) = (&self.notice, panes) {

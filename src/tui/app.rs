@@ -1,5 +1,6 @@
 //! The game loop: input → step → render → draw, paced to a target frame rate.
 
+use std::cell::RefCell;
 use std::io;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
@@ -20,7 +21,7 @@ use crate::ui::keys::{Controls, UiCommand};
 use crate::ui::layout::{Panes, Toggles, COMPACT_MIN_WIDTH};
 use crate::ui::render::render_view;
 use crate::ui::results::{Results, Then};
-use crate::ui::screen::{draw_for_presenter, draw_notice, Screen};
+use crate::ui::screen::{draw_for_presenter, draw_notice, KeptLines, Screen};
 use crate::ui::stats::FrameStats;
 
 /// How a play session ended.
@@ -107,6 +108,8 @@ struct App {
     stats: FrameStats,
     fb: Framebuffer,
     presenter: Presenter,
+    /// The ray pane's lines, kept from frame to frame.
+    ray_text: RefCell<KeptLines>,
     pacer: Option<Pacer>,
     recording: Option<Recording>,
     /// Whether frames are still being recorded (a recording ends at the level's exit).
@@ -154,6 +157,7 @@ pub fn run_loop(
         stats: FrameStats::default(),
         fb: Framebuffer::new(0, 0),
         presenter: Presenter::new(options.encode),
+        ray_text: RefCell::default(),
         pacer: options.max_bandwidth.map(|bits| Pacer::new(bits, fps)),
         recording: options.record.then(Recording::default),
         recording_open: true,
@@ -347,6 +351,7 @@ pub fn run_loop(
             toggles: app.toggles,
             input_mode: app.controls.mode(),
             results: app.results.as_ref(),
+            ray_text: Some(&app.ray_text),
         };
         let mut buf = Buffer::empty(area);
         draw_for_presenter(&screen, &panes, area, &mut buf, &app.keys);

@@ -1,5 +1,6 @@
 //! Plays a [`Replay`] headlessly at a fixed timestep: the same file gives the same frames.
 
+use std::cell::RefCell;
 use std::sync::Arc;
 
 use ratatui::buffer::Buffer;
@@ -16,6 +17,7 @@ use crate::ui::render::render_view;
 use crate::ui::results::{Results, Then};
 use crate::ui::screen::{draw, Screen};
 use crate::ui::stats::FrameStats;
+use crate::widget::KeptLines;
 use crate::world::World;
 
 /// One replayed frame: the whole screen as cells, the 3D view's pixels and its rays.
@@ -43,6 +45,8 @@ pub struct Player {
     view: Framebuffer,
     /// The results screen, once the level's exit was reached.
     results: Option<Results>,
+    /// The ray pane's lines, kept from frame to frame.
+    ray_text: RefCell<KeptLines>,
 }
 
 impl Player {
@@ -64,6 +68,7 @@ impl Player {
             next: 0,
             view: Framebuffer::new(0, 0),
             results: None,
+            ray_text: RefCell::default(),
         }
     }
 
@@ -131,6 +136,7 @@ impl Player {
             toggles: self.toggles,
             input_mode: InputMode::Emulated,
             results: self.results.as_ref(),
+            ray_text: Some(&self.ray_text),
         };
         draw(&s, &panes, area, &mut screen);
         let frame = Frame {

@@ -1,5 +1,7 @@
 //! The draw stage of a frame: lays the panes out in a terminal buffer. Reads state only.
 
+use std::cell::RefCell;
+
 use ratatui::buffer::{Buffer, Cell};
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Modifier, Style};
@@ -20,6 +22,9 @@ use crate::widget::half_block::{row_cells, VIEW_CELL};
 use crate::widget::minimap::Thing;
 use crate::widget::{DebugPane, HalfBlockView, Minimap, RevealedTrace};
 
+/// What a loop keeps for [`Screen::ray_text`].
+pub use crate::widget::KeptLines;
+
 const BORDER: Style = Style::new().fg(Color::Rgb(84, 90, 112));
 const TITLE: Style = Style::new()
     .fg(Color::Rgb(110, 200, 230))
@@ -38,6 +43,9 @@ pub struct Screen<'a> {
     pub input_mode: InputMode,
     /// The results screen over everything, once the level's exit is reached.
     pub results: Option<&'a super::results::Results>,
+    /// The ray pane's lines of the last frame, kept by a loop that draws every frame so an
+    /// unchanged ray is not written out again (`None`: written each time).
+    pub ray_text: Option<&'a RefCell<KeptLines>>,
 }
 
 /// Draws the 3D view pane. The one place the view reaches the terminal buffer, so a byte-lean
@@ -337,7 +345,10 @@ fn draw_debug(
         if let Some(col) = screen.cast.heights.get(t.trace.column) {
             pane = pane.heights(col);
         }
-        pane.render(inner, buf);
+        match screen.ray_text {
+            Some(kept) => pane.render_kept(inner, buf, &mut kept.borrow_mut()),
+            None => pane.render(inner, buf),
+        }
     }
 }
 

@@ -15,6 +15,10 @@ use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::Widget;
 
+mod kept;
+
+pub use kept::KeptLines;
+
 use super::revealed::RevealedTrace;
 use crate::camera::Camera;
 use crate::map::Cell;
@@ -807,6 +811,14 @@ fn window(
 
 impl Widget for DebugPane<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
+        self.render_kept(area, buf, &mut KeptLines::default());
+    }
+}
+
+impl DebugPane<'_> {
+    /// Draws the pane as [`Widget::render`] does, its lines kept in `kept` for the next frame
+    /// (see [`DebugPane::lines_kept`]).
+    pub fn render_kept(self, area: Rect, buf: &mut Buffer, kept: &mut KeptLines) {
         let area = area.intersection(buf.area);
         if area.is_empty() {
             return;
@@ -817,7 +829,8 @@ impl Widget for DebugPane<'_> {
         };
         // The lines are wrapped and cut to the area already: each goes straight to its row
         // (a Paragraph would lay them out again, every frame of every SSH session).
-        for (row, line) in pane.lines(usize::from(area.height)).iter().enumerate() {
+        let lines = pane.lines_kept(usize::from(area.height), kept);
+        for (row, line) in lines.iter().enumerate() {
             let y = area.y + row as u16;
             if y >= area.bottom() {
                 break;

@@ -10,7 +10,7 @@ pub(crate) mod plot;
 pub(crate) mod revealed;
 pub(crate) mod text;
 
-pub use debug_pane::DebugPane;
+pub use debug_pane::{DebugPane, KeptLines};
 pub use half_block::HalfBlockView;
 pub use minimap::{Marker, Minimap};
 pub use revealed::RevealedTrace;

@@ -42,6 +42,7 @@ fn frame(w: u16, h: u16, toggles: Toggles, paused: bool) -> (Buffer, Rect) {
         toggles,
         input_mode: InputMode::Emulated,
         results: None,
+        ray_text: None,
     };
     let mut buf = Buffer::filled(
         Rect::new(0, 0, w + 6, h + 4),

@@ -427,6 +427,7 @@ fn screen(size: (u16, u16), steps: usize, level: ColorLevel) -> (Buffer, Rect) {
         toggles: Toggles::default(),
         input_mode: halfcast::ui::keys::InputMode::Emulated,
         results: None,
+        ray_text: None,
     };
     let mut buf = Buffer::empty(area);
     draw(&s, &panes, area, &mut buf);
