@@ -17,6 +17,7 @@ use ratatui::layout::Rect;
 use ratatui::style::{Color, Modifier};
 
 use crate::color::Rgb;
+use crate::encode::cell_diff::cell_diff;
 use crate::encode::cells::CellWriter;
 use crate::encode::glyph_cell::GlyphCell;
 use crate::encode::glyph_frame::glyph_cells;
@@ -195,7 +196,7 @@ impl Presenter {
             }
         };
         {
-            let diff = previous.diff(&next);
+            let diff = cell_diff(&previous, &next);
             if !diff.is_empty() {
                 self.cells.forget_cursor();
                 self.cells.draw(&mut self.out, diff.into_iter());

@@ -7,6 +7,7 @@
 //!   synchronized output); [`inline`]: a whole frame as printable lines for `render --format ansi`.
 //! - [`pacer`]: fitting the frame rate to a bandwidth cap.
 
+pub(crate) mod cell_diff;
 pub(crate) mod cells;
 mod cursor;
 pub(crate) mod encoder;
