@@ -14,6 +14,9 @@ pub(crate) mod glyphs;
 pub(crate) mod height_cast;
 pub(crate) mod height_column;
 pub(crate) mod height_raster;
+// Only the game screen (`ui`) renders one world frame after frame.
+#[cfg(feature = "ui")]
+pub(crate) mod kept_background;
 pub mod light;
 pub(crate) mod point_light;
 pub(crate) mod raster;

@@ -109,9 +109,31 @@ pub fn rasterize_frame(
     hits: &[ColumnHit],
     fb: &mut Framebuffer,
 ) -> Vec<SpriteOutcome> {
+    rasterize_background(scene, hits, fb);
+    rasterize_sprites(scene, hits, fb)
+}
+
+/// The sprites of [`rasterize_frame`], over a background already painted: each hidden behind
+/// the walls of `hits`.
+pub fn rasterize_sprites(
+    scene: &Scene,
+    hits: &[ColumnHit],
+    fb: &mut Framebuffer,
+) -> Vec<SpriteOutcome> {
+    if fb.width() == 0 || fb.height() == 0 {
+        return Vec::new();
+    }
+    let table = fb.shade_table(&scene.light);
+    draw_sprites(scene, Occluders::Columns(hits), fb, &table)
+}
+
+/// The background of [`rasterize_frame`]: floor, ceiling and walls (and their dither phases),
+/// which depend on the camera, the view, the light, the doors and the moving lights, but not
+/// on the sprites or the time.
+pub fn rasterize_background(scene: &Scene, hits: &[ColumnHit], fb: &mut Framebuffer) {
     let (w, h) = (fb.width(), fb.height());
     if w == 0 || h == 0 {
-        return Vec::new();
+        return;
     }
     // Vertical pixels per unit at distance 1: the camera's focal length, over the pixel's
     // height where the sub-grid's pixels are not square.
@@ -163,7 +185,6 @@ pub fn rasterize_frame(
             wall_phases(hits, span, x, fb);
         }
     }
-    draw_sprites(scene, Occluders::Columns(hits), fb, table)
 }
 
 /// Draws one wall column from its texture column, top to bottom, row `y` lit by `shade(y)`

@@ -19,10 +19,11 @@ use crate::game::multi::round::RoundEnd;
 use crate::present::Presenter;
 use crate::render::framebuffer::Framebuffer;
 use crate::render::glyphs::Glyphs;
+use crate::render::kept_background::KeptBackground;
 use crate::ui::keymap::KeyMap;
 use crate::ui::keys::InputMode;
 use crate::ui::layout::{Panes, Toggles};
-use crate::ui::render::render_view;
+use crate::ui::render::render_view_kept;
 use crate::ui::results::{Board, Results, Then};
 use crate::ui::screen::{draw_for_presenter, draw_notice, Screen};
 use crate::ui::stats::FrameStats;
@@ -51,6 +52,8 @@ pub struct SessionScreen {
     presenter: Presenter,
     /// The ray pane's lines, kept from frame to frame.
     ray_text: RefCell<KeptLines>,
+    /// The view's walls, floors and ceilings, kept from frame to frame.
+    background: KeptBackground,
     fb: Framebuffer,
     stats: FrameStats,
     /// The frame's bytes: the presenter's, plus other players' name tags over the view.
@@ -140,6 +143,7 @@ impl SessionScreen {
             avatar_sheet,
             presenter: Presenter::new(EncodeOptions::new(level)),
             ray_text: RefCell::default(),
+            background: KeptBackground::default(),
             fb: Framebuffer::new(0, 0),
             stats,
             out: Vec::new(),
@@ -201,6 +205,8 @@ impl SessionScreen {
             self.base_sprites = copy.sprites.len();
             self.avatar_sheet = sheet;
             self.world = Arc::new(copy);
+            // Another world, perhaps at the address of the last: its walls are not these.
+            self.background.forget();
         }
         self.source = Some(Arc::clone(world));
     }
@@ -277,7 +283,7 @@ impl SessionScreen {
                 };
                 self.fb.resize_cells(view.width, view.height, glyphs);
                 self.fb.set_phases_wanted(self.presenter.level().mixes());
-                let cast = render_view(&state, &mut self.fb);
+                let cast = render_view_kept(&state, &mut self.fb, &mut self.background);
                 let tags = avatars::mark_players(&mut self.fb, &state, &cast, snap, id);
                 render_time = started.elapsed();
                 let results = snap

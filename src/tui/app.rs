@@ -15,11 +15,12 @@ use crate::encode::{ColourChoice, ColourReason, EncodeOptions, Pacer};
 use crate::game::{step, Command, GameState};
 use crate::present::Presenter;
 use crate::render::framebuffer::Framebuffer;
+use crate::render::kept_background::KeptBackground;
 use crate::replay::FrameInput;
 use crate::ui::glyph_cycle::GlyphCycle;
 use crate::ui::keys::{Controls, UiCommand};
 use crate::ui::layout::{Panes, Toggles, COMPACT_MIN_WIDTH};
-use crate::ui::render::render_view;
+use crate::ui::render::render_view_kept;
 use crate::ui::results::{Results, Then};
 use crate::ui::screen::{draw_for_presenter, draw_notice, KeptLines, Screen};
 use crate::ui::stats::FrameStats;
@@ -110,6 +111,8 @@ struct App {
     presenter: Presenter,
     /// The ray pane's lines, kept from frame to frame.
     ray_text: RefCell<KeptLines>,
+    /// The view's walls, floors and ceilings, kept from frame to frame.
+    background: KeptBackground,
     pacer: Option<Pacer>,
     recording: Option<Recording>,
     /// Whether frames are still being recorded (a recording ends at the level's exit).
@@ -158,6 +161,7 @@ pub fn run_loop(
         fb: Framebuffer::new(0, 0),
         presenter: Presenter::new(options.encode),
         ray_text: RefCell::default(),
+        background: KeptBackground::default(),
         pacer: options.max_bandwidth.map(|bits| Pacer::new(bits, fps)),
         recording: options.record.then(Recording::default),
         recording_open: true,
@@ -292,6 +296,7 @@ pub fn run_loop(
                     app.stage += 1;
                 }
                 app.state = app.campaign.start(app.stage, app.state.speeds);
+                app.background.forget();
                 app.state.view_width = usize::from(view.width);
                 app.results = None;
             }
@@ -338,7 +343,7 @@ pub fn run_loop(
         };
         app.fb.resize_cells(view.width, view.height, glyphs);
         app.fb.set_phases_wanted(app.presenter.level().mixes());
-        let cast = render_view(&app.state, &mut app.fb);
+        let cast = render_view_kept(&app.state, &mut app.fb, &mut app.background);
         let render_time = t.elapsed();
 
         // 4. Draw the panes into a buffer, encode the frame, write it once.

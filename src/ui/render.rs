@@ -4,6 +4,7 @@ use crate::color::Rgb;
 use crate::game::GameState;
 use crate::render::cast::Cast;
 use crate::render::framebuffer::Framebuffer;
+use crate::render::kept_background::KeptBackground;
 use crate::render::scene::Scene;
 use crate::widget::plot::mix;
 
@@ -14,6 +15,21 @@ const MARK: Rgb = Rgb::new(255, 230, 60);
 /// with the debugged column traced; while paused that column is tinted so it can be found.
 /// At a finer glyph setting the rays are one per pixel column (2 per cell).
 pub fn render_view(state: &GameState, fb: &mut Framebuffer) -> Cast {
+    render(state, fb, None)
+}
+
+/// [`render_view`] for a loop that renders one world frame after frame: the walls, floors and
+/// ceilings are copied from `kept` when they would be the same as last frame's (the caller
+/// forgets `kept` when its world is replaced).
+pub(crate) fn render_view_kept(
+    state: &GameState,
+    fb: &mut Framebuffer,
+    kept: &mut KeptBackground,
+) -> Cast {
+    render(state, fb, Some(kept))
+}
+
+fn render(state: &GameState, fb: &mut Framebuffer, kept: Option<&mut KeptBackground>) -> Cast {
     let column = state.debug_column();
     let sprites = state.level.sprites(&state.world);
     let lights = state.level.lights();
@@ -28,7 +44,10 @@ pub fn render_view(state: &GameState, fb: &mut Framebuffer) -> Cast {
     // same ray: cameraX = 2·(2x)/(2W) − 1 = 2x/W − 1), and both sub-columns are tinted.
     let per_cell = fb.glyphs().cell_size().0;
     let traced = column * per_cell;
-    let cast = scene.render_into(fb, Some(traced));
+    let cast = match kept {
+        Some(kept) => scene.render_frame_kept(fb, Some(traced), kept).cast,
+        None => scene.render_into(fb, Some(traced)),
+    };
     if state.debugger.paused && traced < fb.width() {
         for x in traced..(traced + per_cell).min(fb.width()) {
             for y in 0..fb.height() {

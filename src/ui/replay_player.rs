@@ -10,10 +10,11 @@ use crate::camera::Camera;
 use crate::game::{step, GameState};
 use crate::render::cast::Cast;
 use crate::render::framebuffer::Framebuffer;
+use crate::render::kept_background::KeptBackground;
 use crate::replay::format::{FrameInput, Header, Replay};
 use crate::ui::keys::{InputMode, UiCommand};
 use crate::ui::layout::{Panes, Toggles};
-use crate::ui::render::render_view;
+use crate::ui::render::render_view_kept;
 use crate::ui::results::{Results, Then};
 use crate::ui::screen::{draw, Screen};
 use crate::ui::stats::FrameStats;
@@ -47,6 +48,8 @@ pub struct Player {
     results: Option<Results>,
     /// The ray pane's lines, kept from frame to frame.
     ray_text: RefCell<KeptLines>,
+    /// The view's walls, floors and ceilings, kept from frame to frame (one world throughout).
+    background: KeptBackground,
 }
 
 impl Player {
@@ -69,6 +72,7 @@ impl Player {
             view: Framebuffer::new(0, 0),
             results: None,
             ray_text: RefCell::default(),
+            background: KeptBackground::default(),
         }
     }
 
@@ -126,7 +130,7 @@ impl Player {
         }
         self.view
             .resize_cells(view.width, view.height, self.stats.glyphs);
-        let cast = render_view(&self.state, &mut self.view);
+        let cast = render_view_kept(&self.state, &mut self.view, &mut self.background);
         let mut screen = Buffer::empty(area);
         let s = Screen {
             state: &self.state,
