@@ -14,7 +14,7 @@
 
 use super::lane_split::{self, Pixels, Split, SplitSums, LANES};
 use crate::color::{channel_to_linear, lab_dist2, oklab, Linear, Rgb};
-use wide::{f32x8 as V, u32x8 as U};
+use wide::f32x8 as V;
 
 /// Most pixels a cell has (octants: 2×4).
 pub const MAX_PIXELS: usize = 8;
@@ -149,31 +149,30 @@ pub fn choose_all<const N: usize>(cells: impl Iterator<Item = [Rgb; N]>, out: &m
 }
 
 /// The cell of `pixels` when they hold one or two distinct colours: the split is exact.
-/// Every pixel is compared at once, as one number per vector lane: a third of an octant
-/// frame's choice went here when the pixels were compared one at a time.
 #[inline]
 fn exact<const N: usize>(pixels: &[Rgb; N]) -> Option<GlyphCell> {
-    const { assert!(N <= MAX_PIXELS) };
-    let key = |c: Rgb| u32::from(c.r) | u32::from(c.g) << 8 | u32::from(c.b) << 16;
-    let first = key(pixels[0]);
-    // Lanes past the cell's pixels repeat the first, so they never differ from it.
-    let mut keys = [first; MAX_PIXELS];
-    for (k, &c) in keys.iter_mut().zip(pixels) {
-        *k = key(c);
-    }
-    let keys = U::from(keys);
-    let same = keys.simd_eq(U::splat(first));
-    let differ = !same.to_bitmask() & 0xff;
+    // Colours as one number each, and a bit per pixel, so the tests run over all pixels at once.
+    let key = pixels.map(|c| u32::from(c.r) | u32::from(c.g) << 8 | u32::from(c.b) << 16);
+    let first = key[0];
+    let differ = bits(&key, |k| k != first);
     if differ == 0 {
         return Some(GlyphCell::uniform(pixels[0]));
     }
     let at = differ.trailing_zeros() as usize;
-    let other = keys.simd_eq(U::splat(key(pixels[at])));
-    (same | other).all().then(|| GlyphCell {
+    let other = key[at];
+    (bits(&key, |k| k != first && k != other) == 0).then(|| GlyphCell {
         mask: differ as u8,
         fg: pixels[at],
         bg: pixels[0],
     })
+}
+
+/// A bit for each of `key`'s values for which `f` holds (bit `i` for value `i`).
+#[inline]
+fn bits<const N: usize>(key: &[u32; N], f: impl Fn(u32) -> bool) -> u32 {
+    key.iter()
+        .enumerate()
+        .fold(0u32, |m, (i, &k)| m | u32::from(f(k)) << i)
 }
 
 /// The sRGB transfer curve both ways, built once: 8-bit channel → linear light, and back.
