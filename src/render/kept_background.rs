@@ -17,8 +17,10 @@ use crate::render::{view::View, PointLight};
 use crate::world::door::DoorState;
 
 /// The last background painted, with everything it was painted from. Kept by whoever renders
-/// one world frame after frame (an SSH session), and forgotten ([`KeptBackground::forget`])
-/// when that world is replaced or changed: the world is known only by its address.
+/// one world frame after frame (an SSH session, the game, a replay). The world is known only by
+/// its address: its sprites may change in place (they are not background), but a caller that
+/// changes its map, textures or lights in place, or drops it while keeping this, calls
+/// [`KeptBackground::forget`].
 #[derive(Debug, Default)]
 pub(crate) struct KeptBackground {
     key: Option<Key>,
@@ -30,7 +32,7 @@ pub(crate) struct KeptBackground {
 }
 
 /// Everything the background depends on (see [`rasterize_background`]).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 struct Key {
     world: usize,
     camera: Camera,
@@ -52,12 +54,40 @@ impl Key {
             view: scene.view,
             light: scene.light,
             doors: scene.doors.cloned(),
-            lights: scene.lights.to_vec(),
+            lights: scene.point_lights().to_vec(),
             traced,
             size: (fb.width(), fb.height()),
             glyphs: fb.glyphs(),
             phases: fb.wants_phases(),
         }
+    }
+
+    /// Whether this frame's background would be the one painted from this key: compared in
+    /// place, so a frame that reuses it copies nothing to find out. Moving lights count only
+    /// where they show (the world is dark): in daylight a shot in flight changes no wall.
+    fn is(&self, scene: &Scene, fb: &Framebuffer, traced: Option<usize>) -> bool {
+        let Self {
+            world,
+            camera,
+            view,
+            light,
+            doors,
+            lights,
+            traced: kept_traced,
+            size,
+            glyphs,
+            phases,
+        } = self;
+        *world == std::ptr::from_ref(scene.world) as usize
+            && *camera == scene.camera
+            && *view == scene.view
+            && *light == scene.light
+            && doors.as_ref() == scene.doors
+            && lights.as_slice() == scene.point_lights()
+            && *kept_traced == traced
+            && *size == (fb.width(), fb.height())
+            && *glyphs == fb.glyphs()
+            && *phases == fb.wants_phases()
     }
 }
 
@@ -89,16 +119,17 @@ impl Scene<'_> {
             kept.forget();
             return self.render_frame(fb, traced);
         }
-        let key = Key::of(self, fb, traced);
+        let same = kept.key.as_ref().is_some_and(|k| k.is(self, fb, traced));
         let cast = match &kept.cast {
-            Some(cast) if kept.key.as_ref() == Some(&key) => {
+            Some(cast) if same => {
                 kept.reused += 1;
                 // A view no pixel wide has no rows to copy.
                 let w = fb.width().max(1);
                 for (y, row) in kept.pixels.chunks_exact(w).enumerate() {
                     fb.row_mut(y).copy_from_slice(row);
                 }
-                if key.phases {
+                // A view with no pixels has no phases to copy (and gets no plane, as when painted).
+                if fb.wants_phases() && !kept.phases.is_empty() {
                     fb.phases_mut().copy_from_slice(&kept.phases);
                 }
                 cast.clone()
@@ -112,11 +143,12 @@ impl Scene<'_> {
                 kept.pixels.clear();
                 kept.pixels.extend_from_slice(fb.pixels());
                 kept.phases.clear();
-                if key.phases {
-                    kept.phases.extend_from_slice(fb.phases_mut());
+                if fb.wants_phases() {
+                    kept.phases
+                        .extend_from_slice(fb.phases().unwrap_or_default());
                 }
                 kept.cast = Some(cast.clone());
-                kept.key = Some(key);
+                kept.key = Some(Key::of(self, fb, traced));
                 cast
             }
         };
@@ -137,6 +169,7 @@ mod tests {
         camera: Camera,
         view: View,
         night: bool,
+        falloff: f64,
         doors: DoorState,
         lights: Vec<PointLight>,
         time: f64,
@@ -167,6 +200,7 @@ mod tests {
             .with_lights(&i.lights)
             .at_time(i.time);
         scene.light.night = i.night;
+        scene.light.falloff = i.falloff;
         fb.resize_cells(i.cells.0, i.cells.1, i.glyphs);
         fb.set_phases_wanted(i.phases);
         match kept {
@@ -185,6 +219,7 @@ mod tests {
             camera: Camera::from_angle(start, 30.0, 66.0),
             view: View::default(),
             night: false,
+            falloff: 0.0,
             doors: DoorState::new(&world.map),
             lights: Vec::new(),
             time: 0.0,
@@ -197,7 +232,7 @@ mod tests {
         // Each step changes one input of the step before; `true` where the background may be
         // reused (only the sprites or the time changed).
         type Step = (&'static str, fn(&mut Inputs, (i64, i64)), bool);
-        let steps: [Step; 16] = [
+        let steps: [Step; 19] = [
             ("nothing", |_, _| {}, true),
             ("a sprite moved", |i, _| i.sprite_at.x += 0.3, true),
             ("time", |i, _| i.time += 0.5, true),
@@ -208,6 +243,20 @@ mod tests {
             ),
             ("walked", |i, _| i.camera.pos.x += 0.05, false),
             ("looked up", |i, _| i.view.pitch_deg = 10.0, false),
+            ("darker with distance", |i, _| i.falloff = 0.3, false),
+            ("evenly lit again", |i, _| i.falloff = 0.0, false),
+            (
+                "a shot in daylight",
+                |i, _| {
+                    i.lights.push(PointLight {
+                        pos: i.camera.pos + Vec2::new(0.8, -0.3),
+                        z: 0.5,
+                        radius: 3.0,
+                        strength: 1.0,
+                    });
+                },
+                true,
+            ),
             ("night", |i, _| i.night = true, false),
             ("a door opened", |i, d| i.doors.set_open(d, 0.5), false),
             (
@@ -261,7 +310,22 @@ mod tests {
         // Views with no pixels, kept and reused.
         for cells in [(0, 4), (0, 4), (6, 0), (6, 0)] {
             inputs.cells = cells;
-            render(&world, &inputs, &mut kept_fb, Some(&mut kept));
+            let (mut a, mut b) = (Framebuffer::new(1, 1), Framebuffer::new(1, 1));
+            a.set_phases_wanted(true);
+            let got = render(&world, &inputs, &mut kept_fb, Some(&mut kept));
+            render(
+                &world,
+                &inputs,
+                &mut a,
+                Some(&mut KeptBackground::default()),
+            );
+            let want = render(&world, &inputs, &mut b, None);
+            assert_eq!(got, want);
+            assert_eq!(
+                kept_fb.phases().unwrap_or_default(),
+                b.phases().unwrap_or_default()
+            );
+            assert_eq!(a.phases(), b.phases(), "{cells:?}");
         }
         assert_eq!(kept.reused(), reused + 2);
     }

@@ -127,9 +127,10 @@ pub fn rasterize_sprites(
     draw_sprites(scene, Occluders::Columns(hits), fb, &table)
 }
 
-/// The background of [`rasterize_frame`]: floor, ceiling and walls (and their dither phases),
-/// which depend on the camera, the view, the light, the doors and the moving lights, but not
-/// on the sprites or the time.
+/// The background of [`rasterize_frame`]: floor, ceiling and walls (and their dither phases).
+/// They depend on the world (map, textures, lamps), the camera, the view, the light, the
+/// doors, the moving lights when the world is dark, and the framebuffer's size and glyph
+/// setting, but not on the sprites or the time; every pixel (and phase, when wanted) is written.
 pub fn rasterize_background(scene: &Scene, hits: &[ColumnHit], fb: &mut Framebuffer) {
     let (w, h) = (fb.width(), fb.height());
     if w == 0 || h == 0 {

@@ -205,7 +205,7 @@ impl SessionScreen {
             self.base_sprites = copy.sprites.len();
             self.avatar_sheet = sheet;
             self.world = Arc::new(copy);
-            // Another world, perhaps at the address of the last: its walls are not these.
+            // Another world: its walls are not the kept ones.
             self.background.forget();
         }
         self.source = Some(Arc::clone(world));
