@@ -811,7 +811,9 @@ fn window(
 
 impl Widget for DebugPane<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
-        self.render_kept(area, buf, &mut KeptLines::default());
+        if let Some((pane, area)) = self.fitted(area, buf.area) {
+            put_lines(&pane.lines(usize::from(area.height)), area, buf);
+        }
     }
 }
 
@@ -819,24 +821,31 @@ impl DebugPane<'_> {
     /// Draws the pane as [`Widget::render`] does, its lines kept in `kept` for the next frame
     /// (see [`DebugPane::lines_kept`]).
     pub fn render_kept(self, area: Rect, buf: &mut Buffer, kept: &mut KeptLines) {
-        let area = area.intersection(buf.area);
-        if area.is_empty() {
-            return;
+        if let Some((pane, area)) = self.fitted(area, buf.area) {
+            put_lines(pane.lines_kept(usize::from(area.height), kept), area, buf);
         }
+    }
+
+    /// The pane at the width of `area` cut to the buffer, and that area (none when empty).
+    fn fitted(self, area: Rect, buffer: Rect) -> Option<(Self, Rect)> {
+        let area = area.intersection(buffer);
         let pane = DebugPane {
             width: usize::from(area.width),
             ..self
         };
-        // The lines are wrapped and cut to the area already: each goes straight to its row
-        // (a Paragraph would lay them out again, every frame of every SSH session).
-        let lines = pane.lines_kept(usize::from(area.height), kept);
-        for (row, line) in lines.iter().enumerate() {
-            let y = area.y + row as u16;
-            if y >= area.bottom() {
-                break;
-            }
-            super::text::put_line(buf, area.x, y, line, area.width);
+        (!area.is_empty()).then_some((pane, area))
+    }
+}
+
+/// The pane's lines, wrapped and cut to `area` already: each goes straight to its row (a
+/// Paragraph would lay them out again, every frame of every SSH session).
+fn put_lines(lines: &[Line<'static>], area: Rect, buf: &mut Buffer) {
+    for (row, line) in lines.iter().enumerate() {
+        let y = area.y + row as u16;
+        if y >= area.bottom() {
+            break;
         }
+        super::text::put_line(buf, area.x, y, line, area.width);
     }
 }
 
