@@ -53,13 +53,13 @@ pub fn cell_diff<'n>(prev: &Buffer, next: &'n Buffer) -> Vec<(u16, u16, &'n Cell
             _ if is_skip(cur) => {}
             CellDiffOption::ForcedWidth(width) => {
                 pos = pos.saturating_add(usize::from(width.get()) - 1);
-                if !same(cur, was) {
+                if cur != was {
                     send(i);
                 }
             }
             CellDiffOption::None | CellDiffOption::AlwaysUpdate => {
                 let width = usize::from(cell_width(cur));
-                if cur.diff_option == CellDiffOption::None && same(cur, was) {
+                if cur.diff_option == CellDiffOption::None && cur == was {
                     pos += width.saturating_sub(1);
                     continue;
                 }
@@ -105,12 +105,6 @@ pub fn cell_diff<'n>(prev: &Buffer, next: &'n Buffer) -> Vec<(u16, u16, &'n Cell
 fn is_skip(cell: &Cell) -> bool {
     cell.diff_option == CellDiffOption::Skip
         || (cell.skip && cell.diff_option == CellDiffOption::None)
-}
-
-/// ratatui's cell equality.
-#[inline]
-fn same(a: &Cell, b: &Cell) -> bool {
-    a == b
 }
 
 /// The columns a cell takes, as ratatui counts them: one for ASCII, box drawing and block
