@@ -9,7 +9,6 @@ use crate::render::height_cast::{cast_heights, Projection};
 use crate::render::height_raster::rasterize_heights;
 use crate::render::raster::rasterize_frame;
 use crate::render::scene::Scene;
-use crate::world::door::DoorState;
 
 /// One rendered frame's by-products: the rays and what became of each sprite.
 #[derive(Debug, Clone, PartialEq)]
@@ -28,8 +27,7 @@ impl Scene<'_> {
 
     /// [`Scene::render_into`], also reporting each sprite's projection and visibility.
     pub fn render_frame(&self, fb: &mut Framebuffer, traced: Option<usize>) -> Frame {
-        let none = DoorState::none();
-        let doors = self.doors.unwrap_or(&none);
+        let doors = self.doors_or_shut();
         let map = &self.world.map;
         if map.has_heights() {
             // Steps, pits and lintels: each column keeps walking until its window of rows closes.

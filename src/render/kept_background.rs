@@ -23,10 +23,10 @@ use crate::world::door::DoorState;
 /// [`KeptBackground::forget`].
 #[derive(Debug, Default)]
 pub(crate) struct KeptBackground {
-    key: Option<Key>,
+    /// What the kept background was painted from, and its rays (none: nothing kept).
+    last: Option<(Key, Cast)>,
     pixels: Vec<Rgb>,
     phases: Vec<u8>,
-    cast: Option<Cast>,
     /// Frames whose background was copied back rather than painted, for tests.
     reused: usize,
 }
@@ -94,7 +94,7 @@ impl Key {
 impl KeptBackground {
     /// Drops what is kept: the next frame paints its background afresh.
     pub(crate) fn forget(&mut self) {
-        self.key = None;
+        self.last = None;
     }
 
     /// How many frames reused the kept background.
@@ -119,9 +119,8 @@ impl Scene<'_> {
             kept.forget();
             return self.render_frame(fb, traced);
         }
-        let same = kept.key.as_ref().is_some_and(|k| k.is(self, fb, traced));
-        let cast = match &kept.cast {
-            Some(cast) if same => {
+        let cast = match &kept.last {
+            Some((key, cast)) if key.is(self, fb, traced) => {
                 kept.reused += 1;
                 // A view no pixel wide has no rows to copy.
                 let w = fb.width().max(1);
@@ -135,10 +134,9 @@ impl Scene<'_> {
                 cast.clone()
             }
             _ => {
-                let none = DoorState::none();
-                let doors = self.doors.unwrap_or(&none);
-                let cast =
-                    cast_with_doors(&self.world.map, doors, &self.camera, fb.width(), traced);
+                let map = &self.world.map;
+                let doors = self.doors_or_shut();
+                let cast = cast_with_doors(map, doors, &self.camera, fb.width(), traced);
                 rasterize_background(self, &cast.columns, fb);
                 kept.pixels.clear();
                 kept.pixels.extend_from_slice(fb.pixels());
@@ -147,8 +145,7 @@ impl Scene<'_> {
                     kept.phases
                         .extend_from_slice(fb.phases().unwrap_or_default());
                 }
-                kept.cast = Some(cast.clone());
-                kept.key = Some(Key::of(self, fb, traced));
+                kept.last = Some((Key::of(self, fb, traced), cast.clone()));
                 cast
             }
         };

@@ -133,6 +133,13 @@ impl<'a> Scene<'a> {
         self
     }
 
+    /// The doors as the rays meet them: every door shut when the scene was given none.
+    #[must_use]
+    pub(crate) fn doors_or_shut(&self) -> &'a DoorState {
+        static SHUT: DoorState = DoorState::none();
+        self.doors.unwrap_or(&SHUT)
+    }
+
     /// The moving lights that show in this frame: all of them when the world is dark, else none.
     #[must_use]
     pub fn point_lights(&self) -> &'a [PointLight] {

@@ -39,7 +39,7 @@ impl DoorState {
 
     /// A state without doors (a map without `D` cells, or "treat every door as shut").
     #[must_use]
-    pub fn none() -> Self {
+    pub const fn none() -> Self {
         Self {
             cells: Vec::new(),
             open: Vec::new(),
