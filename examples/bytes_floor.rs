@@ -1,0 +1,96 @@
+//! What a 256-colour picture of `halfcast bench`'s paths costs in bytes, whatever the mapping:
+//! the same frames sent by the encoder as halfcast maps them, as each pixel's nearest palette
+//! colour (no pattern: the fewest colour changes a picture of these frames can have) and as
+//! Floyd–Steinberg draws them, each as a share of stock ratatui's truecolor bytes (the bench's
+//! yardstick). The issue's byte goal is read against these (docs/colour.md, "Where it falls
+//! short"). `cargo run --release --example bytes_floor [frames]`
+use halfcast::bench::scielab::{floyd_steinberg, nearest};
+use halfcast::bench::{camera_path, BenchScene, RatatuiReference};
+use halfcast::encode::palette::xterm_rgb;
+use halfcast::encode::{ColorLevel, EncodeOptions, Encoder};
+use halfcast::world::World;
+use halfcast::{Framebuffer, Rgb, Scene};
+
+/// Mean bytes per frame after the first (which is a full redraw).
+fn encoded(frames: &[Framebuffer]) -> f64 {
+    let mut enc = Encoder::new(EncodeOptions::new(ColorLevel::Ansi256));
+    let sizes: Vec<usize> = frames.iter().map(|fb| enc.encode(fb, 0, 0).len()).collect();
+    sizes[1..].iter().sum::<usize>() as f64 / (sizes.len() - 1) as f64
+}
+
+/// Stock ratatui's truecolor bytes per frame after the first.
+fn stock_truecolor(frames: &[Framebuffer]) -> f64 {
+    let fb = &frames[0];
+    let mut r = RatatuiReference::new(
+        fb.width() as u16,
+        fb.cell_rows() as u16,
+        ColorLevel::TrueColor,
+    );
+    let sizes: Vec<usize> = frames.iter().map(|fb| r.draw(fb).len()).collect();
+    sizes[1..].iter().sum::<usize>() as f64 / (sizes.len() - 1) as f64
+}
+
+/// `fb`'s pixels replaced by `f`'s, with no surface pattern (as a frame from elsewhere).
+fn redrawn(fb: &Framebuffer, f: impl Fn(&[Rgb], usize) -> Vec<Rgb>) -> Framebuffer {
+    let (w, h) = (fb.width(), fb.height());
+    let px: Vec<Rgb> = (0..h).flat_map(|y| fb.row(y).to_vec()).collect();
+    let shown = f(&px, w);
+    let mut out = Framebuffer::for_cells(w as u16, fb.cell_rows() as u16);
+    out.set_phases_wanted(false);
+    for (i, &c) in shown.iter().enumerate() {
+        out.set(i % w, i / w, c);
+    }
+    out
+}
+
+fn main() {
+    let frames: usize = std::env::args()
+        .nth(1)
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(60);
+    let palette: Vec<Rgb> = (0..=255).map(xterm_rgb).collect();
+    let world = World::default_world();
+    println!(
+        "256 colours, bytes per frame after the first as a share of stock ratatui truecolor's"
+    );
+    println!("path  size    | halfcast | nearest |  FS");
+    for size in [(240u16, 68u16), (160, 48)] {
+        let mut sums = [0.0; 3];
+        for scene in BenchScene::ALL {
+            let shots: Vec<Framebuffer> = camera_path(&world.map, scene, frames + 1)
+                .into_iter()
+                .map(|cam| {
+                    let mut fb = Framebuffer::for_cells(size.0, size.1);
+                    Scene::new(&world, cam).render_into(&mut fb, None);
+                    fb
+                })
+                .collect();
+            let stock = stock_truecolor(&shots);
+            let near: Vec<Framebuffer> = shots
+                .iter()
+                .map(|fb| redrawn(fb, |px, _| nearest(px, &palette)))
+                .collect();
+            let fs: Vec<Framebuffer> = shots
+                .iter()
+                .map(|fb| redrawn(fb, |px, w| floyd_steinberg(px, w, &palette)))
+                .collect();
+            let shares = [encoded(&shots), encoded(&near), encoded(&fs)].map(|b| 100.0 * b / stock);
+            for (s, v) in sums.iter_mut().zip(shares) {
+                *s += v / BenchScene::ALL.len() as f64;
+            }
+            println!(
+                "{:5} {}x{} | {:7.1}% | {:6.1}% | {:5.1}%",
+                scene.name(),
+                size.0,
+                size.1,
+                shares[0],
+                shares[1],
+                shares[2]
+            );
+        }
+        println!(
+            "mean  {}x{} | {:7.1}% | {:6.1}% | {:5.1}%",
+            size.0, size.1, sums[0], sums[1], sums[2]
+        );
+    }
+}
