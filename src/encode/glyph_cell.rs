@@ -244,7 +244,7 @@ impl Tables {
     /// guess, then at most one step up or down along the curve's midpoints. One step is enough
     /// because no guess bucket (1/4095 of linear light) holds more than one midpoint: the curve
     /// is steepest near black, at about 0.8 sRGB steps per bucket. Clamping and finding each
-    /// guess run on all lanes at once; without loops there is no branch to mispredict.
+    /// guess run on all lanes at once; no loop walks the curve, so no branch can mispredict.
     #[inline]
     fn to_srgb(&self, light: &[[f32; LANES]; 3]) -> [[u8; LANES]; 3] {
         let mut out = [[0u8; LANES]; 3];
