@@ -1,6 +1,6 @@
 //! What a 256-colour picture of `halfcast bench`'s paths costs in bytes, whatever the mapping:
 //! the same frames sent by the encoder as halfcast maps them, as each pixel's nearest palette
-//! colour (no pattern: the fewest colour changes a picture of these frames can have) and as
+//! colour (no pattern, so no colour changes of its own) and as
 //! Floyd–Steinberg draws them, each as a share of stock ratatui's truecolor bytes (the bench's
 //! yardstick); and the nearest frames against stock ratatui at 256 colours, to show what is
 //! left to the encoder. The issue's byte goal is read against these (docs/colour.md, "Where it
@@ -13,26 +13,29 @@ use halfcast::world::World;
 use halfcast::{Framebuffer, Rgb, Scene};
 
 /// Mean bytes per frame after the first (which is a full redraw).
-fn encoded(frames: &[Framebuffer]) -> f64 {
-    let mut enc = Encoder::new(EncodeOptions::new(ColorLevel::Ansi256));
-    let sizes: Vec<usize> = frames.iter().map(|fb| enc.encode(fb, 0, 0).len()).collect();
-    sizes[1..].iter().sum::<usize>() as f64 / (sizes.len() - 1) as f64
+fn after_first(sizes: impl Iterator<Item = usize>) -> f64 {
+    let sizes: Vec<usize> = sizes.skip(1).collect();
+    sizes.iter().sum::<usize>() as f64 / sizes.len() as f64
 }
 
-/// Stock ratatui's bytes per frame after the first, at `level`.
+/// The encoder's bytes per frame at 256 colours.
+fn encoded(frames: &[Framebuffer]) -> f64 {
+    let mut enc = Encoder::new(EncodeOptions::new(ColorLevel::Ansi256));
+    after_first(frames.iter().map(|fb| enc.encode(fb, 0, 0).len()))
+}
+
+/// Stock ratatui's bytes per frame at `level`.
 fn stock(frames: &[Framebuffer], level: ColorLevel) -> f64 {
     let fb = &frames[0];
     let mut r = RatatuiReference::new(fb.width() as u16, fb.cell_rows() as u16, level);
-    let sizes: Vec<usize> = frames.iter().map(|fb| r.draw(fb).len()).collect();
-    sizes[1..].iter().sum::<usize>() as f64 / (sizes.len() - 1) as f64
+    after_first(frames.iter().map(|fb| r.draw(fb).len()))
 }
 
 /// `fb`'s pixels replaced by `f`'s, with no surface pattern (as a frame from elsewhere: a new
 /// framebuffer carries no dither phases, so the encoder uses its no-pattern mixes).
 fn redrawn(fb: &Framebuffer, f: impl Fn(&[Rgb], usize) -> Vec<Rgb>) -> Framebuffer {
-    let (w, h) = (fb.width(), fb.height());
-    let px: Vec<Rgb> = (0..h).flat_map(|y| fb.row(y).to_vec()).collect();
-    let shown = f(&px, w);
+    let w = fb.width();
+    let shown = f(fb.pixels(), w);
     let mut out = Framebuffer::for_cells(w as u16, fb.cell_rows() as u16);
     for (i, &c) in shown.iter().enumerate() {
         out.set(i % w, i / w, c);
