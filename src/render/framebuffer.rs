@@ -177,6 +177,19 @@ impl Framebuffer {
         &self.pixels[y * self.width..(y + 1) * self.width]
     }
 
+    /// Rows `rows` of column `x`, top to bottom (those inside the frame): what a wall stripe
+    /// paints, without a bounds check or a multiply per pixel.
+    pub fn column_mut(
+        &mut self,
+        x: usize,
+        rows: std::ops::Range<usize>,
+    ) -> impl Iterator<Item = &mut Rgb> {
+        let w = self.width.max(1);
+        let n = if x < self.width { rows.len() } else { 0 };
+        let first = (rows.start * w + x).min(self.pixels.len());
+        self.pixels[first..].iter_mut().step_by(w).take(n)
+    }
+
     /// One pixel row, writable (the floor caster fills rows).
     pub fn row_mut(&mut self, y: usize) -> &mut [Rgb] {
         &mut self.pixels[y * self.width..(y + 1) * self.width]
@@ -272,6 +285,21 @@ impl Framebuffer {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_column_is_its_pixels_top_to_bottom_and_stops_at_the_frame() {
+        let mut fb = Framebuffer::for_cells(3, 2);
+        for (i, px) in fb.column_mut(1, 1..3).enumerate() {
+            *px = Rgb::new(i as u8 + 1, 0, 0);
+        }
+        assert_eq!(fb.get(1, 0), Rgb::default());
+        assert_eq!(fb.get(1, 1), Rgb::new(1, 0, 0));
+        assert_eq!(fb.get(1, 2), Rgb::new(2, 0, 0));
+        assert_eq!(fb.get(0, 1), Rgb::default());
+        assert_eq!(fb.column_mut(2, 3..9).count(), 1);
+        assert_eq!(fb.column_mut(1, 4..4).count(), 0);
+        assert_eq!(fb.column_mut(3, 0..4).count(), 0);
+    }
 
     #[test]
     fn the_shade_table_is_kept_while_the_light_stays_and_made_anew_when_it_changes() {

@@ -18,6 +18,7 @@ pub(crate) mod height_raster;
 #[cfg(feature = "ui")]
 pub(crate) mod kept_background;
 pub mod light;
+pub(crate) mod plain_floor;
 pub(crate) mod point_light;
 pub(crate) mod raster;
 pub(crate) mod scene;

@@ -8,6 +8,7 @@ use crate::render::dither_phase;
 use crate::render::fast_floor::fast_floor;
 use crate::render::framebuffer::{Framebuffer, NEUTRAL_PHASE};
 use crate::render::light::{Shade, ShadeTable};
+use crate::render::plain_floor::PlainRow;
 use crate::render::point_light;
 use crate::render::scene::Scene;
 use crate::vec2::Vec2;
@@ -202,10 +203,13 @@ fn wall_stripe(
     let column = tex.column(texture_x(hit, tex.width()));
     let th = tex.height();
     let scale = th as f64 / span.height;
-    for y in span.rows.0..span.rows.1 {
-        let v = texel_index((y as f64 + 0.5 - span.top) * scale);
-        let c = column[v.min(th - 1)];
-        fb.set(x, y, shade(y).apply(c));
+    let (first, end) = span.rows;
+    // Row numbers as f64 by counting (exact), not by converting each one.
+    let mut row = first as f64;
+    for (y, px) in (first..end).zip(fb.column_mut(x, first..end)) {
+        let v = texel_index((row + 0.5 - span.top) * scale);
+        row += 1.0;
+        *px = shade(y).apply(column[v.min(th - 1)]);
     }
 }
 
@@ -264,6 +268,20 @@ fn floor_and_ceiling(
             fb.phase_row_mut(y).fill(NEUTRAL_PHASE);
         }
         let row = fb.row_mut(y);
+        if lamps.is_none() && moving.is_empty() {
+            let plain = PlainRow {
+                world,
+                is_floor,
+                start,
+                step,
+                shade,
+            };
+            plain.paint(row, |x| {
+                let span = &spans[x].rows;
+                y < span.0 || y >= span.1
+            });
+            continue;
+        }
         // Neighbouring pixels mostly share a map cell: its paint is looked up once per run.
         let mut here: Option<((i64, i64), Fill)> = None;
         for (x, px) in row.iter_mut().enumerate() {

@@ -114,6 +114,14 @@ impl Texture {
         self.texels[x * self.height + y]
     }
 
+    /// Every texel, column after column (texel (x, y) at `x · height + y`): what a caster that
+    /// keeps a texture's sizes across many pixels indexes.
+    #[must_use]
+    #[inline]
+    pub fn texels(&self) -> &[Rgb] {
+        &self.texels
+    }
+
     /// One whole column, top to bottom: the slice a wall stripe samples.
     #[must_use]
     #[inline]
