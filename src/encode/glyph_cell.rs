@@ -3,10 +3,10 @@
 //!
 //! Colours are mixed in linear light: a group's colour is the mean light of its pixels, and the
 //! split is judged there too, by squared distances with each channel weighted for how much it
-//! counts ([`lane_split::WEIGHT`]). Quadrants and sextants try every split (7 and 31); octants use a 2-means:
-//! start from the darkest and the brightest pixel, assign each pixel to the nearer colour, move
-//! each colour to its group's mean, and repeat until nothing moves (a few rounds over ≤ 8
-//! pixels). Cells of one or two distinct colours are exact without any of that.
+//! counts ([`lane_split::WEIGHT`]). Quadrants and sextants try every split (7 and 31); octants
+//! run one round of a 2-means: split the pixels at the light halfway between the darkest and the
+//! brightest, then move each pixel to the nearer of the two groups' means. Cells of one or two
+//! distinct colours are exact without any of that.
 //!
 //! This runs for every cell of every frame, so everything runs from tables built once (sRGB ↔
 //! linear light), with no cube roots or powers per pixel, and a frame's cells of three or more
@@ -151,6 +151,16 @@ pub fn choose_all<const N: usize>(cells: impl Iterator<Item = [Rgb; N]>, out: &m
 /// The cell of `pixels` when they hold one or two distinct colours: the split is exact.
 #[inline]
 fn exact<const N: usize>(pixels: &[Rgb; N]) -> Option<GlyphCell> {
+    #[cfg(target_arch = "x86_64")]
+    if (4..=8).contains(&N) {
+        return exact_lanes(pixels);
+    }
+    exact_each(pixels)
+}
+
+/// [`exact`] one pixel at a time.
+#[inline]
+fn exact_each<const N: usize>(pixels: &[Rgb; N]) -> Option<GlyphCell> {
     // Colours as one number each, and a bit per pixel, so the tests run over all pixels at once.
     let key = pixels.map(|c| u32::from(c.r) | u32::from(c.g) << 8 | u32::from(c.b) << 16);
     let first = key[0];
@@ -161,6 +171,41 @@ fn exact<const N: usize>(pixels: &[Rgb; N]) -> Option<GlyphCell> {
     let at = differ.trailing_zeros() as usize;
     let other = key[at];
     (bits(&key, |k| k != first && k != other) == 0).then(|| GlyphCell {
+        mask: differ as u8,
+        fg: pixels[at],
+        bg: pixels[0],
+    })
+}
+
+/// [`exact`] with every pixel compared in a vector lane (up to eight; the lanes past `N` repeat
+/// pixel 0). The keys go into the vectors by register moves: built as an array in memory and
+/// loaded as vectors, each load waited for eight stores to be forwarded, which cost more than
+/// the compares saved.
+#[cfg(target_arch = "x86_64")]
+#[inline]
+fn exact_lanes<const N: usize>(pixels: &[Rgb; N]) -> Option<GlyphCell> {
+    use safe_arch::{
+        cast_to_m128_from_m128i, cmp_eq_mask_i32_m128i, move_mask_m128, set_i32_m128i,
+        set_splat_i32_m128i,
+    };
+    let key: [i32; 8] = std::array::from_fn(|i| {
+        let c = pixels[if i < N { i } else { 0 }];
+        i32::from(c.r) | i32::from(c.g) << 8 | i32::from(c.b) << 16
+    });
+    let low = set_i32_m128i(key[3], key[2], key[1], key[0]);
+    let high = set_i32_m128i(key[7], key[6], key[5], key[4]);
+    let equal = |k: i32| {
+        let k = set_splat_i32_m128i(k);
+        let bits = |v| move_mask_m128(cast_to_m128_from_m128i(cmp_eq_mask_i32_m128i(v, k))) as u32;
+        bits(low) | bits(high) << 4
+    };
+    let first = equal(key[0]);
+    if first == 0xff {
+        return Some(GlyphCell::uniform(pixels[0]));
+    }
+    let differ = !first & 0xff;
+    let at = differ.trailing_zeros() as usize;
+    (first | equal(key[at]) == 0xff).then(|| GlyphCell {
         mask: differ as u8,
         fg: pixels[at],
         bg: pixels[0],
@@ -186,6 +231,12 @@ struct Tables {
     guess: [u8; 4096],
 }
 
+/// The guess entry [`Tables::to_srgb`] reads for a linear light `x` in [0, 1] (the same f32
+/// product and truncation as its vector lanes).
+fn guess_index(x: f32) -> usize {
+    ((x * 4095.0) as usize).min(4095)
+}
+
 fn tables() -> &'static Tables {
     static TABLES: std::sync::OnceLock<Box<Tables>> = std::sync::OnceLock::new();
     TABLES.get_or_init(|| {
@@ -202,7 +253,12 @@ fn tables() -> &'static Tables {
         }
         let mut v = 0usize;
         for (i, g) in t.guess.iter_mut().enumerate() {
-            let x = i as f32 / 4095.0;
+            // The least light that [`Tables::to_srgb`] reads from entry `i`, so the value
+            // nearest it is at or below the nearest of every light read from here.
+            let mut x = i as f32 / 4095.0;
+            while x > 0.0 && guess_index(f32::from_bits(x.to_bits() - 1)) == i {
+                x = f32::from_bits(x.to_bits() - 1);
+            }
             while v < 255 && t.upper[v] < x {
                 v += 1;
             }
@@ -241,10 +297,12 @@ impl Tables {
     }
 
     /// Linear light back to the nearest 8-bit sRGB value, every lane of three channels: the
-    /// guess, then at most one step up or down along the curve's midpoints. One step is enough
-    /// because no guess bucket (1/4095 of linear light) holds more than one midpoint: the curve
-    /// is steepest near black, at about 0.8 sRGB steps per bucket. Clamping and finding each
-    /// guess run on all lanes at once; no loop walks the curve, so no branch can mispredict.
+    /// guess, then at most one step up along the curve's midpoints. The guess is the value
+    /// nearest the least light that reads its entry, so the answer is never below it; one step
+    /// is enough because no guess bucket (1/4095 of linear light) holds more than one midpoint:
+    /// the curve is steepest near black, at about 0.8 sRGB steps per bucket. Clamping and
+    /// finding each guess run on all lanes at once; no loop walks the curve, so no branch can
+    /// mispredict.
     #[inline]
     fn to_srgb(&self, light: &[[f32; LANES]; 3]) -> [[u8; LANES]; 3] {
         let mut out = [[0u8; LANES]; 3];
@@ -254,9 +312,7 @@ impl Tables {
             let x = x.to_array();
             for k in 0..LANES {
                 let v = usize::from(self.guess[(at[k] as usize).min(4095)]);
-                let v = v + usize::from(x[k] > self.upper[v]);
-                let v = v - usize::from(v > 0 && x[k] < self.upper[v.saturating_sub(1)]);
-                out[k] = v as u8;
+                out[k] = (v + usize::from(x[k] > self.upper[v])) as u8;
             }
         }
         out
@@ -404,7 +460,7 @@ mod tests {
     fn to_srgb_walking(x: f32) -> u8 {
         let t = tables();
         let x = x.clamp(0.0, 1.0);
-        let mut v = usize::from(t.guess[((x * 4095.0) as usize).min(4095)]);
+        let mut v = usize::from(t.guess[guess_index(x)]);
         while v < 255 && x > t.upper[v] {
             v += 1;
         }
@@ -461,7 +517,7 @@ mod tests {
         }
     }
 
-    /// The octant 2-means written one cell at a time, plainly, as the module doc says it.
+    /// The octant split written one cell at a time, plainly, as the module doc says it.
     fn two_means_alone(lin: &[Linear; 8]) -> u8 {
         let light = |l: &Linear| WEIGHT[0] * l[0] + WEIGHT[1] * l[1] + WEIGHT[2] * l[2];
         let dist = |x: &Linear, y: &Linear| {
@@ -469,42 +525,23 @@ mod tests {
                 .map(|c| WEIGHT[c] * (x[c] - y[c]) * (x[c] - y[c]))
                 .sum::<f32>()
         };
-        let (mut a, mut b) = (0, 0);
-        for i in 1..8 {
-            if light(&lin[i]) < light(&lin[a]) {
-                a = i;
-            }
-            if light(&lin[i]) > light(&lin[b]) {
-                b = i;
-            }
+        let pick =
+            |f: &dyn Fn(usize) -> bool| (0..8).filter(|&i| f(i)).fold(0u8, |m, i| m | 1 << i);
+        let lo = lin.iter().map(light).fold(f32::INFINITY, f32::min);
+        let hi = lin.iter().map(light).fold(f32::NEG_INFINITY, f32::max);
+        let first = if lo < hi {
+            pick(&|i| light(&lin[i]) > (lo + hi) / 2.0)
+        } else {
+            let far = lin.iter().map(|l| dist(l, &lin[0])).fold(0.0, f32::max);
+            pick(&|i| dist(&lin[i], &lin[0]) > far / 2.0)
+        };
+        let (ca, cb) = means(lin, first);
+        let next = pick(&|i| dist(&lin[i], &cb) < dist(&lin[i], &ca));
+        if next == 0 || next == 0xff {
+            first
+        } else {
+            next
         }
-        if a == b {
-            b = (1..8).fold(0, |far, i| {
-                if dist(&lin[i], &lin[0]) > dist(&lin[far], &lin[0]) {
-                    i
-                } else {
-                    far
-                }
-            });
-        }
-        let (mut ca, mut cb) = (lin[a], lin[b]);
-        let mut mask = 0u8;
-        for _ in 0..4 {
-            let mut next = (0..8)
-                .filter(|&i| dist(&lin[i], &cb) < dist(&lin[i], &ca))
-                .fold(0u8, |m, i| m | 1 << i);
-            if next == 0 {
-                next = 1 << b;
-            } else if next == 0xff {
-                next = !(1 << a);
-            }
-            if next == mask {
-                break;
-            }
-            mask = next;
-            (ca, cb) = means(lin, mask);
-        }
-        mask
     }
 
     #[test]
@@ -513,7 +550,7 @@ mod tests {
         let mut cells: Vec<[Rgb; 8]> = (0..2000)
             .map(|_| std::array::from_fn(|_| colour()))
             .collect();
-        // Cells of equal light: greys and their shuffles, which take the farthest-pixel seed.
+        // Three colours: a grey between black and white.
         for g in [10u8, 100, 200] {
             let grey = Rgb::new(g, g, g);
             cells.push([grey, K, W, grey, K, W, grey, grey]);

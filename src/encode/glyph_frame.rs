@@ -236,8 +236,11 @@ fn cells_of<const R: usize, const N: usize>(fb: &Framebuffer, cells: &mut Vec<Gl
     cells.clear();
     cells.reserve(cols * rows);
     for cy in 0..rows {
-        let band: [&[Rgb]; R] = std::array::from_fn(|dy| &fb.row(cy * R + dy)[..2 * cols]);
-        let pixels = (0..cols).map(|cx| std::array::from_fn(|i| band[i / 2][2 * cx + i % 2]));
+        // Each row of the band as `cols` pixel pairs, cut to exactly `cols` so reading pair
+        // `cx < cols` needs no bounds check.
+        let band: [&[[Rgb; 2]]; R] =
+            std::array::from_fn(|dy| &fb.row(cy * R + dy)[..2 * cols].as_chunks::<2>().0[..cols]);
+        let pixels = (0..cols).map(|cx| std::array::from_fn(|i| band[i / 2][cx][i % 2]));
         choose_all::<N>(pixels, cells);
     }
 }
