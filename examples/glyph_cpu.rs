@@ -1,8 +1,8 @@
 //! Render and encode cost of each glyph setting along the bench's walk path (30 frames after the
 //! first, which is a full redraw): each frame's fastest of several passes, so other work on a
 //! shared machine mostly drops out, then the mean per frame.
-//! `cargo run --release --example glyph_cpu [passes] [half|quadrant|sextant|octant] [WxH]`
-//! (one pass of one setting and size is for a profiler such as callgrind).
+//! `cargo run --release --example glyph_cpu [passes] [half|quadrant|sextant|octant] [WxH]
+//! [truecolor|256|16]` (one pass of one setting and size is for a profiler such as callgrind).
 use std::time::Instant;
 
 use halfcast::bench::{camera_path, BenchScene};
@@ -20,6 +20,11 @@ fn main() {
         Some((w.parse().ok()?, h.parse().ok()?))
     });
     let sizes: Vec<(u16, u16)> = size.map_or(vec![(80, 24), (240, 68)], |s| vec![s]);
+    let level = match args.get(3).map(String::as_str) {
+        Some("256") => ColorLevel::Ansi256,
+        Some("16") => ColorLevel::Ansi16,
+        _ => ColorLevel::TrueColor,
+    };
     let world = World::default_world();
     let cams = camera_path(&world.map, BenchScene::Walk, 31);
     for (cols, rows) in sizes {
@@ -33,10 +38,10 @@ fn main() {
             let mut fit = vec![f64::MAX; cams.len()];
             let mut cells = Vec::new();
             for _ in 0..passes {
-                let mut enc = Encoder::new(EncodeOptions::new(ColorLevel::TrueColor));
+                let mut enc = Encoder::new(EncodeOptions::new(level));
                 let mut fb = Framebuffer::for_glyphs(cols, rows, glyphs);
                 // Truecolor reads no dither phases: the game and the server skip them there.
-                fb.set_phases_wanted(false);
+                fb.set_phases_wanted(level != ColorLevel::TrueColor);
                 for (i, &cam) in cams.iter().enumerate() {
                     let t = Instant::now();
                     Scene::new(&world, cam).render_into(&mut fb, None);
