@@ -254,7 +254,10 @@ fn tables() -> &'static Tables {
         let mut v = 0usize;
         for (i, g) in t.guess.iter_mut().enumerate() {
             // The least light that [`Tables::to_srgb`] reads from entry `i`, so the value
-            // nearest it is at or below the nearest of every light read from here.
+            // nearest it is at or below the nearest of every light read from here, which is what
+            // lets `to_srgb` step only up. With 4096 entries i/4095 is already that least light
+            // for every `i` (checked over every f32 in [0, 1]); the walk keeps it so if the size
+            // changes.
             let mut x = i as f32 / 4095.0;
             while x > 0.0 && guess_index(f32::from_bits(x.to_bits() - 1)) == i {
                 x = f32::from_bits(x.to_bits() - 1);
@@ -297,8 +300,9 @@ impl Tables {
     }
 
     /// Linear light back to the nearest 8-bit sRGB value, every lane of three channels: the
-    /// guess, then at most one step up along the curve's midpoints. The guess is the value
-    /// nearest the least light that reads its entry, so the answer is never below it; one step
+    /// guess, then at most one step up along the curve's midpoints (the step down this once also
+    /// took never ran). The guess is the value nearest the least light that reads its entry, so
+    /// the answer is never below it; one step
     /// is enough because no guess bucket (1/4095 of linear light) holds more than one midpoint:
     /// the curve is steepest near black, at about 0.8 sRGB steps per bucket. Clamping and
     /// finding each guess run on all lanes at once; no loop walks the curve, so no branch can
@@ -529,8 +533,9 @@ mod tests {
             |f: &dyn Fn(usize) -> bool| (0..8).filter(|&i| f(i)).fold(0u8, |m, i| m | 1 << i);
         let lo = lin.iter().map(light).fold(f32::INFINITY, f32::min);
         let hi = lin.iter().map(light).fold(f32::NEG_INFINITY, f32::max);
-        let first = if lo < hi {
-            pick(&|i| light(&lin[i]) > (lo + hi) / 2.0)
+        let mid = (lo + hi) / 2.0;
+        let first = if mid < hi {
+            pick(&|i| light(&lin[i]) > mid)
         } else {
             let far = lin.iter().map(|l| dist(l, &lin[0])).fold(0.0, f32::max);
             pick(&|i| dist(&lin[i], &lin[0]) > far / 2.0)
@@ -575,7 +580,57 @@ mod tests {
         assert!(differ <= cells.len() / 100, "{differ} of {}", cells.len());
     }
 
+    #[test]
+    fn a_cell_whose_light_spans_one_float_step_still_splits() {
+        // The darkest and brightest pixel's weighted light are adjacent f32 values, so their
+        // middle rounds up to the brightest and no pixel lies above it.
+        let (a, b, h) = (
+            Rgb::new(58, 159, 15),
+            Rgb::new(108, 150, 10),
+            Rgb::new(96, 150, 75),
+        );
+        let px = [a, b, h, a, b, h, a, b];
+        let c = choose(&px);
+        assert_ne!(c.mask, 0, "{c:?}");
+        assert!(error(&px, &c) < error(&px, &GlyphCell::uniform(Rgb::mean(px))));
+        let lin = linear(&px);
+        assert_ne!(two_means_alone(&lin), 0);
+    }
+
+    #[test]
+    fn the_vector_colour_check_agrees_with_the_plain_one_on_every_cell_of_four_colours() {
+        // Colours one bit apart in red and in blue, so a lane that compared the wrong bits would
+        // be caught.
+        let alphabet = [
+            Rgb::new(7, 7, 7),
+            Rgb::new(6, 7, 7),
+            Rgb::new(7, 7, 6),
+            Rgb::new(6, 7, 6),
+        ];
+        fn all<const N: usize>(alphabet: &[Rgb; 4]) {
+            for code in 0..4usize.pow(N as u32) {
+                let px: [Rgb; N] = std::array::from_fn(|i| alphabet[code >> (2 * i) & 3]);
+                assert_eq!(exact(&px), exact_each(&px), "{px:?}");
+            }
+        }
+        all::<4>(&alphabet);
+        all::<6>(&alphabet);
+        all::<8>(&alphabet);
+    }
+
     proptest::proptest! {
+        /// A cell of two or more colours always shows two: neither side of its split is empty.
+        #[test]
+        fn a_cell_of_several_colours_is_never_shown_flat(
+            v in proptest::array::uniform8((0u8..4, 0u8..4, 0u8..4)),
+        ) {
+            let px: [Rgb; 8] = std::array::from_fn(|i| Rgb::new(v[i].0 * 80, v[i].1 * 80, v[i].2 * 80));
+            let c = choose_n::<8>(&px);
+            if px.iter().any(|&p| p != px[0]) {
+                proptest::prop_assert_ne!(c.mask, 0);
+            }
+        }
+
         /// A cell's glyph and colours do not depend on the cells it is solved beside.
         #[test]
         fn cells_solved_side_by_side_match_cells_solved_alone(

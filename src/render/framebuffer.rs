@@ -295,7 +295,9 @@ mod tests {
         assert_eq!(fb.get(1, 0), Rgb::default());
         assert_eq!(fb.get(1, 1), Rgb::new(1, 0, 0));
         assert_eq!(fb.get(1, 2), Rgb::new(2, 0, 0));
+        assert_eq!(fb.get(1, 3), Rgb::default());
         assert_eq!(fb.get(0, 1), Rgb::default());
+        assert_eq!(fb.column_mut(1, 1..3).count(), 2);
         assert_eq!(fb.column_mut(2, 3..9).count(), 1);
         assert_eq!(fb.column_mut(1, 4..4).count(), 0);
         assert_eq!(fb.column_mut(3, 0..4).count(), 0);

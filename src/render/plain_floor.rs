@@ -79,7 +79,8 @@ impl PlainRow<'_> {
     /// `x` lies inside it. Each coordinate is a sum of a constant and a multiple of the pixel
     /// number, rounded, so it never turns back along the row: the pixels of one cell are one
     /// run. Its end is worked out where the row crosses the cell's edges, then moved a pixel at a
-    /// time until the exact sums agree (rounding moves it by at most one).
+    /// time until the exact sums agree (by none or one pixel on a map; far off it, where the
+    /// coordinates run past 2⁵³, by more).
     fn run_end(&self, x: usize, cell: (i64, i64), w: usize) -> usize {
         let inside = |p: usize| {
             let (fx, fy) = self.at(p);
@@ -131,13 +132,29 @@ impl PlainRow<'_> {
 mod tests {
     use super::*;
 
-    /// The general caster's pixel, one at a time: the cell's paint, then its texel.
+    /// A pixel cast alone, as the general caster in [`super::raster`] does: the map cell's zone,
+    /// its paint, then the texel.
     fn each_pixel(r: &PlainRow, x: usize) -> Rgb {
         let xf = x as f64;
         let (fx, fy) = (r.start.x + r.step.x * xf, r.start.y + r.step.y * xf);
         let (ci, cj) = (fast_floor(fx), fast_floor(fy));
-        r.shade
-            .apply(r.fill((ci, cj)).at_unit(fx - ci as f64, fy - cj as f64))
+        let zone = match r.world.map.cell(ci, cj) {
+            Cell::Floor { zone } => zone,
+            _ => 0,
+        };
+        let paint = if r.is_floor {
+            r.world.floor_paint(zone)
+        } else {
+            r.world.ceiling_paint(zone)
+        };
+        let texel = r.world.fill(paint).at_unit(fx - ci as f64, fy - cj as f64);
+        r.shade.apply(texel)
+    }
+
+    /// The map cell pixel `x` lies in.
+    fn cell_at(r: &PlainRow, x: usize) -> (i64, i64) {
+        let (fx, fy) = r.at(x);
+        (fast_floor(fx), fast_floor(fy))
     }
 
     proptest::proptest! {
@@ -148,6 +165,7 @@ mod tests {
         #[test]
         fn runs_paint_what_each_pixel_alone_would(
             start in (-3.0f64..30.0, -3.0f64..30.0),
+            far in 0u32..4,
             step in (-0.5f64..0.5, -0.5f64..0.5),
             tiny in 0u32..4,
             is_floor: bool,
@@ -162,6 +180,12 @@ mod tests {
                 2 => Vec2::new(step.0 * 1e-3, step.1 * 1e-3),
                 _ => Vec2::new(step.0, step.1),
             };
+            // Some rows lie far off the map, where rounding moves a run's estimated end most.
+            let start = match far {
+                0 => (start.0 * 1e11, start.1 * 1e11),
+                1 => (start.0 + 4e12, start.1 - 7e12),
+                _ => start,
+            };
             let shade = Shade { mul, add: [3, 1, 2], keep: 200 };
             let r = PlainRow { world: &world, is_floor, start: Vec2::new(start.0, start.1), step, shade };
             let marker = Rgb::new(1, 2, 3);
@@ -171,6 +195,27 @@ mod tests {
             for (x, &px) in row.iter().enumerate() {
                 let want = if open(x) { each_pixel(&r, x) } else { marker };
                 proptest::prop_assert_eq!(px, want, "pixel {}", x);
+            }
+        }
+
+        /// Each run ends at the first pixel in another map cell, found here pixel by pixel.
+        #[test]
+        fn a_run_ends_at_the_first_pixel_in_another_cell(
+            start in (-1e13f64..1e13, -1e13f64..1e13),
+            scale in 0u32..3,
+            step in (-0.5f64..0.5, -0.5f64..0.5),
+        ) {
+            let world = World::default_world();
+            let k = [1e-12, 1e-6, 1.0][scale as usize];
+            let start = Vec2::new(start.0 * k, start.1 * k);
+            let r = PlainRow { world: &world, is_floor: true, start, step: Vec2::new(step.0, step.1), shade: Shade::IDENTITY };
+            let w = 200;
+            let mut x = 0;
+            while x < w {
+                let cell = cell_at(&r, x);
+                let want = (x + 1..w).find(|&p| cell_at(&r, p) != cell).unwrap_or(w);
+                proptest::prop_assert_eq!(r.run_end(x, cell, w), want, "from {}", x);
+                x = want;
             }
         }
     }
