@@ -1,5 +1,5 @@
-//! One floor or ceiling row where neither lamps nor moving lights shine (every map without
-//! `L` lines): the row's one shade for every pixel, each map cell's paint looked up once per run
+//! One floor or ceiling row where neither lamps nor moving lights shine (every map by day; at
+//! night, a map without `LIGHT` lines or moving lights): the row's one shade for every pixel, each map cell's paint looked up once per run
 //! of pixels in it, and a texture's sizes read once per run, so a pixel costs its two
 //! coordinates, one texel and the shade. The pixels are the same as the general caster's in
 //! [`super::raster`]: the same sums in the same order.
