@@ -624,7 +624,8 @@ mod tests {
         fn a_cell_of_several_colours_is_never_shown_flat(
             v in proptest::array::uniform8((0u8..4, 0u8..4, 0u8..4)),
         ) {
-            let px: [Rgb; 8] = std::array::from_fn(|i| Rgb::new(v[i].0 * 80, v[i].1 * 80, v[i].2 * 80));
+            let px: [Rgb; 8] =
+                std::array::from_fn(|i| Rgb::new(v[i].0 * 80, v[i].1 * 80, v[i].2 * 80));
             let c = choose_n::<8>(&px);
             if px.iter().any(|&p| p != px[0]) {
                 proptest::prop_assert_ne!(c.mask, 0);

@@ -1,8 +1,8 @@
 //! One floor or ceiling row where neither lamps nor moving lights shine (every map by day; at
-//! night, a map without `LIGHT` lines or moving lights): the row's one shade for every pixel, each map cell's paint looked up once per run
-//! of pixels in it, and a texture's sizes read once per run, so a pixel costs its two
-//! coordinates, one texel and the shade. The pixels are the same as the general caster's in
-//! [`super::raster`]: the same sums in the same order.
+//! night, a map without `LIGHT` lines or moving lights): the row's one shade for every pixel,
+//! each map cell's paint looked up once per run of pixels in it, and a texture's sizes read once
+//! per run, so a pixel costs its two coordinates, one texel and the shade. The pixels are the
+//! same as the general caster's in [`super::raster`]: the same sums in the same order.
 
 use crate::color::Rgb;
 use crate::map::Cell;
@@ -187,7 +187,8 @@ mod tests {
                 _ => start,
             };
             let shade = Shade { mul, add: [3, 1, 2], keep: 200 };
-            let r = PlainRow { world: &world, is_floor, start: Vec2::new(start.0, start.1), step, shade };
+            let start = Vec2::new(start.0, start.1);
+            let r = PlainRow { world: &world, is_floor, start, step, shade };
             let marker = Rgb::new(1, 2, 3);
             let open = |x: usize| !walls.iter().any(|&w| x >= w && x < w + 7);
             let mut row = vec![marker; 300];
@@ -208,7 +209,8 @@ mod tests {
             let world = World::default_world();
             let k = [1e-12, 1e-6, 1.0][scale as usize];
             let start = Vec2::new(start.0 * k, start.1 * k);
-            let r = PlainRow { world: &world, is_floor: true, start, step: Vec2::new(step.0, step.1), shade: Shade::IDENTITY };
+            let step = Vec2::new(step.0, step.1);
+            let r = PlainRow { world: &world, is_floor: true, start, step, shade: Shade::IDENTITY };
             let w = 200;
             let mut x = 0;
             while x < w {
