@@ -119,10 +119,10 @@ pub fn status_line(
             ));
         }
         // The block characters when not the default half-blocks (U cycles them), so a player
-        // who switched knows which.
+        // who switched knows which: kept at 80 columns, before the position.
         if stats.glyphs != crate::render::glyphs::Glyphs::Half {
             segs.push(seg(
-                6,
+                7,
                 vec![v(stats.glyphs.name().to_owned()), l(" blocks")],
             ));
         }
@@ -291,6 +291,27 @@ mod tests {
                     && t.contains("q quit"),
                 "{width}: {t}"
             );
+        }
+    }
+
+    #[test]
+    fn a_finer_glyph_setting_shows_at_80_columns_beside_the_colour_level() {
+        let world = Arc::new(World::default_world());
+        let cam = Camera::from_angle(world.map.start.pos(), 90.0, 66.0);
+        let state = GameState::new(world, cam, 80);
+        let mut stats = FrameStats::default();
+        stats.record_bytes(1000);
+        stats.level = Some(crate::encode::ColourChoice::from_env(
+            None,
+            Some("xterm-256color"),
+            None,
+        ));
+        stats.glyphs = crate::render::glyphs::Glyphs::Quadrant;
+        // A player who just pressed U at the size most people play at sees what it chose.
+        let t = status_line(&state, &stats, InputMode::Emulated, None, 80).to_string();
+        assert!(t.chars().count() <= 80, "{t}");
+        for part in ["256 (TERM)", "quadrant blocks", "q quit"] {
+            assert!(t.contains(part), "{part}: {t}");
         }
     }
 
