@@ -5,7 +5,6 @@
 //! same as the general caster's in [`super::raster`]: the same sums in the same order.
 
 use crate::color::Rgb;
-use crate::map::Cell;
 use crate::render::fast_floor::fast_floor;
 use crate::render::light::Shade;
 use crate::vec2::Vec2;
@@ -40,7 +39,7 @@ impl PlainRow<'_> {
             let cell = (fast_floor(fx), fast_floor(fy));
             // The pixels from `x` up to `end` lie in this map cell (they may still be walls').
             let end = self.run_end(x, cell, w);
-            match self.fill(cell) {
+            match self.world.surface_fill(cell.0, cell.1, self.is_floor) {
                 Fill::Colour(c) => {
                     let c = self.shade.apply(c);
                     while x < end && open(x) {
@@ -112,25 +111,12 @@ impl PlainRow<'_> {
         }
         end
     }
-
-    /// The paint of map cell `cell` on this surface.
-    fn fill(&self, (i, j): (i64, i64)) -> Fill<'_> {
-        let zone = match self.world.map.cell(i, j) {
-            Cell::Floor { zone } => zone,
-            _ => 0,
-        };
-        let paint = if self.is_floor {
-            self.world.floor_paint(zone)
-        } else {
-            self.world.ceiling_paint(zone)
-        };
-        self.world.fill(paint)
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::map::Cell;
 
     /// A pixel cast alone, as the general caster in [`super::raster`] does: the map cell's zone,
     /// its paint, then the texel.

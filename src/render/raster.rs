@@ -1,7 +1,6 @@
 //! Turns the cast rays into pixels: textured floor and ceiling rows, then wall stripes, then
 //! sprites; everything lit through one distance table and placed by the view's horizon and eye.
 
-use crate::map::Cell;
 use crate::render::billboard::{draw_sprites, Occluders, SpriteOutcome};
 use crate::render::cast::{ColumnHit, Side};
 use crate::render::dither_phase;
@@ -295,16 +294,7 @@ fn floor_and_ceiling(
             let fill = match here {
                 Some((cell, fill)) if cell == (ci, cj) => fill,
                 _ => {
-                    let zone = match world.map.cell(ci, cj) {
-                        Cell::Floor { zone } => zone,
-                        _ => 0,
-                    };
-                    let paint = if is_floor {
-                        world.floor_paint(zone)
-                    } else {
-                        world.ceiling_paint(zone)
-                    };
-                    let fill = world.fill(paint);
+                    let fill = world.surface_fill(ci, cj, is_floor);
                     here = Some(((ci, cj), fill));
                     fill
                 }
@@ -327,6 +317,7 @@ fn floor_and_ceiling(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::map::Cell;
     use crate::vec2::Vec2;
 
     fn hit(side: Side, ray: Vec2, wall_x: f64) -> ColumnHit {

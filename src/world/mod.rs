@@ -384,6 +384,23 @@ impl World {
             .copied()
             .unwrap_or(self.ceiling[0])
     }
+
+    /// What the floor (or the ceiling) over map cell (`i`, `j`) shows, texture looked up: the
+    /// cell's zone's paint, the default zone's for walls and off the map. The flat floor casters
+    /// read it once per run of pixels in one cell.
+    #[must_use]
+    #[inline]
+    pub fn surface_fill(&self, i: i64, j: i64, is_floor: bool) -> Fill<'_> {
+        let zone = match self.map.cell(i, j) {
+            Cell::Floor { zone } => zone,
+            _ => 0,
+        };
+        self.fill(if is_floor {
+            self.floor_paint(zone)
+        } else {
+            self.ceiling_paint(zone)
+        })
+    }
 }
 
 /// The built-in sheet a sprite falls back to when its texture cannot be loaded.
