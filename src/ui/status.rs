@@ -234,10 +234,27 @@ mod tests {
     use crate::world::World;
     use std::sync::Arc;
 
-    fn text(width: u16, paused: bool) -> String {
+    /// The default map's game at its start, facing east.
+    fn at_start() -> GameState {
         let world = Arc::new(World::default_world());
         let cam = Camera::from_angle(world.map.start.pos(), 90.0, 66.0);
-        let mut state = GameState::new(world, cam, 80);
+        GameState::new(world, cam, 80)
+    }
+
+    /// [`at_start`], with the figures a game at 256 colours (from `TERM`) shows after a frame.
+    fn at_start_with_256_colours() -> (GameState, FrameStats) {
+        let mut stats = FrameStats::default();
+        stats.record_bytes(1000);
+        stats.level = Some(crate::encode::ColourChoice::from_env(
+            None,
+            Some("xterm-256color"),
+            None,
+        ));
+        (at_start(), stats)
+    }
+
+    fn text(width: u16, paused: bool) -> String {
+        let mut state = at_start();
         if paused {
             state.debugger.toggle_pause();
         }
@@ -270,16 +287,7 @@ mod tests {
 
     #[test]
     fn the_colour_level_shows_with_its_reason() {
-        let world = Arc::new(World::default_world());
-        let cam = Camera::from_angle(world.map.start.pos(), 90.0, 66.0);
-        let state = GameState::new(world, cam, 80);
-        let mut stats = FrameStats::default();
-        stats.record_bytes(1000);
-        stats.level = Some(crate::encode::ColourChoice::from_env(
-            None,
-            Some("xterm-256color"),
-            None,
-        ));
+        let (state, stats) = at_start_with_256_colours();
         // Also at 80 columns, the size most people play at (the pane beside the view takes
         // none of the status row), with the game's figures.
         for width in [200, 100, 80] {
@@ -296,16 +304,7 @@ mod tests {
 
     #[test]
     fn a_finer_glyph_setting_shows_at_80_columns_beside_the_colour_level() {
-        let world = Arc::new(World::default_world());
-        let cam = Camera::from_angle(world.map.start.pos(), 90.0, 66.0);
-        let state = GameState::new(world, cam, 80);
-        let mut stats = FrameStats::default();
-        stats.record_bytes(1000);
-        stats.level = Some(crate::encode::ColourChoice::from_env(
-            None,
-            Some("xterm-256color"),
-            None,
-        ));
+        let (state, mut stats) = at_start_with_256_colours();
         stats.glyphs = crate::render::glyphs::Glyphs::Quadrant;
         // A player who just pressed U at the size most people play at sees what it chose.
         let t = status_line(&state, &stats, InputMode::Emulated, None, 80).to_string();
@@ -329,9 +328,7 @@ mod tests {
 
     #[test]
     fn the_game_hud_shows_points_keys_items_left_and_time_only_on_maps_with_a_game() {
-        let world = Arc::new(World::default_world());
-        let cam = Camera::from_angle(world.map.start.pos(), 90.0, 66.0);
-        let mut state = GameState::new(world, cam, 80);
+        let mut state = at_start();
         state.score.points = 120;
         state.score.keys.insert("gold".into());
         state.time = 83.4;
