@@ -40,8 +40,9 @@ fn main() {
             for _ in 0..passes {
                 let mut enc = Encoder::new(EncodeOptions::new(level));
                 let mut fb = Framebuffer::for_glyphs(cols, rows, glyphs);
-                // Truecolor reads no dither phases: the game and the server skip them there.
-                fb.set_phases_wanted(level != ColorLevel::TrueColor);
+                // Only the palette levels read dither phases: the game and the server skip them
+                // elsewhere.
+                fb.set_phases_wanted(level.mixes());
                 for (i, &cam) in cams.iter().enumerate() {
                     let t = Instant::now();
                     Scene::new(&world, cam).render_into(&mut fb, None);
