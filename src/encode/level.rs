@@ -137,6 +137,8 @@ pub enum ColourReason {
     Key,
     /// `--max-bandwidth --adapt-colors` stepped it down.
     Bandwidth,
+    /// The SSH session's link carried too few frames at a richer level (or again enough).
+    Link,
 }
 
 impl ColourReason {
@@ -152,6 +154,7 @@ impl ColourReason {
             ColourReason::Term => "TERM",
             ColourReason::Key => "O key",
             ColourReason::Bandwidth => "bandwidth cap",
+            ColourReason::Link => "link",
         }
     }
 }

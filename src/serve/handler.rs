@@ -357,6 +357,7 @@ impl russh::server::Handler for ConnHandler {
             stats: Arc::clone(&sh.stats),
             log: sh.log,
             shutdown: sh.shutdown.clone(),
+            life: Arc::clone(&self.life),
         };
         let inputs = SessionInputs {
             data: rx,

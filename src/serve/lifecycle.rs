@@ -9,13 +9,16 @@
 
 use std::future::Future;
 use std::io;
+use std::net::SocketAddr;
 use std::pin::Pin;
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, OnceLock};
 use std::task::{Context, Poll};
 
 use tokio::io::{AsyncRead, AsyncWrite, ReadBuf};
 use tokio::sync::watch;
+
+use super::link_pacer::LinkFigures;
 
 /// Shared by the accept task, the SSH handler and the session of one connection.
 #[derive(Debug)]
@@ -23,6 +26,10 @@ pub struct Lifeline {
     kill: watch::Sender<bool>,
     playing: watch::Sender<bool>,
     wire: Arc<Wire>,
+    /// The TCP socket's (local, peer) addresses: the session asks the kernel about it by them.
+    tcp: OnceLock<(SocketAddr, SocketAddr)>,
+    /// The session's link figures as it ended, for the disconnect log line.
+    link: Mutex<Option<LinkFigures>>,
 }
 
 /// Bytes read from and written to one connection's socket.
@@ -38,6 +45,8 @@ impl Default for Lifeline {
             kill: watch::channel(false).0,
             playing: watch::channel(false).0,
             wire: Arc::default(),
+            tcp: OnceLock::new(),
+            link: Mutex::new(None),
         }
     }
 }
@@ -72,6 +81,36 @@ impl Lifeline {
             self.wire.read.load(Ordering::Relaxed),
             self.wire.written.load(Ordering::Relaxed),
         )
+    }
+
+    /// Bytes written to the socket so far (a cheap read, once per frame).
+    #[must_use]
+    pub fn written(&self) -> u64 {
+        self.wire.written.load(Ordering::Relaxed)
+    }
+
+    /// Records the TCP socket's (local, peer) addresses; the first call wins.
+    pub fn set_tcp(&self, local: SocketAddr, peer: SocketAddr) {
+        let _ = self.tcp.set((local, peer));
+    }
+
+    /// The TCP socket's (local, peer) addresses, when known.
+    #[must_use]
+    pub fn tcp(&self) -> Option<(SocketAddr, SocketAddr)> {
+        self.tcp.get().copied()
+    }
+
+    /// Keeps the session's link figures for the disconnect line.
+    pub fn set_link(&self, figures: LinkFigures) {
+        if let Ok(mut l) = self.link.lock() {
+            *l = Some(figures);
+        }
+    }
+
+    /// The session's link figures, once it has ended (none for a connection that never played).
+    #[must_use]
+    pub fn link(&self) -> Option<LinkFigures> {
+        self.link.lock().ok().and_then(|l| *l)
     }
 
     /// Wraps `inner` so that [`Lifeline::kill`] cuts it (and its bytes are counted).

@@ -10,6 +10,8 @@ use std::time::{SystemTime, UNIX_EPOCH};
 
 use serde_json::{json, Value};
 
+use super::link_pacer::LinkFigures;
+
 /// How log lines are written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum LogFormat {
@@ -154,6 +156,7 @@ impl Log {
         peer: SocketAddr,
         seconds: f64,
         bytes: (u64, u64),
+        link: Option<LinkFigures>,
         error: Option<&str>,
     ) {
         match self.format {
@@ -169,7 +172,15 @@ impl Log {
                 "disconnect",
                 json!({ "session": id, "peer": peer.to_string(),
                         "seconds": (seconds * 1000.0).round() / 1000.0,
-                        "bytes_in": bytes.0, "bytes_out": bytes.1, "error": error }),
+                        "bytes_in": bytes.0, "bytes_out": bytes.1,
+                        "link": link.map(|l| json!({
+                            "rtt_ms": (l.rtt.as_secs_f64() * 10_000.0).round() / 10.0,
+                            "kbit_per_s": l.rate.map(|r| (r * 8.0 / 1000.0).round()),
+                            "max_queued_bytes": l.max_queued,
+                            "level_steps_down": l.steps_down,
+                            "level_steps_up": l.steps_up,
+                        })),
+                        "error": error }),
             ),
             LogFormat::Json => {}
         }

@@ -40,6 +40,12 @@ pub const ROUNDS: &str = "halfcast_rounds_total";
 /// Leaderboard writes, by `result` ("ok", "error", "dropped": the writer's queue was full).
 pub const DB_WRITES: &str = "halfcast_leaderboard_writes_total";
 
+/// How long a frame ready to be drawn waited for the client's link to take the last one (zero
+/// for most frames on a fast link): the lag a slow link adds to what the player sees.
+pub const LINK_WAIT_SECONDS: &str = "halfcast_link_wait_seconds";
+/// Colour level steps a session's link called for, by `direction` ("down", "up").
+pub const LINK_LEVEL_STEPS: &str = "halfcast_link_level_steps_total";
+
 /// Histogram buckets for the timing series, in seconds (0.1 ms to 0.5 s).
 const BUCKETS: &[f64] = &[
     0.0001, 0.00025, 0.0005, 0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 0.5,
@@ -123,6 +129,15 @@ fn describe() {
         "Panes and encoding per frame."
     );
     describe_histogram!(TICK_SECONDS, Unit::Seconds, "One world tick.");
+    describe_histogram!(
+        LINK_WAIT_SECONDS,
+        Unit::Seconds,
+        "How long a frame ready to be drawn waited for the client's link."
+    );
+    describe_counter!(
+        LINK_LEVEL_STEPS,
+        "Colour level steps a session's link called for, by direction."
+    );
     describe_counter!(ROUNDS, "Rounds finished, by mode.");
     describe_counter!(DB_WRITES, "Leaderboard writes, by result.");
 }
@@ -180,6 +195,7 @@ pub struct FrameMetrics {
     payload: Counter,
     render: Histogram,
     encode: Histogram,
+    link_wait: Histogram,
 }
 
 impl FrameMetrics {
@@ -192,6 +208,7 @@ impl FrameMetrics {
             payload: counter!(PAYLOAD_BYTES),
             render: histogram!(RENDER_SECONDS),
             encode: histogram!(ENCODE_SECONDS),
+            link_wait: histogram!(LINK_WAIT_SECONDS),
         }
     }
 
@@ -206,6 +223,16 @@ impl FrameMetrics {
         if n > 0 {
             self.skipped.increment(n);
         }
+    }
+
+    /// A frame ready to be drawn waited `d` for the link.
+    pub fn link_wait(&self, d: Duration) {
+        self.link_wait.record(d.as_secs_f64());
+    }
+
+    /// The link called for a step of the colour level, down or up.
+    pub fn level_step(&self, down: bool) {
+        counter!(LINK_LEVEL_STEPS, "direction" => if down { "down" } else { "up" }).increment(1);
     }
 
     /// A frame took `render` to cast and `encode` to draw and encode.

@@ -29,6 +29,8 @@ pub(crate) mod hostkey;
 pub mod leaderboard;
 pub(crate) mod lifecycle;
 pub mod limits;
+pub(crate) mod link_pacer;
+pub(crate) mod link_probe;
 pub mod log;
 pub(crate) mod metrics;
 pub(crate) mod proxy_header;

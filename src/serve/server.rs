@@ -380,10 +380,14 @@ fn admit(
     let id = door.next_id.fetch_add(1, Ordering::Relaxed);
     let ssh = Arc::clone(&door.ssh);
     let shared = Arc::clone(shared);
+    let tcp = socket.local_addr().ok().zip(socket.peer_addr().ok());
     let stream = inbound(socket);
     tokio::spawn(async move {
         shared.log.connect(id, peer);
         let life = Arc::new(Lifeline::default());
+        if let Some((local, remote)) = tcp {
+            life.set_tcp(local, remote);
+        }
         let handler = ConnHandler::new(id, peer, Arc::clone(&shared), pending, Arc::clone(&life));
         let deadline = accepted + shared.config.login_grace;
         let result = serve_connection(
@@ -403,9 +407,14 @@ fn admit(
         {
             super::metrics::refused(Reason::Grace);
         }
-        shared
-            .log
-            .disconnect(id, peer, secs, life.wire_bytes(), err.as_deref());
+        shared.log.disconnect(
+            id,
+            peer,
+            secs,
+            life.wire_bytes(),
+            life.link(),
+            err.as_deref(),
+        );
     });
 }
 

@@ -5,10 +5,13 @@
 //! the local game steps with; the world task applies it. Frames are the TUI's panes
 //! ([`super::screen`]).
 //!
-//! Output is bounded: the task renders only when it is ready to send, and waits for each frame to
-//! be taken by the SSH layer (which itself stops taking when the client's window is full). While
-//! it waits, frame ticks pass and are skipped, so a slow client gets fewer, newer frames — the
-//! latest frame wins — and nothing queues without bound.
+//! Output follows the link ([`super::link_pacer`]): a frame is drawn only once the last one has
+//! nearly arrived (the kernel's count of unacknowledged bytes, [`super::link_probe`]), from the
+//! newest snapshot. So a slow client gets fewer, newer frames and nothing queues behind the
+//! player's keys; when the link carries fewer than 15 frames a second the colour level steps
+//! down (`256 (link)`), and back up when it allows. Keys reach the world at once, and a changed
+//! snapshot is drawn at once when the link is free, so a tap from idle shows without waiting
+//! for a frame tick.
 
 use std::net::SocketAddr;
 use std::sync::Arc;
@@ -24,6 +27,9 @@ use super::config::clamp_size;
 use super::handler::BoardLine;
 use super::header::{self, Piece};
 use super::leaderboard::{board_key, shown_name, Boards};
+use super::lifecycle::Lifeline;
+use super::link_pacer::{LinkFigures, LinkPacer, Step};
+use super::link_probe::LinkProbe;
 use super::log::Log;
 use super::metrics::{self, FrameMetrics, Reason};
 use super::screen::{panes_for, view_rect, SessionScreen};
@@ -51,6 +57,10 @@ pub const LEAVE: &[u8] = b"\x1b[<u\x1b[0m\x1b[?25h\x1b[?1049l";
 const ESC_WAIT: Duration = Duration::from_millis(50);
 /// How long a note shows over the status line.
 const NOTICE_FOR: Duration = Duration::from_secs(4);
+/// How soon to look at the link again while a frame waits for it.
+const LINK_RECHECK: Duration = Duration::from_millis(3);
+/// How often the link figures on the header may change.
+const LINK_SHOWN_EVERY: Duration = Duration::from_secs(1);
 /// How an SSH player asks for octants where the glyph key skips them.
 pub const FORCE_OCTANTS: &str = "ssh -o SetEnv=HALFCAST_GLYPHS=octant forces";
 
@@ -85,6 +95,9 @@ pub struct SessionParams {
     pub stats: Arc<ServeStats>,
     pub log: Log,
     pub shutdown: watch::Receiver<bool>,
+    /// The connection's socket: bytes written so far, its TCP addresses, and where the link
+    /// figures go when the session ends.
+    pub life: Arc<Lifeline>,
 }
 
 /// What the connection handler feeds the session: raw key bytes, and the latest pty size.
@@ -159,6 +172,18 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
     let mut keys = Vec::new();
     // Whether the world's (unique) name for us has been seen; spectators have none.
     let mut named = p.spectator;
+    let mut pacer = LinkPacer::new(period, s.screen.colour().level);
+    let mut probe = p
+        .life
+        .tcp()
+        .and_then(|(local, peer)| LinkProbe::open(local, peer));
+    s.link_known = probe.is_some();
+    // Whether the screen may have changed since the last frame; when the next look is due
+    // (the frame-rate cap, or the link still carrying the last frame).
+    let mut want = true;
+    let mut again: Option<tokio::time::Instant> = None;
+    let mut last_frame: Option<tokio::time::Instant> = None;
+    let mut world_alive = true;
     let end = loop {
         tokio::select! {
             biased;
@@ -177,11 +202,23 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
                 if let Some(end) = s.on_keys(&keys, &snaps.borrow()) {
                     break end;
                 }
+                // At once, not at the next frame tick: the world applies it on its next tick.
+                if !p.spectator {
+                    if let Some(msg) = s.world_input(p.id, s.last_input) {
+                        p.world.send(msg).await;
+                    }
+                }
+                want = true;
             }
             changed = inputs.size.changed() => {
                 if changed.is_err() { break End::ClientGone }
                 let (c, r) = *inputs.size.borrow_and_update();
                 s.resize(c, r);
+                want = true;
+            }
+            changed = snaps.changed(), if world_alive => {
+                world_alive = changed.is_ok();
+                want = true;
             }
             at = tick.tick() => {
                 if let Some(prev) = last_tick {
@@ -203,62 +240,127 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
                 if !p.spectator && now.duration_since(s.last_input) >= p.idle_timeout {
                     break End::Idle;
                 }
+                // A held key's end is inferred from time, so the world hears it from here too.
                 if !p.spectator {
                     if let Some(msg) = s.world_input(p.id, now) {
                         p.world.send(msg).await;
                     }
                 }
-                let snap = snaps.borrow_and_update().clone();
-                if !named {
-                    if let Some(me) = snap.player(p.id) {
-                        named = true;
-                        if me.name != p.name {
-                            // The log line at login named what was asked for.
-                            p.log.session(
-                                p.id,
-                                p.peer,
-                                format_args!("{:?} was taken: plays as {:?}", p.name, me.name),
-                            );
-                        }
+                // A frame the client has not taken for the stall timeout: its link is dead or
+                // it stopped reading.
+                if pacer.waiting(now).is_some_and(|w| w >= p.stall_timeout) {
+                    let sample = probe.as_mut().and_then(LinkProbe::sample);
+                    if !pacer.clear(p.life.written(), sample.as_ref(), now) {
+                        break End::Stalled;
                     }
                 }
-                if let (Some(line), Some(me)) = (&p.boards, snap.player(p.id)) {
-                    // Ask for our own best on each map as we come to it.
-                    let here = (snap.map, me.name.clone());
-                    if asked.as_ref() != Some(&here) {
-                        if let Some(hash) = line.hashes.get(snap.map) {
-                            line.board.lookup(hash, line.mode, &here.1);
-                        }
-                        asked = Some(here);
-                    }
+                if want {
+                    // Wanted at a tick and still not drawn: the link held it back.
+                    tally.dropped += u64::from(again.is_some());
                 }
-                // Only while shown: a frame of play builds no board.
-                s.leaders = match (&p.boards, &boards) {
-                    (Some(line), Some(rx)) if snap.ended.is_some() || s.show_leaders => {
-                        leaders(line, &rx.borrow(), &snap, p.id)
-                    }
-                    _ => None,
+                want = true;
+            }
+            () = sleep_until_some(again), if again.is_some() => {
+                again = None;
+            }
+        }
+        if !want {
+            continue;
+        }
+        let now = tokio::time::Instant::now();
+        // At most one frame a period; the first change after a pause goes at once.
+        if let Some(next) = last_frame.map(|t| t + period).filter(|&t| t > now) {
+            again = Some(next);
+            continue;
+        }
+        let sample = match probe.as_mut() {
+            Some(pr) => {
+                let sample = pr.sample();
+                if sample.is_none() {
+                    // The kernel no longer knows the socket: pace on writes alone from now.
+                    probe = None;
+                }
+                sample
+            }
+            None => None,
+        };
+        let std_now = now.into_std();
+        if !pacer.clear(p.life.written(), sample.as_ref(), std_now) {
+            again = Some(now + LINK_RECHECK);
+            continue;
+        }
+        if let Some(d) = pacer.take_waited() {
+            frame_metrics.link_wait(d);
+        }
+        again = None;
+        want = false;
+        if s.screen.colour().reason != ColourReason::Key {
+            if let Some(step) = pacer.step(s.screen.colour().level, std_now) {
+                let (level, down) = match step {
+                    Step::Down(l) => (l, true),
+                    Step::Up(l) => (l, false),
                 };
-                s.compose(&snap, &mut out);
-                if out.is_empty() {
-                    continue;
-                }
-                let (render, encode) = s.screen.last_times();
-                frame_metrics.timed(render, encode);
-                let n = out.len() as u64;
-                let bytes = std::mem::take(&mut out);
-                match tokio::time::timeout(p.stall_timeout, p.handle.data(p.channel, bytes)).await {
-                    Err(_) => break End::Stalled,
-                    Ok(Err(_)) => break End::ClientGone,
-                    Ok(Ok(())) => {
-                        tally.frames += 1;
-                        tally.bytes += n;
-                        frame_metrics.sent(n as usize);
-                    }
+                frame_metrics.level_step(down);
+                s.screen.set_colour(ColourChoice {
+                    level,
+                    reason: ColourReason::Link,
+                });
+            }
+        }
+        s.show_link(pacer.figures(), std_now);
+        let snap = snaps.borrow_and_update().clone();
+        if !named {
+            if let Some(me) = snap.player(p.id) {
+                named = true;
+                if me.name != p.name {
+                    // The log line at login named what was asked for.
+                    p.log.session(
+                        p.id,
+                        p.peer,
+                        format_args!("{:?} was taken: plays as {:?}", p.name, me.name),
+                    );
                 }
             }
         }
+        if let (Some(line), Some(me)) = (&p.boards, snap.player(p.id)) {
+            // Ask for our own best on each map as we come to it.
+            let here = (snap.map, me.name.clone());
+            if asked.as_ref() != Some(&here) {
+                if let Some(hash) = line.hashes.get(snap.map) {
+                    line.board.lookup(hash, line.mode, &here.1);
+                }
+                asked = Some(here);
+            }
+        }
+        // Only while shown: a frame of play builds no board.
+        s.leaders = match (&p.boards, &boards) {
+            (Some(line), Some(rx)) if snap.ended.is_some() || s.show_leaders => {
+                leaders(line, &rx.borrow(), &snap, p.id)
+            }
+            _ => None,
+        };
+        s.compose(&snap, &mut out);
+        if out.is_empty() {
+            continue;
+        }
+        let (render, encode) = s.screen.last_times();
+        frame_metrics.timed(render, encode);
+        let n = out.len() as u64;
+        let bytes = std::mem::take(&mut out);
+        let wire_before = p.life.written();
+        match tokio::time::timeout(p.stall_timeout, p.handle.data(p.channel, bytes)).await {
+            Err(_) => break End::Stalled,
+            Ok(Err(_)) => break End::ClientGone,
+            Ok(Ok(())) => {
+                pacer.sent(wire_before, s.screen.colour().level, std_now);
+                last_frame = Some(now);
+                tally.frames += 1;
+                tally.bytes += n;
+                frame_metrics.sent(n as usize);
+            }
+        }
     };
+    p.life.set_link(pacer.figures());
     if !p.spectator {
         p.world.send(WorldMsg::Leave { id: p.id }).await;
     }
@@ -290,11 +392,74 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
         p.id,
         p.peer,
         format_args!(
-            "session ended ({end:?}): {} frames, {} bytes, {} frame ticks skipped",
-            tally.frames, tally.bytes, tally.dropped
+            "session ended ({end:?}): {} frames, {} bytes, {} frame ticks skipped{}",
+            tally.frames,
+            tally.bytes,
+            tally.dropped,
+            link_summary(&pacer.figures()),
         ),
     );
     end
+}
+
+/// Sleeps until `at` (never called with `None`: the select arm is disabled then).
+async fn sleep_until_some(at: Option<tokio::time::Instant>) {
+    if let Some(at) = at {
+        tokio::time::sleep_until(at).await;
+    }
+}
+
+/// The link part of the session's last log line: `; link 512 kbit/s, round trip 40 ms, …`.
+fn link_summary(f: &LinkFigures) -> String {
+    let Some(rate) = f.rate else {
+        return String::new();
+    };
+    format!(
+        "; link {}, round trip {}, most queued {} bytes, level steps {} down {} up",
+        rate_text(rate),
+        rtt_text(f.rtt),
+        f.max_queued,
+        f.steps_down,
+        f.steps_up
+    )
+}
+
+/// A round trip for people: `0.4 ms`, `35 ms`.
+fn rtt_text(rtt: Duration) -> String {
+    let ms = rtt.as_secs_f64() * 1000.0;
+    if ms < 10.0 {
+        format!("{ms:.1} ms")
+    } else {
+        format!("{ms:.0} ms")
+    }
+}
+
+/// A link rate for people: `512 kbit/s`, `4.2 Mbit/s` (two significant figures at most).
+fn rate_text(bytes_per_sec: f64) -> String {
+    let kbit = bytes_per_sec * 8.0 / 1000.0;
+    if kbit < 1000.0 {
+        format!("{} kbit/s", round2(kbit))
+    } else if kbit < 1_000_000.0 {
+        format!("{} Mbit/s", round2(kbit / 1000.0))
+    } else {
+        format!("{} Gbit/s", round2(kbit / 1_000_000.0))
+    }
+}
+
+/// `x` to two significant figures, without a trailing `.0`.
+fn round2(x: f64) -> String {
+    if x >= 100.0 {
+        format!("{:.0}", (x / 10.0).round() * 10.0)
+    } else if x >= 10.0 {
+        format!("{:.0}", x.round())
+    } else {
+        let r = (x * 10.0).round() / 10.0;
+        if r.fract() == 0.0 {
+            format!("{r:.0}")
+        } else {
+            format!("{r:.1}")
+        }
+    }
 }
 
 /// Keys the player typed while the colour query ran: parsed now, acted on with the first
@@ -375,6 +540,10 @@ struct State {
     /// The last header and what it was made from: it changes only when someone joins, leaves
     /// or scores, so most frames reuse it.
     header: Option<(HeaderFrom, String)>,
+    /// Whether the kernel's figures for this link can be read (then the header shows them).
+    link_known: bool,
+    /// The link figures the header shows, and when they last changed.
+    link: Option<(String, Instant)>,
 }
 
 /// Everything [`State::header`] reads: names here, the eye's name, the scoreboard, the colour
@@ -389,6 +558,8 @@ struct HeaderFrom {
     clamped: bool,
     /// Whether the map has a game (its scoreboard replaces the list of who is here).
     game: bool,
+    /// The link figures shown.
+    link: Option<String>,
 }
 
 impl HeaderFrom {
@@ -398,6 +569,7 @@ impl HeaderFrom {
             && self.clamped == now.clamped
             && self.game == now.game
             && self.colour == now.colour
+            && self.link == now.link
             && self.eye.as_deref() == eye
             && self.scoreboard == snap.scoreboard
             && self.names.len() == snap.players.len()
@@ -439,6 +611,30 @@ impl State {
             show_leaders: false,
             glyph_cycle: GlyphCycle::new(dropper, glyphs, FORCE_OCTANTS),
             header: None,
+            link_known: false,
+            link: None,
+        }
+    }
+
+    /// Takes new link figures for the header, at most once per [`LINK_SHOWN_EVERY`] (so the
+    /// header, and the frame, change rarely for them). They show while the link limits the
+    /// frames or set the colour level; a link that keeps up leaves the header as it was.
+    fn show_link(&mut self, f: LinkFigures, now: Instant) {
+        if !self.link_known
+            || self
+                .link
+                .as_ref()
+                .is_some_and(|(_, at)| now.duration_since(*at) < LINK_SHOWN_EVERY)
+        {
+            return;
+        }
+        let shown = f.limiting || self.screen.colour().reason == ColourReason::Link;
+        let text = match (shown, f.rate) {
+            (true, Some(rate)) => Some(format!("link {} {}", rate_text(rate), rtt_text(f.rtt))),
+            _ => None,
+        };
+        if self.link.as_ref().map(|(t, _)| t) != text.as_ref() {
+            self.link = text.map(|t| (t, now));
         }
     }
 
@@ -546,6 +742,9 @@ impl State {
             });
         }
         pieces.push(Piece::text(3, self.screen.colour().to_string()));
+        if let Some((link, _)) = &self.link {
+            pieces.push(Piece::text(2, link.clone()));
+        }
         if game {
             pieces.push(Piece::text(6, snap.scoreboard.summary.clone()));
             pieces.push(Piece::List {
@@ -597,6 +796,7 @@ impl State {
             size: self.size,
             clamped: self.clamped,
             game: self.screen.map().has_game(),
+            link: self.link.as_ref().map(|(t, _)| t.clone()),
         };
         let fresh = self
             .header
@@ -699,6 +899,7 @@ mod tests {
             size: (80, 24),
             clamped: false,
             game: false,
+            link: None,
         };
         assert!(from.same(&snap, Some("a"), &from.clone()));
         let mut wider = from.clone();

@@ -457,6 +457,11 @@ fn paramiko_second_password_attempt_on_one_connection_ends_at_the_login_grace() 
         waited <= grace.as_secs_f64() + 2.0,
         "the second attempt waited {waited} s, past the {grace:?} login grace: {text}"
     );
+    // The grace counts from TCP accept; the key exchange and the first attempt came before.
+    assert!(
+        waited >= grace.as_secs_f64() - 1.5,
+        "the second attempt ended after {waited} s, well before the {grace:?} grace: {text}"
+    );
     assert!(text.contains("first connection active: False"), "{text}");
     // Nothing else is broken: a new connection with the right password is let in at once.
     assert!(text.contains("new connection: accepted"), "{text}");

@@ -34,4 +34,5 @@ mod serve_proxy;
 mod serve_refusals;
 mod serve_rotation;
 mod serve_session;
+mod serve_slow_link;
 mod serve_stall;

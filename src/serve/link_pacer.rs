@@ -1,0 +1,615 @@
+//! When an SSH session may send its next frame, and which colour level its link carries: pure
+//! arithmetic over [`TcpSample`]s and frame sizes, the caller owns the clock.
+//!
+//! A frame goes only once the last one has nearly arrived (bytes not yet acknowledged below about
+//! what the path itself holds), as mosh sends a new state only as the last is acknowledged. So
+//! nothing queues behind the player's keys: on a slow link they get fewer frames, each drawn from
+//! the newest state. When the link carries fewer than [`MIN_FPS`] frames a second at the
+//! session's colour level, the level steps down (truecolor → 256 → 16), and back up when the link
+//! would carry the richer level with room to spare.
+
+use std::time::{Duration, Instant};
+
+use super::link_probe::TcpSample;
+use crate::encode::ColorLevel;
+
+/// Frames per second a moving view should get; below it the level steps down.
+pub const MIN_FPS: f64 = 15.0;
+/// How much more than [`MIN_FPS`] the richer level must be predicted to carry before stepping up.
+const UP_MARGIN: f64 = 1.5;
+/// The least a session keeps in flight beyond what it waits on: about three full TCP segments,
+/// so the next frame starts while the last one's tail is still on the way.
+const MIN_ALLOWANCE: u64 = 4_096;
+/// Frames closer together than this many frame periods count as one moving stretch.
+const STRETCH: f64 = 2.5;
+/// Moving frames seen at a level before it may step down.
+const SETTLE_FRAMES: u32 = 4;
+/// The least time between a step and a step up.
+const UP_HOLD: Duration = Duration::from_secs(5);
+/// Large moving frames (about two seconds of movement) that must all find the link empty before
+/// a richer level is tried without a measured speed that allows it.
+const QUIET_FRAMES: u32 = 60;
+/// A frame that took this long to arrive was held up by the link (checks come every few ms).
+const HELD_UP: Duration = Duration::from_millis(15);
+/// The longest wait before a step up, however often steps up failed.
+const MAX_UP_HOLD: Duration = Duration::from_secs(60);
+/// How long the link's measured speed is trusted once no frame is held up any more.
+const GOODPUT_MEMORY: Duration = Duration::from_secs(5);
+/// How long a delivery-rate peak is trusted.
+const RATE_MEMORY: Duration = Duration::from_secs(2);
+/// Weight of the newest moving frame in a level's mean size.
+const SMOOTHING: f64 = 0.25;
+/// Wire size of a moving frame at the next level up, as a multiple of this level's, until one
+/// was seen: truecolor frames are about four times 256-colour ones at 80×24, and 256-colour ones
+/// about 1.5 times 16-colour ones (docs/serving.md, "A slow link").
+fn size_ratio_up(level: ColorLevel) -> f64 {
+    match level {
+        ColorLevel::Ansi256 => 4.0,
+        _ => 1.5,
+    }
+}
+
+/// What a session's link pacing decided about the colour level.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Step {
+    Down(ColorLevel),
+    Up(ColorLevel),
+}
+
+/// One frame handed to the SSH layer and not yet known to have arrived.
+#[derive(Debug, Clone, Copy)]
+struct InFlight {
+    at: Instant,
+    /// Whether it came in a moving stretch (its arrival time then measures the link).
+    moving: bool,
+    /// Socket bytes written before the frame was handed over.
+    wire_before: u64,
+}
+
+/// The link figures an operator and the status line show.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct LinkFigures {
+    /// Smoothed round trip.
+    pub rtt: Duration,
+    /// Bytes per second the kernel saw the link deliver lately (`None` before a sample).
+    pub rate: Option<f64>,
+    /// Whether the link held frames up lately (it then limits what the player sees).
+    pub limiting: bool,
+    /// Bytes written and not yet acknowledged, at the last sample.
+    pub queued: u64,
+    /// The most that was ever queued.
+    pub max_queued: u64,
+    pub steps_down: u32,
+    pub steps_up: u32,
+}
+
+/// One session's pacing state.
+#[derive(Debug, Clone)]
+pub struct LinkPacer {
+    period: Duration,
+    in_flight: Option<InFlight>,
+    /// Mean wire bytes of a moving frame, per level (truecolor, 256, 16, mono).
+    sizes: [Option<f64>; 4],
+    last_sent: Option<Instant>,
+    /// Wire bytes written when the last frame was handed over.
+    last_wire: u64,
+    /// Moving frames since the level last changed.
+    settled: u32,
+    last_step: Option<Instant>,
+    /// The highest delivery rate the kernel reported lately, and when.
+    peak: Option<(f64, Instant)>,
+    /// Mean bytes per second of moving frames the link held up, and when the last was seen.
+    goodput: Option<(f64, Instant)>,
+    /// Whether a frame was wanted while the last one was still on its way.
+    held_up: bool,
+    /// The level of the last frame sent.
+    last_level: Option<ColorLevel>,
+    /// How long the last frame waited for the link, until taken.
+    waited: Option<Duration>,
+    /// Since when a frame has been wanted while the last one was still on its way.
+    blocked_since: Option<Instant>,
+    /// When the kernel was last sampled.
+    seen: Option<Instant>,
+    /// How long after a step the next step up may come; doubles each time a step up is
+    /// followed by a step down (no flapping on a link at the edge).
+    up_hold: Duration,
+    /// Since when every large moving frame found the link empty as it went.
+    quiet_since: Option<Instant>,
+    /// Large moving frames in that quiet.
+    quiet_frames: u32,
+    /// Bytes unacknowledged at the last sample.
+    outstanding: u64,
+    /// The last step up: to which level, and when.
+    last_up: Option<(ColorLevel, Instant)>,
+    /// The level the session started at: steps up never go above it.
+    ceiling: ColorLevel,
+    figures: LinkFigures,
+}
+
+fn index(level: ColorLevel) -> usize {
+    match level {
+        ColorLevel::TrueColor => 0,
+        ColorLevel::Ansi256 => 1,
+        ColorLevel::Ansi16 => 2,
+        ColorLevel::Mono => 3,
+    }
+}
+
+impl LinkPacer {
+    /// A pacer for a session drawing at most one frame per `period`, starting at `level` (which
+    /// is also the highest it steps back up to).
+    #[must_use]
+    pub fn new(period: Duration, level: ColorLevel) -> Self {
+        Self {
+            period,
+            in_flight: None,
+            sizes: [None; 4],
+            last_sent: None,
+            last_wire: 0,
+            settled: 0,
+            last_step: None,
+            peak: None,
+            goodput: None,
+            seen: None,
+            waited: None,
+            blocked_since: None,
+            held_up: false,
+            last_level: None,
+            up_hold: UP_HOLD,
+            last_up: None,
+            quiet_since: None,
+            quiet_frames: 0,
+            outstanding: 0,
+            ceiling: level,
+            figures: LinkFigures::default(),
+        }
+    }
+
+    /// Whether the next frame may go now: the last one has been written to the socket (`wire`
+    /// bytes so far) and, per the kernel's `sample`, nearly all of it acknowledged. Without a
+    /// sample only the first holds.
+    pub fn clear(&mut self, wire: u64, sample: Option<&TcpSample>, now: Instant) -> bool {
+        if let Some(s) = sample {
+            self.observe(s, now);
+        }
+        let Some(f) = self.in_flight else {
+            return true;
+        };
+        let done =
+            wire > f.wire_before && sample.is_none_or(|s| s.outstanding <= self.allowance(s));
+        if !done {
+            self.held_up = true;
+            self.blocked_since.get_or_insert(now);
+            self.quiet_since = None;
+            self.quiet_frames = 0;
+            return false;
+        }
+        self.in_flight = None;
+        let blocked = self.blocked_since.take();
+        self.waited = Some(blocked.map_or(Duration::ZERO, |b| now.duration_since(b)));
+        // Only a frame whose arrival was watched for (the session wanted the next one and
+        // looked every few ms) says how fast the link is, and only if the link held it up.
+        let took = now.duration_since(f.at);
+        if let (Some(s), true, Some(_)) = (sample, f.moving, blocked) {
+            if took >= HELD_UP && wire - f.wire_before > 2 * MIN_ALLOWANCE {
+                let arrived = (wire - f.wire_before).saturating_sub(s.outstanding);
+                let r = arrived as f64 / took.as_secs_f64();
+                let mean = self.goodput.map_or(r, |(g, _)| g + SMOOTHING * (r - g));
+                self.goodput = Some((mean, now));
+            }
+        }
+        true
+    }
+
+    /// What may stay unacknowledged when the next frame goes: what the path holds by itself
+    /// (delivery rate × least round trip), at least [`MIN_ALLOWANCE`].
+    fn allowance(&self, s: &TcpSample) -> u64 {
+        // The link's measured speed where frames were held up (the kernel's peak on a shaped
+        // link can be a burst through the shaper's bucket, far above what it sustains).
+        let rate = self.measured().or(self.peak.map(|(r, _)| r)).unwrap_or(0.0);
+        let bdp = rate * s.min_rtt.as_secs_f64();
+        (bdp as u64).max(MIN_ALLOWANCE)
+    }
+
+    fn observe(&mut self, s: &TcpSample, now: Instant) {
+        self.seen = Some(now);
+        self.figures.rtt = s.rtt;
+        self.figures.queued = s.outstanding;
+        self.outstanding = s.outstanding;
+        self.figures.max_queued = self.figures.max_queued.max(s.outstanding);
+        if s.delivery_rate > 0 {
+            // The kernel's samples while the session waits between frames are app-limited:
+            // "at least this much". A peak is kept a while, then any newer sample replaces it.
+            let r = s.delivery_rate as f64;
+            if self
+                .peak
+                .is_none_or(|(p, at)| r >= p || now.duration_since(at) > RATE_MEMORY)
+            {
+                self.peak = Some((r, now));
+            }
+        }
+        self.figures.rate = self.measured().or(self.peak.map(|(r, _)| r));
+        self.figures.limiting = self.held_rate().is_some();
+    }
+
+    /// Bytes per second the link delivered when it last held moving frames up, however long
+    /// ago (`None` if it never did).
+    fn measured(&self) -> Option<f64> {
+        self.goodput.map(|(g, _)| g)
+    }
+
+    /// Bytes per second measured from frames the link held up lately: the one figure that says
+    /// the link is too slow (the kernel's own samples between frames are only lower bounds).
+    fn held_rate(&self) -> Option<f64> {
+        match (self.goodput, self.seen) {
+            (Some((g, at)), Some(seen)) if seen.duration_since(at) <= GOODPUT_MEMORY => Some(g),
+            _ => None,
+        }
+    }
+
+    /// Records a frame handed to the SSH layer at `now`, `wire` socket bytes having been written
+    /// before it, drawn at `level`.
+    pub fn sent(&mut self, wire: u64, level: ColorLevel, now: Instant) {
+        // A frame that waited on the link, or came soon after the last, is part of a moving
+        // stretch: the previous frame's wire size (all written by now) counts for its level.
+        let moving = self.held_up
+            || self.last_sent.is_some_and(|t| {
+                now.duration_since(t).as_secs_f64() < self.period.as_secs_f64() * STRETCH
+            });
+        if let (true, Some(prev)) = (moving && wire > self.last_wire, self.last_level) {
+            let bytes = (wire - self.last_wire) as f64;
+            // A frame of at least half the level's usual moving size that found the link
+            // empty when it went (the last one all acknowledged) keeps the link's quiet going;
+            // one that found it busy ends it.
+            let large = self.sizes[index(prev)].is_none_or(|m| bytes >= m / 2.0);
+            if large && prev == level {
+                if self.outstanding > 0 {
+                    self.quiet_since = None;
+                    self.quiet_frames = 0;
+                } else {
+                    self.quiet_since.get_or_insert(now);
+                    self.quiet_frames = self.quiet_frames.saturating_add(1);
+                }
+            }
+            let slot = &mut self.sizes[index(prev)];
+            *slot = Some(slot.map_or(bytes, |m| m + SMOOTHING * (bytes - m)));
+            if prev == level {
+                self.settled = self.settled.saturating_add(1);
+            }
+        }
+        self.held_up = false;
+        self.last_sent = Some(now);
+        self.last_wire = wire;
+        self.last_level = Some(level);
+        self.in_flight = Some(InFlight {
+            at: now,
+            wire_before: wire,
+            moving,
+        });
+    }
+
+    /// How long the frame that may go now waited for the link (zero when it did not), once:
+    /// the lag the link added, for the histogram.
+    pub fn take_waited(&mut self) -> Option<Duration> {
+        self.waited.take()
+    }
+
+    /// How long the frame in flight has been on its way.
+    #[must_use]
+    pub fn waiting(&self, now: Instant) -> Option<Duration> {
+        self.in_flight.map(|f| now.duration_since(f.at))
+    }
+
+    /// Frames per second the link carries at `level`, by its delivery rate and that level's
+    /// frame size (measured, or guessed from the level below).
+    fn fps_at(&self, level: ColorLevel, rate: Option<f64>) -> Option<f64> {
+        let size = match self.sizes[index(level)] {
+            Some(s) => s,
+            None => {
+                let below = level.lower()?;
+                self.sizes[index(below)]? * size_ratio_up(below)
+            }
+        };
+        Some(rate? / size.max(1.0))
+    }
+
+    /// The level step the link calls for now at `level`, if any (the caller applies it unless the
+    /// player chose the level).
+    pub fn step(&mut self, level: ColorLevel, now: Instant) -> Option<Step> {
+        let since_step = self
+            .last_step
+            .map_or(Duration::MAX, |t| now.duration_since(t));
+        if self.settled >= SETTLE_FRAMES
+            && matches!(level, ColorLevel::TrueColor | ColorLevel::Ansi256)
+            && self
+                .fps_at(level, self.held_rate())
+                .is_some_and(|f| f < MIN_FPS)
+        {
+            let down = level.lower()?;
+            if self.last_up.is_some_and(|(to, _)| to == level) {
+                // The last step up did not hold: wait longer before the next one.
+                self.up_hold = (self.up_hold * 2).min(MAX_UP_HOLD);
+            }
+            self.last_up = None;
+            self.stepped(now);
+            self.figures.steps_down += 1;
+            return Some(Step::Down(down));
+        }
+        if level != self.ceiling && since_step >= self.up_hold {
+            let up = up_from(level)?;
+            // Up when the link's measured speed carries the richer level with room to spare,
+            // or, to find out, when every moving frame of the whole hold found the link empty
+            // (a failed try doubles the next hold).
+            let roomy = self
+                .fps_at(up, self.measured())
+                .is_some_and(|f| f >= MIN_FPS * UP_MARGIN);
+            let idle_link = self.quiet_frames >= QUIET_FRAMES
+                && self
+                    .quiet_since
+                    .is_some_and(|t| now.duration_since(t) >= self.up_hold);
+            if roomy || idle_link {
+                self.stepped(now);
+                self.last_up = Some((up, now));
+                self.figures.steps_up += 1;
+                return Some(Step::Up(up));
+            }
+        }
+        None
+    }
+
+    fn stepped(&mut self, now: Instant) {
+        self.last_step = Some(now);
+        self.settled = 0;
+        self.quiet_since = None;
+        self.quiet_frames = 0;
+    }
+
+    /// The figures for the status line, metrics and the log.
+    #[must_use]
+    pub fn figures(&self) -> LinkFigures {
+        self.figures
+    }
+}
+
+/// The next level up the ladder (the inverse of [`ColorLevel::lower`]).
+fn up_from(level: ColorLevel) -> Option<ColorLevel> {
+    match level {
+        ColorLevel::TrueColor => None,
+        ColorLevel::Ansi256 => Some(ColorLevel::TrueColor),
+        ColorLevel::Ansi16 => Some(ColorLevel::Ansi256),
+        ColorLevel::Mono => Some(ColorLevel::Ansi16),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const PERIOD: Duration = Duration::from_millis(33);
+
+    fn sample(outstanding: u64, rate: u64) -> TcpSample {
+        TcpSample {
+            outstanding,
+            rtt: Duration::from_millis(20),
+            min_rtt: Duration::from_micros(100),
+            delivery_rate: rate,
+            ..TcpSample::default()
+        }
+    }
+
+    /// A session on a link of `rate` bytes/s for `secs`, simulated in steps of 3 ms (how often
+    /// a session looks at its link while a frame waits): a frame of `size(level)` wire bytes is
+    /// wanted every period and sent once the pacer says so, stepping as it says. Returns the
+    /// levels used, in order, and the end time.
+    fn drive(
+        p: &mut LinkPacer,
+        wire: &mut u64,
+        t0: Instant,
+        mut level: ColorLevel,
+        rate: f64,
+        size: impl Fn(ColorLevel) -> u64,
+        secs: f64,
+    ) -> (Vec<ColorLevel>, Instant) {
+        let step = Duration::from_millis(3);
+        let mut now = t0;
+        let mut outstanding = 0.0f64;
+        let mut next_want = t0;
+        let mut levels = vec![level];
+        while now.duration_since(t0).as_secs_f64() < secs {
+            outstanding = (outstanding - rate * step.as_secs_f64()).max(0.0);
+            let s = sample(outstanding as u64, rate as u64);
+            if now >= next_want && p.clear(*wire, Some(&s), now) {
+                if let Some(step) = p.step(level, now) {
+                    level = match step {
+                        Step::Down(l) | Step::Up(l) => l,
+                    };
+                    levels.push(level);
+                }
+                p.sent(*wire, level, now);
+                *wire += size(level);
+                outstanding += size(level) as f64;
+                next_want = now + PERIOD;
+            }
+            now += step;
+        }
+        (levels, now)
+    }
+
+    fn sizes(level: ColorLevel) -> u64 {
+        match level {
+            ColorLevel::TrueColor => 33_000,
+            ColorLevel::Ansi256 => 8_000,
+            _ => 3_000,
+        }
+    }
+
+    #[test]
+    fn the_next_frame_waits_until_the_last_is_written_and_nearly_acknowledged() {
+        let t = Instant::now();
+        let mut p = LinkPacer::new(PERIOD, ColorLevel::Ansi256);
+        assert!(p.clear(0, None, t), "nothing in flight");
+        p.sent(1000, ColorLevel::Ansi256, t);
+        assert!(
+            !p.clear(1000, Some(&sample(0, 1_000_000)), t),
+            "not yet written"
+        );
+        assert!(
+            !p.clear(9000, Some(&sample(8000, 1_000_000)), t),
+            "written, unacknowledged"
+        );
+        assert_eq!(p.waiting(t + PERIOD), Some(PERIOD));
+        assert!(p.clear(9000, Some(&sample(MIN_ALLOWANCE, 1_000_000)), t + PERIOD));
+        // It was wanted at `t` (the first look) and could go at `t + PERIOD`.
+        assert_eq!(p.take_waited(), Some(PERIOD));
+        assert_eq!(p.take_waited(), None);
+        assert_eq!(p.waiting(t + PERIOD), None);
+        // Without the kernel's figures, a written frame is enough.
+        p.sent(9000, ColorLevel::Ansi256, t);
+        assert!(!p.clear(9000, None, t));
+        assert!(p.clear(9001, None, t));
+    }
+
+    #[test]
+    fn a_path_that_holds_more_than_a_frame_may_keep_it_in_flight() {
+        let t = Instant::now();
+        let mut p = LinkPacer::new(PERIOD, ColorLevel::Ansi256);
+        p.sent(0, ColorLevel::Ansi256, t);
+        // 2.5 MB/s over an 80 ms path holds 200 kB: a 20 kB frame still queued is no wait.
+        let far = TcpSample {
+            outstanding: 20_000,
+            min_rtt: Duration::from_millis(80),
+            delivery_rate: 2_500_000,
+            ..TcpSample::default()
+        };
+        assert!(p.clear(30_000, Some(&far), t));
+    }
+
+    #[test]
+    fn a_slow_link_steps_truecolor_down_to_where_it_carries_fifteen_frames() {
+        let t = Instant::now();
+        let mut p = LinkPacer::new(PERIOD, ColorLevel::TrueColor);
+        // 64 kB/s: truecolor (33 kB) ~2 fps, 256 (8 kB) 8 fps, 16 colours (3 kB) 21 fps.
+        let (levels, _) = drive(
+            &mut p,
+            &mut 0,
+            t,
+            ColorLevel::TrueColor,
+            64_000.0,
+            sizes,
+            10.0,
+        );
+        assert_eq!(
+            levels,
+            [
+                ColorLevel::TrueColor,
+                ColorLevel::Ansi256,
+                ColorLevel::Ansi16
+            ],
+            "down twice, never back up (16 colours would need 1.5 x the rate for 256)"
+        );
+        assert_eq!(p.figures().steps_down, 2);
+        assert_eq!(p.figures().steps_up, 0);
+    }
+
+    #[test]
+    fn a_fast_link_keeps_its_level_and_a_link_that_recovers_steps_back_up() {
+        let t = Instant::now();
+        let mut p = LinkPacer::new(PERIOD, ColorLevel::TrueColor);
+        let (levels, _) = drive(
+            &mut p,
+            &mut 0,
+            t,
+            ColorLevel::TrueColor,
+            10_000_000.0,
+            sizes,
+            5.0,
+        );
+        assert_eq!(levels, [ColorLevel::TrueColor]);
+        let mut p = LinkPacer::new(PERIOD, ColorLevel::TrueColor);
+        let mut wire = 0;
+        let (levels, t1) = drive(
+            &mut p,
+            &mut wire,
+            t,
+            ColorLevel::TrueColor,
+            200_000.0,
+            sizes,
+            4.0,
+        );
+        assert_eq!(levels, [ColorLevel::TrueColor, ColorLevel::Ansi256]);
+        // The link widens to 2 MB/s: after the hold, back to truecolor, and it stays.
+        let (levels, _) = drive(
+            &mut p,
+            &mut wire,
+            t1,
+            ColorLevel::Ansi256,
+            2_000_000.0,
+            sizes,
+            8.0,
+        );
+        assert_eq!(levels, [ColorLevel::Ansi256, ColorLevel::TrueColor]);
+        assert_eq!(p.figures().steps_up, 1);
+    }
+
+    #[test]
+    fn a_step_up_that_does_not_hold_makes_the_next_wait_longer() {
+        let t = Instant::now();
+        let mut p = LinkPacer::new(PERIOD, ColorLevel::TrueColor);
+        // Truecolor frames measured at 33 kB first, then the link is just too slow for them
+        // while the guess from 256-colour frames (four times 8 kB) says it fits: the kernel's
+        // peak rate says 1 MB/s, frames arrive at 400 kB/s.
+        let (_, t1) = drive(
+            &mut p,
+            &mut 0,
+            t,
+            ColorLevel::TrueColor,
+            400_000.0,
+            sizes,
+            2.0,
+        );
+        let hold = p.up_hold;
+        p.last_up = Some((ColorLevel::TrueColor, t1));
+        p.settled = SETTLE_FRAMES;
+        assert_eq!(
+            p.step(ColorLevel::TrueColor, t1),
+            Some(Step::Down(ColorLevel::Ansi256))
+        );
+        assert_eq!(p.up_hold, hold * 2);
+    }
+
+    #[test]
+    fn a_link_at_the_edge_does_not_flap() {
+        let t = Instant::now();
+        // 140 kB/s: 256-colour frames (8 kB) still make 17 a second, truecolor ones 4.
+        let mut p = LinkPacer::new(PERIOD, ColorLevel::TrueColor);
+        let (levels, _) = drive(
+            &mut p,
+            &mut 0,
+            t,
+            ColorLevel::TrueColor,
+            140_000.0,
+            sizes,
+            60.0,
+        );
+        assert_eq!(levels, [ColorLevel::TrueColor, ColorLevel::Ansi256]);
+        // 300 kB/s: 256-colour frames never wait, so now and then truecolor is tried; each
+        // failed try doubles the wait before the next (3, 6, 12, 24, 48 s …).
+        let mut p = LinkPacer::new(PERIOD, ColorLevel::TrueColor);
+        let (levels, _) = drive(
+            &mut p,
+            &mut 0,
+            t,
+            ColorLevel::TrueColor,
+            300_000.0,
+            sizes,
+            120.0,
+        );
+        assert_eq!(levels.last(), Some(&ColorLevel::Ansi256), "{levels:?}");
+        assert!(p.figures().steps_up <= 5, "{levels:?}");
+        assert_eq!(
+            p.figures().steps_down,
+            p.figures().steps_up + 1,
+            "{levels:?}"
+        );
+    }
+}
