@@ -20,6 +20,7 @@ mod serve_auth;
 mod serve_churn;
 mod serve_cli;
 mod serve_colour;
+mod serve_colour_answerback;
 mod serve_compression;
 mod serve_flood;
 mod serve_glyphs;
