@@ -209,10 +209,35 @@ impl ReplyScanner {
     #[must_use]
     pub fn finish(mut self) -> (Answers, Vec<u8>) {
         let answers = self.answers();
-        if !self.in_answerback() {
-            self.other.append(&mut self.pending);
+        let mut keys = self.take_keys();
+        keys.append(&mut self.take_unfinished());
+        (answers, keys)
+    }
+
+    /// The bytes that were not a reply so far (keys), leaving an unfinished sequence to be
+    /// completed by the next bytes fed: for reading on past the patience, when late replies
+    /// are still to be stripped from the keys.
+    #[must_use]
+    pub fn take_keys(&mut self) -> Vec<u8> {
+        std::mem::take(&mut self.other)
+    }
+
+    /// Whether bytes wait for more to tell whether they are a reply.
+    #[must_use]
+    pub fn has_unfinished(&self) -> bool {
+        !self.pending.is_empty()
+    }
+
+    /// The unfinished sequence, when nothing more came to complete it: keys (a lone Esc), or
+    /// nothing when it is part of an answerback.
+    #[must_use]
+    pub fn take_unfinished(&mut self) -> Vec<u8> {
+        let unfinished = std::mem::take(&mut self.pending);
+        if self.in_answerback() {
+            Vec::new()
+        } else {
+            unfinished
         }
-        (answers, self.other)
     }
 }
 

@@ -25,6 +25,8 @@ struct Fake {
     rgb: Option<&'static [u8]>,
     /// Send each reply a byte at a time, one SSH data message each.
     bytewise: bool,
+    /// Wait this long before the first reply (a terminal slower than the server's patience).
+    delay: Option<std::time::Duration>,
 }
 
 const PUTTY: Fake = Fake {
@@ -32,6 +34,7 @@ const PUTTY: Fake = Fake {
     answerback: Some(b"PuTTY"),
     rgb: None,
     bytewise: false,
+    delay: None,
 };
 
 /// What the server sent before its first frame.
@@ -44,8 +47,11 @@ struct Seen {
     queried: bool,
 }
 
-async fn reply(c: &Client, bytes: &[u8], bytewise: bool) {
-    if bytewise {
+async fn reply(c: &Client, bytes: &[u8], fake: &mut Fake) {
+    if let Some(d) = fake.delay.take() {
+        tokio::time::sleep(d).await;
+    }
+    if fake.bytewise {
         for b in bytes {
             c.keys(std::slice::from_ref(b)).await;
         }
@@ -60,7 +66,7 @@ async fn connect_as(
     addr: std::net::SocketAddr,
     term: &str,
     colorterm: Option<&str>,
-    fake: Fake,
+    mut fake: Fake,
 ) -> (Client, Seen) {
     let (cols, rows) = (100, 16);
     let mut handle = connect_raw(addr, None).await.expect("connect");
@@ -102,19 +108,19 @@ async fn connect_as(
             if rest[0] == ENQ {
                 seen.enq += 1;
                 if let Some(a) = fake.answerback {
-                    reply(&c, a, fake.bytewise).await;
+                    reply(&c, a, &mut fake).await;
                 }
                 at += 1;
             } else if rest.starts_with(DA1_REQUEST) {
                 seen.da1 += 1;
                 if let Some(r) = fake.da1 {
-                    reply(&c, r, fake.bytewise).await;
+                    reply(&c, r, &mut fake).await;
                 }
                 at += DA1_REQUEST.len();
             } else if rest.starts_with(XTGETTCAP_RGB) {
                 seen.queried = true;
                 if let Some(r) = fake.rgb {
-                    reply(&c, r, fake.bytewise).await;
+                    reply(&c, r, &mut fake).await;
                 }
                 at += XTGETTCAP_RGB.len();
             } else if [DA1_REQUEST, XTGETTCAP_RGB]
@@ -200,7 +206,7 @@ async fn a_real_xterm_still_says_truecolor_itself() {
         da1: Some(b"\x1b[?64;1;2;6;9;15;16;17;18;21;22;28c"),
         answerback: Some(b""),
         rgb: Some(b"\x1bP1+r524742=382f382f38\x1b\\"),
-        bytewise: false,
+        ..PUTTY
     };
     let (mut c, _) = connect_as(srv.local_addr(), "xterm", None, fake).await;
     let h = header(&mut c).await;
@@ -243,5 +249,31 @@ async fn no_enq_where_term_names_its_colours_or_colorterm_speaks() {
     assert_eq!((seen.queried, seen.enq, seen.da1), (false, 0, 0));
     let h = header(&mut c).await;
     assert!(h.contains("| truecolor (COLORTERM) |"), "{h}");
+    srv.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn an_answerback_later_than_the_patience_is_swallowed_not_typed() {
+    let (srv, _dir) = server(|_| {}).await;
+    // Past the server's patience (0.5 s): the first frame goes out at the TERM guess, and the
+    // answers, coming after it, are not keys: typed, `m` would hide the minimap, `q` quit.
+    let fake = Fake {
+        answerback: Some(b"mq"),
+        delay: Some(std::time::Duration::from_millis(1500)),
+        ..PUTTY
+    };
+    let (mut c, _) = connect_as(srv.local_addr(), "xterm", None, fake).await;
+    let h = header(&mut c).await;
+    assert!(h.contains("| 256 (TERM) |"), "{h}");
+    c.drain_for(std::time::Duration::from_millis(500)).await;
+    assert!(!c.closed, "the late answerback quit the game");
+    assert!(c.screen.screen().contents().contains(" map "));
+    // Keys after it are the player's again.
+    c.keys(b"m").await;
+    assert!(
+        c.until(|s| !s.contents().contains(" map ")).await,
+        "{}",
+        c.screen.screen().contents()
+    );
     srv.shutdown().await;
 }
