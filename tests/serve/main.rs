@@ -32,6 +32,7 @@ mod serve_openssh;
 mod serve_openssh_colour;
 mod serve_openssh_limits;
 mod serve_proxy;
+mod serve_putty;
 mod serve_refusals;
 mod serve_rotation;
 mod serve_session;
