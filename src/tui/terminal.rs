@@ -18,7 +18,7 @@ use crossterm::{cursor, execute, queue, style};
 
 use super::tty_out::{write_within, TtyOut};
 use crate::encode::ColourChoice;
-use crate::ui::colour_query::{query, rules, ReplyScanner, QUERY_PATIENCE};
+use crate::ui::colour_query::{query, rules, ReplyScanner, ANSWERBACK_PATIENCE, QUERY_PATIENCE};
 use crate::ui::keys::InputMode;
 
 /// How long restoring the terminal may wait for a terminal that does not take bytes.
@@ -130,9 +130,9 @@ impl Session {
 
     /// Asks the terminal what it draws ([`crate::ui::colour_query`]), before the first frame,
     /// and returns `choice` after its answers ([`rules::decide`]). Waits for the DA1 reply that
-    /// ends the answers, at most [`QUERY_PATIENCE`] (once more when the terminal has begun
-    /// answering, so an answerback on its way is not taken for keys); keys typed meanwhile come
-    /// back as events, in order, for the game.
+    /// ends the answers, at most [`QUERY_PATIENCE`] ([`ANSWERBACK_PATIENCE`] when ENQ went too;
+    /// once more when the terminal has begun answering, so an answerback on its way is not
+    /// taken for keys); keys typed meanwhile come back as events, in order, for the game.
     pub fn ask_colour(
         &mut self,
         choice: ColourChoice,
@@ -144,7 +144,12 @@ impl Session {
         if self.write_frame(&query(answerback)).is_err() {
             return (choice, Vec::new());
         }
-        let mut deadline = Instant::now() + QUERY_PATIENCE;
+        let patience = if answerback {
+            ANSWERBACK_PATIENCE
+        } else {
+            QUERY_PATIENCE
+        };
+        let mut deadline = Instant::now() + patience;
         let mut extended = false;
         let mut scanner = ReplyScanner::new(answerback);
         let mut buf = [0u8; 256];

@@ -40,6 +40,11 @@ pub fn query(answerback: bool) -> Vec<u8> {
 /// The total time a start-up colour query may take when the terminal never sends DA1's reply.
 pub const QUERY_PATIENCE: std::time::Duration = std::time::Duration::from_millis(200);
 
+/// The local game's patience when ENQ went too: an answerback later than the wait would reach
+/// the game as keys (nothing strips it once crossterm reads them), so a terminal on a slow link
+/// (PuTTY, then ssh, then the game) gets longer. Only terminals that never answer DA1 wait it all.
+pub const ANSWERBACK_PATIENCE: std::time::Duration = std::time::Duration::from_secs(1);
+
 const ESC: u8 = 0x1b;
 
 /// Input kept from the query's time to be handled as keys afterwards: far more than anyone

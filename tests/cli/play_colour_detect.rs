@@ -129,6 +129,24 @@ fn putty_known_by_its_answers_gets_truecolor_and_its_answerback_is_not_typed() {
 }
 
 #[test]
+fn putty_on_a_slow_link_still_gets_truecolor_and_its_answerback_is_not_typed() {
+    // PuTTY, then ssh, then the game: the answers come later than the 200 ms a local terminal
+    // gets, but within the longer wait where ENQ went. `m` as its answerback shows it was not
+    // typed (the minimap stays).
+    let mut run = queried_as("xterm", ANSWERBACK_QUERY);
+    std::thread::sleep(std::time::Duration::from_millis(400));
+    run.send(b"\x1b[?6cm\x1b[?6c");
+    wait_status(&mut run, " 256 (TERM)");
+    run.wait_for_screen("the minimap", |s| s.contents().contains("╭ map"));
+    quit(run);
+    let mut run = queried_as("xterm", ANSWERBACK_QUERY);
+    std::thread::sleep(std::time::Duration::from_millis(400));
+    run.send(b"\x1b[?6cPuTTY\x1b[?6c");
+    wait_status(&mut run, " truecolor (PuTTY)");
+    quit(run);
+}
+
+#[test]
 fn a_plain_xterm_answering_nothing_gets_256_and_the_console_16() {
     let mut run = queried_as("xterm", ANSWERBACK_QUERY);
     wait_status(&mut run, " 256 (TERM)");
