@@ -50,7 +50,9 @@ pub async fn ask_colour(
         }
     }
     let decided = rules::decide(choice, &scanner.answers());
-    if scanner.done() {
+    // A terminal that began answering sent the rest at once: what has not come by now (a
+    // second DA1 reply some terminal skips) is not coming, and keys are keys again.
+    if scanner.done() || scanner.answering() {
         let (_, rest) = scanner.finish();
         return (decided, rest);
     }
@@ -64,6 +66,10 @@ pub async fn ask_colour(
 /// How long after the query late replies are still looked for: a terminal that has not
 /// answered by then never will.
 const LATE_FOR: Duration = Duration::from_secs(10);
+
+/// How long after a late first DA1 reply the answerback may still come (it is sent at once,
+/// with the second DA1 reply); past it, bytes are keys again even if that reply never comes.
+const ANSWERBACK_WINDOW: Duration = Duration::from_millis(500);
 
 /// How long an unfinished sequence waits for its next bytes before it counts as keys (a lone
 /// Esc); a reply cut between reads arrives far sooner.
@@ -80,8 +86,13 @@ async fn strip_late_replies(
     to: mpsc::Sender<Vec<u8>>,
     mut scanner: ReplyScanner,
 ) {
-    let until = tokio::time::Instant::now() + LATE_FOR;
+    let mut until = tokio::time::Instant::now() + LATE_FOR;
+    let mut windowed = false;
     while !scanner.done() && tokio::time::Instant::now() < until {
+        if !windowed && scanner.answering() {
+            windowed = true;
+            until = until.min(tokio::time::Instant::now() + ANSWERBACK_WINDOW);
+        }
         let wait = if scanner.has_unfinished() {
             UNFINISHED_WAIT
         } else {
@@ -171,6 +182,17 @@ mod tests {
         // Done: from now on bytes pass as they are, replies included.
         client.send(b"\x1b[?6cq".to_vec()).await.unwrap();
         assert_eq!(read(&mut session, 6).await, b"\x1b[?6cq");
+    }
+
+    #[tokio::test]
+    async fn keys_after_a_late_da1_reply_whose_second_never_comes_are_keys_again() {
+        let (client, mut session) = late();
+        // One DA1 reply only (the second DA1 skipped): what follows at once is taken for the
+        // answerback, but not for long.
+        client.send(b"\x1b[?1;2cxy".to_vec()).await.unwrap();
+        tokio::time::sleep(ANSWERBACK_WINDOW + Duration::from_millis(200)).await;
+        client.send(b"wasd".to_vec()).await.unwrap();
+        assert_eq!(read(&mut session, 4).await, b"wasd");
     }
 
     #[tokio::test]

@@ -27,6 +27,8 @@ struct Fake {
     bytewise: bool,
     /// Wait this long before the first reply (a terminal slower than the server's patience).
     delay: Option<std::time::Duration>,
+    /// Answer only the first DA1 request.
+    da1_once: bool,
 }
 
 const PUTTY: Fake = Fake {
@@ -35,6 +37,7 @@ const PUTTY: Fake = Fake {
     rgb: None,
     bytewise: false,
     delay: None,
+    da1_once: false,
 };
 
 /// What the server sent before its first frame.
@@ -113,7 +116,7 @@ async fn connect_as(
                 at += 1;
             } else if rest.starts_with(DA1_REQUEST) {
                 seen.da1 += 1;
-                if let Some(r) = fake.da1 {
+                if let Some(r) = fake.da1.filter(|_| seen.da1 == 1 || !fake.da1_once) {
                     reply(&c, r, &mut fake).await;
                 }
                 at += DA1_REQUEST.len();
@@ -269,6 +272,28 @@ async fn an_answerback_later_than_the_patience_is_swallowed_not_typed() {
     assert!(!c.closed, "the late answerback quit the game");
     assert!(c.screen.screen().contents().contains(" map "));
     // Keys after it are the player's again.
+    c.keys(b"m").await;
+    assert!(
+        c.until(|s| !s.contents().contains(" map ")).await,
+        "{}",
+        c.screen.screen().contents()
+    );
+    srv.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_terminal_answering_da1_once_is_still_known_and_keys_after_are_keys() {
+    let (srv, _dir) = server(|_| {}).await;
+    // DA1 answered, then the answerback, then nothing for the second DA1.
+    let fake = Fake {
+        da1_once: true,
+        ..PUTTY
+    };
+    let (mut c, seen) = connect_as(srv.local_addr(), "xterm", None, fake).await;
+    assert_eq!(seen.da1, 2);
+    let h = header(&mut c).await;
+    assert!(h.contains("| truecolor (PuTTY) |"), "{h}");
+    // The player's keys right after the first frame are not taken for an answerback.
     c.keys(b"m").await;
     assert!(
         c.until(|s| !s.contents().contains(" map ")).await,
