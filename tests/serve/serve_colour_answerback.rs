@@ -302,3 +302,24 @@ async fn a_terminal_answering_da1_once_is_still_known_and_keys_after_are_keys() 
     );
     srv.shutdown().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn putty_s_answers_sent_at_once_in_either_order_are_known() {
+    let (srv, _dir) = server(|_| {}).await;
+    // A client that answers the whole query at once, as soon as it starts, with ENQ's answer
+    // before or after DA1's (one DA1 reply only).
+    for canned in [&b"PuTTY\x1b[?6c"[..], b"\x1b[?6cPuTTY"] {
+        let fake = Fake {
+            da1: None,
+            answerback: None,
+            rgb: Some(canned),
+            ..PUTTY
+        };
+        let (mut c, _) = connect_as(srv.local_addr(), "xterm", None, fake).await;
+        let h = header(&mut c).await;
+        assert!(h.contains("| truecolor (PuTTY) |"), "{canned:?}: {h}");
+        c.drain_for(std::time::Duration::from_millis(300)).await;
+        assert!(!c.closed);
+    }
+    srv.shutdown().await;
+}
