@@ -328,6 +328,7 @@ fn scan_da1(b: &[u8]) -> Scan {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::any;
 
     fn scan_all(chunks: &[&[u8]]) -> (bool, Option<bool>, Vec<u8>) {
         let mut s = ReplyScanner::default();
@@ -453,6 +454,38 @@ mod tests {
         assert_eq!(answers.answerback, None);
         assert_eq!(answers.device.as_deref(), Some("6"));
         assert_eq!(rest, b"PuTTY");
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn any_answerback_cut_anywhere_is_swallowed_and_the_keys_around_it_kept(
+            before in "[a-z ]{0,8}",
+            answerback in "[ -~]{0,20}",
+            after in "[a-z ]{0,8}",
+            cuts in proptest::collection::vec(any::<proptest::sample::Index>(), 0..6),
+        ) {
+            let stream = [
+                before.as_bytes(),
+                b"\x1b[?6c",
+                answerback.as_bytes(),
+                b"\x1b[?6c",
+                after.as_bytes(),
+            ]
+            .concat();
+            let mut points: Vec<usize> = cuts.iter().map(|i| i.index(stream.len() + 1)).collect();
+            points.sort_unstable();
+            let mut chunks: Vec<&[u8]> = Vec::new();
+            let mut last = 0;
+            for p in points {
+                chunks.push(&stream[last..p]);
+                last = p;
+            }
+            chunks.push(&stream[last..]);
+            let (done, answers, keys) = with_answerback(&chunks);
+            proptest::prop_assert!(done);
+            proptest::prop_assert_eq!(answers.answerback, Some(answerback.into_bytes()));
+            proptest::prop_assert_eq!(keys, [before, after].concat().into_bytes());
+        }
     }
 
     #[test]
