@@ -17,8 +17,8 @@ pub const TRUECOLOR_TERMS: [&str; 9] = [
     "contour",
 ];
 
-/// The `TERM` that PuTTY, KiTTY, MobaXterm and many phone clients send by default: every
-/// emulator still saying it draws the 256 xterm colours, so it is guessed as 256, not 16.
+/// The `TERM` PuTTY sends by default (and other clients built like it): every emulator still
+/// saying it draws the 256 xterm colours, so it is guessed as 256, not 16.
 pub const PLAIN_XTERM: &str = "xterm";
 
 /// Whether a (lower-case) `TERM` itself says 24-bit colour.
