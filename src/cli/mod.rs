@@ -114,10 +114,11 @@ pub(crate) fn detect_level() -> ColorLevel {
     detect_colours().level
 }
 
-/// The colour level the environment asks for, and which variable decided it.
+/// The colour level the environment asks for, and which variable decided it (the same rule
+/// as the server's, [`halfcast::ui::colour_query::rules::guess`]).
 pub(crate) fn detect_colours() -> ColourChoice {
     let var = |k: &str| std::env::var(k).ok();
-    ColourChoice::from_env(
+    halfcast::ui::colour_query::rules::guess(
         var("COLORTERM").as_deref(),
         var("TERM").as_deref(),
         var("NO_COLOR").as_deref(),

@@ -3,6 +3,38 @@
 use std::fmt;
 use std::str::FromStr;
 
+/// Parts of a `TERM` that name a terminal drawing 24-bit colour whatever else the name says
+/// (kitty says `xterm-kitty`, WezTerm `wezterm`, …).
+pub const TRUECOLOR_TERMS: [&str; 9] = [
+    "truecolor",
+    "24bit",
+    "kitty",
+    "alacritty",
+    "wezterm",
+    "foot",
+    "ghostty",
+    "iterm",
+    "contour",
+];
+
+/// The `TERM` PuTTY sends by default (and other clients built like it): every emulator still
+/// saying it draws the 256 xterm colours, so it is guessed as 256, not 16.
+pub const PLAIN_XTERM: &str = "xterm";
+
+/// Whether a (lower-case) `TERM` itself says 24-bit colour.
+fn term_says_truecolor(term: &str) -> bool {
+    term.ends_with("-direct") || TRUECOLOR_TERMS.iter().any(|t| term.contains(t))
+}
+
+/// Whether a `TERM` names how many colours its terminal draws (`*-256color`, `*-direct`, a
+/// 24-bit terminal's own name, `dumb`); `xterm`, `linux`, `vt100` and `screen` do not, so a
+/// level from them is a guess that the terminal's own answers may correct.
+#[must_use]
+pub fn term_names_colours(term: &str) -> bool {
+    let term = term.to_ascii_lowercase();
+    term_says_truecolor(&term) || term.contains("256color") || term == "dumb"
+}
+
 /// How colours reach the terminal; each step down sends fewer bytes and works on more terminals.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum ColorLevel {
@@ -34,8 +66,9 @@ impl ColorLevel {
 
     /// Guesses the level from `COLORTERM`, `TERM` and `NO_COLOR` (passed in so it is testable).
     ///
-    /// `NO_COLOR` (non-empty) wins; `COLORTERM=truecolor|24bit` or a `*-direct` TERM gives 24-bit;
-    /// a `*256color*` TERM gives 256; `dumb` gives mono; anything else gives 16.
+    /// `NO_COLOR` (non-empty) wins; `COLORTERM=truecolor|24bit`, a `*-direct` TERM or a terminal
+    /// known to draw 24-bit colour whatever its `TERM` ([`TRUECOLOR_TERMS`]) gives 24-bit; a
+    /// `*256color*` TERM or a plain `xterm` gives 256; `dumb` gives mono; anything else gives 16.
     #[must_use]
     pub fn detect(colorterm: Option<&str>, term: Option<&str>, no_color: Option<&str>) -> Self {
         if no_color.is_some_and(|v| !v.is_empty()) {
@@ -43,9 +76,9 @@ impl ColorLevel {
         }
         let colorterm = colorterm.unwrap_or("").to_ascii_lowercase();
         let term = term.unwrap_or("").to_ascii_lowercase();
-        if colorterm == "truecolor" || colorterm == "24bit" || term.ends_with("-direct") {
+        if colorterm == "truecolor" || colorterm == "24bit" || term_says_truecolor(&term) {
             ColorLevel::TrueColor
-        } else if term.contains("256color") {
+        } else if term.contains("256color") || term == PLAIN_XTERM {
             ColorLevel::Ansi256
         } else if term == "dumb" {
             ColorLevel::Mono
@@ -131,8 +164,16 @@ pub enum ColourReason {
     Colorterm,
     /// The terminal answered a query (XTGETTCAP `RGB`/`Tc`, or DECRQSS of a 24-bit SGR).
     TerminalSaid,
-    /// The `TERM` name rule (nothing better was known).
+    /// The `TERM` name rule, from a `TERM` that names its colours (`*-256color`, `*-direct`,
+    /// `dumb`, a 24-bit terminal's own name).
     Term,
+    /// The `TERM` name rule, from a `TERM` that names no colours (`xterm`, `linux`, `vt100`,
+    /// `screen`…) with `COLORTERM` silent: only a guess, so the terminal's answerback is
+    /// worth asking for too. Shown as `TERM` all the same.
+    TermGuess,
+    /// The terminal said it is PuTTY (answerback `PuTTY` and VT102 device attributes), which
+    /// draws 24-bit colour by default while sending `TERM=xterm`.
+    Putty,
     /// The player cycled it with the colour key.
     Key,
     /// `--max-bandwidth --adapt-colors` stepped it down.
@@ -151,7 +192,8 @@ impl ColourReason {
             ColourReason::NoColor => "NO_COLOR",
             ColourReason::Colorterm => "COLORTERM",
             ColourReason::TerminalSaid => "terminal said so",
-            ColourReason::Term => "TERM",
+            ColourReason::Term | ColourReason::TermGuess => "TERM",
+            ColourReason::Putty => "PuTTY",
             ColourReason::Key => "O key",
             ColourReason::Bandwidth => "bandwidth cap",
             ColourReason::Link => "link",
@@ -180,6 +222,8 @@ impl ColourChoice {
             Some("truecolor" | "24bit")
         ) {
             ColourReason::Colorterm
+        } else if colorterm.unwrap_or("").is_empty() && !term_names_colours(term.unwrap_or("")) {
+            ColourReason::TermGuess
         } else {
             ColourReason::Term
         };
@@ -208,7 +252,15 @@ impl ColourChoice {
     /// 24-bit can (an explicit flag, `NO_COLOR` and `COLORTERM` are the user's word).
     #[must_use]
     pub fn worth_asking(self) -> bool {
-        self.reason == ColourReason::Term && self.level != ColorLevel::TrueColor
+        matches!(self.reason, ColourReason::Term | ColourReason::TermGuess)
+            && self.level != ColorLevel::TrueColor
+    }
+
+    /// Whether the terminal's answerback (ENQ) could change this choice: only where `TERM`
+    /// names no colours and `COLORTERM` says nothing (elsewhere ENQ is not sent at all).
+    #[must_use]
+    pub fn worth_an_answerback(self) -> bool {
+        self.reason == ColourReason::TermGuess && self.worth_asking()
     }
 
     /// This choice after the terminal's answer: `Some(true)` (it shows 24-bit colour) upgrades a
@@ -257,8 +309,15 @@ mod tests {
         assert_eq!(d(None, Some("xterm-direct"), None), TrueColor);
         assert_eq!(d(None, Some("xterm-256color"), None), Ansi256);
         assert_eq!(d(None, Some("screen-256color"), None), Ansi256);
-        assert_eq!(d(None, Some("xterm"), None), Ansi16);
+        assert_eq!(d(None, Some("xterm"), None), Ansi256);
+        assert_eq!(d(None, Some("XTERM"), None), Ansi256);
+        assert_eq!(d(None, Some("xterm-kitty"), None), TrueColor);
+        assert_eq!(d(None, Some("alacritty"), None), TrueColor);
+        assert_eq!(d(None, Some("xterm-color"), None), Ansi16);
         assert_eq!(d(None, Some("linux"), None), Ansi16);
+        assert_eq!(d(None, Some("vt100"), None), Ansi16);
+        assert_eq!(d(None, Some("screen"), None), Ansi16);
+        assert_eq!(d(None, Some("putty"), None), Ansi16);
         assert_eq!(d(None, None, None), Ansi16);
         assert_eq!(d(None, Some("dumb"), None), Mono);
         assert_eq!(d(Some("truecolor"), Some("xterm"), Some("1")), Mono);
@@ -291,6 +350,39 @@ mod tests {
             "16 (--colors)"
         );
         assert!(!env(None, Some("xterm-direct"), None).worth_asking());
+    }
+
+    #[test]
+    fn only_a_term_that_names_no_colours_with_colorterm_silent_is_worth_an_answerback() {
+        let env = ColourChoice::from_env;
+        for term in ["xterm", "linux", "vt100", "screen", "putty", "vt220"] {
+            let c = env(None, Some(term), None);
+            assert_eq!(c.reason, ColourReason::TermGuess, "{term}");
+            assert!(c.worth_an_answerback(), "{term}");
+            assert!(
+                env(Some(""), Some(term), None).worth_an_answerback(),
+                "{term}"
+            );
+            // COLORTERM said something (not 24-bit): it is not silent.
+            assert!(!env(Some("gnome-terminal"), Some(term), None).worth_an_answerback());
+        }
+        assert_eq!(env(None, Some("xterm"), None).to_string(), "256 (TERM)");
+        assert_eq!(env(None, Some("linux"), None).to_string(), "16 (TERM)");
+        for term in [
+            "xterm-256color",
+            "screen-256color",
+            "xterm-direct",
+            "xterm-kitty",
+            "dumb",
+        ] {
+            let c = env(None, Some(term), None);
+            assert_eq!(c.reason, ColourReason::Term, "{term}");
+            assert!(!c.worth_an_answerback(), "{term}");
+        }
+        assert!(env(None, Some("xterm-256color"), None).worth_asking());
+        assert!(!env(Some("truecolor"), Some("xterm"), None).worth_an_answerback());
+        assert!(!env(None, Some("xterm"), Some("1")).worth_an_answerback());
+        assert!(!ColourChoice::flag(ColorLevel::Ansi16).worth_an_answerback());
     }
 
     #[test]

@@ -22,7 +22,7 @@ use russh::ChannelId;
 use tokio::sync::{mpsc, watch};
 use tokio::time::MissedTickBehavior;
 
-use super::ask_colour::{ask_truecolor, SSH_QUERY_PATIENCE};
+use super::ask_colour::{ask_colour, SSH_QUERY_PATIENCE};
 use super::config::clamp_size;
 use super::handler::BoardLine;
 use super::header::{self, Piece};
@@ -35,7 +35,7 @@ use super::metrics::{self, FrameMetrics, Reason};
 use super::screen::{panes_for, view_rect, SessionScreen};
 use super::stats::ServeStats;
 use super::world_task::{WorldHandle, WorldMsg};
-use crate::encode::{ColorLevel, ColourChoice, ColourReason};
+use crate::encode::ColourChoice;
 use crate::game::multi::players::{PlayerId, Snapshot};
 use crate::game::Held;
 use crate::render::glyphs::Glyphs;
@@ -148,15 +148,16 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
     if s.screen.colour().worth_asking() {
         // On the alternate screen, so a terminal that shows a query as text shows it there only.
         entered = true;
-        let (answer, typed) = ask_truecolor(
+        let (colour, typed) = ask_colour(
             &p.handle,
             p.channel,
             ENTER,
             &mut inputs.data,
             SSH_QUERY_PATIENCE,
+            s.screen.colour(),
         )
         .await;
-        s.screen.set_colour(s.screen.colour().with_answer(answer));
+        s.screen.set_colour(colour);
         if !typed.is_empty() {
             early_end = keys_early(&mut s, &typed);
         }
@@ -822,33 +823,9 @@ fn is_clamped((cols, rows): (u32, u32)) -> bool {
 }
 
 /// The colour level for a client's `TERM` (and `COLORTERM`, when its client sends it as an env
-/// request): the encoder's own rule, plus terminals known to show 24-bit colour whatever their
-/// `TERM` says.
+/// request): the same rule as the local game's ([`crate::ui::colour_query::rules::guess`]).
 fn level_for_term(term: &str, colorterm: Option<&str>) -> ColourChoice {
-    const TRUECOLOR_TERMS: [&str; 9] = [
-        "truecolor",
-        "24bit",
-        "kitty",
-        "alacritty",
-        "wezterm",
-        "foot",
-        "ghostty",
-        "iterm",
-        "contour",
-    ];
-    let lower = term.to_ascii_lowercase();
-    let env = ColourChoice::from_env(colorterm, Some(term), None);
-    if env.reason == ColourReason::Colorterm {
-        return env;
-    }
-    if TRUECOLOR_TERMS.iter().any(|t| lower.contains(t)) {
-        return ColourChoice {
-            level: ColorLevel::TrueColor,
-            reason: ColourReason::Term,
-        };
-    }
-    let term = if term.is_empty() { "dumb" } else { term };
-    ColourChoice::from_env(colorterm, Some(term), None)
+    crate::ui::colour_query::rules::guess(colorterm, Some(term), None)
 }
 
 /// The next (or previous) player after `current` in join order, wrapping; `None` if nobody.
@@ -870,6 +847,7 @@ fn cycle(snap: &Snapshot, current: Option<PlayerId>, forward: bool) -> Option<Pl
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::encode::ColorLevel;
     use crate::game::multi::players::Players;
 
     #[test]
@@ -927,7 +905,7 @@ mod tests {
             level_for_term("xterm-256color", Some("truecolor")).level,
             ColorLevel::TrueColor
         );
-        assert_eq!(level_for_term("xterm", None).level, ColorLevel::Ansi16);
+        assert_eq!(level_for_term("xterm", None).level, ColorLevel::Ansi256);
         assert_eq!(level_for_term("", None).level, ColorLevel::Mono);
         assert_eq!(level_for_term("dumb", None).level, ColorLevel::Mono);
     }

@@ -105,8 +105,8 @@ pub fn play(
     let mut colour = options.colour;
     let mut early_keys = Vec::new();
     if colour.worth_asking() {
-        let (answer, keys) = session.ask_truecolor();
-        colour = colour.with_answer(answer);
+        let (asked, keys) = session.ask_colour(colour);
+        colour = asked;
         early_keys = keys;
     }
     let mut looping = options.looping;

@@ -17,7 +17,8 @@ use crossterm::terminal::{
 use crossterm::{cursor, execute, queue, style};
 
 use super::tty_out::{write_within, TtyOut};
-use crate::ui::colour_query::{ReplyScanner, QUERY, QUERY_PATIENCE};
+use crate::encode::ColourChoice;
+use crate::ui::colour_query::{query, rules, ReplyScanner, ANSWERBACK_PATIENCE, QUERY_PATIENCE};
 use crate::ui::keys::InputMode;
 
 /// How long restoring the terminal may wait for a terminal that does not take bytes.
@@ -127,23 +128,39 @@ impl Session {
         self.mode
     }
 
-    /// Asks the terminal whether it shows 24-bit colour ([`crate::ui::colour_query`]), before the
-    /// first frame. Waits for the DA1 reply that ends the answers, at most
-    /// [`QUERY_PATIENCE`]; keys typed meanwhile come back as events, in order, for the game.
-    ///
-    /// Returns `Some(true)`/`Some(false)` for an answer, `None` when the terminal said nothing
-    /// (tmux 3.3, a closed input, a terminal that ignores the queries).
-    pub fn ask_truecolor(&mut self) -> (Option<bool>, Vec<crossterm::event::Event>) {
+    /// Asks the terminal what it draws ([`crate::ui::colour_query`]), before the first frame,
+    /// and returns `choice` after its answers ([`rules::decide`]). Waits for the DA1 reply that
+    /// ends the answers, at most [`QUERY_PATIENCE`] ([`ANSWERBACK_PATIENCE`] when ENQ went too;
+    /// once more when the terminal has begun answering, so an answerback on its way is not
+    /// taken for keys); keys typed meanwhile come back as events, in order, for the game.
+    pub fn ask_colour(
+        &mut self,
+        choice: ColourChoice,
+    ) -> (ColourChoice, Vec<crossterm::event::Event>) {
         let Some(mut input) = open_input_nonblocking() else {
-            return (None, Vec::new());
+            return (choice, Vec::new());
         };
-        if self.write_frame(QUERY).is_err() {
-            return (None, Vec::new());
+        let answerback = choice.worth_an_answerback();
+        if self.write_frame(&query(answerback)).is_err() {
+            return (choice, Vec::new());
         }
-        let deadline = Instant::now() + QUERY_PATIENCE;
-        let mut scanner = ReplyScanner::default();
+        let patience = if answerback {
+            ANSWERBACK_PATIENCE
+        } else {
+            QUERY_PATIENCE
+        };
+        let mut deadline = Instant::now() + patience;
+        let mut extended = false;
+        let mut scanner = ReplyScanner::new(answerback);
         let mut buf = [0u8; 256];
-        while !scanner.done() && Instant::now() < deadline {
+        while !scanner.done() {
+            if Instant::now() >= deadline {
+                if extended || !scanner.answering() {
+                    break;
+                }
+                extended = true;
+                deadline += QUERY_PATIENCE;
+            }
             match input.read(&mut buf) {
                 // End of input: nothing will ever answer.
                 Ok(0) => break,
@@ -155,8 +172,8 @@ impl Session {
                 Err(_) => break,
             }
         }
-        let (answer, rest) = scanner.finish();
-        (answer, keys_from_bytes(&rest))
+        let (answers, rest) = scanner.finish();
+        (rules::decide(choice, &answers), keys_from_bytes(&rest))
     }
 
     /// The terminal size now, in cells.

@@ -9,7 +9,8 @@
 //!   bytes), [`key_route`] sends them to the session or the game, [`keymap`] binds keys to
 //!   actions, [`keys`] turns key events into a game `Input` and [`UiCommand`]s, [`repeat`] tells
 //!   a held key from a tapped one where the terminal sends no releases.
-//! - [`colour_query`]: asking a terminal whether it shows 24-bit colour, over any byte stream.
+//! - [`colour_query`]: asking a terminal whether it shows 24-bit colour (and whether it is PuTTY),
+//!   over any byte stream, and the rules that turn its answers into a colour level.
 //! - Glyphs: `octant_support` tells from a session's environment whether octants are known to
 //!   be dropped on the way to the screen (tmux), and `glyph_cycle` is the glyph key's cycle
 //!   that then skips them.

@@ -98,3 +98,71 @@ fn colorterm_and_the_flag_are_not_second_guessed() {
     assert!(!contains(&run.bytes(), QUERY_START), "no query");
     quit(run);
 }
+
+/// The end of the query where `TERM` names no colours: ENQ between two DA1 requests.
+const ANSWERBACK_QUERY: &[u8] = b"\x1b[c\x05\x1b[c";
+
+/// The game with `TERM=term` and no `COLORTERM`, once its whole query has arrived.
+fn queried_as(term: &str, end: &[u8]) -> PtyRun {
+    let mut run = PtyRun::spawn_with(&["--fps", "30"], SIZE, &[("COLORTERM", ""), ("TERM", term)]);
+    run.wait_for("the colour query", |b| {
+        contains(b, QUERY_START) && contains(b, end)
+    });
+    run
+}
+
+#[test]
+fn putty_known_by_its_answers_gets_truecolor_and_its_answerback_is_not_typed() {
+    // PuTTY 0.78's own answers, the answerback cut between reads. Typed, its `T` and `Y` would
+    // do nothing visible, so an answerback of `m` (hide the minimap) shows it was not typed.
+    let mut run = queried_as("xterm", ANSWERBACK_QUERY);
+    run.send(b"\x1b[?6cPu");
+    run.send(b"TTY\x1b[?6c");
+    wait_status(&mut run, " truecolor (PuTTY)");
+    quit(run);
+    let mut run = queried_as("xterm", ANSWERBACK_QUERY);
+    run.send(b"\x1b[?6cm");
+    run.send(b"\x1b[?6c");
+    wait_status(&mut run, " 256 (TERM)");
+    run.wait_for_screen("the minimap", |s| s.contents().contains("╭ map"));
+    quit(run);
+}
+
+#[test]
+fn putty_on_a_slow_link_still_gets_truecolor_and_its_answerback_is_not_typed() {
+    // PuTTY, then ssh, then the game: the answers come later than the 200 ms a local terminal
+    // gets, but within the longer wait where ENQ went. `m` as its answerback shows it was not
+    // typed (the minimap stays).
+    let mut run = queried_as("xterm", ANSWERBACK_QUERY);
+    std::thread::sleep(std::time::Duration::from_millis(400));
+    run.send(b"\x1b[?6cm\x1b[?6c");
+    wait_status(&mut run, " 256 (TERM)");
+    run.wait_for_screen("the minimap", |s| s.contents().contains("╭ map"));
+    quit(run);
+    let mut run = queried_as("xterm", ANSWERBACK_QUERY);
+    std::thread::sleep(std::time::Duration::from_millis(400));
+    run.send(b"\x1b[?6cPuTTY\x1b[?6c");
+    wait_status(&mut run, " truecolor (PuTTY)");
+    quit(run);
+}
+
+#[test]
+fn a_plain_xterm_answering_nothing_gets_256_and_the_console_16() {
+    let mut run = queried_as("xterm", ANSWERBACK_QUERY);
+    wait_status(&mut run, " 256 (TERM)");
+    quit(run);
+    // The Linux console answers DA1 as a VT102 and ignores ENQ.
+    let mut run = queried_as("linux", ANSWERBACK_QUERY);
+    run.send(b"\x1b[?6c\x1b[?6c");
+    wait_status(&mut run, " 16 (TERM)");
+    quit(run);
+}
+
+#[test]
+fn no_enq_goes_to_a_terminal_whose_term_names_its_colours() {
+    let mut run = queried(&[]);
+    run.send(b"\x1b[?6c");
+    wait_status(&mut run, " 256 (TERM)");
+    assert!(!run.bytes().contains(&0x05), "ENQ sent to xterm-256color");
+    quit(run);
+}
