@@ -35,7 +35,7 @@ use super::metrics::{self, FrameMetrics, Reason};
 use super::screen::{panes_for, view_rect, SessionScreen};
 use super::stats::ServeStats;
 use super::world_task::{WorldHandle, WorldMsg};
-use crate::encode::ColourChoice;
+use crate::encode::{ColourChoice, ColourReason};
 use crate::game::multi::players::{PlayerId, Snapshot};
 use crate::game::Held;
 use crate::render::glyphs::Glyphs;
