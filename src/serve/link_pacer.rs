@@ -201,6 +201,13 @@ impl LinkPacer {
         true
     }
 
+    /// Whether [`LinkPacer::clear`] needs the kernel's figures now: a frame is in flight and
+    /// already written (`wire` bytes so far), so only its acknowledgement is in question.
+    #[must_use]
+    pub fn needs_sample(&self, wire: u64) -> bool {
+        self.in_flight.is_some_and(|f| wire > f.wire_before)
+    }
+
     /// What may stay unacknowledged when the next frame goes: what the path holds by itself
     /// (delivery rate × least round trip), at least [`MIN_ALLOWANCE`].
     fn allowance(&self, s: &TcpSample) -> u64 {

@@ -274,41 +274,6 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
             again = Some(next);
             continue;
         }
-        let sample = match probe.as_mut() {
-            Some(pr) => {
-                let sample = pr.sample();
-                if sample.is_none() {
-                    // The kernel no longer knows the socket: pace on writes alone from now.
-                    probe = None;
-                }
-                sample
-            }
-            None => None,
-        };
-        let std_now = now.into_std();
-        if !pacer.clear(p.life.written(), sample.as_ref(), std_now) {
-            again = Some(now + LINK_RECHECK);
-            continue;
-        }
-        if let Some(d) = pacer.take_waited() {
-            frame_metrics.link_wait(d);
-        }
-        again = None;
-        want = false;
-        if s.screen.colour().reason != ColourReason::Key {
-            if let Some(step) = pacer.step(s.screen.colour().level, std_now) {
-                let (level, down) = match step {
-                    Step::Down(l) => (l, true),
-                    Step::Up(l) => (l, false),
-                };
-                frame_metrics.level_step(down);
-                s.screen.set_colour(ColourChoice {
-                    level,
-                    reason: ColourReason::Link,
-                });
-            }
-        }
-        s.show_link(pacer.figures(), std_now);
         let snap = snaps.borrow_and_update().clone();
         if !named {
             if let Some(me) = snap.player(p.id) {
@@ -340,6 +305,47 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
             }
             _ => None,
         };
+        if s.unchanged(&snap) {
+            want = false;
+            continue;
+        }
+        let wire = p.life.written();
+        let sample = match probe.as_mut() {
+            // Nothing in flight, or not yet written: no need to ask the kernel.
+            Some(pr) if pacer.needs_sample(wire) => {
+                let sample = pr.sample();
+                if sample.is_none() {
+                    // The kernel no longer knows the socket: pace on writes alone from now.
+                    probe = None;
+                }
+                sample
+            }
+            _ => None,
+        };
+        let std_now = now.into_std();
+        if !pacer.clear(wire, sample.as_ref(), std_now) {
+            again = Some(now + LINK_RECHECK);
+            continue;
+        }
+        if let Some(d) = pacer.take_waited() {
+            frame_metrics.link_wait(d);
+        }
+        again = None;
+        want = false;
+        if s.screen.colour().reason != ColourReason::Key {
+            if let Some(step) = pacer.step(s.screen.colour().level, std_now) {
+                let (level, down) = match step {
+                    Step::Down(l) => (l, true),
+                    Step::Up(l) => (l, false),
+                };
+                frame_metrics.level_step(down);
+                s.screen.set_colour(ColourChoice {
+                    level,
+                    reason: ColourReason::Link,
+                });
+            }
+        }
+        s.show_link(pacer.figures(), std_now);
         s.compose(&snap, &mut out);
         if out.is_empty() {
             continue;
@@ -765,10 +771,16 @@ impl State {
         header::fit(&pieces, usize::from(self.size.0))
     }
 
-    /// Appends the bytes of the next frame to `out` (nothing if the screen would not change).
-    fn compose(&mut self, snap: &Snapshot, out: &mut Vec<u8>) {
+    /// Whether the frame drawn from `snap` now would be the one on screen (nothing to send).
+    fn unchanged(&mut self, snap: &Snapshot) -> bool {
+        let key = self.key(snap);
+        self.shown.as_ref() == Some(&key)
+    }
+
+    /// Everything the frame drawn from `snap` depends on.
+    fn key(&mut self, snap: &Snapshot) -> Shown {
         let eye = self.eye(snap);
-        let key = (
+        (
             snap.version,
             self.size,
             self.screen.colour(),
@@ -779,7 +791,13 @@ impl State {
             eye,
             self.screen.toggles,
             self.leaders.clone().map(|b| (b, self.show_leaders)),
-        );
+        )
+    }
+
+    /// Appends the bytes of the next frame to `out` (nothing if the screen would not change).
+    fn compose(&mut self, snap: &Snapshot, out: &mut Vec<u8>) {
+        let key = self.key(snap);
+        let eye = key.4;
         if self.shown.as_ref() == Some(&key) {
             return;
         }

@@ -98,6 +98,13 @@ async fn each_event_is_one_json_object_with_its_fields() {
     assert!(d["seconds"].as_f64().unwrap() > 1.0, "{d}");
     assert!(d["bytes_out"].as_u64().unwrap() > 1000, "{d}");
     assert!(d["bytes_in"].as_u64().unwrap() > 100, "{d}");
+    // The link it played over (loopback: a round trip under a second, nothing stepped).
+    let link = &d["link"];
+    assert!(link["rtt_ms"].as_f64().unwrap() < 1000.0, "{d}");
+    assert!(link["kbit_per_s"].as_f64().unwrap() > 0.0, "{d}");
+    assert!(link["max_queued_bytes"].is_u64(), "{d}");
+    assert_eq!(link["level_steps_down"], 0, "{d}");
+    assert_eq!(link["level_steps_up"], 0, "{d}");
     // Why it closed, when the server closed it (one game per connection: after `q` the
     // server hangs up if the client has not already).
     assert!(d["error"].is_null() || d["error"].is_string(), "{d}");

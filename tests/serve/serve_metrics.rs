@@ -85,6 +85,8 @@ async fn counters_move_as_clients_join_are_refused_and_leave() {
             && get(m, "halfcast_frame_encode_seconds_count") > 0.0
             && get(m, "halfcast_world_tick_seconds_count") > 0.0
             && m.contains_key(r#"halfcast_frame_render_seconds_bucket{le="+Inf"}"#)
+            // Each frame that went says how long it waited for the link (on loopback: none).
+            && get(m, "halfcast_link_wait_seconds_count") > 0.0
     })
     .await;
 
