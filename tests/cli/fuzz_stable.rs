@@ -211,6 +211,11 @@ fn frame_seeds() -> Vec<Vec<u8>> {
             .as_bytes()
             .to_vec(),
     );
+    s.push(
+        "halfcast-cells v2 3x1\n\"e\u{301}?x\"\nstyles:\ny0 x0-1 fg=green ul=idx3 bold\nglyphs:\ny0 x1 U+0301\n"
+            .as_bytes()
+            .to_vec(),
+    );
     s.push(b"plain\ntext frame\n".to_vec());
     s
 }
