@@ -48,6 +48,19 @@ fn channel_delta(a: Option<Rgb>, b: Option<Rgb>) -> u8 {
     }
 }
 
+/// Two differing cells in the form their parts are compared in: canonical when neither has
+/// attributes (so `▀` a/b against `▄` c/a is a change of one colour), else as they are (an
+/// underline added to `█` is a change of attributes, not of glyph).
+fn comparable(a: &TermCell, b: &TermCell) -> (TermCell, TermCell) {
+    let plain =
+        |c: &TermCell| c.modifiers.is_empty() && c.underline == ratatui::style::Color::Reset;
+    if plain(a) && plain(b) {
+        (a.appearance(), b.appearance())
+    } else {
+        (a.clone(), b.clone())
+    }
+}
+
 /// Compares by appearance (so `▀` a/b equals `▄` b/a), every part of a cell counting:
 /// grapheme, colours as named, underline colour, attributes. Frames of different sizes differ
 /// entirely.
@@ -65,8 +78,8 @@ pub fn diff(a: &TermFrame, b: &TermFrame) -> DiffReport {
     for y in 0..a.rows {
         for x in 0..a.cols {
             let (ca, cb) = (a.cell(x, y), b.cell(x, y));
-            let (la, lb) = (ca.appearance(), cb.appearance());
-            if la != lb {
+            if ca.appearance() != cb.appearance() {
+                let (la, lb) = comparable(ca, cb);
                 let colour_delta = channel_delta(la.fg_rgb(), lb.fg_rgb())
                     .max(channel_delta(la.bg_rgb(), lb.bg_rgb()));
                 report.max_colour_delta = report.max_colour_delta.max(colour_delta);
@@ -88,7 +101,7 @@ impl CellDiff {
     /// (comma-separated).
     #[must_use]
     pub fn what_changed(&self) -> String {
-        let (a, b) = (self.a.appearance(), self.b.appearance());
+        let (a, b) = comparable(&self.a, &self.b);
         let parts = [
             (a.glyph != b.glyph, "glyph"),
             (a.fg != b.fg, "fg"),
