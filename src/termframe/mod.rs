@@ -8,6 +8,8 @@ mod glyph;
 mod parse;
 mod text;
 mod text_v1;
+#[cfg(any(test, feature = "vt100"))]
+mod underline_colour;
 
 pub use cell::TermCell;
 pub use colour::{colour_name, named_colour, ratatui_rgb};

@@ -5,6 +5,8 @@ use std::path::Path;
 
 use super::text::read_grid_row;
 use super::text_v1::CELLS_HEADER_V1;
+#[cfg(any(test, feature = "vt100"))]
+use super::underline_colour::without_underline_colours;
 use super::{from_cells_text, TermCell, TermFrame, CELLS_HEADER};
 use crate::color::Rgb;
 use crate::render::framebuffer::Framebuffer;
@@ -185,7 +187,7 @@ fn with_carriage_returns(bytes: &[u8]) -> Vec<u8> {
 fn model(fixed: &[u8], cols: usize, rows: usize) -> TermFrame {
     let (cols, rows) = (cols.clamp(1, MAX_FRAME.0), rows.clamp(1, MAX_FRAME.1));
     let mut parser = vt100::Parser::new(rows as u16 + 1, cols as u16, 0);
-    parser.process(fixed);
+    parser.process(&without_underline_colours(fixed));
     from_screen(parser.screen(), cols, rows)
 }
 
@@ -206,12 +208,15 @@ pub fn from_ansi(bytes: &[u8]) -> TermFrame {
 /// the model keeps (bold, italic, underlined, reversed; it drops dim, blinking, hidden,
 /// crossed out and the underline colour). Colours 0–15 read as named colours whichever way
 /// they were sent (`ESC[32m` and `ESC[38;5;2m` select the same palette entry). A bare `\n` is
-/// taken as a new line, as a tty's output processing would make it.
+/// taken as a new line, as a tty's output processing would make it. Underline colours (SGR 58)
+/// are removed before the model reads the bytes, since it would misread their numbers. The
+/// model gives an emoji's skin-tone modifier columns of its own, so a row holding `👍🏽` reads
+/// shifted from there on.
 #[must_use]
 pub fn from_ansi_sized(bytes: &[u8], cols: u16, rows: u16) -> TermFrame {
     let (cols, rows) = (cols.max(1), rows.max(1));
     let mut parser = vt100::Parser::new(rows, cols, 0);
-    parser.process(&with_carriage_returns(bytes));
+    parser.process(&without_underline_colours(&with_carriage_returns(bytes)));
     from_screen(parser.screen(), usize::from(cols), usize::from(rows))
 }
 

@@ -16,6 +16,7 @@ mod tmux;
 #[allow(dead_code)] // each test binary uses its own part of the shared world helpers
 mod world_common;
 
+mod ansi_round_trip;
 mod cli_colors;
 mod cli_default_play;
 mod colour;
