@@ -6,6 +6,7 @@ mod colour;
 mod diff;
 mod glyph;
 mod parse;
+mod ratatui_debug;
 mod text;
 mod text_v1;
 #[cfg(any(test, feature = "vt100"))]
@@ -18,6 +19,7 @@ pub use glyph::Glyph;
 #[cfg(any(test, feature = "vt100"))]
 pub use parse::{from_ansi, from_ansi_sized, from_screen, try_from_ansi};
 pub use parse::{load, parse_frame, FrameFormat, MAX_FRAME, MAX_FRAME_BYTES};
+pub use ratatui_debug::from_buffer_debug;
 pub use text::{cell_code, from_cells_text, style_words, to_cells_text, CELLS_HEADER};
 
 use crate::encode::glyph_cell::GlyphCell;

@@ -3,6 +3,7 @@
 
 use std::path::Path;
 
+use super::ratatui_debug::{from_buffer_debug, BUFFER_DEBUG_HEADER};
 use super::text::read_grid_row;
 use super::text_v1::CELLS_HEADER_V1;
 #[cfg(any(test, feature = "vt100"))]
@@ -18,8 +19,10 @@ pub enum FrameFormat {
     Png,
     /// ANSI escape sequences, read through a terminal model.
     Ansi,
-    /// halfcast's colour-aware cells text.
+    /// halfcast's cells text (glyph grid and style runs).
     Cells,
+    /// A ratatui `Buffer`'s `Debug` form (what `insta::assert_debug_snapshot!(buffer)` pins).
+    BufferDebug,
     /// Plain text, one character per cell.
     Text,
 }
@@ -70,8 +73,17 @@ pub fn parse_frame(bytes: &[u8]) -> Result<(TermFrame, FrameFormat), String> {
         return Ok((TermFrame::from_framebuffer(&fb), FrameFormat::Png));
     }
     let text = std::str::from_utf8(bytes).map_err(|_| "not a PNG and not UTF-8 text")?;
-    if text.starts_with(CELLS_HEADER) || text.starts_with(CELLS_HEADER_V1) {
-        return Ok((from_cells_text(text)?, FrameFormat::Cells));
+    if let Some(body) = insta_body(text) {
+        return frame_text(body).unwrap_or_else(|| {
+            Err(
+                "an insta snapshot whose contents are not a frame (halfcast cells text or a \
+                 ratatui Buffer's Debug form)"
+                    .into(),
+            )
+        });
+    }
+    if let Some(frame) = frame_text(text) {
+        return frame;
     }
     if text.contains('\x1b') {
         #[cfg(any(test, feature = "vt100"))]
@@ -102,6 +114,26 @@ pub fn parse_frame(bytes: &[u8]) -> Result<(TermFrame, FrameFormat), String> {
         })
         .collect();
     Ok((TermFrame { cols, rows, cells }, FrameFormat::Text))
+}
+
+/// The contents of an insta `.snap` file (the header between its `---` lines removed), when
+/// `text` is one.
+fn insta_body(text: &str) -> Option<&str> {
+    let rest = text.strip_prefix("---\n")?;
+    let end = rest.find("\n---\n")?;
+    Some(&rest[end + 5..])
+}
+
+/// Reads `text` as one of the frame forms that announce themselves (halfcast cells text, a
+/// ratatui buffer's `Debug`); `None` for any other text.
+fn frame_text(text: &str) -> Option<Result<(TermFrame, FrameFormat), String>> {
+    if text.starts_with(CELLS_HEADER) || text.starts_with(CELLS_HEADER_V1) {
+        return Some(from_cells_text(text).map(|f| (f, FrameFormat::Cells)));
+    }
+    if text.starts_with(BUFFER_DEBUG_HEADER) {
+        return Some(from_buffer_debug(text).map(|f| (f, FrameFormat::BufferDebug)));
+    }
+    None
 }
 
 #[cfg(any(test, feature = "vt100"))]
@@ -323,6 +355,20 @@ mod tests {
         assert_eq!(
             parse_frame(tall.as_bytes()).unwrap_err(),
             "text frame is 1x2001 cells; the limit is 4000x2000"
+        );
+    }
+
+    #[test]
+    fn insta_snapshots_read_without_their_header() {
+        let snap = "---\nsource: tests/x.rs\nexpression: cells_text(&buf)\n---\nhalfcast-cells v2 2x1\n\"ok\"\nstyles:\ny0 x0-1 bold\n";
+        let (f, format) = parse_frame(snap.as_bytes()).unwrap();
+        assert_eq!((f.cols, f.rows, format), (2, 1, FrameFormat::Cells));
+        assert_eq!(f.cell(1, 0).modifiers, ratatui::style::Modifier::BOLD);
+        let other = "---\nsource: tests/x.rs\n---\n{\"json\": 1}\n";
+        assert_eq!(
+            parse_frame(other.as_bytes()).unwrap_err(),
+            "an insta snapshot whose contents are not a frame (halfcast cells text or a ratatui \
+             Buffer's Debug form)"
         );
     }
 

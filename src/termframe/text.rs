@@ -281,6 +281,10 @@ pub fn from_cells_text(text: &str) -> Result<TermFrame, String> {
             next = 0;
             continue;
         }
+        if line.is_empty() {
+            // A blank line (an editor's or a snapshot file's last newline) says nothing.
+            continue;
+        }
         let bad = || format!("line {n}: '{line}' is not a {section} line");
         let (y, first, last, rest) = place(line, &frame).ok_or_else(bad)?;
         if y * cols + first < next {

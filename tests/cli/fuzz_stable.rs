@@ -217,6 +217,11 @@ fn frame_seeds() -> Vec<Vec<u8>> {
             .to_vec(),
     );
     s.push(b"plain\ntext frame\n".to_vec());
+    s.push(
+        "Buffer {\n    area: Rect { x: 0, y: 0, width: 3, height: 1 },\n    content: [\n        \"\u{754c}e\",\n    ],\n    styles: [\n        x: 0, y: 0, fg: Green, bg: Rgb(1, 2, 3), underline: Indexed(9), modifier: BOLD | REVERSED,\n    ]\n}"
+            .as_bytes()
+            .to_vec(),
+    );
     s
 }
 
