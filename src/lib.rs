@@ -12,7 +12,7 @@
 //! | *(none)* | engine, widgets, encoder, [`LeanBackend`], [`snapshot`], [`termframe`], [`replay`] files | ratatui (no backend), image, serde |
 //! | `crossterm` | ratatui's crossterm backend; [`LeanBackend`] asks the terminal its size | crossterm |
 //! | `scrolling-regions` | [`LeanBackend`]'s scrolling-region methods (when ratatui's feature of that name is on) | — |
-//! | `vt100` | reading ANSI frames back (`termframe::from_ansi_sized`, `.ans` files); re-exports [`vt100`] | vt100 |
+//! | `vt100` | reading ANSI frames back (`termframe::from_ansi_sized`, `.ans` files); re-exports `halfcast::vt100` | vt100 |
 //! | `tui` | the interactive terminal (`halfcast play`) | crossterm, signal-hook, toml |
 //! | `serve` | the SSH server (`halfcast serve`) | russh, tokio |
 //! | `cli` (default, with all above) | the `halfcast` binary | clap |
@@ -195,6 +195,10 @@ pub struct ReadmeExamples;
 #[cfg(doctest)]
 #[doc = include_str!("../docs/library.md")]
 pub struct LibraryDocExamples;
+
+#[cfg(doctest)]
+#[doc = include_str!("../docs/snapshots.md")]
+pub struct SnapshotsDocExamples;
 
 pub use camera::Camera;
 pub use color::Rgb;
