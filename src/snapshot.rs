@@ -7,7 +7,8 @@
 //! - **Equality** ([`assert_frames_eq`]): two frames, one assertion, the differing cells in the
 //!   failure message.
 //! - **Pixels** ([`assert_png_golden`]): a framebuffer against a golden PNG, within a
-//!   [`Tolerance`], for frames too large to review as text.
+//!   [`Tolerance`], for frames too large to review as text; any text frame becomes one with
+//!   [`crate::output::screenshot::screenshot`] (compare those with [`Tolerance::EXACT`]).
 //!
 //! Pinning a small frame inline (the test fails if one cell changes colour):
 //!
@@ -96,6 +97,16 @@ pub struct Tolerance {
     pub max_channel_delta: u8,
     /// The share of pixels (0..=1) allowed to differ.
     pub max_differing_fraction: f64,
+}
+
+impl Tolerance {
+    /// Every pixel equal: for screenshots of text frames
+    /// ([`crate::output::screenshot::screenshot`]), where one changed character is a few dozen
+    /// pixels of a large picture and would pass [`Tolerance::default`].
+    pub const EXACT: Tolerance = Tolerance {
+        max_channel_delta: 0,
+        max_differing_fraction: 0.0,
+    };
 }
 
 impl Default for Tolerance {

@@ -45,6 +45,7 @@ mod play_pty;
 mod play_stalled;
 mod play_tmux;
 mod properties;
+mod readme_screenshot;
 mod render_json;
 mod replay;
 mod replay_pty;

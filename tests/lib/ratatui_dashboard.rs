@@ -225,6 +225,28 @@ fn a_moved_selection_is_a_short_diff_that_names_the_rows() {
 }
 
 #[test]
+fn a_screenshot_shows_the_visible_changes_and_only_those() {
+    use halfcast::output::screenshot::screenshot;
+    let before = screenshot(&TermFrame::from(&dashboard(&Dash::default())));
+    for (name, dash) in changes() {
+        let after = screenshot(&TermFrame::from(&dashboard(&dash)));
+        let changed = before
+            .pixels()
+            .iter()
+            .zip(after.pixels())
+            .filter(|(a, b)| a != b)
+            .count();
+        // Green is xterm's (0, 205, 0), the font draws `e` for any `e` + accent and a box for
+        // any emoji, and the gauge is not underlined: those changes are for the text to catch.
+        let seen = matches!(
+            name,
+            "selection moved (REVERSED only)" | "bold removed" | "dim added" | "crossed out added"
+        );
+        assert_eq!(changed > 0, seen, "{name}: {changed} pixels");
+    }
+}
+
+#[test]
 fn the_cells_text_is_no_longer_than_ratatuis_debug() {
     let buf = dashboard(&Dash::default());
     let (ours, debug) = (cells_text(&buf).len(), format!("{buf:?}").len());
