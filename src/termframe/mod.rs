@@ -180,6 +180,13 @@ impl From<&Framebuffer> for TermFrame {
     }
 }
 
+impl From<&TermFrame> for TermFrame {
+    /// A copy, so helpers taking `impl Into<TermFrame>` take a borrowed frame too.
+    fn from(frame: &TermFrame) -> Self {
+        frame.clone()
+    }
+}
+
 impl From<&ratatui::buffer::Buffer> for TermFrame {
     /// [`TermFrame::from_buffer`]: the cells as drawn.
     fn from(buf: &ratatui::buffer::Buffer) -> Self {
