@@ -46,6 +46,33 @@ pub fn screenshot(frame: &TermFrame) -> Framebuffer {
     fb
 }
 
+/// A screenshot of `frame` with the cells at `changed` (column, row) tinted magenta and every
+/// other cell dimmed to grey: where two text frames differ, as a person reads them.
+#[must_use]
+pub fn marked(frame: &TermFrame, changed: impl IntoIterator<Item = (usize, usize)>) -> Framebuffer {
+    let mut fb = screenshot(frame);
+    let mut mark = vec![false; frame.cols * frame.rows];
+    for (x, y) in changed {
+        if x < frame.cols && y < frame.rows {
+            mark[y * frame.cols + x] = true;
+        }
+    }
+    let (cw, ch) = CELL_PIXELS;
+    for py in 0..fb.height() {
+        for px in 0..fb.width() {
+            let p = fb.get(px, py);
+            let tinted = if mark[(py / ch) * frame.cols + px / cw] {
+                Rgb::new(p.r / 2 + 127, p.g / 3, p.b / 2 + 127)
+            } else {
+                let l = p.luma() / 3;
+                Rgb::new(l, l, l)
+            };
+            fb.set(px, py, tinted);
+        }
+    }
+    fb
+}
+
 /// Half of `a` and half of `b`, for dim text and shades.
 fn mix(a: Rgb, b: Rgb, k: u16) -> Rgb {
     let m = |p: u8, q: u8| ((u16::from(p) * (4 - k) + u16::from(q) * k) / 4) as u8;
@@ -267,6 +294,17 @@ mod tests {
         for m in [Modifier::DIM, Modifier::ITALIC, Modifier::CROSSED_OUT] {
             assert_ne!(screenshot(&one("A", Color::Green, m)), plain, "{m:?}");
         }
+    }
+
+    #[test]
+    fn marked_cells_stand_out() {
+        let mut frame = one("A", Color::Green, Modifier::empty());
+        frame.cols = 2;
+        frame.cells.push(TermCell::default());
+        let fb = marked(&frame, [(1, 0)]);
+        let (a, b) = (fb.get(0, 0), fb.get(8, 0));
+        assert_eq!((a.r, a.g), (a.g, a.b), "unchanged cells are grey: {a:?}");
+        assert!(b.r > b.g && b.b > b.g, "changed cells are magenta: {b:?}");
     }
 
     #[test]

@@ -115,8 +115,25 @@ fn insta_snapshots_of_a_ratatui_buffer_diff_in_either_form() {
             "12x2 cells, 0 differ (0.00%), max colour delta 0\n"
         )
     );
-    let out = halfcast(&["diff", &cells_a, &debug_b]);
+    let picture = dir.path().join("d.png");
+    let out = halfcast(&[
+        "diff",
+        &cells_a,
+        &debug_b,
+        "--out",
+        picture.to_str().unwrap(),
+    ]);
     assert_eq!(out.status.code(), Some(1));
+    // Text frames: the picture is a screenshot (8×16 pixels a cell), changed cells in magenta.
+    let picture =
+        halfcast::Framebuffer::from_image_bytes(&std::fs::read(picture).unwrap()).unwrap();
+    assert_eq!((picture.width(), picture.height()), (96, 32));
+    let (changed, same) = (picture.get(3, 3), picture.get(3, 16 + 3));
+    assert!(
+        changed.r > changed.g && changed.b > changed.g,
+        "{changed:?}"
+    );
+    assert_eq!((same.r, same.g), (same.g, same.b), "{same:?}");
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(
         stdout.starts_with("12x2 cells, 8 differ (33.33%), max colour delta 0\n")
