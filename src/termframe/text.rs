@@ -134,13 +134,15 @@ fn grid_row(cells: &[TermCell]) -> (String, Vec<usize>) {
 pub fn to_cells_text(frame: &TermFrame) -> String {
     let mut out = format!("{CELLS_HEADER} {}x{}\n", frame.cols, frame.rows);
     let mut listed = Vec::new();
-    for (y, row) in frame.cells.chunks(frame.cols.max(1)).enumerate() {
-        let (text, xs) = grid_row(row);
+    let row = |y: usize| &frame.cells[y * frame.cols..(y + 1) * frame.cols];
+    for y in 0..frame.rows {
+        let (text, xs) = grid_row(row(y));
         let _ = writeln!(out, "\"{text}\"");
         listed.extend(xs.into_iter().map(|x| (x, y)));
     }
     let mut runs = String::new();
-    for (y, row) in frame.cells.chunks(frame.cols.max(1)).enumerate() {
+    for y in 0..frame.rows {
+        let row = row(y);
         let mut x = 0;
         while x < row.len() {
             let end = x + row[x..]
@@ -383,6 +385,18 @@ mod tests {
         );
         assert!(from_cells_text("nope").is_err());
         assert!(from_cells_text("halfcast-cells v2 2x1\nab\n").is_err());
+    }
+
+    #[test]
+    fn frames_without_columns_keep_their_rows() {
+        let frame = TermFrame {
+            cols: 0,
+            rows: 2,
+            cells: Vec::new(),
+        };
+        let text = to_cells_text(&frame);
+        assert_eq!(text, "halfcast-cells v2 0x2\n\"\"\n\"\"\n");
+        assert_eq!(from_cells_text(&text).unwrap(), frame);
     }
 
     #[test]
