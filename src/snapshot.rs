@@ -214,9 +214,9 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("halfcast-golden-{}", std::process::id()));
         let path = dir.join("not_yet.png");
         let fb = Framebuffer::new(2, 2);
-        let err = std::panic::catch_unwind(|| assert_png_golden(&fb, &path, Tolerance::default()))
-            .expect_err("a missing golden fails");
-        let msg = err.downcast_ref::<String>().cloned().unwrap_or_default();
+        let (msg, at) = panic_of(|| assert_png_golden(&fb, &path, Tolerance::default()));
+        // #[track_caller]: the panic names this line, not the helper's.
+        assert_eq!(at, Some((file!().to_string(), line!() - 2)));
         assert!(
             msg.starts_with("no golden image at ")
                 && msg.contains("HALFCAST_UPDATE_GOLDEN=1 to create it"),

@@ -111,6 +111,20 @@ fn assert_shows(bytes: &[u8], buf: &Buffer, backend: &str) {
     );
 }
 
+#[test]
+fn the_re_exported_terminal_model_reads_the_same_screen() {
+    // A test that builds its own parser uses halfcast's vt100, so the types match.
+    let bytes = b"\x1b[2;3H\x1b[1;4;38;5;120mhi\x1b[0m";
+    let mut parser = halfcast::vt100::Parser::new(5, 20, 0);
+    parser.process(bytes);
+    let own = TermFrame::from(parser.screen());
+    assert_eq!(own, termframe::from_ansi_sized(bytes, 20, 5));
+    assert_eq!(
+        own.cell(3, 1).modifiers,
+        Modifier::BOLD | Modifier::UNDERLINED
+    );
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(256))]
 
