@@ -7,10 +7,10 @@ mod diff;
 mod glyph;
 mod parse;
 mod ratatui_debug;
+#[cfg(any(test, feature = "vt100"))]
+mod sgr_passes;
 mod text;
 mod text_v1;
-#[cfg(any(test, feature = "vt100"))]
-mod underline_colour;
 
 pub use cell::TermCell;
 pub use colour::{colour_name, named_colour, ratatui_rgb};

@@ -4,10 +4,10 @@
 use std::path::Path;
 
 use super::ratatui_debug::{from_buffer_debug, BUFFER_DEBUG_HEADER};
+#[cfg(any(test, feature = "vt100"))]
+use super::sgr_passes::{main_pass, mentions, rewrite, underline_as_foreground, ATTRIBUTE_PASSES};
 use super::text::read_grid_row;
 use super::text_v1::CELLS_HEADER_V1;
-#[cfg(any(test, feature = "vt100"))]
-use super::underline_colour::without_underline_colours;
 use super::{from_cells_text, TermCell, TermFrame, CELLS_HEADER};
 use crate::color::Rgb;
 use crate::render::framebuffer::Framebuffer;
@@ -218,9 +218,41 @@ fn with_carriage_returns(bytes: &[u8]) -> Vec<u8> {
 /// Replays ANSI bytes through a terminal model `cols` × `rows` (at most [`MAX_FRAME`]).
 fn model(fixed: &[u8], cols: usize, rows: usize) -> TermFrame {
     let (cols, rows) = (cols.clamp(1, MAX_FRAME.0), rows.clamp(1, MAX_FRAME.1));
-    let mut parser = vt100::Parser::new(rows as u16 + 1, cols as u16, 0);
-    parser.process(&without_underline_colours(fixed));
-    from_screen(parser.screen(), cols, rows)
+    // A row more than is read, so a newline after the last row does not scroll it away.
+    read_through_model(fixed, (cols as u16, rows as u16 + 1), (cols, rows))
+}
+
+#[cfg(any(test, feature = "vt100"))]
+/// Reads the top-left `read` cells of a vt100 terminal of `size` (cols, rows) after `fixed`,
+/// with every attribute: the main reading, then one more for each lost attribute or the
+/// underline colour that the stream uses at all (see `sgr_passes`).
+fn read_through_model(fixed: &[u8], size: (u16, u16), read: (usize, usize)) -> TermFrame {
+    use ratatui::style::Modifier;
+    let screen = |pass| {
+        let mut parser = vt100::Parser::new(size.1, size.0, 0);
+        parser.process(&rewrite(fixed, pass));
+        from_screen(parser.screen(), read.0, read.1)
+    };
+    let mut frame = screen(main_pass);
+    for (modifier, on, pass) in ATTRIBUTE_PASSES {
+        if mentions(fixed, on) {
+            for (cell, seen) in frame.cells.iter_mut().zip(screen(pass).cells) {
+                if seen.modifiers.contains(Modifier::BOLD) {
+                    cell.modifiers |= modifier;
+                }
+            }
+        }
+    }
+    if mentions(fixed, b"58") || mentions(fixed, b"59") {
+        for (cell, seen) in frame
+            .cells
+            .iter_mut()
+            .zip(screen(underline_as_foreground).cells)
+        {
+            cell.underline = seen.fg;
+        }
+    }
+    frame
 }
 
 #[cfg(any(test, feature = "vt100"))]
@@ -236,20 +268,19 @@ pub fn from_ansi(bytes: &[u8]) -> TermFrame {
 
 #[cfg(any(test, feature = "vt100"))]
 /// What a terminal of `cols` × `rows` shows after these bytes (through the vt100 model): the
-/// real size, whatever the bytes draw, with each cell's grapheme, colours and the attributes
-/// the model keeps (bold, italic, underlined, reversed; it drops dim, blinking, hidden,
-/// crossed out and the underline colour). Colours 0–15 read as named colours whichever way
-/// they were sent (`ESC[32m` and `ESC[38;5;2m` select the same palette entry). A bare `\n` is
-/// taken as a new line, as a tty's output processing would make it. Underline colours (SGR 58)
-/// are removed before the model reads the bytes, since it would misread their numbers. The
-/// model gives an emoji's skin-tone modifier columns of its own, so a row holding `👍🏽` reads
-/// shifted from there on.
+/// real size, whatever the bytes draw, with each cell's grapheme, colours, underline colour and
+/// all nine attributes. The model itself keeps only bold, italic, underline and reverse video,
+/// so the bytes are read again once for each other attribute and for the underline colour that
+/// they use, with it sent as one the model keeps. Colours 0–15 read as named colours whichever
+/// way they were sent (`ESC[32m` and `ESC[38;5;2m` select the same palette entry). A bare `\n`
+/// is taken as a new line, as a tty's output processing would make it. The model gives an
+/// emoji's skin-tone modifier columns of its own, so a row holding `👍🏽` reads shifted from
+/// there on.
 #[must_use]
 pub fn from_ansi_sized(bytes: &[u8], cols: u16, rows: u16) -> TermFrame {
     let (cols, rows) = (cols.max(1), rows.max(1));
-    let mut parser = vt100::Parser::new(rows, cols, 0);
-    parser.process(&without_underline_colours(&with_carriage_returns(bytes)));
-    from_screen(parser.screen(), usize::from(cols), usize::from(rows))
+    let fixed = with_carriage_returns(bytes);
+    read_through_model(&fixed, (cols, rows), (usize::from(cols), usize::from(rows)))
 }
 
 #[cfg(any(test, feature = "vt100"))]
@@ -267,8 +298,9 @@ pub fn try_from_ansi(bytes: &[u8]) -> Result<TermFrame, String> {
 }
 
 #[cfg(any(test, feature = "vt100"))]
-/// Reads the top-left `cols` × `rows` cells of a terminal model's screen (as
-/// [`from_ansi_sized`] describes: the attributes the model keeps, colours 0–15 as named).
+/// Reads the top-left `cols` × `rows` cells of a terminal model's screen, colours 0–15 as
+/// named. A screen holds only the attributes the model keeps (bold, italic, underline, reverse
+/// video); [`from_ansi_sized`], which has the bytes, reads all of them.
 #[must_use]
 pub fn from_screen(screen: &vt100::Screen, cols: usize, rows: usize) -> TermFrame {
     use ratatui::style::{Color, Modifier};
@@ -382,12 +414,25 @@ mod tests {
     #[test]
     fn a_sized_read_is_the_whole_screen_with_attributes() {
         use ratatui::style::{Color, Modifier};
-        let f = from_ansi_sized(b"\x1b[1;7;32mhel\x1b[0;38;5;2ml\x1b[38;5;100mo", 20, 5);
+        let f = from_ansi_sized(
+            b"\x1b[1;7;32mhel\x1b[0;38;5;2ml\x1b[38;5;100;2;9;58;5;200mo\x1b[22;1m!",
+            20,
+            5,
+        );
         assert_eq!((f.cols, f.rows), (20, 5));
         assert_eq!(f.cell(0, 0).modifiers, Modifier::BOLD | Modifier::REVERSED);
         assert_eq!(f.cell(0, 0).fg, Color::Green);
         assert_eq!(f.cell(3, 0).fg, Color::Green);
         assert_eq!(f.cell(4, 0).fg, Color::Indexed(100));
+        assert_eq!(
+            f.cell(4, 0).modifiers,
+            Modifier::DIM | Modifier::CROSSED_OUT
+        );
+        assert_eq!(f.cell(4, 0).underline, Color::Indexed(200));
+        assert_eq!(
+            f.cell(5, 0).modifiers,
+            Modifier::BOLD | Modifier::CROSSED_OUT
+        );
         assert_eq!(*f.cell(19, 4), TermCell::default());
         let wide = from_ansi_sized("\x1b[44m界e\u{301}".as_bytes(), 4, 1);
         assert_eq!(wide.cell(0, 0).glyph, "界");
