@@ -133,5 +133,7 @@ mod tests {
         frame_parser(b"\x1b[65535;65535Hx");
         frame_parser(b"\x1b[10000;10000Hx");
         frame_parser(b"halfcast-cells v1 17216961135462248175x1\n\n");
+        frame_parser(b"halfcast-cells v2 17216961135462248175x1\n\n");
+        frame_parser(b"halfcast-cells v2 1x1\n\"a\"\nstyles:\ny0 x0-18446744073709551615 bold\n");
     }
 }

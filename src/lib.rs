@@ -12,7 +12,7 @@
 //! | *(none)* | engine, widgets, encoder, [`LeanBackend`], [`snapshot`], [`termframe`], [`replay`] files | ratatui (no backend), image, serde |
 //! | `crossterm` | ratatui's crossterm backend; [`LeanBackend`] asks the terminal its size | crossterm |
 //! | `scrolling-regions` | [`LeanBackend`]'s scrolling-region methods (when ratatui's feature of that name is on) | — |
-//! | `vt100` | reading ANSI frames back (`termframe::from_ansi`, `.ans` files) | vt100 |
+//! | `vt100` | reading ANSI frames back (`termframe::from_ansi_sized`, `.ans` files); re-exports `halfcast::vt100` | vt100 |
 //! | `tui` | the interactive terminal (`halfcast play`) | crossterm, signal-hook, toml |
 //! | `serve` | the SSH server (`halfcast serve`) | russh, tokio |
 //! | `cli` (default, with all above) | the `halfcast` binary | clap |
@@ -36,7 +36,7 @@
 //! let ansi = scene.to_ansi(80, 24); // the bytes a truecolor terminal receives
 //! let text = scene.to_cells_text(80, 24); // colour-aware text for insta snapshots
 //! assert_eq!(fb, halfcast::Framebuffer::from_image_bytes(&png).unwrap());
-//! assert!(ansi.contains('▀') && text.starts_with("halfcast-cells v1 80x24"));
+//! assert!(ansi.contains('▀') && text.starts_with("halfcast-cells v2 80x24"));
 //! ```
 //!
 //! # Embed the view in a ratatui app
@@ -196,6 +196,10 @@ pub struct ReadmeExamples;
 #[doc = include_str!("../docs/library.md")]
 pub struct LibraryDocExamples;
 
+#[cfg(doctest)]
+#[doc = include_str!("../docs/snapshots.md")]
+pub struct SnapshotsDocExamples;
+
 pub use camera::Camera;
 pub use color::Rgb;
 pub use encode::ColorLevel;
@@ -207,3 +211,8 @@ pub use replay::{Replay, ReplayError};
 pub use vec2::Vec2;
 pub use widget::{DebugPane, HalfBlockView, Minimap};
 pub use world::World;
+
+/// The terminal model `termframe::from_ansi_sized` reads bytes through, at the version halfcast
+/// was built with, so a test that builds its own `vt100::Parser` needs no second dependency.
+#[cfg(feature = "vt100")]
+pub use vt100;

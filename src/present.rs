@@ -392,7 +392,8 @@ mod tests {
         let v = TermFrame::from_framebuffer(view);
         for y in 0..usize::from(at.height) {
             for x in 0..usize::from(at.width) {
-                f.cells[(y + usize::from(at.y)) * f.cols + x + usize::from(at.x)] = *v.cell(x, y);
+                f.cells[(y + usize::from(at.y)) * f.cols + x + usize::from(at.x)] =
+                    v.cell(x, y).clone();
             }
         }
         f
@@ -531,7 +532,7 @@ mod tests {
                     );
                 } else {
                     assert!(
-                        matches!(cell.glyph, '▀' | '▄' | ' ' | '█'),
+                        matches!(cell.glyph.first_char(), '▀' | '▄' | ' ' | '█'),
                         "{level:?} {cell:?}"
                     );
                 }
@@ -573,7 +574,9 @@ mod tests {
                 assert_ne!(bytes, nothing, "{level:?}");
                 term.process(&bytes);
                 let seen = from_screen(term.screen(), 20, 6);
-                let top: String = (0..10).map(|x| seen.cell(x + 3, 1).glyph).collect();
+                let top: String = (0..10)
+                    .map(|x| seen.cell(x + 3, 1).glyph.as_str())
+                    .collect();
                 assert!(top.contains("GOT"), "{level:?}: {top}");
             }
         }
@@ -610,7 +613,9 @@ mod tests {
                 bytes_with += bytes.len();
                 bytes_without += without.frame(&with_view("s", &v, at), &v, at).len();
                 let seen = from_screen(term.screen(), 20, 6);
-                let top: String = (0..10).map(|x| seen.cell(x + 3, 1).glyph).collect();
+                let top: String = (0..10)
+                    .map(|x| seen.cell(x + 3, 1).glyph.as_str())
+                    .collect();
                 if shown {
                     assert!(top.contains(" got it "), "{level:?} frame {i}: {top}");
                 } else {

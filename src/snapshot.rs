@@ -1,11 +1,14 @@
 //! Pinning frames in tests, two ways for two kinds of frame:
 //!
 //! - **Text** ([`cells_text`]): any frame — a [`Framebuffer`], a ratatui `Buffer` (widgets, the
-//!   whole TUI screen), a `vt100` screen (the real binary in a pseudo-terminal) — as colour-aware
-//!   text, one line per row, every cell's glyph, foreground and background. Pin it with
+//!   whole TUI screen), a `vt100` screen (the real binary in a pseudo-terminal) — as text: the
+//!   glyph grid, then style runs with every colour (as named) and attribute. Pin it with
 //!   `insta::assert_snapshot!`; a changed frame shows as a readable diff in review.
+//! - **Equality** ([`assert_frames_eq`]): two frames, one assertion, the differing cells in the
+//!   failure message.
 //! - **Pixels** ([`assert_png_golden`]): a framebuffer against a golden PNG, within a
-//!   [`Tolerance`], for frames too large to review as text.
+//!   [`Tolerance`], for frames too large to review as text; any text frame becomes one with
+//!   [`crate::output::screenshot::screenshot`] (compare those with [`Tolerance::EXACT`]).
 //!
 //! Pinning a small frame inline (the test fails if one cell changes colour):
 //!
@@ -14,12 +17,31 @@
 //!
 //! let world = World::default_world();
 //! let scene = Scene::new(&world, Camera::from_angle(Vec2::new(8.5, 5.5), 30.0, 66.0));
-//! insta::assert_snapshot!(scene.to_cells_text(6, 3), @r"
-//! halfcast-cells v1 6x3
-//! ▀5f5e58/7b7771 ▀84827a/5a5853 ▀7f7c74/797670 ▀797771/7e7b74 ▀86837b/5a5853 ▀5f5e58/76746e
-//! ▀4e2626/5d2d26 ▀6a4b33/563d2c ▀573e2a/654630 ▀62442e/5e412c ▀62442d/62442d ▀505762/4c515c
-//! ▀4b443e/252424 ▀252323/504a42 ▀4e473f/4e4840 ▀5b534b/62584f ▀252323/696054 ▀60584e/252424
-//! ");
+//! insta::assert_snapshot!(scene.to_cells_text(6, 3), @r#"
+//! halfcast-cells v2 6x3
+//! "▀▀▀▀▀▀"
+//! "▀▀▀▀▀▀"
+//! "▀▀▀▀▀▀"
+//! styles:
+//! y0 x0 fg=#5f5e58 bg=#7b7771
+//! y0 x1 fg=#84827a bg=#5a5853
+//! y0 x2 fg=#7f7c74 bg=#797670
+//! y0 x3 fg=#797771 bg=#7e7b74
+//! y0 x4 fg=#86837b bg=#5a5853
+//! y0 x5 fg=#5f5e58 bg=#76746e
+//! y1 x0 fg=#4e2626 bg=#5d2d26
+//! y1 x1 fg=#6a4b33 bg=#563d2c
+//! y1 x2 fg=#573e2a bg=#654630
+//! y1 x3 fg=#62442e bg=#5e412c
+//! y1 x4 fg=#62442d bg=#62442d
+//! y1 x5 fg=#505762 bg=#4c515c
+//! y2 x0 fg=#4b443e bg=#252424
+//! y2 x1 fg=#252323 bg=#504a42
+//! y2 x2 fg=#4e473f bg=#4e4840
+//! y2 x3 fg=#5b534b bg=#62584f
+//! y2 x4 fg=#252323 bg=#696054
+//! y2 x5 fg=#60584e bg=#252424
+//! "#);
 //! ```
 //!
 //! A golden PNG (rewritten instead of compared when `HALFCAST_UPDATE_GOLDEN` is set; on a
@@ -42,11 +64,27 @@ use std::path::Path;
 use crate::render::framebuffer::Framebuffer;
 use crate::termframe::{to_cells_text, TermFrame};
 
-/// The text form snapshots pin (`halfcast-cells v1`: a size header, then one line per row of
-/// `GLYPH` + fg hex + `/` + bg hex cells, `~~~~~~` = default colour), of anything shown as cells.
+/// The text form snapshots pin, of anything shown as cells (`halfcast-cells v2`: a size header,
+/// the glyph grid, then style runs such as `y3 x0-11 fg=green bold`; see
+/// [`crate::termframe::to_cells_text`]).
 #[must_use]
 pub fn cells_text(frame: impl Into<TermFrame>) -> String {
     to_cells_text(&frame.into())
+}
+
+/// Asserts two frames show the same (every glyph, colour, underline colour and attribute;
+/// anything [`cells_text`] takes), so a test needs no snapshot file for an equality.
+///
+/// # Panics
+/// When they differ, with the cell diff: each differing cell's position, what changed, and
+/// both values (and the panic points at the caller).
+#[track_caller]
+pub fn assert_frames_eq(expected: impl Into<TermFrame>, actual: impl Into<TermFrame>) {
+    let (expected, actual) = (expected.into(), actual.into());
+    let report = crate::termframe::diff(&expected, &actual);
+    if !report.is_equal() {
+        panic!("frames differ (expected -> actual):\n{}", report.summary());
+    }
 }
 
 /// Set this environment variable (to anything) to rewrite golden files instead of comparing.
@@ -59,6 +97,16 @@ pub struct Tolerance {
     pub max_channel_delta: u8,
     /// The share of pixels (0..=1) allowed to differ.
     pub max_differing_fraction: f64,
+}
+
+impl Tolerance {
+    /// Every pixel equal: for screenshots of text frames
+    /// ([`crate::output::screenshot::screenshot`]), where one changed character is a few dozen
+    /// pixels of a large picture and would pass [`Tolerance::default`].
+    pub const EXACT: Tolerance = Tolerance {
+        max_channel_delta: 0,
+        max_differing_fraction: 0.0,
+    };
 }
 
 impl Default for Tolerance {
@@ -110,7 +158,9 @@ pub fn diff_frames(a: &Framebuffer, b: &Framebuffer, threshold: u8) -> Option<Fr
 ///
 /// # Panics
 /// When the golden file is missing (saying how to create it) or unreadable, the sizes differ, or too many pixels differ
-/// (the actual frame is then saved beside the golden as `<name>.actual.png`).
+/// (the actual frame is then saved beside the golden as `<name>.actual.png`); the panic points at
+/// the caller.
+#[track_caller]
 pub fn assert_png_golden(fb: &Framebuffer, path: impl AsRef<Path>, tol: Tolerance) {
     let path = path.as_ref();
     if std::env::var_os(UPDATE_ENV).is_some() {
@@ -164,9 +214,9 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("halfcast-golden-{}", std::process::id()));
         let path = dir.join("not_yet.png");
         let fb = Framebuffer::new(2, 2);
-        let err = std::panic::catch_unwind(|| assert_png_golden(&fb, &path, Tolerance::default()))
-            .expect_err("a missing golden fails");
-        let msg = err.downcast_ref::<String>().cloned().unwrap_or_default();
+        let (msg, at) = panic_of(|| assert_png_golden(&fb, &path, Tolerance::default()));
+        // #[track_caller]: the panic names this line, not the helper's.
+        assert_eq!(at, Some((file!().to_string(), line!() - 2)));
         assert!(
             msg.starts_with("no golden image at ")
                 && msg.contains("HALFCAST_UPDATE_GOLDEN=1 to create it"),
@@ -174,6 +224,55 @@ mod tests {
         );
         assert!(!msg.contains("os error"), "{msg}");
         assert!(!path.exists());
+    }
+
+    #[test]
+    fn frames_that_differ_fail_at_the_caller_with_the_cell_diff() {
+        use crate::termframe::{Glyph, TermCell};
+        use ratatui::style::Modifier;
+        let a = TermFrame {
+            cols: 2,
+            rows: 1,
+            cells: vec![TermCell::default(); 2],
+        };
+        let mut b = a.clone();
+        b.cells[1].glyph = Glyph::from('x');
+        b.cells[1].modifiers = Modifier::REVERSED;
+        assert_frames_eq(a.clone(), a.clone());
+        let (msg, at) = panic_of(|| assert_frames_eq(a.clone(), b.clone()));
+        assert_eq!(at, Some((file!().to_string(), line!() - 1)));
+        assert_eq!(
+            msg,
+            "frames differ (expected -> actual):\n2x1 cells, 1 differ (50.00%), max colour delta 0\n  \
+             cell (1,0) glyph, attributes: \" \" -> \"x\" reversed\n"
+        );
+    }
+
+    /// Runs `f`, which must panic: its message and the location the panic names (seen by a
+    /// panic hook that watches this thread only and passes other threads' panics on).
+    fn panic_of(f: impl FnOnce() + std::panic::UnwindSafe) -> (String, Option<(String, u32)>) {
+        use std::sync::{Arc, Mutex};
+        let seen = Arc::new(Mutex::new(None));
+        let me = std::thread::current().id();
+        let previous = Arc::new(std::panic::take_hook());
+        let (record, pass_on) = (seen.clone(), previous.clone());
+        std::panic::set_hook(Box::new(move |info| {
+            if std::thread::current().id() == me {
+                *record.lock().unwrap() = info.location().map(|l| (l.file().to_string(), l.line()));
+            } else {
+                pass_on(info);
+            }
+        }));
+        let outcome = std::panic::catch_unwind(f);
+        let _ = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| previous(info)));
+        let payload = outcome.expect_err("the call panics");
+        let msg = payload
+            .downcast_ref::<String>()
+            .cloned()
+            .unwrap_or_default();
+        let at = seen.lock().unwrap().clone();
+        (msg, at)
     }
 
     #[test]

@@ -3,8 +3,8 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use halfcast::output::ansi;
-use halfcast::termframe;
+use halfcast::output::{ansi, screenshot};
+use halfcast::termframe::{self, FrameFormat};
 
 use super::{write_output, Failure};
 
@@ -14,18 +14,29 @@ pub(crate) struct DiffArgs {
     pub(crate) a: PathBuf,
     /// The actual frame.
     pub(crate) b: PathBuf,
-    /// Write a highlighted picture of the differences (PNG if the name ends in .png, else ANSI).
+    /// Write a highlighted picture of the differences (PNG if the name ends in .png, else ANSI):
+    /// pixels when either frame is a PNG, else a screenshot of the second frame's text.
     #[arg(short, long)]
     pub(crate) out: Option<PathBuf>,
 }
 
 pub(crate) fn diff(args: &DiffArgs) -> Result<(), Failure> {
-    let (a, _) = termframe::load(&args.a).map_err(Failure::input)?;
-    let (b, _) = termframe::load(&args.b).map_err(Failure::input)?;
+    let (a, format_a) = termframe::load(&args.a).map_err(Failure::input)?;
+    let (b, format_b) = termframe::load(&args.b).map_err(Failure::input)?;
     let report = termframe::diff(&a, &b);
     print!("{}", report.summary());
     if let Some(out) = &args.out {
-        let picture = report.highlight(&a, &b);
+        let pixels = format_a == FrameFormat::Png || format_b == FrameFormat::Png;
+        let picture = if pixels {
+            report.highlight(&a, &b)
+        } else {
+            let base = if report.size_a == report.size_b {
+                &b
+            } else {
+                &a
+            };
+            screenshot::marked(base, report.differing.iter().map(|d| (d.x, d.y)))
+        };
         let bytes = if out
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("png"))

@@ -98,7 +98,8 @@ enum Command {
     Scores(ScoresArgs),
     /// Draw one column's DDA traversal as a figure (SVG or PNG), in Lode's names.
     Trace(TraceArgs),
-    /// Compare two frames (PNG, ANSI, cells text or plain text): exit 0 equal, 1 different, 2 error.
+    /// Compare two frames (PNG, ANSI, cells text, plain text, a ratatui Buffer's Debug, or an
+    /// insta .snap of one): exit 0 equal, 1 different, 2 error.
     Diff(DiffArgs),
     /// A test card of the block characters (half, quadrant, sextant, octant): which ones this
     /// terminal draws.

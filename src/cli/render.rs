@@ -52,7 +52,7 @@ pub(crate) enum Format {
     Ansi,
     /// Plain ASCII shade ramp, one character per cell.
     Txt,
-    /// Colour-aware text for code review: every cell's glyph, fg and bg, one line per row.
+    /// Text for code review: the glyph grid, then style runs (every colour and attribute).
     Cells,
     /// The ray data: camera, per-column hits, the centre ray's DDA trace.
     Json,

@@ -22,7 +22,7 @@ pub enum ReplayFormat {
     Ansi,
     /// The 3D view as a plain ASCII shade ramp.
     Txt,
-    /// The whole screen as colour-aware text (glyph, fg, bg per cell), for code review.
+    /// The whole screen as text for code review: the glyph grid, then style runs (colours, attributes).
     Cells,
     /// The 3D view's rays (same shape as `render --format json`).
     Json,

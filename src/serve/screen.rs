@@ -400,7 +400,10 @@ mod tests {
         };
         let frame = from_screen(p.screen(), usize::from(size.0), usize::from(size.1));
         let cell = frame.cell(usize::from(view.x) + 3, usize::from(view.y) + 3);
-        assert!(matches!(cell.glyph, '▀' | '▄' | ' ' | '█'), "{cell:?}");
+        assert!(
+            matches!(cell.glyph.first_char(), '▀' | '▄' | ' ' | '█'),
+            "{cell:?}"
+        );
     }
 
     #[test]

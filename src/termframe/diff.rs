@@ -8,7 +8,7 @@ use crate::color::Rgb;
 use crate::render::framebuffer::Framebuffer;
 
 /// One cell that looks different in the two frames.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct CellDiff {
     /// Column.
     pub x: usize,
@@ -18,7 +18,8 @@ pub struct CellDiff {
     pub a: TermCell,
     /// The cell in the second frame.
     pub b: TermCell,
-    /// Largest channel difference of the upper/lower colours (255 when only one has a colour).
+    /// Largest channel difference of the upper/lower colours in xterm's RGB (255 when only one
+    /// has a colour; 0 when only the kind differs, as `Green` and `Indexed(2)`).
     pub colour_delta: u8,
 }
 
@@ -47,7 +48,22 @@ fn channel_delta(a: Option<Rgb>, b: Option<Rgb>) -> u8 {
     }
 }
 
-/// Compares by appearance (so `▀` a/b equals `▄` b/a); frames of different sizes differ entirely.
+/// Two differing cells in the form their parts are compared in: canonical when neither has
+/// attributes (so `▀` a/b against `▄` c/a is a change of one colour), else as they are (an
+/// underline added to `█` is a change of attributes, not of glyph).
+fn comparable(a: &TermCell, b: &TermCell) -> (TermCell, TermCell) {
+    let plain =
+        |c: &TermCell| c.modifiers.is_empty() && c.underline == ratatui::style::Color::Reset;
+    if plain(a) && plain(b) {
+        (a.appearance(), b.appearance())
+    } else {
+        (a.clone(), b.clone())
+    }
+}
+
+/// Compares by appearance (so `▀` a/b equals `▄` b/a), every part of a cell counting:
+/// grapheme, colours as named, underline colour, attributes. Frames of different sizes differ
+/// entirely.
 #[must_use]
 pub fn diff(a: &TermFrame, b: &TermFrame) -> DiffReport {
     let mut report = DiffReport {
@@ -61,23 +77,41 @@ pub fn diff(a: &TermFrame, b: &TermFrame) -> DiffReport {
     }
     for y in 0..a.rows {
         for x in 0..a.cols {
-            let (ca, cb) = (*a.cell(x, y), *b.cell(x, y));
-            let (ga, ua, la) = ca.appearance();
-            let (gb, ub, lb) = cb.appearance();
-            if (ga, ua, la) != (gb, ub, lb) {
-                let colour_delta = channel_delta(ua, ub).max(channel_delta(la, lb));
+            let (ca, cb) = (a.cell(x, y), b.cell(x, y));
+            if ca.appearance() != cb.appearance() {
+                let (la, lb) = comparable(ca, cb);
+                let colour_delta = channel_delta(la.fg_rgb(), lb.fg_rgb())
+                    .max(channel_delta(la.bg_rgb(), lb.bg_rgb()));
                 report.max_colour_delta = report.max_colour_delta.max(colour_delta);
                 report.differing.push(CellDiff {
                     x,
                     y,
-                    a: ca,
-                    b: cb,
+                    a: ca.clone(),
+                    b: cb.clone(),
                     colour_delta,
                 });
             }
         }
     }
     report
+}
+
+impl CellDiff {
+    /// Which parts of the cell changed: `glyph`, `fg`, `bg`, `underline colour`, `attributes`
+    /// (comma-separated).
+    #[must_use]
+    pub fn what_changed(&self) -> String {
+        let (a, b) = comparable(&self.a, &self.b);
+        let parts = [
+            (a.glyph != b.glyph, "glyph"),
+            (a.fg != b.fg, "fg"),
+            (a.bg != b.bg, "bg"),
+            (a.underline != b.underline, "underline colour"),
+            (a.modifiers != b.modifiers, "attributes"),
+        ];
+        let changed: Vec<&str> = parts.iter().filter(|p| p.0).map(|p| p.1).collect();
+        changed.join(", ")
+    }
 }
 
 impl DiffReport {
@@ -110,9 +144,10 @@ impl DiffReport {
         for d in self.differing.iter().take(10) {
             let _ = writeln!(
                 s,
-                "  cell ({},{}): {} -> {}",
+                "  cell ({},{}) {}: {} -> {}",
                 d.x,
                 d.y,
+                d.what_changed(),
                 cell_code(&d.a),
                 cell_code(&d.b)
             );
@@ -163,11 +198,7 @@ mod tests {
             rows: 1,
             cells: colours
                 .iter()
-                .map(|&(u, l)| TermCell {
-                    glyph: '▀',
-                    fg: Some(Rgb::new(u, u, u)),
-                    bg: Some(Rgb::new(l, l, l)),
-                })
+                .map(|&(u, l)| TermCell::rgb('▀', Some(Rgb::new(u, u, u)), Some(Rgb::new(l, l, l))))
                 .collect(),
         }
     }
@@ -192,5 +223,20 @@ mod tests {
         let r = diff(&frame(&[(1, 2)]), &frame(&[(1, 2), (3, 4)]));
         assert!(!r.is_equal());
         assert_eq!(r.summary(), "sizes differ: 1x1 vs 2x1 cells\n");
+    }
+
+    #[test]
+    fn the_summary_names_the_cell_the_change_and_both_values() {
+        use ratatui::style::{Color, Modifier};
+        let a = frame(&[(1, 2), (3, 4)]);
+        let mut b = a.clone();
+        b.cells[1].modifiers = Modifier::BOLD;
+        b.cells[1].fg = Color::Green;
+        let r = diff(&a, &b);
+        assert_eq!(
+            r.summary(),
+            "2x1 cells, 1 differ (50.00%), max colour delta 202\n  \
+             cell (1,0) fg, attributes: \"▀\" fg=#030303 bg=#040404 -> \"▀\" fg=green bg=#040404 bold\n"
+        );
     }
 }

@@ -1,65 +1,32 @@
-//! A terminal frame as cells (glyph + colours): the common ground for comparing PNG, ANSI and
-//! text frames, and the colour-aware text form that snapshots pin.
+//! A terminal frame as cells (grapheme, colours, underline colour, attributes): the common
+//! ground for comparing PNG, ANSI and text frames, and the text form that snapshots pin.
 
+mod cell;
+mod colour;
 mod diff;
+mod glyph;
 mod parse;
-mod text;
-
-pub use diff::{diff, CellDiff, DiffReport};
+mod ratatui_debug;
 #[cfg(any(test, feature = "vt100"))]
-pub use parse::{from_ansi, from_screen, try_from_ansi};
-pub use parse::{load, parse_frame, FrameFormat, MAX_FRAME, MAX_FRAME_BYTES};
-pub use text::{cell_code, from_cells_text, to_cells_text, CELLS_HEADER};
+mod sgr_passes;
+mod text;
+mod text_v1;
 
-use crate::color::Rgb;
+pub use cell::TermCell;
+pub use colour::{colour_name, named_colour, ratatui_rgb};
+pub use diff::{diff, CellDiff, DiffReport};
+pub use glyph::Glyph;
+#[cfg(any(test, feature = "vt100"))]
+pub use parse::{from_ansi, from_ansi_sized, from_screen, try_from_ansi};
+pub use parse::{load, parse_frame, FrameFormat, MAX_FRAME, MAX_FRAME_BYTES};
+pub use ratatui_debug::from_buffer_debug;
+pub use text::{cell_code, from_cells_text, style_words, to_cells_text, CELLS_HEADER};
+
 use crate::encode::glyph_cell::GlyphCell;
 use crate::encode::glyph_frame::picture;
 use crate::encode::glyph_mask::mask_of;
 use crate::render::framebuffer::Framebuffer;
 use crate::render::glyphs::Glyphs;
-
-/// One terminal cell as a person sees it: a glyph with a foreground and a background colour
-/// (`None` = the terminal's default colour).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct TermCell {
-    /// The character shown.
-    pub glyph: char,
-    /// Foreground colour (`None` = the terminal's default).
-    pub fg: Option<Rgb>,
-    /// Background colour (`None` = the terminal's default).
-    pub bg: Option<Rgb>,
-}
-
-impl TermCell {
-    /// The visible content in a canonical form, so `▀` fg=a bg=b equals `▄` fg=b bg=a and
-    /// a space equals `█` with swapped roles: (glyph class, upper colour, lower colour).
-    #[must_use]
-    pub fn appearance(&self) -> (char, Option<Rgb>, Option<Rgb>) {
-        match self.glyph {
-            '▀' => ('▀', self.fg, self.bg),
-            '▄' => ('▀', self.bg, self.fg),
-            ' ' => ('▀', self.bg, self.bg),
-            '█' => ('▀', self.fg, self.fg),
-            g => glyph_appearance(g, self.fg, self.bg),
-        }
-    }
-}
-
-/// A quadrant, sextant or octant cell in canonical form: a mask and its complement with the
-/// colours swapped draw the same picture, so the form whose first pixel is the background
-/// stands for both (other glyphs as they are).
-fn glyph_appearance(g: char, fg: Option<Rgb>, bg: Option<Rgb>) -> (char, Option<Rgb>, Option<Rgb>) {
-    use crate::encode::glyph_mask::{full_mask, glyph};
-    for set in [Glyphs::Octant, Glyphs::Sextant] {
-        if let Some(m) = mask_of(set, g) {
-            if m & 1 != 0 {
-                return (glyph(set, !m & full_mask(set)), bg, fg);
-            }
-            return (g, fg, bg);
-        }
-    }
-    (g, fg, bg)
-}
 
 /// A grid of terminal cells, row-major.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -84,10 +51,12 @@ impl TermFrame {
             crate::encode::glyph_frame::glyph_cells(fb, &mut chosen);
             let cells = chosen
                 .iter()
-                .map(|c| TermCell {
-                    glyph: crate::encode::glyph_mask::glyph(fb.glyphs(), c.mask),
-                    fg: Some(c.fg),
-                    bg: Some(c.bg),
+                .map(|c| {
+                    TermCell::rgb(
+                        crate::encode::glyph_mask::glyph(fb.glyphs(), c.mask),
+                        Some(c.fg),
+                        Some(c.bg),
+                    )
                 })
                 .collect();
             let (cols, rows) = (fb.cell_cols(), fb.cell_rows());
@@ -98,30 +67,32 @@ impl TermFrame {
         for cy in 0..rows {
             for cx in 0..cols {
                 let (up, low) = fb.cell(cx, cy);
-                cells.push(TermCell {
-                    glyph: '▀',
-                    fg: Some(up),
-                    bg: Some(low),
-                });
+                cells.push(TermCell::rgb('▀', Some(up), Some(low)));
             }
         }
         Self { cols, rows, cells }
     }
 
-    /// A ratatui buffer as drawn (the whole TUI screen: panes, text, the view's half-blocks).
+    /// A ratatui buffer as drawn (the whole TUI screen: panes, text, the view's half-blocks),
+    /// every cell's grapheme, colours, underline colour and attributes as the buffer holds them.
+    /// The columns a wide character covers read as continuations in its style, as a terminal
+    /// shows them (ratatui does not draw them).
     #[must_use]
     pub fn from_buffer(buf: &ratatui::buffer::Buffer) -> Self {
         let area = buf.area;
         let (cols, rows) = (usize::from(area.width), usize::from(area.height));
-        let cells = buf
+        let mut cells: Vec<TermCell> = buf
             .content()
             .iter()
             .map(|c| TermCell {
-                glyph: c.symbol().chars().next().unwrap_or(' '),
-                fg: ratatui_rgb(c.fg),
-                bg: ratatui_rgb(c.bg),
+                glyph: Glyph::new(c.symbol()),
+                fg: c.fg,
+                bg: c.bg,
+                underline: c.underline_color,
+                modifiers: c.modifier,
             })
             .collect();
+        mark_continuations(&mut cells, cols);
         Self { cols, rows, cells }
     }
 
@@ -140,7 +111,7 @@ impl TermFrame {
             let mut seen: Vec<char> = self
                 .cells
                 .iter()
-                .map(|c| c.glyph)
+                .map(|c| c.glyph.first_char())
                 .filter(|&g| {
                     mask_of(Glyphs::Octant, g).is_some() || mask_of(Glyphs::Sextant, g).is_some()
                 })
@@ -169,17 +140,20 @@ impl TermFrame {
                 .cells
                 .iter()
                 .map(|c| {
-                    let (fg, bg) = (c.fg.unwrap_or_default(), c.bg.unwrap_or_default());
-                    match mask_of(glyphs, c.glyph) {
+                    let (fg, bg) = (
+                        c.fg_rgb().unwrap_or_default(),
+                        c.bg_rgb().unwrap_or_default(),
+                    );
+                    match mask_of(glyphs, c.glyph.first_char()) {
                         Some(mask) => GlyphCell { mask, fg, bg },
                         None => {
-                            let (_, up, low) = c.appearance();
+                            let look = c.appearance();
                             let (c_cols, c_rows) = glyphs.cell_size();
                             let upper = ((1u16 << (c_cols * (c_rows / 2))) - 1) as u8;
                             GlyphCell {
                                 mask: upper,
-                                fg: up.unwrap_or_default(),
-                                bg: low.unwrap_or_default(),
+                                fg: look.fg_rgb().unwrap_or_default(),
+                                bg: look.bg_rgb().unwrap_or_default(),
                             }
                         }
                     }
@@ -190,9 +164,9 @@ impl TermFrame {
         let mut fb = Framebuffer::new(self.cols, self.rows * 2);
         for y in 0..self.rows {
             for x in 0..self.cols {
-                let (_, up, low) = self.cell(x, y).appearance();
-                fb.set(x, 2 * y, up.unwrap_or_default());
-                fb.set(x, 2 * y + 1, low.unwrap_or_default());
+                let look = self.cell(x, y).appearance();
+                fb.set(x, 2 * y, look.fg_rgb().unwrap_or_default());
+                fb.set(x, 2 * y + 1, look.bg_rgb().unwrap_or_default());
             }
         }
         fb
@@ -203,6 +177,13 @@ impl From<&Framebuffer> for TermFrame {
     /// [`TermFrame::from_framebuffer`]: half blocks.
     fn from(fb: &Framebuffer) -> Self {
         Self::from_framebuffer(fb)
+    }
+}
+
+impl From<&TermFrame> for TermFrame {
+    /// A copy, so helpers taking `impl Into<TermFrame>` take a borrowed frame too.
+    fn from(frame: &TermFrame) -> Self {
+        frame.clone()
     }
 }
 
@@ -222,64 +203,28 @@ impl From<&vt100::Screen> for TermFrame {
     }
 }
 
-/// The RGB a ratatui colour shows as (`None` = the terminal's default).
-#[must_use]
-pub fn ratatui_rgb(c: ratatui::style::Color) -> Option<Rgb> {
-    use ratatui::style::Color as C;
-    let idx = match c {
-        C::Reset => return None,
-        C::Rgb(r, g, b) => return Some(Rgb::new(r, g, b)),
-        C::Indexed(i) => i,
-        C::Black => 0,
-        C::Red => 1,
-        C::Green => 2,
-        C::Yellow => 3,
-        C::Blue => 4,
-        C::Magenta => 5,
-        C::Cyan => 6,
-        C::Gray => 7,
-        C::DarkGray => 8,
-        C::LightRed => 9,
-        C::LightGreen => 10,
-        C::LightYellow => 11,
-        C::LightBlue => 12,
-        C::LightMagenta => 13,
-        C::LightCyan => 14,
-        C::White => 15,
-    };
-    Some(crate::encode::palette::xterm_rgb(idx))
+/// Makes the columns each wide character covers continuations in its style (what a terminal
+/// shows there), row by row; a wide character at a row's end covers nothing.
+fn mark_continuations(cells: &mut [TermCell], cols: usize) {
+    for row in cells.chunks_mut(cols.max(1)) {
+        let mut x = 0;
+        while x < row.len() {
+            let width = row[x].glyph.width().max(1);
+            for k in 1..width.min(row.len() - x) {
+                row[x + k] = TermCell {
+                    glyph: Glyph::CONTINUATION,
+                    ..row[x].clone()
+                };
+            }
+            x += width;
+        }
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn equivalent_glyphs_look_the_same() {
-        let (a, b) = (Some(Rgb::new(1, 2, 3)), Some(Rgb::new(4, 5, 6)));
-        let up = TermCell {
-            glyph: '▀',
-            fg: a,
-            bg: b,
-        };
-        let low = TermCell {
-            glyph: '▄',
-            fg: b,
-            bg: a,
-        };
-        assert_eq!(up.appearance(), low.appearance());
-        let space = TermCell {
-            glyph: ' ',
-            fg: None,
-            bg: a,
-        };
-        let full = TermCell {
-            glyph: '█',
-            fg: a,
-            bg: b,
-        };
-        assert_eq!(space.appearance(), full.appearance());
-    }
+    use crate::color::Rgb;
 
     #[test]
     fn two_colour_cells_round_trip_at_every_glyph_setting() {
@@ -314,11 +259,7 @@ mod tests {
             rows: 1,
             cells: glyphs
                 .iter()
-                .map(|&glyph| TermCell {
-                    glyph,
-                    fg: None,
-                    bg: None,
-                })
+                .map(|&glyph| TermCell::rgb(glyph, None, None))
                 .collect(),
         };
         assert_eq!(frame(&['▀', '▄', 'a', ' ']).glyphs(), Glyphs::Half);
@@ -327,6 +268,39 @@ mod tests {
         // No setting draws both (`▀` splits a sextant cell's middle row): read as half-blocks.
         assert_eq!(frame(&['▀', '\u{1FB00}']).glyphs(), Glyphs::Half);
         assert_eq!(frame(&['▘', '\u{1CD00}']).glyphs(), Glyphs::Octant);
+    }
+
+    #[test]
+    fn a_buffer_keeps_every_part_of_each_cell() {
+        use ratatui::buffer::Buffer;
+        use ratatui::layout::Rect;
+        use ratatui::style::{Color, Modifier, Style};
+        let mut buf = Buffer::empty(Rect::new(0, 0, 6, 1));
+        let style = Style::new()
+            .fg(Color::Green)
+            .bg(Color::Indexed(200))
+            .underline_color(Color::Rgb(1, 2, 3))
+            .add_modifier(Modifier::REVERSED | Modifier::DIM);
+        buf.set_string(0, 0, "e\u{301}界x", style);
+        let f = TermFrame::from_buffer(&buf);
+        assert_eq!(f.cell(0, 0).glyph, "e\u{301}");
+        assert_eq!(f.cell(1, 0).glyph, "界");
+        assert!(f.cell(2, 0).glyph.is_continuation());
+        assert_eq!(f.cell(3, 0).glyph, 'x');
+        for x in 0..4 {
+            let c = f.cell(x, 0);
+            assert_eq!(
+                (c.fg, c.bg, c.underline, c.modifiers),
+                (
+                    Color::Green,
+                    Color::Indexed(200),
+                    Color::Rgb(1, 2, 3),
+                    Modifier::REVERSED | Modifier::DIM
+                ),
+                "{x}"
+            );
+        }
+        assert_eq!(*f.cell(4, 0), TermCell::default());
     }
 
     #[test]

@@ -3,10 +3,13 @@
 
 use std::path::Path;
 
+use super::ratatui_debug::{from_buffer_debug, BUFFER_DEBUG_HEADER};
+#[cfg(any(test, feature = "vt100"))]
+use super::sgr_passes::{main_pass, mentions, rewrite, underline_as_foreground, ATTRIBUTE_PASSES};
+use super::text::read_grid_row;
+use super::text_v1::CELLS_HEADER_V1;
 use super::{from_cells_text, TermCell, TermFrame, CELLS_HEADER};
 use crate::color::Rgb;
-#[cfg(any(test, feature = "vt100"))]
-use crate::encode::palette::xterm_rgb;
 use crate::render::framebuffer::Framebuffer;
 
 /// What kind of frame file was read.
@@ -16,8 +19,10 @@ pub enum FrameFormat {
     Png,
     /// ANSI escape sequences, read through a terminal model.
     Ansi,
-    /// halfcast's colour-aware cells text.
+    /// halfcast's cells text (glyph grid and style runs).
     Cells,
+    /// A ratatui `Buffer`'s `Debug` form (what `insta::assert_debug_snapshot!(buffer)` pins).
+    BufferDebug,
     /// Plain text, one character per cell.
     Text,
 }
@@ -68,8 +73,17 @@ pub fn parse_frame(bytes: &[u8]) -> Result<(TermFrame, FrameFormat), String> {
         return Ok((TermFrame::from_framebuffer(&fb), FrameFormat::Png));
     }
     let text = std::str::from_utf8(bytes).map_err(|_| "not a PNG and not UTF-8 text")?;
-    if text.starts_with(CELLS_HEADER) {
-        return Ok((from_cells_text(text)?, FrameFormat::Cells));
+    if let Some(body) = insta_body(text) {
+        return frame_text(body).unwrap_or_else(|| {
+            Err(
+                "an insta snapshot whose contents are not a frame (halfcast cells text or a \
+                 ratatui Buffer's Debug form)"
+                    .into(),
+            )
+        });
+    }
+    if let Some(frame) = frame_text(text) {
+        return frame;
     }
     if text.contains('\x1b') {
         #[cfg(any(test, feature = "vt100"))]
@@ -78,22 +92,48 @@ pub fn parse_frame(bytes: &[u8]) -> Result<(TermFrame, FrameFormat), String> {
         return Err("reading ANSI frames needs halfcast's `vt100` feature".into());
     }
     let rows = text.lines().count();
-    let cols = text.lines().map(|l| l.chars().count()).max().unwrap_or(0);
-    if cols > MAX_FRAME.0 || rows > MAX_FRAME.1 {
+    // Characters bound the columns (a cluster or a wide character is at most one per char),
+    // so an oversized text is refused before any row is read into cells.
+    let widest = text.lines().map(|l| l.chars().count()).max().unwrap_or(0);
+    if widest > 2 * MAX_FRAME.0 || rows > MAX_FRAME.1 {
+        return Err(too_large("text frame", widest, rows));
+    }
+    let lines: Vec<Vec<super::Glyph>> = text.lines().map(read_grid_row).collect();
+    let cols = lines.iter().map(Vec::len).max().unwrap_or(0);
+    if cols > MAX_FRAME.0 {
         return Err(too_large("text frame", cols, rows));
     }
-    let cells = text
-        .lines()
+    let cells = lines
+        .into_iter()
         .flat_map(|l| {
-            let mut chars = l.chars();
+            let mut glyphs = l.into_iter();
             (0..cols).map(move |_| TermCell {
-                glyph: chars.next().unwrap_or(' '),
-                fg: None,
-                bg: None,
+                glyph: glyphs.next().unwrap_or_default(),
+                ..TermCell::default()
             })
         })
         .collect();
     Ok((TermFrame { cols, rows, cells }, FrameFormat::Text))
+}
+
+/// The contents of an insta `.snap` file (the header between its `---` lines removed), when
+/// `text` is one.
+fn insta_body(text: &str) -> Option<&str> {
+    let rest = text.strip_prefix("---\n")?;
+    let end = rest.find("\n---\n")?;
+    Some(&rest[end + 5..])
+}
+
+/// Reads `text` as one of the frame forms that announce themselves (halfcast cells text, a
+/// ratatui buffer's `Debug`); `None` for any other text.
+fn frame_text(text: &str) -> Option<Result<(TermFrame, FrameFormat), String>> {
+    if text.starts_with(CELLS_HEADER) || text.starts_with(CELLS_HEADER_V1) {
+        return Some(from_cells_text(text).map(|f| (f, FrameFormat::Cells)));
+    }
+    if text.starts_with(BUFFER_DEBUG_HEADER) {
+        return Some(from_buffer_debug(text).map(|f| (f, FrameFormat::BufferDebug)));
+    }
+    None
 }
 
 #[cfg(any(test, feature = "vt100"))]
@@ -178,9 +218,41 @@ fn with_carriage_returns(bytes: &[u8]) -> Vec<u8> {
 /// Replays ANSI bytes through a terminal model `cols` × `rows` (at most [`MAX_FRAME`]).
 fn model(fixed: &[u8], cols: usize, rows: usize) -> TermFrame {
     let (cols, rows) = (cols.clamp(1, MAX_FRAME.0), rows.clamp(1, MAX_FRAME.1));
-    let mut parser = vt100::Parser::new(rows as u16 + 1, cols as u16, 0);
-    parser.process(fixed);
-    from_screen(parser.screen(), cols, rows)
+    // A row more than is read, so a newline after the last row does not scroll it away.
+    read_through_model(fixed, (cols as u16, rows as u16 + 1), (cols, rows))
+}
+
+#[cfg(any(test, feature = "vt100"))]
+/// Reads the top-left `read` cells of a vt100 terminal of `size` (cols, rows) after `fixed`,
+/// with every attribute: the main reading, then one more for each lost attribute or the
+/// underline colour that the stream uses at all (see `sgr_passes`).
+fn read_through_model(fixed: &[u8], size: (u16, u16), read: (usize, usize)) -> TermFrame {
+    use ratatui::style::Modifier;
+    let screen = |pass| {
+        let mut parser = vt100::Parser::new(size.1, size.0, 0);
+        parser.process(&rewrite(fixed, pass));
+        from_screen(parser.screen(), read.0, read.1)
+    };
+    let mut frame = screen(main_pass);
+    for (modifier, on, pass) in ATTRIBUTE_PASSES {
+        if mentions(fixed, on) {
+            for (cell, seen) in frame.cells.iter_mut().zip(screen(pass).cells) {
+                if seen.modifiers.contains(Modifier::BOLD) {
+                    cell.modifiers |= modifier;
+                }
+            }
+        }
+    }
+    if mentions(fixed, b"58") || mentions(fixed, b"59") {
+        for (cell, seen) in frame
+            .cells
+            .iter_mut()
+            .zip(screen(underline_as_foreground).cells)
+        {
+            cell.underline = seen.fg;
+        }
+    }
+    frame
 }
 
 #[cfg(any(test, feature = "vt100"))]
@@ -192,6 +264,23 @@ pub fn from_ansi(bytes: &[u8]) -> TermFrame {
     let fixed = with_carriage_returns(bytes);
     let (rows, cols) = extent(&fixed);
     model(&fixed, cols, rows)
+}
+
+#[cfg(any(test, feature = "vt100"))]
+/// What a terminal of `cols` × `rows` shows after these bytes (through the vt100 model): the
+/// real size, whatever the bytes draw, with each cell's grapheme, colours, underline colour and
+/// all nine attributes. The model itself keeps only bold, italic, underline and reverse video,
+/// so the bytes are read again once for each other attribute and for the underline colour that
+/// they use, with it sent as one the model keeps. Colours 0–15 read as named colours whichever
+/// way they were sent (`ESC[32m` and `ESC[38;5;2m` select the same palette entry). A bare `\n`
+/// is taken as a new line, as a tty's output processing would make it. The model gives an
+/// emoji's skin-tone modifier columns of its own, so a row holding `👍🏽` reads shifted from
+/// there on.
+#[must_use]
+pub fn from_ansi_sized(bytes: &[u8], cols: u16, rows: u16) -> TermFrame {
+    let (cols, rows) = (cols.max(1), rows.max(1));
+    let fixed = with_carriage_returns(bytes);
+    read_through_model(&fixed, (cols, rows), (usize::from(cols), usize::from(rows)))
 }
 
 #[cfg(any(test, feature = "vt100"))]
@@ -209,26 +298,56 @@ pub fn try_from_ansi(bytes: &[u8]) -> Result<TermFrame, String> {
 }
 
 #[cfg(any(test, feature = "vt100"))]
-/// Reads the top-left `cols` × `rows` cells of a terminal model's screen.
+/// Reads the top-left `cols` × `rows` cells of a terminal model's screen, colours 0–15 as
+/// named. A screen holds only the attributes the model keeps (bold, italic, underline, reverse
+/// video); [`from_ansi_sized`], which has the bytes, reads all of them.
 #[must_use]
 pub fn from_screen(screen: &vt100::Screen, cols: usize, rows: usize) -> TermFrame {
+    use ratatui::style::{Color, Modifier};
     let colour = |c: vt100::Color| match c {
-        vt100::Color::Default => None,
-        vt100::Color::Idx(n) => Some(xterm_rgb(n)),
-        vt100::Color::Rgb(r, g, b) => Some(Rgb::new(r, g, b)),
+        vt100::Color::Default => Color::Reset,
+        vt100::Color::Idx(n) => super::named_colour(n).unwrap_or(Color::Indexed(n)),
+        vt100::Color::Rgb(r, g, b) => Color::Rgb(r, g, b),
     };
     let mut cells = Vec::with_capacity(rows * cols);
     for y in 0..rows {
         for x in 0..cols {
-            let cell = screen.cell(y as u16, x as u16);
-            let (glyph, fg, bg) = cell.map_or((' ', None, None), |c| {
-                (
-                    c.contents().chars().next().unwrap_or(' '),
-                    colour(c.fgcolor()),
-                    colour(c.bgcolor()),
-                )
+            let Some(cell) = screen.cell(y as u16, x as u16) else {
+                cells.push(TermCell::default());
+                continue;
+            };
+            if cell.is_wide_continuation() && x > 0 {
+                // The wide character's second column, in its style (as from_buffer reads it).
+                let lead: &TermCell = &cells[cells.len() - 1];
+                cells.push(TermCell {
+                    glyph: super::Glyph::CONTINUATION,
+                    ..lead.clone()
+                });
+                continue;
+            }
+            let contents = cell.contents();
+            let mut modifiers = Modifier::empty();
+            for (on, m) in [
+                (cell.bold(), Modifier::BOLD),
+                (cell.italic(), Modifier::ITALIC),
+                (cell.underline(), Modifier::UNDERLINED),
+                (cell.inverse(), Modifier::REVERSED),
+            ] {
+                if on {
+                    modifiers |= m;
+                }
+            }
+            cells.push(TermCell {
+                glyph: if contents.is_empty() {
+                    super::Glyph::default()
+                } else {
+                    super::Glyph::new(&contents)
+                },
+                fg: colour(cell.fgcolor()),
+                bg: colour(cell.bgcolor()),
+                underline: Color::Reset,
+                modifiers,
             });
-            cells.push(TermCell { glyph, fg, bg });
         }
     }
     TermFrame { cols, rows, cells }
@@ -244,9 +363,9 @@ mod tests {
             "\x1b[38;2;1;2;3m\x1b[48;2;4;5;6m▀▀\x1b[0m\n\x1b[38;5;196m▄ \x1b[0m\n".as_bytes(),
         );
         assert_eq!((f.cols, f.rows), (2, 2));
-        assert_eq!(f.cell(1, 0).fg, Some(Rgb::new(1, 2, 3)));
-        assert_eq!(f.cell(1, 0).bg, Some(Rgb::new(4, 5, 6)));
-        assert_eq!(f.cell(0, 1).fg, Some(Rgb::new(255, 0, 0)));
+        assert_eq!(f.cell(1, 0).fg_rgb(), Some(Rgb::new(1, 2, 3)));
+        assert_eq!(f.cell(1, 0).bg_rgb(), Some(Rgb::new(4, 5, 6)));
+        assert_eq!(f.cell(0, 1).fg, ratatui::style::Color::Indexed(196));
         assert_eq!(f.cell(1, 1).glyph, ' ');
     }
 
@@ -272,10 +391,54 @@ mod tests {
     }
 
     #[test]
+    fn insta_snapshots_read_without_their_header() {
+        let snap = "---\nsource: tests/x.rs\nexpression: cells_text(&buf)\n---\nhalfcast-cells v2 2x1\n\"ok\"\nstyles:\ny0 x0-1 bold\n";
+        let (f, format) = parse_frame(snap.as_bytes()).unwrap();
+        assert_eq!((f.cols, f.rows, format), (2, 1, FrameFormat::Cells));
+        assert_eq!(f.cell(1, 0).modifiers, ratatui::style::Modifier::BOLD);
+        let other = "---\nsource: tests/x.rs\n---\n{\"json\": 1}\n";
+        assert_eq!(
+            parse_frame(other.as_bytes()).unwrap_err(),
+            "an insta snapshot whose contents are not a frame (halfcast cells text or a ratatui \
+             Buffer's Debug form)"
+        );
+    }
+
+    #[test]
     fn moves_without_a_number_move_by_one() {
         let f = try_from_ansi(b"\x1b[?2026h\x1b[2J\x1b[Hab\x1b[B\x1b[Cc\x1b[?2026l").unwrap();
         assert_eq!((f.cols, f.rows), (4, 2));
         assert_eq!(f.cell(3, 1).glyph, 'c');
+    }
+
+    #[test]
+    fn a_sized_read_is_the_whole_screen_with_attributes() {
+        use ratatui::style::{Color, Modifier};
+        let f = from_ansi_sized(
+            b"\x1b[1;7;32mhel\x1b[0;38;5;2ml\x1b[38;5;100;2;9;58;5;200mo\x1b[22;1m!",
+            20,
+            5,
+        );
+        assert_eq!((f.cols, f.rows), (20, 5));
+        assert_eq!(f.cell(0, 0).modifiers, Modifier::BOLD | Modifier::REVERSED);
+        assert_eq!(f.cell(0, 0).fg, Color::Green);
+        assert_eq!(f.cell(3, 0).fg, Color::Green);
+        assert_eq!(f.cell(4, 0).fg, Color::Indexed(100));
+        assert_eq!(
+            f.cell(4, 0).modifiers,
+            Modifier::DIM | Modifier::CROSSED_OUT
+        );
+        assert_eq!(f.cell(4, 0).underline, Color::Indexed(200));
+        assert_eq!(
+            f.cell(5, 0).modifiers,
+            Modifier::BOLD | Modifier::CROSSED_OUT
+        );
+        assert_eq!(*f.cell(19, 4), TermCell::default());
+        let wide = from_ansi_sized("\x1b[44m界e\u{301}".as_bytes(), 4, 1);
+        assert_eq!(wide.cell(0, 0).glyph, "界");
+        assert!(wide.cell(1, 0).glyph.is_continuation());
+        assert_eq!(wide.cell(1, 0).bg, Color::Blue);
+        assert_eq!(wide.cell(2, 0).glyph, "e\u{301}");
     }
 
     #[test]

@@ -211,7 +211,17 @@ fn frame_seeds() -> Vec<Vec<u8>> {
             .as_bytes()
             .to_vec(),
     );
+    s.push(
+        "halfcast-cells v2 3x1\n\"e\u{301}?x\"\nstyles:\ny0 x0-1 fg=green ul=idx3 bold\nglyphs:\ny0 x1 U+0301\n"
+            .as_bytes()
+            .to_vec(),
+    );
     s.push(b"plain\ntext frame\n".to_vec());
+    s.push(
+        "Buffer {\n    area: Rect { x: 0, y: 0, width: 3, height: 1 },\n    content: [\n        \"\u{754c}e\",\n    ],\n    styles: [\n        x: 0, y: 0, fg: Green, bg: Rgb(1, 2, 3), underline: Indexed(9), modifier: BOLD | REVERSED,\n    ]\n}"
+            .as_bytes()
+            .to_vec(),
+    );
     s
 }
 

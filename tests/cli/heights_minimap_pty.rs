@@ -40,7 +40,11 @@ fn map_pane(rows: &[String]) -> Vec<String> {
 
 fn frame_rows(frame: &TermFrame) -> Vec<String> {
     (0..frame.rows)
-        .map(|y| (0..frame.cols).map(|x| frame.cell(x, y).glyph).collect())
+        .map(|y| {
+            (0..frame.cols)
+                .map(|x| frame.cell(x, y).glyph.as_str())
+                .collect()
+        })
         .collect()
 }
 
@@ -64,7 +68,7 @@ fn the_minimap_shades_floors_by_height_and_outlines_ledges() {
         .flat_map(|y| (left + 1..left + 1 + pane[0].chars().count()).map(move |x| (x, y)))
         .flat_map(|(x, y)| {
             let c = screen.cell(x, y);
-            [c.fg, c.bg]
+            [c.fg_rgb(), c.bg_rgb()]
         })
         .flatten()
         .collect();

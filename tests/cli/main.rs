@@ -16,6 +16,7 @@ mod tmux;
 #[allow(dead_code)] // each test binary uses its own part of the shared world helpers
 mod world_common;
 
+mod ansi_round_trip;
 mod cli_colors;
 mod cli_default_play;
 mod colour;
@@ -44,6 +45,7 @@ mod play_pty;
 mod play_stalled;
 mod play_tmux;
 mod properties;
+mod readme_screenshot;
 mod render_json;
 mod replay;
 mod replay_pty;

@@ -16,7 +16,9 @@ const FIXTURE: &str = "tests/fixtures/walk_turn_debug.hcr";
 
 /// The text of row `y` (glyphs only), for checking a snapshot shows what its name says.
 fn row_text(frame: &TermFrame, y: usize) -> String {
-    (0..frame.cols).map(|x| frame.cell(x, y).glyph).collect()
+    (0..frame.cols)
+        .map(|x| frame.cell(x, y).glyph.as_str())
+        .collect()
 }
 
 fn all_text(frame: &TermFrame) -> String {

@@ -14,7 +14,7 @@ fn crop(frame: &TermFrame, x: usize, y: usize, cols: usize, rows: usize) -> Term
     let mut cells = Vec::with_capacity(cols * rows);
     for r in 0..rows {
         for c in 0..cols {
-            cells.push(*frame.cell(x + c, y + r));
+            cells.push(frame.cell(x + c, y + r).clone());
         }
     }
     TermFrame { cols, rows, cells }

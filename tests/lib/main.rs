@@ -18,4 +18,5 @@ mod glyph_grid;
 mod heights_golden;
 mod lamps_heights;
 mod lean_backend;
+mod ratatui_dashboard;
 mod world_projection;

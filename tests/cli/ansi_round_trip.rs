@@ -1,0 +1,175 @@
+//! The real bytes read back at the real size: any ratatui buffer (random glyphs, clusters, wide
+//! characters, colours of every kind, attributes) drawn through `LeanBackend` or stock
+//! `CrosstermBackend` and read back with `termframe::from_ansi_sized` shows the buffer, cell for
+//! cell: every attribute, and the underline colour where the backend sends it (see `expected`).
+
+use crate::capture::Capture;
+use halfcast::termframe::{self, named_colour, TermFrame};
+use halfcast::{ColorLevel, LeanBackend};
+use proptest::prelude::*;
+use ratatui::backend::{Backend, CrosstermBackend};
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::style::{Color, Modifier, Style};
+
+/// What one cell may hold: letters, block characters, a space, clusters with combining marks,
+/// wide characters (CJK, an emoji). Not an emoji with a skin tone (`👍🏽`): the vt100 model
+/// (0.15) gives the modifier two columns of its own, so every cell after it reads shifted
+/// (terminals differ here too); the buffer side keeps it whole (tests/lib/ratatui_dashboard.rs).
+const GLYPHS: [&str; 14] = [
+    "a",
+    "Z",
+    "7",
+    " ",
+    "▀",
+    "▄",
+    "█",
+    "─",
+    "é",
+    "e\u{301}",
+    "e\u{300}",
+    "界",
+    "👍",
+    "ü\u{323}",
+];
+
+fn colour() -> impl Strategy<Value = Color> {
+    prop_oneof![
+        Just(Color::Reset),
+        (0u8..16).prop_map(|n| named_colour(n).unwrap()),
+        any::<u8>().prop_map(Color::Indexed),
+        any::<(u8, u8, u8)>().prop_map(|(r, g, b)| Color::Rgb(r, g, b)),
+    ]
+}
+
+/// A random style; with `both_blinks` false, never slow and rapid blink together (see
+/// `crossterm_backend_drops_a_blink_lean_backend_keeps`).
+fn style(both_blinks: bool) -> impl Strategy<Value = Style> {
+    (colour(), colour(), colour(), any::<u16>()).prop_map(move |(fg, bg, ul, m)| {
+        let mut m = Modifier::from_bits_truncate(m);
+        if !both_blinks && m.contains(Modifier::SLOW_BLINK) {
+            m.remove(Modifier::RAPID_BLINK);
+        }
+        Style::new()
+            .fg(fg)
+            .bg(bg)
+            .underline_color(ul)
+            .add_modifier(m)
+    })
+}
+
+/// A buffer of `cols` × `rows` filled row by row with random clusters in random styles (a wide
+/// one that would not fit at a row's end is left out, as ratatui leaves it).
+fn buffer(both_blinks: bool) -> impl Strategy<Value = Buffer> {
+    (1u16..16, 1u16..6).prop_flat_map(move |(cols, rows)| {
+        let n = usize::from(cols) * usize::from(rows);
+        prop::collection::vec((0..GLYPHS.len(), style(both_blinks)), n).prop_map(move |cells| {
+            let mut buf = Buffer::empty(Rect::new(0, 0, cols, rows));
+            let mut cells = cells.into_iter();
+            for y in 0..rows {
+                let mut x = 0;
+                while x < cols {
+                    let (g, style) = cells.next().unwrap();
+                    let end = buf.set_stringn(x, y, GLYPHS[g], usize::from(cols - x), style);
+                    x = end.0.max(x + 1);
+                }
+            }
+            buf
+        })
+    })
+}
+
+/// The buffer as the terminal shows it, with `Indexed(0..16)` as the named colour it selects
+/// (`Indexed(2)` and `Green` are the same bytes, `ESC[32m`, and the same palette entry), and
+/// no underline colour when the backend does not send it (`LeanBackend`).
+fn expected(buf: &Buffer, sends_underline_colour: bool) -> TermFrame {
+    let named = |c: Color| match c {
+        Color::Indexed(n) => named_colour(n).unwrap_or(c),
+        c => c,
+    };
+    let mut frame = TermFrame::from(buf);
+    for c in &mut frame.cells {
+        c.fg = named(c.fg);
+        c.bg = named(c.bg);
+        c.underline = if sends_underline_colour {
+            named(c.underline)
+        } else {
+            Color::Reset
+        };
+    }
+    frame
+}
+
+/// Draws `buf` on a blank terminal through `backend`, as ratatui's first frame does.
+fn draw<B: Backend>(backend: &mut B, buf: &Buffer) {
+    let updates = Buffer::empty(buf.area).diff(buf);
+    backend.draw(updates.into_iter()).ok().unwrap();
+    backend.flush().ok().unwrap();
+}
+
+fn assert_shows(bytes: &[u8], buf: &Buffer, backend: &str) {
+    let (cols, rows) = (buf.area.width, buf.area.height);
+    let seen = termframe::from_ansi_sized(bytes, cols, rows);
+    let report = termframe::diff(&expected(buf, backend != "LeanBackend"), &seen);
+    assert!(
+        report.is_equal(),
+        "{backend}: {}\n{:?}",
+        report.summary(),
+        String::from_utf8_lossy(bytes)
+    );
+}
+
+#[test]
+fn the_re_exported_terminal_model_reads_the_same_screen() {
+    // A test that builds its own parser uses halfcast's vt100, so the types match.
+    let bytes = b"\x1b[2;3H\x1b[1;4;38;5;120mhi\x1b[0m";
+    let mut parser = halfcast::vt100::Parser::new(5, 20, 0);
+    parser.process(bytes);
+    let own = TermFrame::from(parser.screen());
+    assert_eq!(own, termframe::from_ansi_sized(bytes, 20, 5));
+    assert_eq!(
+        own.cell(3, 1).modifiers,
+        Modifier::BOLD | Modifier::UNDERLINED
+    );
+}
+
+/// Found by the property: going from slow + rapid blink to rapid blink alone, ratatui's
+/// crossterm backend (ratatui-crossterm 0.1.2) sends "no blink" (SGR 25, which ends both) and
+/// does not switch rapid blink back on, so the terminal shows the cell without blinking.
+/// `LeanBackend` sends 25 and then 6.
+#[test]
+fn crossterm_backend_drops_a_blink_lean_backend_keeps() {
+    let mut buf = Buffer::empty(Rect::new(0, 0, 2, 1));
+    let both = Modifier::SLOW_BLINK | Modifier::RAPID_BLINK;
+    buf.set_string(0, 0, "a", Style::new().add_modifier(both));
+    buf.set_string(1, 0, "b", Style::new().add_modifier(Modifier::RAPID_BLINK));
+    let mut lean = LeanBackend::new(Vec::new(), ColorLevel::TrueColor).with_size(2, 1);
+    draw(&mut lean, &buf);
+    let lean_seen = termframe::from_ansi_sized(lean.writer(), 2, 1);
+    assert_eq!(lean_seen.cell(1, 0).modifiers, Modifier::RAPID_BLINK);
+    let out = Capture::default();
+    draw(&mut CrosstermBackend::new(out.clone()), &buf);
+    let stock_seen = termframe::from_ansi_sized(&out.take(), 2, 1);
+    assert_eq!(stock_seen.cell(0, 0).modifiers, both);
+    assert_eq!(stock_seen.cell(1, 0).modifiers, Modifier::empty());
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    #[test]
+    fn lean_backend_bytes_read_back_as_the_buffer(buf in buffer(true)) {
+        let (cols, rows) = (buf.area.width, buf.area.height);
+        let mut lean = LeanBackend::new(Vec::new(), ColorLevel::TrueColor).with_size(cols, rows);
+        draw(&mut lean, &buf);
+        assert_shows(lean.writer(), &buf, "LeanBackend");
+    }
+
+    #[test]
+    fn crossterm_backend_bytes_read_back_as_the_buffer(buf in buffer(false)) {
+        let out = Capture::default();
+        let mut stock = CrosstermBackend::new(out.clone());
+        draw(&mut stock, &buf);
+        assert_shows(&out.take(), &buf, "CrosstermBackend");
+    }
+}
