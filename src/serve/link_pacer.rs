@@ -166,17 +166,25 @@ impl LinkPacer {
     }
 
     /// Whether the next frame may go now: the last one has been written to the socket (`wire`
-    /// bytes so far) and, per the kernel's `sample`, nearly all of it acknowledged. Without a
-    /// sample only the first holds.
-    pub fn clear(&mut self, wire: u64, sample: Option<&TcpSample>, now: Instant) -> bool {
+    /// bytes so far), per the kernel's `sample` nearly all of it acknowledged, and the client
+    /// itself has answered for enough of the frames before it (`answered`, from
+    /// [`super::link_echo`]). Without a sample the kernel's part is skipped.
+    pub fn clear(
+        &mut self,
+        wire: u64,
+        sample: Option<&TcpSample>,
+        answered: bool,
+        now: Instant,
+    ) -> bool {
         if let Some(s) = sample {
             self.observe(s, now);
         }
         let Some(f) = self.in_flight else {
             return true;
         };
-        let done =
-            wire > f.wire_before && sample.is_none_or(|s| s.outstanding <= self.allowance(s));
+        let done = wire > f.wire_before
+            && answered
+            && sample.is_none_or(|s| s.outstanding <= self.allowance(s));
         if !done {
             self.held_up = true;
             self.blocked_since.get_or_insert(now);
@@ -425,7 +433,7 @@ mod tests {
         while now.duration_since(t0).as_secs_f64() < secs {
             outstanding = (outstanding - rate * step.as_secs_f64()).max(0.0);
             let s = sample(outstanding as u64, rate as u64);
-            if now >= next_want && p.clear(*wire, Some(&s), now) {
+            if now >= next_want && p.clear(*wire, Some(&s), true, now) {
                 if let Some(step) = p.step(level, now) {
                     level = match step {
                         Step::Down(l) | Step::Up(l) => l,
@@ -454,26 +462,31 @@ mod tests {
     fn the_next_frame_waits_until_the_last_is_written_and_nearly_acknowledged() {
         let t = Instant::now();
         let mut p = LinkPacer::new(PERIOD, ColorLevel::Ansi256);
-        assert!(p.clear(0, None, t), "nothing in flight");
+        assert!(p.clear(0, None, true, t), "nothing in flight");
         p.sent(1000, ColorLevel::Ansi256, t);
         assert!(
-            !p.clear(1000, Some(&sample(0, 1_000_000)), t),
+            !p.clear(1000, Some(&sample(0, 1_000_000)), true, t),
             "not yet written"
         );
         assert!(
-            !p.clear(9000, Some(&sample(8000, 1_000_000)), t),
+            !p.clear(9000, Some(&sample(8000, 1_000_000)), true, t),
             "written, unacknowledged"
         );
         assert_eq!(p.waiting(t + PERIOD), Some(PERIOD));
-        assert!(p.clear(9000, Some(&sample(MIN_ALLOWANCE, 1_000_000)), t + PERIOD));
+        assert!(p.clear(
+            9000,
+            Some(&sample(MIN_ALLOWANCE, 1_000_000)),
+            true,
+            t + PERIOD
+        ));
         // It was wanted at `t` (the first look) and could go at `t + PERIOD`.
         assert_eq!(p.take_waited(), Some(PERIOD));
         assert_eq!(p.take_waited(), None);
         assert_eq!(p.waiting(t + PERIOD), None);
         // Without the kernel's figures, a written frame is enough.
         p.sent(9000, ColorLevel::Ansi256, t);
-        assert!(!p.clear(9000, None, t));
-        assert!(p.clear(9001, None, t));
+        assert!(!p.clear(9000, None, true, t));
+        assert!(p.clear(9001, None, true, t));
     }
 
     #[test]
@@ -488,7 +501,7 @@ mod tests {
             delivery_rate: 2_500_000,
             ..TcpSample::default()
         };
-        assert!(p.clear(30_000, Some(&far), t));
+        assert!(p.clear(30_000, Some(&far), true, t));
     }
 
     #[test]

@@ -29,6 +29,7 @@ pub(crate) mod hostkey;
 pub mod leaderboard;
 pub(crate) mod lifecycle;
 pub mod limits;
+pub(crate) mod link_echo;
 pub(crate) mod link_pacer;
 pub(crate) mod link_probe;
 pub mod log;

@@ -28,6 +28,7 @@ use super::handler::BoardLine;
 use super::header::{self, Piece};
 use super::leaderboard::{board_key, shown_name, Boards};
 use super::lifecycle::Lifeline;
+use super::link_echo::EchoGate;
 use super::link_pacer::{LinkFigures, LinkPacer, Step};
 use super::link_probe::LinkProbe;
 use super::log::Log;
@@ -59,6 +60,8 @@ const ESC_WAIT: Duration = Duration::from_millis(50);
 const NOTICE_FOR: Duration = Duration::from_secs(4);
 /// How soon to look at the link again while a frame waits for it.
 const LINK_RECHECK: Duration = Duration::from_millis(3);
+/// How long a task waits for the client's answer to a frame's echo.
+const ECHO_WAIT: Duration = Duration::from_secs(60);
 /// How often the link figures on the header may change.
 const LINK_SHOWN_EVERY: Duration = Duration::from_secs(1);
 /// How an SSH player asks for octants where the glyph key skips them.
@@ -178,6 +181,7 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
         .life
         .tcp()
         .and_then(|(local, peer)| LinkProbe::open(local, peer));
+    let mut echo = EchoGate::new();
     s.link_known = probe.is_some();
     // Whether the screen may have changed since the last frame; when the next look is due
     // (the frame-rate cap, or the link still carrying the last frame).
@@ -251,7 +255,8 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
                 // it stopped reading.
                 if pacer.waiting(now).is_some_and(|w| w >= p.stall_timeout) {
                     let sample = probe.as_mut().and_then(LinkProbe::sample);
-                    if !pacer.clear(p.life.written(), sample.as_ref(), now) {
+                    let answered = echo.clear(period, now);
+                    if !pacer.clear(p.life.written(), sample.as_ref(), answered, now) {
                         break End::Stalled;
                     }
                 }
@@ -323,7 +328,8 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
             _ => None,
         };
         let std_now = now.into_std();
-        if !pacer.clear(wire, sample.as_ref(), std_now) {
+        let answered = echo.clear(period, std_now);
+        if !pacer.clear(wire, sample.as_ref(), answered, std_now) {
             again = Some(now + LINK_RECHECK);
             continue;
         }
@@ -345,7 +351,7 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
                 });
             }
         }
-        s.show_link(pacer.figures(), std_now);
+        s.show_link(link_figures(&pacer, &echo), std_now);
         s.compose(&snap, &mut out);
         if out.is_empty() {
             continue;
@@ -360,6 +366,9 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
             Ok(Err(_)) => break End::ClientGone,
             Ok(Ok(())) => {
                 pacer.sent(wire_before, s.screen.colour().level, std_now);
+                if echo.on() {
+                    send_echo(&p.handle, &mut echo, std_now);
+                }
                 last_frame = Some(now);
                 tally.frames += 1;
                 tally.bytes += n;
@@ -367,7 +376,7 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
             }
         }
     };
-    p.life.set_link(pacer.figures());
+    p.life.set_link(link_figures(&pacer, &echo));
     if !p.spectator {
         p.world.send(WorldMsg::Leave { id: p.id }).await;
     }
@@ -403,10 +412,37 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
             tally.frames,
             tally.bytes,
             tally.dropped,
-            link_summary(&pacer.figures()),
+            link_summary(&link_figures(&pacer, &echo)),
         ),
     );
     end
+}
+
+/// The link's figures, with the round trip the client's own answers took where it gives them
+/// (behind a load balancer the kernel sees only the hop to the balancer).
+fn link_figures(pacer: &LinkPacer, echo: &EchoGate) -> LinkFigures {
+    let mut f = pacer.figures();
+    if let Some(rtt) = echo.least_rtt() {
+        f.rtt = rtt;
+    }
+    f
+}
+
+/// After a frame: asks the client for an answer that comes only once it has read the frame
+/// ([`super::link_echo`]); a task waits for it.
+fn send_echo(handle: &Handle, echo: &mut EchoGate, now: Instant) {
+    let (n, answers) = echo.sent(now);
+    let handle = handle.clone();
+    tokio::spawn(async move {
+        let asked = Instant::now();
+        // Success or failure alike: the client has read everything before it. No answer in
+        // time (the connection is gone) leaves the frame unanswered.
+        let answer =
+            tokio::time::timeout(ECHO_WAIT, handle.cancel_forward_tcpip(String::new(), 0)).await;
+        if answer.is_ok() {
+            answers.answered(n, asked.elapsed());
+        }
+    });
 }
 
 /// Sleeps until `at` (never called with `None`: the select arm is disabled then).
