@@ -93,6 +93,10 @@ pub(crate) struct ServeArgs {
     /// No connect/disconnect log on stderr.
     #[arg(long)]
     pub(crate) quiet: bool,
+    /// On SIGTERM, stop accepting (/healthz says 503) and let the round in play end for at
+    /// most this many seconds before players are told to reconnect (0: at once).
+    #[arg(long, default_value_t = 30, value_parser = clap::value_parser!(u64).range(0..=3_600))]
+    pub(crate) drain_seconds: u64,
     /// The game: coop (shared points, anyone's exit ends the round) or tag (one player is
     /// "it"; touching passes it on; the least time as "it" wins).
     #[arg(long, default_value = "coop", value_parser = parse_mode)]
@@ -227,6 +231,7 @@ pub(crate) fn serve(args: ServeArgs) -> Result<(), Failure> {
     config.idle_timeout = Duration::from_secs(args.idle_timeout);
     config.fps = args.fps;
     config.quiet = args.quiet;
+    config.drain = Duration::from_secs(args.drain_seconds);
     config.mode = args.mode;
     let mut seed = [0u8; 8];
     // Unpredictable refusals where the OS has randomness; the fixed seed otherwise.

@@ -74,6 +74,9 @@ pub struct ServeConfig {
     pub proxy_protocol: bool,
     /// Text lines or one JSON object per event (`--log-format`).
     pub log_format: super::log::LogFormat,
+    /// On SIGTERM, how long the world may drain (its round ending) before it stops
+    /// (`--drain-seconds`).
+    pub drain: Duration,
 }
 
 impl ServeConfig {
@@ -105,6 +108,7 @@ impl ServeConfig {
             metrics: None,
             proxy_protocol: false,
             log_format: super::log::LogFormat::Text,
+            drain: super::drain::DEFAULT_DRAIN,
         }
     }
 }

@@ -39,6 +39,8 @@ pub struct Shared {
     pub stats: Arc<ServeStats>,
     pub log: Log,
     pub shutdown: watch::Receiver<bool>,
+    /// What sessions are told when they end with the server (see [`super::drain`]).
+    pub farewell: watch::Receiver<&'static str>,
     /// Who is logging in and who plays, against the caps.
     pub limiter: Limiter,
     /// Failed password logins per source address.
@@ -357,6 +359,7 @@ impl russh::server::Handler for ConnHandler {
             stats: Arc::clone(&sh.stats),
             log: sh.log,
             shutdown: sh.shutdown.clone(),
+            farewell: sh.farewell.clone(),
         };
         let inputs = SessionInputs {
             data: rx,

@@ -85,6 +85,8 @@ pub struct SessionParams {
     pub stats: Arc<ServeStats>,
     pub log: Log,
     pub shutdown: watch::Receiver<bool>,
+    /// The last line a player sees when the server stops (see [`super::drain`]).
+    pub farewell: watch::Receiver<&'static str>,
 }
 
 /// What the connection handler feeds the session: raw key bytes, and the latest pty size.
@@ -264,9 +266,10 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
     }
     if !matches!(end, End::ClientGone | End::Stalled) {
         let mut bye = LEAVE.to_vec();
+        let farewell = super::drain::farewell_line(*p.farewell.borrow());
         bye.extend_from_slice(match end {
             End::Idle => b"halfcast: closed after being idle too long.\r\n".as_slice(),
-            End::Shutdown => b"halfcast: the server is shutting down.\r\n",
+            End::Shutdown => &farewell,
             _ => b"",
         });
         // Best effort: the client may already be gone; don't wait on a dead link.
