@@ -97,6 +97,10 @@ pub(crate) struct ServeArgs {
     /// most this many seconds before players are told to reconnect (0: at once).
     #[arg(long, default_value_t = 30, value_parser = clap::value_parser!(u64).range(0..=3_600))]
     pub(crate) drain_seconds: u64,
+    /// Worker threads (default: one per core); the process runs these plus at most 6 more
+    /// (main, leaderboard, blocking pool), which is what systemd's TasksMax must allow.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1_024))]
+    pub(crate) threads: Option<u32>,
     /// The game: coop (shared points, anyone's exit ends the round) or tag (one player is
     /// "it"; touching passes it on; the least time as "it" wins).
     #[arg(long, default_value = "coop", value_parser = parse_mode)]
@@ -232,6 +236,7 @@ pub(crate) fn serve(args: ServeArgs) -> Result<(), Failure> {
     config.fps = args.fps;
     config.quiet = args.quiet;
     config.drain = Duration::from_secs(args.drain_seconds);
+    config.threads = args.threads.map(|n| n as usize);
     config.mode = args.mode;
     let mut seed = [0u8; 8];
     // Unpredictable refusals where the OS has randomness; the fixed seed otherwise.

@@ -77,6 +77,8 @@ pub struct ServeConfig {
     /// On SIGTERM, how long the world may drain (its round ending) before it stops
     /// (`--drain-seconds`).
     pub drain: Duration,
+    /// Worker threads of `halfcast serve`'s runtime (`--threads`; `None`: one per core).
+    pub threads: Option<usize>,
 }
 
 impl ServeConfig {
@@ -109,6 +111,7 @@ impl ServeConfig {
             proxy_protocol: false,
             log_format: super::log::LogFormat::Text,
             drain: super::drain::DEFAULT_DRAIN,
+            threads: None,
         }
     }
 }

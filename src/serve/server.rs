@@ -635,8 +635,12 @@ async fn goodbye(handle: &russh::server::Handle, reason: russh::Disconnect, why:
 /// # Errors
 /// A message when the runtime, the address or the host key fail.
 pub fn run_until_signal(config: ServeConfig, maps: Vec<ServedMap>) -> Result<(), String> {
-    let rt = tokio::runtime::Builder::new_multi_thread()
-        .enable_all()
+    let mut rt = tokio::runtime::Builder::new_multi_thread();
+    rt.enable_all().max_blocking_threads(MAX_BLOCKING_THREADS);
+    if let Some(n) = config.threads {
+        rt.worker_threads(n);
+    }
+    let rt = rt
         .build()
         .map_err(|e| format!("cannot start the async runtime: {e}"))?;
     rt.block_on(async move {
@@ -670,6 +674,11 @@ pub fn run_until_signal(config: ServeConfig, maps: Vec<ServedMap>) -> Result<(),
         Ok(())
     })
 }
+
+/// Threads the runtime may start for blocking work (only the leaderboard's flush at shutdown
+/// uses one), so that the process's threads are its workers plus a known few (systemd's
+/// `TasksMax` in docs/deploy/halfcast@.service counts them).
+pub const MAX_BLOCKING_THREADS: usize = 4;
 
 /// Which signal asked the server to stop.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

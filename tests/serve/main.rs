@@ -22,6 +22,7 @@ mod serve_cli;
 mod serve_colour;
 mod serve_compression;
 mod serve_drain;
+mod serve_fleet;
 mod serve_flood;
 mod serve_glyphs;
 mod serve_haproxy;

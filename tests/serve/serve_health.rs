@@ -24,6 +24,8 @@ async fn healthz_says_accepting_then_full_and_its_checks_are_not_players() {
             "1",
             "--db",
             "none",
+            "--threads",
+            "2",
         ],
     );
     for _ in 0..5 {
@@ -48,7 +50,13 @@ async fn healthz_says_accepting_then_full_and_its_checks_are_not_players() {
     assert!(series(&m, "process_open_fds") >= 3.0, "{m}");
     assert!(series(&m, "process_max_fds") >= series(&m, "process_open_fds"));
     assert!(series(&m, "process_cpu_seconds_total") > 0.0, "{m}");
-    assert!(series(&m, "process_threads") >= 1.0, "{m}");
+    // Its workers and at most 6 more (main, leaderboard, blocking pool): what the unit's
+    // TasksMax is sized from.
+    let threads = series(&m, "process_threads");
+    assert!(
+        (3.0..=8.0).contains(&threads),
+        "{threads} threads with --threads 2"
+    );
     assert_eq!(series(&m, "halfcast_draining"), 0.0, "{m}");
 
     // The one session place taken: a balancer should send players elsewhere.
