@@ -111,6 +111,12 @@ impl RunningServer {
         self.stats.snapshot()
     }
 
+    /// Rounds finished since the server started (each queued for the leaderboard).
+    #[must_use]
+    pub fn rounds_finished(&self) -> u64 {
+        *self.rounds.borrow()
+    }
+
     /// Whether a load balancer should send this world players now (what `/healthz` says).
     #[must_use]
     pub fn health(&self) -> Health {

@@ -37,4 +37,5 @@ mod serve_proxy;
 mod serve_refusals;
 mod serve_rotation;
 mod serve_session;
+mod serve_shared_board;
 mod serve_stall;
