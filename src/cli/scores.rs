@@ -22,6 +22,10 @@ pub(crate) struct ScoresArgs {
     /// Print JSON instead of text.
     #[arg(long)]
     pub(crate) json: bool,
+    /// Instead of printing, copy the leaderboard to FILE (replacing it) while servers write
+    /// it, with SQLite's online backup; the copy is checked before it takes FILE's place.
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["map", "json"])]
+    pub(crate) backup: Option<PathBuf>,
 }
 
 /// `scores --json`: every board.
@@ -51,6 +55,17 @@ struct Ranked {
 }
 
 pub(crate) fn scores(args: &ScoresArgs) -> Result<(), Failure> {
+    if let Some(to) = &args.backup {
+        let rounds =
+            halfcast::serve::leaderboard::backup::backup(&args.db, to).map_err(Failure::input)?;
+        println!(
+            "{} backed up to {}: {rounds} {}",
+            args.db.display(),
+            to.display(),
+            if rounds == 1 { "round" } else { "rounds" }
+        );
+        return Ok(());
+    }
     let store = Store::open_read(&args.db).map_err(Failure::input)?;
     let only = match &args.map {
         Some(p) => {

@@ -335,7 +335,7 @@ fn round_recorder(
             name,
             hash,
             mode,
-            end.seconds,
+            super::leaderboard::rounded_seconds(end.seconds),
             serde_json::Value::from(players),
         );
         if let Some(lb) = &leaderboard {

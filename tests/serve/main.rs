@@ -17,6 +17,7 @@ mod game_serve;
 mod input_hardening;
 mod serve_abuse;
 mod serve_auth;
+mod serve_backup;
 mod serve_churn;
 mod serve_cli;
 mod serve_colour;

@@ -135,9 +135,16 @@ impl Store {
 
     /// Reads the schema version and checks the file's integrity; refuses newer versions.
     fn check(&self, path: &Path) -> Result<i64, String> {
-        let version: i64 = self
+        // The version and the tables in one statement (one snapshot): another world may
+        // migrate the file between two.
+        let (version, tables): (i64, i64) = self
             .conn
-            .query_row("PRAGMA user_version", [], |r| r.get(0))
+            .query_row(
+                "SELECT (SELECT user_version FROM pragma_user_version),
+                        (SELECT COUNT(*) FROM sqlite_master)",
+                [],
+                |r| Ok((r.get(0)?, r.get(1)?)),
+            )
             .map_err(|e| failed(path, "cannot read", e))?;
         let ok: String = self
             .conn
@@ -148,10 +155,6 @@ impl Store {
         }
         if version == 0 {
             // Version 0 is a new, empty file; one with tables of its own is someone else's.
-            let tables: i64 = self
-                .conn
-                .query_row("SELECT COUNT(*) FROM sqlite_master", [], |r| r.get(0))
-                .map_err(|e| failed(path, "cannot read", e))?;
             if tables > 0 {
                 return Err(failed(
                     path,
@@ -194,6 +197,11 @@ impl Store {
                 .map_err(|e| failed(path, &format!("cannot migrate to version {to}"), e))?;
         }
         Ok(())
+    }
+
+    /// The open connection, for a backup of it ([`super::backup`]).
+    pub(super) fn connection(&self) -> &Connection {
+        &self.conn
     }
 
     /// The schema version of the open file.
@@ -490,7 +498,6 @@ mod tests {
                 std::thread::spawn(move || {
                     barrier.wait();
                     let mut s = Store::open(&path).expect("opens beside the other world");
-                    barrier.wait();
                     for i in 0..EACH {
                         s.record(&round("h", 30.0 + i as f64, false, &[(who, i as i64, 0.0)]))
                             .unwrap_or_else(|e| panic!("{who}'s round {i}: {e}"));
