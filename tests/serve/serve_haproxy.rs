@@ -242,31 +242,41 @@ fn openssh_through_haproxy_plays_and_the_world_logs_the_players_own_address() {
 }
 
 #[test]
-fn the_shipped_systemd_unit_passes_systemd_analyze_verify() {
+fn the_shipped_systemd_units_pass_systemd_analyze_verify() {
     if !installed("systemd-analyze", "--version") {
-        eprintln!("skip: systemd-analyze is not installed (apt-get install systemd)");
+        eprintln!("SKIPPED: systemd-analyze is not installed (apt-get install systemd)");
         return;
     }
     let dir = tempfile::tempdir().expect("tempdir");
-    // The unit names /usr/local/bin/halfcast; verify checks that it exists, so point it at
+    // The units name /usr/local/bin/halfcast; verify checks that it exists, so point them at
     // the binary under test.
-    let unit = moved(
-        &deploy("halfcast@.service"),
-        "ExecStart=/usr/local/bin/halfcast ",
-        &format!("ExecStart={} ", env!("CARGO_BIN_EXE_halfcast")),
-    );
-    let path = dir.path().join("halfcast@1.service");
-    std::fs::write(&path, unit).unwrap();
-    let out = Command::new("systemd-analyze")
-        .arg("verify")
-        .arg(&path)
-        .output()
-        .expect("systemd-analyze runs");
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "{err}");
-    // Unknown or misspelt settings are only warnings: none may appear.
-    assert!(
-        !err.contains("halfcast@1.service"),
-        "systemd-analyze warned:\n{err}"
-    );
+    let exe = |unit: &str| {
+        moved(
+            &deploy(unit),
+            "ExecStart=/usr/local/bin/halfcast ",
+            &format!("ExecStart={} ", env!("CARGO_BIN_EXE_halfcast")),
+        )
+    };
+    let files = [
+        ("halfcast@1.service", exe("halfcast@.service")),
+        ("halfcast-backup.service", exe("halfcast-backup.service")),
+        ("halfcast-backup.timer", deploy("halfcast-backup.timer")),
+    ];
+    for (name, text) in &files {
+        std::fs::write(dir.path().join(name), text).unwrap();
+    }
+    for (name, _) in &files {
+        let out = Command::new("systemd-analyze")
+            .arg("verify")
+            .arg(dir.path().join(name))
+            .output()
+            .expect("systemd-analyze runs");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{name}: {err}");
+        // Unknown or misspelt settings are only warnings: none may appear.
+        assert!(
+            !err.contains("halfcast"),
+            "systemd-analyze warned about {name}:\n{err}"
+        );
+    }
 }
