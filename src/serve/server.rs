@@ -662,7 +662,9 @@ pub fn run_until_signal(config: ServeConfig, maps: Vec<ServedMap>) -> Result<(),
             Stop::Terminate => {
                 let (logging_in, playing) = server.live();
                 log.server(format_args!(
-                    "draining: the port is closed and /healthz says 503; {playing} playing,                      {logging_in} logging in; stopping when they are gone, a round ends or                      {} s pass",
+                    "draining: the port is closed and /healthz says 503; {playing} playing, \
+                     {logging_in} logging in; stopping when they are gone, a round ends or \
+                     {} s pass",
                     patience.as_secs()
                 ));
                 tokio::select! {
