@@ -110,3 +110,82 @@ fn sigterm_with_nobody_playing_stops_at_once() {
         sent.elapsed()
     );
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_second_sigterm_while_draining_stops_at_once() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let (mut srv, port, log) = spawn_server(dir.path(), &["--db", "none", "--drain-seconds", "60"]);
+    let addr = format!("127.0.0.1:{port}").parse().unwrap();
+    let mut ann = Client::connect(addr, "ann", 80, 24, "xterm-256color").await;
+    assert!(ann.until(|s| header_has(s, "you are ann")).await);
+    let pid = srv.0.id().to_string();
+    let term = || Command::new("kill").args(["-TERM", &pid]).status().is_ok();
+    if !term() {
+        eprintln!("SKIPPED: no `kill` command to send SIGTERM");
+        return;
+    }
+    let deadline = Instant::now() + PATIENCE;
+    while !log.try_iter().any(|l| l.contains("draining")) {
+        assert!(Instant::now() < deadline, "never drained");
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    }
+    let again = Instant::now();
+    assert!(term());
+    assert!(
+        ann.until(|s| s
+            .contents()
+            .contains("this world restarts: reconnect to continue"))
+            .await
+    );
+    while srv.0.try_wait().unwrap().is_none() {
+        assert!(Instant::now() < deadline, "the server never exited");
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    }
+    assert!(
+        again.elapsed() < Duration::from_secs(5),
+        "{:?}",
+        again.elapsed()
+    );
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_round_that_ends_while_draining_ends_the_drain_after_its_results() {
+    let (srv, _dir) = serve_support::server(|cfg| {
+        cfg.round_limit = Some(Duration::from_millis(1500));
+        cfg.results_time = Duration::from_millis(500);
+    })
+    .await;
+    let mut ann = Client::connect(srv.local_addr(), "ann", 80, 24, "xterm-256color").await;
+    assert!(ann.until(|s| header_has(s, "you are ann")).await);
+    assert_eq!(srv.health(), halfcast::serve::health::Health::Accepting);
+    let rounds = srv.rounds_finished();
+    let started = Instant::now();
+    // A drain that could last 30 s ends with the round (at most 1.5 s away) and its results.
+    {
+        let drain = srv.drain(Duration::from_secs(30));
+        let reading = async {
+            loop {
+                ann.drain_for(Duration::from_millis(100)).await;
+            }
+        };
+        tokio::select! {
+            () = drain => {}
+            () = reading => {}
+        }
+    }
+    let took = started.elapsed();
+    assert_eq!(srv.health(), halfcast::serve::health::Health::Draining);
+    // (Rounds this short end again during the 5 s pause; the default results alone last 8 s.)
+    assert!(srv.rounds_finished() > rounds);
+    assert!(
+        took >= Duration::from_secs(5) && took < Duration::from_secs(9),
+        "the drain took {took:?}"
+    );
+    srv.shutdown_restarting().await;
+    assert!(
+        ann.until(|s| s
+            .contents()
+            .contains("this world restarts: reconnect to continue"))
+            .await
+    );
+}
