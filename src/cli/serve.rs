@@ -30,8 +30,9 @@ pub(crate) struct ServeArgs {
     #[arg(long, value_name = "N", value_parser = parse_minutes)]
     pub(crate) round_minutes: Option<f64>,
     /// The leaderboard's SQLite file (default: halfcast.sqlite beside the host key; `none`
-    /// keeps no leaderboard).
-    #[arg(long, value_name = "FILE")]
+    /// keeps no leaderboard), or a postgres://USER:PASSWORD@HOST/DB URL shared by worlds on
+    /// several hosts.
+    #[arg(long, value_name = "FILE|URL")]
     pub(crate) db: Option<PathBuf>,
     /// Serve Prometheus metrics on http://ADDR/metrics (a bare port listens on 127.0.0.1).
     #[arg(long, value_name = "ADDR", value_parser = parse_metrics_addr)]

@@ -66,7 +66,8 @@ pub struct ServeConfig {
     pub results_time: Duration,
     /// Play the maps in a random order drawn from `seed` (`--shuffle`).
     pub shuffle: bool,
-    /// The leaderboard's SQLite file (`--db`); `None` keeps no leaderboard.
+    /// The leaderboard's SQLite file, or a `postgres://` URL (`--db`); `None` keeps no
+    /// leaderboard.
     pub db: Option<PathBuf>,
     /// Where to serve Prometheus metrics (`--metrics`); `None` serves none.
     pub metrics: Option<SocketAddr>,

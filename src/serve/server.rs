@@ -28,7 +28,7 @@ use super::drain::{AFTER_LAST_ROUND, RESTARTING, SHUTTING_DOWN};
 use super::handler::{BoardLine, ConnHandler, Shared};
 use super::health::{Health, Readiness};
 use super::hostkey;
-use super::leaderboard::store::Store;
+use super::leaderboard::database::{self, Database};
 use super::leaderboard::writer::Leaderboard;
 use super::leaderboard::RoundRecord;
 use super::lifecycle::Lifeline;
@@ -189,13 +189,19 @@ pub async fn start_maps(
     let mode = config.mode.name();
     let leaderboard = match &config.db {
         Some(path) => {
-            let store = Store::open(path)?;
             let served: Vec<(String, String)> = maps
                 .iter()
                 .map(|m| (m.hash.clone(), mode.to_owned()))
                 .collect();
-            log.server(format_args!("leaderboard in {}", path.display()));
-            Some(Leaderboard::start(store, &served, log)?)
+            // On a thread outside the runtime: PostgreSQL's blocking client runs a runtime of
+            // its own (start-up only; the writer thread has it from then on).
+            let started = std::thread::scope(|s| {
+                s.spawn(|| Leaderboard::start(Database::open(path)?, &served, log))
+                    .join()
+                    .unwrap_or_else(|_| Err("leaderboard: opening it panicked".into()))
+            })?;
+            log.server(format_args!("leaderboard in {}", database::shown(path)));
+            Some(started)
         }
         None => None,
     };

@@ -4,9 +4,12 @@
 //!
 //! Names are the in-game names (SSH user names, made unique); they are bounded when stored
 //! ([`bounded_name`]) and escaped wherever printed ([`shown_name`]). [`backup`] copies the file
-//! while worlds write it.
+//! while worlds write it. [`pg_store`] keeps the same board in PostgreSQL for worlds on several
+//! hosts; [`database`] opens whichever `--db` names.
 
 pub mod backup;
+pub mod database;
+pub mod pg_store;
 pub mod store;
 pub mod writer;
 

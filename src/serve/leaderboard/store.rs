@@ -339,7 +339,7 @@ impl Store {
 /// clears by time, then everything else by points; tag ranks by the least time as "it".
 /// Its column names are each in one table only, so it reads the same on the join and on a
 /// select from it.
-fn ranking(mode: &str) -> &'static str {
+pub(super) fn ranking(mode: &str) -> &'static str {
     if mode == "tag" {
         "it_seconds ASC, id ASC"
     } else {
