@@ -64,6 +64,10 @@ pub struct RunningServer {
     /// Rounds finished so far (a draining world waits for the next).
     rounds: watch::Receiver<u64>,
     ready: Arc<Readiness>,
+    /// True once the SSH port is closed and its queue taken in.
+    closed: watch::Receiver<bool>,
+    /// Connections taken in and still waiting for their PROXY header (not yet in the limits).
+    header_waits: Arc<AtomicU64>,
     accept: JoinHandle<()>,
     metrics_http: Option<JoinHandle<()>>,
     leaderboard: Option<Leaderboard>,
@@ -135,8 +139,12 @@ impl RunningServer {
         let deadline = tokio::time::Instant::now() + patience;
         let mut rounds = self.rounds.clone();
         rounds.borrow_and_update();
+        // Every connection the port took is counted before "nobody is here" can be believed.
+        let mut closed = self.closed.clone();
+        let _ = tokio::time::timeout_at(deadline, closed.wait_for(|c| *c)).await;
         loop {
-            if self.limiter.live() == (0, 0) {
+            let arriving = self.header_waits.load(Ordering::Relaxed);
+            if self.limiter.live() == (0, 0) && arriving == 0 {
                 return;
             }
             tokio::select! {
@@ -298,7 +306,14 @@ pub async fn start_maps(
         config,
     });
     log.server(format_args!("listening on {addr}"));
-    let accept = tokio::spawn(accept_loop(listener, ssh, shared, stop_accepting_rx));
+    let (closed_tx, closed) = watch::channel(false);
+    let header_waits = Arc::new(AtomicU64::new(0));
+    let accept = tokio::spawn(accept_loop(
+        listener,
+        ssh,
+        shared,
+        (stop_accepting_rx, closed_tx, Arc::clone(&header_waits)),
+    ));
     Ok(RunningServer {
         addr,
         stats,
@@ -308,6 +323,8 @@ pub async fn start_maps(
         farewell,
         rounds,
         ready,
+        closed,
+        header_waits,
         accept,
         metrics_http,
         leaderboard,
@@ -374,21 +391,22 @@ struct Door {
     shared: Arc<Shared>,
     next_id: AtomicU64,
     lingering: Arc<AtomicU64>,
-    header_waits: AtomicU64,
+    /// Shared with [`RunningServer`]: a draining world waits for these too.
+    header_waits: Arc<AtomicU64>,
 }
 
 async fn accept_loop(
     listener: TcpListener,
     ssh: Arc<Config>,
     shared: Arc<Shared>,
-    mut stop: watch::Receiver<bool>,
+    (mut stop, closed, header_waits): (watch::Receiver<bool>, watch::Sender<bool>, Arc<AtomicU64>),
 ) {
     let door = Arc::new(Door {
         ssh,
         shared,
         next_id: AtomicU64::new(1),
         lingering: Arc::new(AtomicU64::new(0)),
-        header_waits: AtomicU64::new(0),
+        header_waits,
     });
     loop {
         let (socket, tcp_peer) = tokio::select! {
@@ -412,6 +430,8 @@ async fn accept_loop(
     {
         enter(&door, socket, tcp_peer);
     }
+    drop(listener);
+    closed.send_replace(true);
 }
 
 /// Takes in one accepted connection: admitted at once, or after its PROXY header.
@@ -430,20 +450,20 @@ fn enter(door: &Arc<Door>, socket: tokio::net::TcpStream, tcp_peer: SocketAddr) 
     tokio::spawn(async move {
         let mut socket = socket;
         let got = tokio::time::timeout(HEADER_WAIT, read_header(&mut socket)).await;
+        match got {
+            Ok(Ok((source, head))) => {
+                let peer = match source {
+                    Source::Client(peer) => peer,
+                    Source::Local => tcp_peer,
+                };
+                let inbound = move |s| Inbound::after_header(s, head);
+                admit(&door, socket, peer, inbound, accepted);
+            }
+            Ok(Err(e)) => bad_header(&door, socket, tcp_peer, &e),
+            Err(_) => bad_header(&door, socket, tcp_peer, "no PROXY header in time"),
+        }
+        // Only now: admitted, the limits count it (a draining world never sees it in neither).
         door.header_waits.fetch_sub(1, Ordering::Relaxed);
-        let (peer, head) = match got {
-            Ok(Ok((Source::Client(peer), head))) => (peer, head),
-            Ok(Ok((Source::Local, head))) => (tcp_peer, head),
-            Ok(Err(e)) => return bad_header(&door, socket, tcp_peer, &e),
-            Err(_) => return bad_header(&door, socket, tcp_peer, "no PROXY header in time"),
-        };
-        admit(
-            &door,
-            socket,
-            peer,
-            move |s| Inbound::after_header(s, head),
-            accepted,
-        );
     });
 }
 
