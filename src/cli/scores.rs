@@ -5,7 +5,8 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use halfcast::serve::leaderboard::store::{Store, SCHEMA_VERSION};
+use halfcast::serve::leaderboard::database::{postgres_url, Database};
+use halfcast::serve::leaderboard::store::SCHEMA_VERSION;
 use halfcast::serve::leaderboard::{content_hash, escaped, shown_name, Entry, DEFAULT_FILE, TOP};
 use serde::Serialize;
 
@@ -13,8 +14,8 @@ use super::Failure;
 
 #[derive(Args, Debug)]
 pub(crate) struct ScoresArgs {
-    /// The leaderboard file `halfcast serve` writes.
-    #[arg(long, default_value = DEFAULT_FILE, value_name = "FILE")]
+    /// The leaderboard `halfcast serve` writes: its SQLite file, or a postgres:// URL.
+    #[arg(long, default_value = DEFAULT_FILE, value_name = "FILE|URL")]
     pub(crate) db: PathBuf,
     /// Only this map (its content decides: an edited map has a board of its own).
     #[arg(long, value_name = "MAP")]
@@ -22,6 +23,10 @@ pub(crate) struct ScoresArgs {
     /// Print JSON instead of text.
     #[arg(long)]
     pub(crate) json: bool,
+    /// Instead of printing, copy the leaderboard to FILE (replacing it) while servers write
+    /// it, with SQLite's online backup; the copy is checked before it takes FILE's place.
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["map", "json"])]
+    pub(crate) backup: Option<PathBuf>,
 }
 
 /// `scores --json`: every board.
@@ -51,7 +56,23 @@ struct Ranked {
 }
 
 pub(crate) fn scores(args: &ScoresArgs) -> Result<(), Failure> {
-    let store = Store::open_read(&args.db).map_err(Failure::input)?;
+    if let Some(to) = &args.backup {
+        if postgres_url(&args.db).is_some() {
+            return Err(Failure::input(
+                "--backup copies a SQLite file; back PostgreSQL up with its own pg_dump",
+            ));
+        }
+        let rounds =
+            halfcast::serve::leaderboard::backup::backup(&args.db, to).map_err(Failure::input)?;
+        println!(
+            "{} backed up to {}: {rounds} {}",
+            args.db.display(),
+            to.display(),
+            if rounds == 1 { "round" } else { "rounds" }
+        );
+        return Ok(());
+    }
+    let mut store = Database::open_read(&args.db).map_err(Failure::input)?;
     let only = match &args.map {
         Some(p) => {
             let bytes = halfcast::map::read_map_file(p).map_err(Failure::input)?;

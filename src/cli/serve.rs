@@ -30,8 +30,9 @@ pub(crate) struct ServeArgs {
     #[arg(long, value_name = "N", value_parser = parse_minutes)]
     pub(crate) round_minutes: Option<f64>,
     /// The leaderboard's SQLite file (default: halfcast.sqlite beside the host key; `none`
-    /// keeps no leaderboard).
-    #[arg(long, value_name = "FILE")]
+    /// keeps no leaderboard), or a postgres://USER:PASSWORD@HOST/DB URL shared by worlds on
+    /// several hosts.
+    #[arg(long, value_name = "FILE|URL")]
     pub(crate) db: Option<PathBuf>,
     /// Serve Prometheus metrics on http://ADDR/metrics (a bare port listens on 127.0.0.1).
     #[arg(long, value_name = "ADDR", value_parser = parse_metrics_addr)]
@@ -93,6 +94,14 @@ pub(crate) struct ServeArgs {
     /// No connect/disconnect log on stderr.
     #[arg(long)]
     pub(crate) quiet: bool,
+    /// On SIGTERM, stop accepting (/healthz says 503) and let the round in play end for at
+    /// most this many seconds before players are told to reconnect (0: at once).
+    #[arg(long, default_value_t = 30, value_parser = clap::value_parser!(u64).range(0..=3_600))]
+    pub(crate) drain_seconds: u64,
+    /// Worker threads (default: one per core); the process runs these plus at most 6 more
+    /// (main, leaderboard, blocking pool), which is what systemd's TasksMax must allow.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1_024))]
+    pub(crate) threads: Option<u32>,
     /// The game: coop (shared points, anyone's exit ends the round) or tag (one player is
     /// "it"; touching passes it on; the least time as "it" wins).
     #[arg(long, default_value = "coop", value_parser = parse_mode)]
@@ -227,6 +236,8 @@ pub(crate) fn serve(args: ServeArgs) -> Result<(), Failure> {
     config.idle_timeout = Duration::from_secs(args.idle_timeout);
     config.fps = args.fps;
     config.quiet = args.quiet;
+    config.drain = Duration::from_secs(args.drain_seconds);
+    config.threads = args.threads.map(|n| n as usize);
     config.mode = args.mode;
     let mut seed = [0u8; 8];
     // Unpredictable refusals where the OS has randomness; the fixed seed otherwise.

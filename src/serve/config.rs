@@ -66,7 +66,8 @@ pub struct ServeConfig {
     pub results_time: Duration,
     /// Play the maps in a random order drawn from `seed` (`--shuffle`).
     pub shuffle: bool,
-    /// The leaderboard's SQLite file (`--db`); `None` keeps no leaderboard.
+    /// The leaderboard's SQLite file, or a `postgres://` URL (`--db`); `None` keeps no
+    /// leaderboard.
     pub db: Option<PathBuf>,
     /// Where to serve Prometheus metrics (`--metrics`); `None` serves none.
     pub metrics: Option<SocketAddr>,
@@ -74,6 +75,11 @@ pub struct ServeConfig {
     pub proxy_protocol: bool,
     /// Text lines or one JSON object per event (`--log-format`).
     pub log_format: super::log::LogFormat,
+    /// On SIGTERM, how long the world may drain (its round ending) before it stops
+    /// (`--drain-seconds`).
+    pub drain: Duration,
+    /// Worker threads of `halfcast serve`'s runtime (`--threads`; `None`: one per core).
+    pub threads: Option<usize>,
 }
 
 impl ServeConfig {
@@ -105,6 +111,8 @@ impl ServeConfig {
             metrics: None,
             proxy_protocol: false,
             log_format: super::log::LogFormat::Text,
+            drain: super::drain::DEFAULT_DRAIN,
+            threads: None,
         }
     }
 }

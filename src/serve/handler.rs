@@ -39,6 +39,8 @@ pub struct Shared {
     pub stats: Arc<ServeStats>,
     pub log: Log,
     pub shutdown: watch::Receiver<bool>,
+    /// What sessions are told when they end with the server (see [`super::drain`]).
+    pub farewell: watch::Receiver<&'static str>,
     /// Who is logging in and who plays, against the caps.
     pub limiter: Limiter,
     /// Failed password logins per source address.
@@ -358,6 +360,7 @@ impl russh::server::Handler for ConnHandler {
             log: sh.log,
             shutdown: sh.shutdown.clone(),
             life: Arc::clone(&self.life),
+            farewell: sh.farewell.clone(),
         };
         let inputs = SessionInputs {
             data: rx,

@@ -21,10 +21,34 @@ pub const MAX_HOST_KEY_BYTES: u64 = 1 << 20;
 /// A message naming the path when the file cannot be read, parsed or created, is encrypted, or
 /// is readable by others (without `insecure`).
 pub fn load_or_generate(path: &Path, insecure: bool) -> Result<(PrivateKey, Vec<String>), String> {
+    let credentials = std::env::var_os(CREDENTIALS_DIRECTORY).map(std::path::PathBuf::from);
+    load_or_generate_with(path, insecure, credentials.as_deref())
+}
+
+/// The environment variable naming the directory of systemd's credentials for the service
+/// (`LoadCredential=`): how every world of a fleet gets the one host key.
+pub const CREDENTIALS_DIRECTORY: &str = "CREDENTIALS_DIRECTORY";
+
+/// [`load_or_generate`], with systemd's credentials directory given (`None`: not under systemd).
+///
+/// A key in that directory is systemd's copy of the fleet's key: the directory is the
+/// service's alone, and systemd may grant the service read access with an ACL, whose mask
+/// shows as group-read bits, so only bits for others refuse it there. It is never generated
+/// there (a missing one is a unit missing its `LoadCredential=`).
+///
+/// # Errors
+/// As [`load_or_generate`].
+pub fn load_or_generate_with(
+    path: &Path,
+    insecure: bool,
+    credentials: Option<&Path>,
+) -> Result<(PrivateKey, Vec<String>), String> {
     let mut notes = Vec::new();
+    let credential = credentials.is_some_and(|dir| path.starts_with(dir));
     let key = match crate::input_file::read_regular_text(path, MAX_HOST_KEY_BYTES) {
         Ok(text) => {
-            if let Some(mode) = loose_mode(path) {
+            let loose = loose_mode(path).filter(|m| !credential || m & 0o007 != 0);
+            if let Some(mode) = loose {
                 if !insecure {
                     return Err(format!(
                         "host key {} is readable by others (mode {mode:03o}); run chmod 600 {0} \
@@ -51,6 +75,13 @@ pub fn load_or_generate(path: &Path, insecure: bool) -> Result<(PrivateKey, Vec<
                 ));
             }
             key
+        }
+        Err(e) if e.is_not_found() && credential => {
+            return Err(format!(
+                "host key {}: no such credential; the unit needs \
+                 LoadCredential=host_key:/etc/halfcast/host_ed25519 (docs/serving.md)",
+                path.display()
+            ))
         }
         Err(e) if e.is_not_found() => {
             let key = generate()?;
@@ -150,6 +181,33 @@ mod tests {
         let (b, notes) = load_or_generate(&path, true).expect("insecure allows it");
         assert_eq!(a.public_key(), b.public_key());
         assert!(notes[0].starts_with("warning:"), "{notes:?}");
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_systemd_credential_may_show_its_acl_mask_but_is_never_generated() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().expect("tempdir");
+        let creds = dir.path().join("credentials");
+        fs::create_dir(&creds).unwrap();
+        let path = creds.join("host_key");
+        let e = load_or_generate_with(&path, false, Some(&creds)).expect_err("not generated");
+        assert!(
+            e.contains("no such credential") && e.contains("LoadCredential="),
+            "{e}"
+        );
+        assert!(!path.exists());
+        // systemd's copy, readable through an ACL: mode 0440 (the mask in the group bits).
+        let (a, _) = load_or_generate(&dir.path().join("fleet_key"), false).expect("generate");
+        fs::copy(dir.path().join("fleet_key"), &path).unwrap();
+        fs::set_permissions(&path, fs::Permissions::from_mode(0o440)).unwrap();
+        let (b, _) = load_or_generate_with(&path, false, Some(&creds)).expect("a credential");
+        assert_eq!(a.public_key(), b.public_key());
+        // Outside the credentials directory the same mode is refused, as before; and others'
+        // read bits are refused inside it too.
+        assert!(load_or_generate_with(&path, false, None).is_err());
+        fs::set_permissions(&path, fs::Permissions::from_mode(0o444)).unwrap();
+        assert!(load_or_generate_with(&path, false, Some(&creds)).is_err());
     }
 
     #[test]

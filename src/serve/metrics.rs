@@ -1,16 +1,15 @@
 //! What the server reports to Prometheus (`--metrics ADDR`): the series' names in one place,
-//! and the exporter's HTTP listener (the `metrics-exporter-prometheus` crate's own).
+//! and the recorder whose text [`super::metrics_http`] serves.
 //!
 //! The server records through the `metrics` facade whether or not an exporter is installed;
 //! without one every record is a no-op. Per-frame series go through handles made once per
 //! session, so a frame costs a few atomic additions.
 
-use std::net::SocketAddr;
 use std::time::Duration;
 
 use metrics::{counter, describe_counter, describe_gauge, describe_histogram, gauge, histogram};
 use metrics::{Counter, Histogram, Unit};
-use metrics_exporter_prometheus::{Matcher, PrometheusBuilder};
+use metrics_exporter_prometheus::{Matcher, PrometheusBuilder, PrometheusHandle};
 
 /// Sessions playing or watching now, by `state` ("playing", "watching").
 pub const SESSIONS: &str = "halfcast_sessions";
@@ -86,19 +85,19 @@ impl Reason {
     }
 }
 
-/// Starts the exporter's HTTP listener on `addr` (`/metrics`, any path in fact) and makes it the
-/// process's recorder.
+/// Makes the Prometheus recorder the process's recorder; [`super::metrics_http`] serves what
+/// the returned handle renders (`/metrics`) beside `/healthz`.
 ///
 /// # Errors
-/// A message when the address cannot be bound or a recorder is already installed.
-pub fn install(addr: SocketAddr) -> Result<(), String> {
-    PrometheusBuilder::new()
-        .with_http_listener(addr)
+/// A message when a recorder is already installed.
+pub fn install() -> Result<PrometheusHandle, String> {
+    let handle = PrometheusBuilder::new()
         .set_buckets_for_metric(Matcher::Suffix("_seconds".into()), BUCKETS)
-        .and_then(PrometheusBuilder::install)
-        .map_err(|e| format!("cannot serve metrics on {addr}: {e}"))?;
+        .and_then(PrometheusBuilder::install_recorder)
+        .map_err(|e| format!("cannot record metrics: {e}"))?;
     describe();
-    Ok(())
+    describe_fleet();
+    Ok(handle)
 }
 
 /// Help lines for every series.
@@ -251,4 +250,75 @@ impl Default for FrameMetrics {
 /// The wire-bytes counter, for a connection's socket wrapper.
 pub fn wire_bytes() -> Counter {
     counter!(WIRE_BYTES)
+}
+
+/// `/healthz` requests answered, by `answer` ("accepting", "draining", "full"): a balancer's
+/// checks, kept apart from the players' connections.
+pub const HEALTH_CHECKS: &str = "halfcast_health_checks_total";
+/// Always 1, labelled with the build's `version`: which release each world of a fleet runs.
+pub const BUILD_INFO: &str = "halfcast_build_info";
+/// Whether the world is draining before it stops (1) or accepting players (0).
+pub const DRAINING: &str = "halfcast_draining";
+
+/// Help lines for the fleet's series (health checks, build, process).
+fn describe_fleet() {
+    describe_counter!(
+        HEALTH_CHECKS,
+        "Health checks answered on /healthz, by answer."
+    );
+    describe_gauge!(BUILD_INFO, "Always 1; the build's version as a label.");
+    describe_gauge!(DRAINING, "1 while the world drains before stopping.");
+    describe_gauge!(
+        "process_resident_memory_bytes",
+        Unit::Bytes,
+        "Resident memory."
+    );
+    describe_gauge!(
+        "process_virtual_memory_bytes",
+        Unit::Bytes,
+        "Virtual memory."
+    );
+    describe_gauge!(
+        "process_cpu_seconds_total",
+        Unit::Seconds,
+        "User and system CPU time."
+    );
+    describe_gauge!("process_open_fds", "Open file descriptors.");
+    describe_gauge!("process_max_fds", "Limit on open file descriptors.");
+    describe_gauge!("process_threads", "Threads.");
+    describe_gauge!(
+        "process_start_time_seconds",
+        Unit::Seconds,
+        "Start time, in Unix seconds."
+    );
+    gauge!(BUILD_INFO, "version" => env!("CARGO_PKG_VERSION")).set(1.0);
+    gauge!(DRAINING).set(0.0);
+}
+
+/// A `/healthz` request was answered with `answer`.
+pub fn health_check(answer: &'static str) {
+    counter!(HEALTH_CHECKS, "answer" => answer).increment(1);
+}
+
+/// The world started draining.
+pub fn draining() {
+    gauge!(DRAINING).set(1.0);
+}
+
+/// Brings the series read at scrape time up to date (the process's own figures).
+pub fn before_scrape() {
+    let p = super::process_stats::ProcessStats::read();
+    for (name, v) in [
+        ("process_resident_memory_bytes", p.resident_bytes),
+        ("process_virtual_memory_bytes", p.virtual_bytes),
+        ("process_cpu_seconds_total", p.cpu_seconds),
+        ("process_open_fds", p.open_fds),
+        ("process_max_fds", p.max_fds),
+        ("process_threads", p.threads),
+        ("process_start_time_seconds", p.start_time),
+    ] {
+        if let Some(v) = v {
+            gauge!(name).set(v);
+        }
+    }
 }

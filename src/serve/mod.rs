@@ -16,15 +16,19 @@
 //!   the minimap.
 //! - [`served_map`]: a map of the rotation and its content hash; [`leaderboard`]: the SQLite
 //!   file of finished rounds, written by a thread of its own; [`metrics`]: the Prometheus
-//!   series; [`proxy_header`]: PROXY protocol headers from a load balancer; [`log`]: text or
-//!   JSON lines.
+//!   series; [`metrics_http`]: the `--metrics` address's `/metrics` and `/healthz`;
+//!   [`health`]: whether a balancer should send this world players; [`process_stats`]: memory,
+//!   CPU and files from `/proc`; [`drain`]: stopping on SIGTERM without losing players;
+//!   [`proxy_header`]: PROXY protocol headers from a load balancer; [`log`]: text or JSON lines.
 
 pub(crate) mod ask_colour;
 pub mod auth;
 pub(crate) mod avatars;
 pub(crate) mod config;
+pub(crate) mod drain;
 pub(crate) mod handler;
 pub(crate) mod header;
+pub mod health;
 pub(crate) mod hostkey;
 pub mod leaderboard;
 pub(crate) mod lifecycle;
@@ -34,6 +38,8 @@ pub(crate) mod link_pacer;
 pub(crate) mod link_probe;
 pub mod log;
 pub(crate) mod metrics;
+pub(crate) mod metrics_http;
+pub(crate) mod process_stats;
 pub(crate) mod proxy_header;
 pub(crate) mod screen;
 pub(crate) mod served_map;

@@ -24,9 +24,11 @@ use tokio::task::JoinHandle;
 use super::auth::Backoff;
 use super::avatars::with_avatar_sheet;
 use super::config::ServeConfig;
+use super::drain::{AFTER_LAST_ROUND, RESTARTING, SHUTTING_DOWN};
 use super::handler::{BoardLine, ConnHandler, Shared};
+use super::health::{Health, Readiness};
 use super::hostkey;
-use super::leaderboard::store::Store;
+use super::leaderboard::database::{self, Database};
 use super::leaderboard::writer::Leaderboard;
 use super::leaderboard::RoundRecord;
 use super::lifecycle::Lifeline;
@@ -55,7 +57,19 @@ pub struct RunningServer {
     stats: Arc<ServeStats>,
     limiter: Limiter,
     shutdown: watch::Sender<bool>,
+    /// Closes the SSH port (draining, then shutdown).
+    stop_accepting: watch::Sender<bool>,
+    /// What sessions are told when they end with the server.
+    farewell: watch::Sender<&'static str>,
+    /// Rounds finished so far (a draining world waits for the next).
+    rounds: watch::Receiver<u64>,
+    ready: Arc<Readiness>,
+    /// True once the SSH port is closed and its queue taken in.
+    closed: watch::Receiver<bool>,
+    /// Connections taken in and still waiting for their PROXY header (not yet in the limits).
+    header_waits: Arc<AtomicU64>,
     accept: JoinHandle<()>,
+    metrics_http: Option<JoinHandle<()>>,
     leaderboard: Option<Leaderboard>,
 }
 
@@ -83,6 +97,7 @@ impl RunningServer {
     /// and for the leaderboard's queued writes; returns the totals after that, so sessions that
     /// were still running count too.
     pub async fn shutdown(self) -> StatsSnapshot {
+        let _ = self.stop_accepting.send(true);
         let _ = self.shutdown.send(true);
         let _ = self.accept.await;
         for _ in 0..50 {
@@ -94,7 +109,63 @@ impl RunningServer {
         if let Some(lb) = &self.leaderboard {
             lb.flush(Duration::from_secs(5)).await;
         }
+        if let Some(http) = &self.metrics_http {
+            http.abort();
+        }
         self.stats.snapshot()
+    }
+
+    /// Rounds finished since the server started (each queued for the leaderboard).
+    #[must_use]
+    pub fn rounds_finished(&self) -> u64 {
+        *self.rounds.borrow()
+    }
+
+    /// Whether a load balancer should send this world players now (what `/healthz` says).
+    #[must_use]
+    pub fn health(&self) -> Health {
+        self.ready.health()
+    }
+
+    /// Drains the world before it stops: `/healthz` answers 503 from now on, the SSH port
+    /// closes (connections already waiting in its queue are still taken in), and this waits
+    /// until nobody is logging in or playing, or until a round ends (then [`AFTER_LAST_ROUND`]
+    /// more, so its results are seen), or until `patience` has passed. Sessions go on
+    /// meanwhile; [`RunningServer::shutdown_restarting`] then ends them.
+    pub async fn drain(&self, patience: Duration) {
+        self.ready.drain();
+        super::metrics::draining();
+        let _ = self.stop_accepting.send(true);
+        let deadline = tokio::time::Instant::now() + patience;
+        let mut rounds = self.rounds.clone();
+        rounds.borrow_and_update();
+        // Every connection the port took is counted before "nobody is here" can be believed.
+        let mut closed = self.closed.clone();
+        let _ = tokio::time::timeout_at(deadline, closed.wait_for(|c| *c)).await;
+        loop {
+            let arriving = self.header_waits.load(Ordering::Relaxed);
+            if self.limiter.live() == (0, 0) && arriving == 0 {
+                return;
+            }
+            tokio::select! {
+                () = tokio::time::sleep_until(deadline) => return,
+                r = rounds.changed() => {
+                    if r.is_ok() {
+                        let pause = tokio::time::Instant::now() + AFTER_LAST_ROUND;
+                        tokio::time::sleep_until(pause.min(deadline)).await;
+                    }
+                    return;
+                }
+                () = tokio::time::sleep(Duration::from_millis(50)) => {}
+            }
+        }
+    }
+
+    /// [`RunningServer::shutdown`], telling every player "this world restarts: reconnect to
+    /// continue" (after [`RunningServer::drain`]).
+    pub async fn shutdown_restarting(self) -> StatsSnapshot {
+        self.farewell.send_replace(RESTARTING);
+        self.shutdown().await
     }
 }
 
@@ -126,20 +197,36 @@ pub async fn start_maps(
     let mode = config.mode.name();
     let leaderboard = match &config.db {
         Some(path) => {
-            let store = Store::open(path)?;
             let served: Vec<(String, String)> = maps
                 .iter()
                 .map(|m| (m.hash.clone(), mode.to_owned()))
                 .collect();
-            log.server(format_args!("leaderboard in {}", path.display()));
-            Some(Leaderboard::start(store, &served, log)?)
+            // On a thread outside the runtime: PostgreSQL's blocking client runs a runtime of
+            // its own (start-up only; the writer thread has it from then on).
+            let started = std::thread::scope(|s| {
+                s.spawn(|| Leaderboard::start(Database::open(path)?, &served, log))
+                    .join()
+                    .unwrap_or_else(|_| Err("leaderboard: opening it panicked".into()))
+            })?;
+            log.server(format_args!("leaderboard in {}", database::shown(path)));
+            Some(started)
         }
         None => None,
     };
-    if let Some(addr) = config.metrics {
-        super::metrics::install(addr)?;
-        log.server(format_args!("metrics on http://{addr}/metrics"));
-    }
+    let metrics = match config.metrics {
+        Some(addr) => {
+            let handle = super::metrics::install()?;
+            let http = TcpListener::bind(addr)
+                .await
+                .map_err(|e| format!("cannot serve metrics on {addr}: {e}"))?;
+            let bound = http.local_addr().map_err(|e| e.to_string())?;
+            log.server(format_args!(
+                "metrics on http://{bound}/metrics, health on http://{bound}/healthz"
+            ));
+            Some((handle, http))
+        }
+        None => None,
+    };
     let listener = TcpListener::bind(config.listen)
         .await
         .map_err(|e| format!("cannot listen on {}: {e}", config.listen))?;
@@ -181,6 +268,13 @@ pub async fn start_maps(
         .collect();
     let (world, avatar_sheet) = with_avatar_sheet(World::clone(&worlds[0]));
     let (shutdown_tx, shutdown_rx) = watch::channel(false);
+    let (stop_accepting, stop_accepting_rx) = watch::channel(false);
+    let (farewell, farewell_rx) = watch::channel(SHUTTING_DOWN);
+    let (rounds_tx, rounds) = watch::channel(0u64);
+    let ready = Arc::new(Readiness::new(limiter.clone()));
+    let metrics_http = metrics.map(|(handle, http)| {
+        tokio::spawn(super::metrics_http::serve(http, handle, Arc::clone(&ready)))
+    });
     let stats = Arc::new(ServeStats::default());
     let rules = Rules {
         mode: config.mode,
@@ -189,7 +283,11 @@ pub async fn start_maps(
         results_seconds: config.results_time.as_secs_f64(),
         shuffle: config.shuffle,
     };
-    let on_round = round_recorder(&worlds, &hashes, mode, leaderboard.clone(), log);
+    let mut recorder = round_recorder(&worlds, &hashes, mode, leaderboard.clone(), log);
+    let on_round = move |end: &RoundEnd| {
+        recorder(end);
+        rounds_tx.send_modify(|n| *n += 1);
+    };
     let shared = Arc::new(Shared {
         world: spawn_rounds(worlds, config.tick_hz, rules, on_round),
         world_data: Arc::new(world),
@@ -197,6 +295,7 @@ pub async fn start_maps(
         stats: Arc::clone(&stats),
         log,
         shutdown: shutdown_rx.clone(),
+        farewell: farewell_rx,
         limiter: limiter.clone(),
         backoff: Backoff::default(),
         boards: leaderboard.clone().map(|board| BoardLine {
@@ -207,13 +306,27 @@ pub async fn start_maps(
         config,
     });
     log.server(format_args!("listening on {addr}"));
-    let accept = tokio::spawn(accept_loop(listener, ssh, shared, shutdown_rx));
+    let (closed_tx, closed) = watch::channel(false);
+    let header_waits = Arc::new(AtomicU64::new(0));
+    let accept = tokio::spawn(accept_loop(
+        listener,
+        ssh,
+        shared,
+        (stop_accepting_rx, closed_tx, Arc::clone(&header_waits)),
+    ));
     Ok(RunningServer {
         addr,
         stats,
         limiter,
         shutdown: shutdown_tx,
+        stop_accepting,
+        farewell,
+        rounds,
+        ready,
+        closed,
+        header_waits,
         accept,
+        metrics_http,
         leaderboard,
     })
 }
@@ -245,7 +358,7 @@ fn round_recorder(
             name,
             hash,
             mode,
-            end.seconds,
+            super::leaderboard::rounded_seconds(end.seconds),
             serde_json::Value::from(players),
         );
         if let Some(lb) = &leaderboard {
@@ -278,25 +391,26 @@ struct Door {
     shared: Arc<Shared>,
     next_id: AtomicU64,
     lingering: Arc<AtomicU64>,
-    header_waits: AtomicU64,
+    /// Shared with [`RunningServer`]: a draining world waits for these too.
+    header_waits: Arc<AtomicU64>,
 }
 
 async fn accept_loop(
     listener: TcpListener,
     ssh: Arc<Config>,
     shared: Arc<Shared>,
-    mut shutdown: watch::Receiver<bool>,
+    (mut stop, closed, header_waits): (watch::Receiver<bool>, watch::Sender<bool>, Arc<AtomicU64>),
 ) {
     let door = Arc::new(Door {
         ssh,
         shared,
         next_id: AtomicU64::new(1),
         lingering: Arc::new(AtomicU64::new(0)),
-        header_waits: AtomicU64::new(0),
+        header_waits,
     });
     loop {
         let (socket, tcp_peer) = tokio::select! {
-            _ = shutdown.changed() => return,
+            _ = stop.changed() => break,
             r = listener.accept() => match r {
                 Ok(x) => x,
                 Err(e) => {
@@ -307,36 +421,50 @@ async fn accept_loop(
                 }
             },
         };
-        let accepted = Instant::now();
-        if !door.shared.config.proxy_protocol {
-            admit(&door, socket, tcp_peer, Inbound::refusing_headers, accepted);
-            continue;
-        }
-        // Behind a balancer: the header names the client; every limit applies to it.
-        if door.header_waits.load(Ordering::Relaxed) >= MAX_HEADER_WAITS {
-            continue;
-        }
-        door.header_waits.fetch_add(1, Ordering::Relaxed);
-        let door = Arc::clone(&door);
-        tokio::spawn(async move {
-            let mut socket = socket;
-            let got = tokio::time::timeout(HEADER_WAIT, read_header(&mut socket)).await;
-            door.header_waits.fetch_sub(1, Ordering::Relaxed);
-            let (peer, head) = match got {
-                Ok(Ok((Source::Client(peer), head))) => (peer, head),
-                Ok(Ok((Source::Local, head))) => (tcp_peer, head),
-                Ok(Err(e)) => return bad_header(&door, socket, tcp_peer, &e),
-                Err(_) => return bad_header(&door, socket, tcp_peer, "no PROXY header in time"),
-            };
-            admit(
-                &door,
-                socket,
-                peer,
-                move |s| Inbound::after_header(s, head),
-                accepted,
-            );
-        });
+        enter(&door, socket, tcp_peer);
     }
+    // Connections the kernel already completed are taken in (a balancer counts them as
+    // delivered); closing the port with them queued would reset them.
+    while let Ok(Ok((socket, tcp_peer))) =
+        tokio::time::timeout(Duration::ZERO, listener.accept()).await
+    {
+        enter(&door, socket, tcp_peer);
+    }
+    drop(listener);
+    closed.send_replace(true);
+}
+
+/// Takes in one accepted connection: admitted at once, or after its PROXY header.
+fn enter(door: &Arc<Door>, socket: tokio::net::TcpStream, tcp_peer: SocketAddr) {
+    let accepted = Instant::now();
+    if !door.shared.config.proxy_protocol {
+        admit(door, socket, tcp_peer, Inbound::refusing_headers, accepted);
+        return;
+    }
+    // Behind a balancer: the header names the client; every limit applies to it.
+    if door.header_waits.load(Ordering::Relaxed) >= MAX_HEADER_WAITS {
+        return;
+    }
+    door.header_waits.fetch_add(1, Ordering::Relaxed);
+    let door = Arc::clone(door);
+    tokio::spawn(async move {
+        let mut socket = socket;
+        let got = tokio::time::timeout(HEADER_WAIT, read_header(&mut socket)).await;
+        match got {
+            Ok(Ok((source, head))) => {
+                let peer = match source {
+                    Source::Client(peer) => peer,
+                    Source::Local => tcp_peer,
+                };
+                let inbound = move |s| Inbound::after_header(s, head);
+                admit(&door, socket, peer, inbound, accepted);
+            }
+            Ok(Err(e)) => bad_header(&door, socket, tcp_peer, &e),
+            Err(_) => bad_header(&door, socket, tcp_peer, "no PROXY header in time"),
+        }
+        // Only now: admitted, the limits count it (a draining world never sees it in neither).
+        door.header_waits.fetch_sub(1, Ordering::Relaxed);
+    });
 }
 
 /// Closes a connection whose PROXY header is missing or malformed.
@@ -396,7 +524,7 @@ fn admit(
             handler,
             &life,
             deadline,
-            shared.shutdown.clone(),
+            (shared.shutdown.clone(), shared.farewell.clone()),
         )
         .await;
         let secs = accepted.elapsed().as_secs_f64();
@@ -481,7 +609,7 @@ async fn serve_connection(
     handler: ConnHandler,
     life: &Lifeline,
     deadline: Instant,
-    mut shutdown: watch::Receiver<bool>,
+    (mut shutdown, farewell): (watch::Receiver<bool>, watch::Receiver<&'static str>),
 ) -> Result<(), String> {
     let deadline = tokio::time::Instant::from_std(deadline);
     let stream = life.wrap(socket);
@@ -521,7 +649,8 @@ async fn serve_connection(
                 stopping = true;
                 // Give sessions a moment to restore the client's terminal, then hang up.
                 tokio::time::sleep(Duration::from_millis(300)).await;
-                goodbye(&handle, russh::Disconnect::ByApplication, "server shutting down").await;
+                let why = *farewell.borrow();
+                goodbye(&handle, russh::Disconnect::ByApplication, why).await;
                 life.kill();
             }
         }
@@ -540,21 +669,47 @@ async fn goodbye(handle: &russh::server::Handle, reason: russh::Disconnect, why:
     }
 }
 
-/// Runs a server until Ctrl-C or SIGTERM (the `halfcast serve` command).
+/// Runs a server until Ctrl-C or SIGTERM (the `halfcast serve` command). Ctrl-C stops it at
+/// once; SIGTERM (systemd's stop and restart) drains it first for up to `config.drain`, and a
+/// second signal while draining stops it at once.
 ///
 /// # Errors
 /// A message when the runtime, the address or the host key fail.
 pub fn run_until_signal(config: ServeConfig, maps: Vec<ServedMap>) -> Result<(), String> {
-    let rt = tokio::runtime::Builder::new_multi_thread()
-        .enable_all()
+    let mut rt = tokio::runtime::Builder::new_multi_thread();
+    rt.enable_all().max_blocking_threads(MAX_BLOCKING_THREADS);
+    if let Some(n) = config.threads {
+        rt.worker_threads(n);
+    }
+    let rt = rt
         .build()
         .map_err(|e| format!("cannot start the async runtime: {e}"))?;
     rt.block_on(async move {
         let log = Log::with_format(config.quiet, config.log_format);
+        let patience = config.drain;
+        let mut signals = Signals::new().map_err(|e| e.to_string())?;
         let server = start_maps(config, maps).await?;
-        wait_for_signal().await.map_err(|e| e.to_string())?;
-        log.server("shutting down");
-        let stats = server.shutdown().await;
+        let stats = match signals.next().await {
+            Stop::Interrupt => {
+                log.server("shutting down");
+                server.shutdown().await
+            }
+            Stop::Terminate => {
+                let (logging_in, playing) = server.live();
+                log.server(format_args!(
+                    "draining: the port is closed and /healthz says 503; {playing} playing, \
+                     {logging_in} logging in; stopping when they are gone, a round ends or \
+                     {} s pass",
+                    patience.as_secs()
+                ));
+                tokio::select! {
+                    () = server.drain(patience) => {}
+                    _ = signals.next() => log.server("a second signal: stopping now"),
+                }
+                log.server("shutting down: players are told to reconnect");
+                server.shutdown_restarting().await
+            }
+        };
         log.server(format_args!(
             "served {} connections ({} refused), {} frames, {} bytes",
             stats.connections, stats.refused, stats.frames_sent, stats.bytes_sent
@@ -563,19 +718,58 @@ pub fn run_until_signal(config: ServeConfig, maps: Vec<ServedMap>) -> Result<(),
     })
 }
 
-async fn wait_for_signal() -> io::Result<()> {
+/// Threads the runtime may start for blocking work (only the leaderboard's flush at shutdown
+/// uses one), so that the process's threads are its workers plus a known few (systemd's
+/// `TasksMax` in docs/deploy/halfcast@.service counts them).
+pub const MAX_BLOCKING_THREADS: usize = 4;
+
+/// Which signal asked the server to stop.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Stop {
+    /// Ctrl-C (SIGINT): stop now.
+    Interrupt,
+    /// SIGTERM: drain, then stop.
+    Terminate,
+}
+
+/// The signals the server stops on, installed before it listens (so none is missed).
+struct Signals {
     #[cfg(unix)]
-    {
-        use tokio::signal::unix::{signal, SignalKind};
-        let mut term = signal(SignalKind::terminate())?;
-        tokio::select! {
-            r = tokio::signal::ctrl_c() => r,
-            _ = term.recv() => Ok(()),
+    term: tokio::signal::unix::Signal,
+    #[cfg(unix)]
+    int: tokio::signal::unix::Signal,
+}
+
+impl Signals {
+    fn new() -> io::Result<Self> {
+        #[cfg(unix)]
+        {
+            use tokio::signal::unix::{signal, SignalKind};
+            Ok(Self {
+                term: signal(SignalKind::terminate())?,
+                int: signal(SignalKind::interrupt())?,
+            })
+        }
+        #[cfg(not(unix))]
+        {
+            Ok(Self {})
         }
     }
-    #[cfg(not(unix))]
-    {
-        tokio::signal::ctrl_c().await
+
+    /// The next stop signal.
+    async fn next(&mut self) -> Stop {
+        #[cfg(unix)]
+        {
+            tokio::select! {
+                _ = self.int.recv() => Stop::Interrupt,
+                _ = self.term.recv() => Stop::Terminate,
+            }
+        }
+        #[cfg(not(unix))]
+        {
+            let _ = tokio::signal::ctrl_c().await;
+            Stop::Interrupt
+        }
     }
 }
 

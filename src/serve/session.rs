@@ -101,6 +101,8 @@ pub struct SessionParams {
     /// The connection's socket: bytes written so far, its TCP addresses, and where the link
     /// figures go when the session ends.
     pub life: Arc<Lifeline>,
+    /// The last line a player sees when the server stops (see [`super::drain`]).
+    pub farewell: watch::Receiver<&'static str>,
 }
 
 /// What the connection handler feeds the session: raw key bytes, and the latest pty size.
@@ -382,9 +384,10 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
     }
     if !matches!(end, End::ClientGone | End::Stalled) {
         let mut bye = LEAVE.to_vec();
+        let farewell = super::drain::farewell_line(*p.farewell.borrow());
         bye.extend_from_slice(match end {
             End::Idle => b"halfcast: closed after being idle too long.\r\n".as_slice(),
-            End::Shutdown => b"halfcast: the server is shutting down.\r\n",
+            End::Shutdown => &farewell,
             _ => b"",
         });
         // Best effort: the client may already be gone; don't wait on a dead link.

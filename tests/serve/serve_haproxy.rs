@@ -1,9 +1,11 @@
-//! The deployment recipes, tried: a real HAProxy with the shipped config
-//! (docs/deploy/haproxy.cfg, its ports moved to free ones) in front of two `halfcast serve
-//! --proxy-protocol` processes, and OpenSSH's `ssh` from two source addresses (127.0.0.2 and
+//! The deployment recipes, tried: a real HAProxy with the shipped snippet
+//! (docs/deploy/haproxy-halfcast.cfg, its ports moved to free ones) in front of two `halfcast
+//! serve --proxy-protocol` processes, and OpenSSH's `ssh` from two source addresses (127.0.0.2 and
 //! 127.0.0.3) through it: each plays, and the world's log names the player's own address, not
-//! HAProxy's; with one world behind it, the two addresses are limited apart. And the shipped systemd unit passes `systemd-analyze verify`. Each part is
-//! skipped with a notice when its tool is not installed.
+//! HAProxy's; with one world behind it, the two addresses are limited apart. And the shipped
+//! systemd unit passes `systemd-analyze verify`. Each part is skipped with a notice when its
+//! tool is not installed. The fleet's behaviour over time (one host key, restarts, health
+//! checks) is in serve_fleet.rs, with the helpers here.
 
 use crate::serve_process::{free_port, spawn_server, Guard};
 use crate::serve_support;
@@ -16,7 +18,7 @@ use std::time::{Duration, Instant};
 use serve_support::openssh::{ssh_available, SshPty};
 use serve_support::{header_has, PATIENCE};
 
-fn installed(tool: &str, arg: &str) -> bool {
+pub(crate) fn installed(tool: &str, arg: &str) -> bool {
     Command::new(tool)
         .arg(arg)
         .stdout(Stdio::null())
@@ -25,7 +27,7 @@ fn installed(tool: &str, arg: &str) -> bool {
         .is_ok_and(|s| s.success())
 }
 
-fn deploy(file: &str) -> String {
+pub(crate) fn deploy(file: &str) -> String {
     let p = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("docs/deploy")
         .join(file);
@@ -33,7 +35,7 @@ fn deploy(file: &str) -> String {
 }
 
 /// `text` with `from` replaced by `to`, which must be there (the shipped file keeps its shape).
-fn moved(text: &str, from: &str, to: &str) -> String {
+pub(crate) fn moved(text: &str, from: &str, to: &str) -> String {
     assert!(
         text.contains(from),
         "the shipped file no longer has {from:?}"
@@ -74,16 +76,59 @@ fn play_through(port: u16, from: &str) -> SshPty {
     ssh
 }
 
-/// HAProxy with the shipped config, listening on a free port, its two worlds at `p1` and
-/// `p2`; returns it (stopped when dropped) and its port once it listens.
-fn haproxy(dir: &Path, p1: u16, p2: u16) -> (Guard, u16) {
-    let front = free_port();
-    let cfg = deploy("haproxy.cfg");
-    let cfg = moved(&cfg, "bind :22", &format!("bind 127.0.0.1:{front}"));
-    let cfg = moved(&cfg, "127.0.0.1:2201", &format!("127.0.0.1:{p1}"));
-    let cfg = moved(&cfg, "127.0.0.1:2202", &format!("127.0.0.1:{p2}"));
+/// A world behind the balancer: its SSH port and its metrics (and health) port.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct World {
+    pub(crate) ssh: u16,
+    pub(crate) metrics: u16,
+}
+
+/// Starts `halfcast serve --proxy-protocol --metrics` with `extra` flags and its host key at
+/// `dir/hk`.
+pub(crate) fn world(dir: &Path, extra: &[&str]) -> (Guard, World, mpsc::Receiver<String>) {
+    let metrics = free_port();
+    let m = metrics.to_string();
+    let mut flags = vec!["--proxy-protocol", "--metrics", &m];
+    flags.extend_from_slice(extra);
+    let (guard, ssh, log) = spawn_server(dir, &flags);
+    (guard, World { ssh, metrics }, log)
+}
+
+/// The test's HAProxy configuration: a `global` and a distribution's `defaults` (in `mode
+/// http`, as Debian ships it) of our own, a frontend on `probe` that turns every connection
+/// away (it answers once HAProxy listens, and sends no world a connection), then the shipped
+/// snippet as it is, with its bind port and its two worlds' ports moved to free ones.
+fn config(front: u16, probe: u16, w1: World, w2: World) -> String {
+    let snippet = deploy("haproxy-halfcast.cfg");
+    let snippet = moved(&snippet, "bind :22\n", &format!("bind :{front}\n"));
+    let snippet = moved(
+        &snippet,
+        "bind :::22 v6only",
+        &format!("bind :::{front} v6only"),
+    );
+    let snippet = moved(
+        &snippet,
+        "127.0.0.1:2201 port 9101",
+        &format!("127.0.0.1:{} port {}", w1.ssh, w1.metrics),
+    );
+    let snippet = moved(
+        &snippet,
+        "127.0.0.1:2202 port 9102",
+        &format!("127.0.0.1:{} port {}", w2.ssh, w2.metrics),
+    );
+    format!(
+        "global\n    maxconn 1024\n\ndefaults\n    mode http\n    timeout connect 5s\n    \
+         timeout client 50s\n    timeout server 50s\n\nfrontend probe\n    mode tcp\n    \
+         bind 127.0.0.1:{probe}\n    tcp-request connection reject\n\n{snippet}"
+    )
+}
+
+/// HAProxy with the shipped snippet in front of worlds `w1` and `w2`, listening on a free
+/// port; returns it (stopped when dropped) and its port once it listens.
+pub(crate) fn haproxy(dir: &Path, w1: World, w2: World) -> (Guard, u16) {
+    let (front, probe) = (free_port(), free_port());
     let cfg_path = dir.join("haproxy.cfg");
-    std::fs::write(&cfg_path, cfg).unwrap();
+    std::fs::write(&cfg_path, config(front, probe, w1, w2)).unwrap();
     let child = Command::new("haproxy")
         .arg("-db")
         .arg("-f")
@@ -95,7 +140,9 @@ fn haproxy(dir: &Path, p1: u16, p2: u16) -> (Guard, u16) {
         .expect("haproxy starts");
     let guard = Guard(child);
     let deadline = Instant::now() + PATIENCE;
-    while std::net::TcpStream::connect(("127.0.0.1", front)).is_err() {
+    // HAProxy binds every listener before it serves any: once the probe answers, so does
+    // the front.
+    while std::net::TcpStream::connect(("127.0.0.1", probe)).is_err() {
         assert!(Instant::now() < deadline, "haproxy never listened");
         std::thread::sleep(Duration::from_millis(50));
     }
@@ -103,13 +150,13 @@ fn haproxy(dir: &Path, p1: u16, p2: u16) -> (Guard, u16) {
 }
 
 /// Whether HAProxy and OpenSSH's client are both here (a skip notice otherwise).
-fn tools() -> bool {
+pub(crate) fn tools() -> bool {
     if !installed("haproxy", "-v") {
-        eprintln!("skip: HAProxy is not installed (apt-get install haproxy)");
+        eprintln!("SKIPPED: HAProxy is not installed (apt-get install haproxy)");
         return false;
     }
     if !ssh_available() {
-        eprintln!("skip: OpenSSH `ssh` is not installed (apt-get install openssh-client)");
+        eprintln!("SKIPPED: OpenSSH `ssh` is not installed (apt-get install openssh-client)");
         return false;
     }
     true
@@ -122,11 +169,8 @@ fn through_haproxy_two_source_addresses_are_limited_apart() {
     }
     // One world behind both of the config's server lines, so every connection reaches it.
     let dir = tempfile::tempdir().expect("tempdir");
-    let (_w, p, _log) = spawn_server(
-        dir.path(),
-        &["--proxy-protocol", "--db", "none", "--max-per-ip", "1"],
-    );
-    let (_haproxy, front) = haproxy(dir.path(), p, p);
+    let (_w, w, _log) = world(dir.path(), &["--db", "none", "--max-per-ip", "1"]);
+    let (_haproxy, front) = haproxy(dir.path(), w, w);
     let ann = play_through(front, "127.0.0.2");
     // Another address has a place of its own, though HAProxy's address is the same.
     let bob = play_through(front, "127.0.0.3");
@@ -156,13 +200,13 @@ fn openssh_through_haproxy_plays_and_the_world_logs_the_players_own_address() {
         return;
     }
     let dir = tempfile::tempdir().expect("tempdir");
-    let flags = ["--proxy-protocol", "--db", "none", "--max-per-ip", "1"];
+    let flags = ["--db", "none", "--max-per-ip", "1"];
     let (w1dir, w2dir) = (dir.path().join("w1"), dir.path().join("w2"));
     std::fs::create_dir_all(&w1dir).unwrap();
     std::fs::create_dir_all(&w2dir).unwrap();
-    let (_w1, p1, log1) = spawn_server(&w1dir, &flags);
-    let (_w2, p2, log2) = spawn_server(&w2dir, &flags);
-    let (_haproxy, front) = haproxy(dir.path(), p1, p2);
+    let (_w1, w1, log1) = world(&w1dir, &flags);
+    let (_w2, w2, log2) = world(&w2dir, &flags);
+    let (_haproxy, front) = haproxy(dir.path(), w1, w2);
 
     let ann = play_through(front, "127.0.0.2");
     let bob = play_through(front, "127.0.0.3");
@@ -198,31 +242,41 @@ fn openssh_through_haproxy_plays_and_the_world_logs_the_players_own_address() {
 }
 
 #[test]
-fn the_shipped_systemd_unit_passes_systemd_analyze_verify() {
+fn the_shipped_systemd_units_pass_systemd_analyze_verify() {
     if !installed("systemd-analyze", "--version") {
-        eprintln!("skip: systemd-analyze is not installed (apt-get install systemd)");
+        eprintln!("SKIPPED: systemd-analyze is not installed (apt-get install systemd)");
         return;
     }
     let dir = tempfile::tempdir().expect("tempdir");
-    // The unit names /usr/local/bin/halfcast; verify checks that it exists, so point it at
+    // The units name /usr/local/bin/halfcast; verify checks that it exists, so point them at
     // the binary under test.
-    let unit = moved(
-        &deploy("halfcast@.service"),
-        "ExecStart=/usr/local/bin/halfcast ",
-        &format!("ExecStart={} ", env!("CARGO_BIN_EXE_halfcast")),
-    );
-    let path = dir.path().join("halfcast@1.service");
-    std::fs::write(&path, unit).unwrap();
-    let out = Command::new("systemd-analyze")
-        .arg("verify")
-        .arg(&path)
-        .output()
-        .expect("systemd-analyze runs");
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "{err}");
-    // Unknown or misspelt settings are only warnings: none may appear.
-    assert!(
-        !err.contains("halfcast@1.service"),
-        "systemd-analyze warned:\n{err}"
-    );
+    let exe = |unit: &str| {
+        moved(
+            &deploy(unit),
+            "ExecStart=/usr/local/bin/halfcast ",
+            &format!("ExecStart={} ", env!("CARGO_BIN_EXE_halfcast")),
+        )
+    };
+    let files = [
+        ("halfcast@1.service", exe("halfcast@.service")),
+        ("halfcast-backup.service", exe("halfcast-backup.service")),
+        ("halfcast-backup.timer", deploy("halfcast-backup.timer")),
+    ];
+    for (name, text) in &files {
+        std::fs::write(dir.path().join(name), text).unwrap();
+    }
+    for (name, _) in &files {
+        let out = Command::new("systemd-analyze")
+            .arg("verify")
+            .arg(dir.path().join(name))
+            .output()
+            .expect("systemd-analyze runs");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{name}: {err}");
+        // Unknown or misspelt settings are only warnings: none may appear.
+        assert!(
+            !err.contains("halfcast"),
+            "systemd-analyze warned about {name}:\n{err}"
+        );
+    }
 }

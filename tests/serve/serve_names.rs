@@ -37,7 +37,9 @@ async fn two_adas_become_ada_and_ada_2() {
 #[test]
 fn the_shutdown_summary_counts_sessions_still_running() {
     let dir = tempfile::tempdir().expect("tempdir");
-    let (mut server, port, rx) = spawn_server(dir.path(), &[]);
+    // No drain: SIGTERM stops the server while both sessions still play (serve_drain.rs has
+    // the drain).
+    let (mut server, port, rx) = spawn_server(dir.path(), &["--drain-seconds", "0"]);
     let wait_for = |needle: &str, seen: &mut Vec<String>| loop {
         match rx.recv_timeout(PATIENCE) {
             Ok(l) if l.contains(needle) => return l,

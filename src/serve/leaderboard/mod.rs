@@ -3,8 +3,13 @@
 //! frame, and the boards sessions show (the results screen, the `L` key) published from there.
 //!
 //! Names are the in-game names (SSH user names, made unique); they are bounded when stored
-//! ([`bounded_name`]) and escaped wherever printed ([`shown_name`]).
+//! ([`bounded_name`]) and escaped wherever printed ([`shown_name`]). [`backup`] copies the file
+//! while worlds write it. [`pg_store`] keeps the same board in PostgreSQL for worlds on several
+//! hosts; [`database`] opens whichever `--db` names.
 
+pub mod backup;
+pub mod database;
+pub mod pg_store;
 pub mod store;
 pub mod writer;
 
@@ -50,13 +55,15 @@ pub struct RoundRecord {
 pub struct Entry {
     /// The name they played under (bounded, not yet escaped).
     pub name: String,
-    /// The round's length, in seconds.
+    /// The round's length, in seconds (printed to the hundredth).
+    #[serde(serialize_with = "hundredths")]
     pub seconds: f64,
     /// Their points.
     pub points: i64,
     /// Treasures they picked up.
     pub items: u64,
-    /// Seconds as "it" (tag).
+    /// Seconds as "it" (tag; printed to the hundredth).
+    #[serde(serialize_with = "hundredths")]
     pub it_seconds: f64,
     /// Whether that round was a full clear.
     pub cleared: bool,
@@ -99,6 +106,17 @@ pub struct Boards {
     pub version: u64,
     /// The boards.
     pub maps: HashMap<String, MapBoard>,
+}
+
+/// Seconds as printed: to the hundredth, so a 30 s round reads `30.0`, not the
+/// `30.00000000000065` its sum of ticks makes.
+#[must_use]
+pub fn rounded_seconds(seconds: f64) -> f64 {
+    (seconds * 100.0).round() / 100.0
+}
+
+fn hundredths<S: serde::Serializer>(seconds: &f64, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_f64(rounded_seconds(*seconds))
 }
 
 /// The key of a map's board for one mode.
@@ -169,6 +187,24 @@ mod tests {
         assert_eq!(shown_name("x\u{202e}y"), "x\\u{202e}y");
         assert_eq!(shown_name("abcdefghijklmnopqrstuvwxyz"), "abcdefghijklmno~");
         assert_eq!(bounded_name(&"z".repeat(100)).len(), MAX_STORED_NAME);
+    }
+
+    #[test]
+    fn seconds_are_printed_to_the_hundredth() {
+        let e = Entry {
+            name: "ann".into(),
+            seconds: 30.000_000_000_000_65,
+            points: 1,
+            items: 0,
+            it_seconds: 12.345_678,
+            cleared: false,
+            reached_exit: false,
+            ended_at: 0,
+            map_name: String::new(),
+        };
+        let v = serde_json::to_value(&e).unwrap();
+        assert_eq!(v["seconds"].to_string(), "30.0");
+        assert_eq!(v["it_seconds"].to_string(), "12.35");
     }
 
     #[test]

@@ -1,6 +1,12 @@
 //! The leaderboard's SQLite file: its schema and migrations, opening it without harming it, one
 //! finished round written in one transaction, and the rankings read back.
 //!
+//! Several worlds on one host share one file (`--db` the same path): it is in WAL mode, so
+//! reading never waits for a write, and a writer waits up to [`BUSY`] for another's
+//! transaction instead of failing with "database is locked". Every write and every migration
+//! step takes the write lock first (`BEGIN IMMEDIATE`), and a migration re-reads the version
+//! under that lock, so two worlds starting at once migrate the file once.
+//!
 //! The schema's version is SQLite's `user_version`; [`MIGRATIONS`] holds the steps from an
 //! empty file, one per version. A file of a newer version is refused (a newer halfcast wrote
 //! it), and so is one SQLite cannot read (corrupt, not a database) or cannot lock: those are
@@ -9,7 +15,7 @@
 use std::path::Path;
 use std::time::Duration;
 
-use rusqlite::{params, Connection, OpenFlags, OptionalExtension};
+use rusqlite::{params, Connection, OpenFlags, OptionalExtension, TransactionBehavior};
 
 use super::{bounded_name, Entry, MapBoard, RoundRecord};
 
@@ -42,8 +48,10 @@ const MIGRATIONS: &[&str] = &[
     "CREATE INDEX results_by_name ON results(name, round_id);",
 ];
 
-/// How long to wait for another process's lock before giving up.
-const BUSY: Duration = Duration::from_millis(500);
+/// How long to wait for another process's lock before giving up: other worlds sharing the
+/// file hold it for one round's transaction (milliseconds), and the writer runs on a thread of
+/// its own, so a wait delays the board, never a frame.
+pub const BUSY: Duration = Duration::from_secs(10);
 
 /// An open leaderboard file at the current schema.
 #[derive(Debug)]
@@ -82,6 +90,18 @@ impl Store {
             .conn
             .execute_batch("BEGIN IMMEDIATE; COMMIT;")
             .map_err(|e| failed(path, "cannot lock for writing", e))?;
+        // WAL: other worlds read while one writes (the mode is kept in the file).
+        let mode: String = store
+            .conn
+            .query_row("PRAGMA journal_mode=WAL", [], |r| r.get(0))
+            .map_err(|e| failed(path, "cannot turn on WAL", e))?;
+        if !mode.eq_ignore_ascii_case("wal") {
+            return Err(failed(
+                path,
+                "cannot turn on WAL",
+                format!("journal mode {mode}"),
+            ));
+        }
         store.migrate(path, version)?;
         Ok(store)
     }
@@ -115,9 +135,16 @@ impl Store {
 
     /// Reads the schema version and checks the file's integrity; refuses newer versions.
     fn check(&self, path: &Path) -> Result<i64, String> {
-        let version: i64 = self
+        // The version and the tables in one statement (one snapshot): another world may
+        // migrate the file between two.
+        let (version, tables): (i64, i64) = self
             .conn
-            .query_row("PRAGMA user_version", [], |r| r.get(0))
+            .query_row(
+                "SELECT (SELECT user_version FROM pragma_user_version),
+                        (SELECT COUNT(*) FROM sqlite_master)",
+                [],
+                |r| Ok((r.get(0)?, r.get(1)?)),
+            )
             .map_err(|e| failed(path, "cannot read", e))?;
         let ok: String = self
             .conn
@@ -128,10 +155,6 @@ impl Store {
         }
         if version == 0 {
             // Version 0 is a new, empty file; one with tables of its own is someone else's.
-            let tables: i64 = self
-                .conn
-                .query_row("SELECT COUNT(*) FROM sqlite_master", [], |r| r.get(0))
-                .map_err(|e| failed(path, "cannot read", e))?;
             if tables > 0 {
                 return Err(failed(
                     path,
@@ -159,14 +182,26 @@ impl Store {
             let to = i as i64 + 1;
             let tx = self
                 .conn
-                .transaction()
+                .transaction_with_behavior(TransactionBehavior::Immediate)
                 .map_err(|e| failed(path, "cannot migrate", e))?;
+            // Another world sharing the file may have taken this step since we looked.
+            let now: i64 = tx
+                .query_row("PRAGMA user_version", [], |r| r.get(0))
+                .map_err(|e| failed(path, "cannot migrate", e))?;
+            if now >= to {
+                continue;
+            }
             tx.execute_batch(step)
                 .and_then(|()| tx.pragma_update(None, "user_version", to))
                 .and_then(|()| tx.commit())
                 .map_err(|e| failed(path, &format!("cannot migrate to version {to}"), e))?;
         }
         Ok(())
+    }
+
+    /// The open connection, for a backup of it ([`super::backup`]).
+    pub(super) fn connection(&self) -> &Connection {
+        &self.conn
     }
 
     /// The schema version of the open file.
@@ -184,7 +219,10 @@ impl Store {
     /// # Errors
     /// SQLite's message (disk full, I/O error, locked too long).
     pub fn record(&mut self, r: &RoundRecord) -> Result<(), String> {
-        let tx = self.conn.transaction().map_err(|e| e.to_string())?;
+        let tx = self
+            .conn
+            .transaction_with_behavior(TransactionBehavior::Immediate)
+            .map_err(|e| e.to_string())?;
         tx.execute(
             "INSERT INTO rounds (map_hash, map_name, mode, seconds, cleared, ended_at)
              VALUES (?1, ?2, ?3, ?4, ?5, ?6)",
@@ -301,7 +339,7 @@ impl Store {
 /// clears by time, then everything else by points; tag ranks by the least time as "it".
 /// Its column names are each in one table only, so it reads the same on the join and on a
 /// select from it.
-fn ranking(mode: &str) -> &'static str {
+pub(super) fn ranking(mode: &str) -> &'static str {
     if mode == "tag" {
         "it_seconds ASC, id ASC"
     } else {
@@ -445,4 +483,49 @@ mod tests {
             "the file was changed"
         );
     }
+
+    #[test]
+    fn two_worlds_on_one_file_start_together_and_lose_no_round_writing_at_once() {
+        const EACH: usize = 200;
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("shared.sqlite");
+        // Both open a file that does not exist yet, at the same moment: one migrates it.
+        let barrier = std::sync::Arc::new(std::sync::Barrier::new(2));
+        let writers: Vec<_> = ["ann", "bob"]
+            .into_iter()
+            .map(|who| {
+                let (path, barrier) = (path.clone(), std::sync::Arc::clone(&barrier));
+                std::thread::spawn(move || {
+                    barrier.wait();
+                    let mut s = Store::open(&path).expect("opens beside the other world");
+                    for i in 0..EACH {
+                        s.record(&round("h", 30.0 + i as f64, false, &[(who, i as i64, 0.0)]))
+                            .unwrap_or_else(|e| panic!("{who}'s round {i}: {e}"));
+                        // And reads, as a world's board does after each round.
+                        s.top("h", "coop", TOP_FOR_TEST)
+                            .expect("reads while the other writes");
+                    }
+                })
+            })
+            .collect();
+        for w in writers {
+            w.join().expect("a writer failed");
+        }
+        let s = Store::open_read(&path).unwrap();
+        assert_eq!(s.version().unwrap(), SCHEMA_VERSION);
+        let maps = s.maps().unwrap();
+        assert_eq!(maps.len(), 1, "{maps:?}");
+        assert_eq!(
+            maps[0].3,
+            2 * EACH as u64,
+            "every round of both worlds is there"
+        );
+        let mode: String = s
+            .conn
+            .query_row("PRAGMA journal_mode", [], |r| r.get(0))
+            .unwrap();
+        assert_eq!(mode, "wal");
+    }
+
+    const TOP_FOR_TEST: usize = 10;
 }

@@ -8,7 +8,7 @@ use std::sync::Arc;
 
 use tokio::sync::watch;
 
-use super::store::Store;
+use super::database::Database;
 use super::{board_key, Boards, RoundRecord};
 use crate::serve::log::Log;
 use crate::serve::metrics;
@@ -42,7 +42,11 @@ impl Leaderboard {
     ///
     /// # Errors
     /// When the boards cannot be read, or the thread cannot start.
-    pub fn start(store: Store, served: &[(String, String)], log: Log) -> Result<Self, String> {
+    pub fn start(
+        mut store: Database,
+        served: &[(String, String)],
+        log: Log,
+    ) -> Result<Self, String> {
         let mut boards = Boards::default();
         for (hash, mode) in served {
             let b = store
@@ -102,7 +106,7 @@ impl Leaderboard {
 }
 
 /// The thread's loop: until every sender is gone.
-fn run(mut store: Store, rx: &Receiver<Job>, boards: &watch::Sender<Arc<Boards>>, log: Log) {
+fn run(mut store: Database, rx: &Receiver<Job>, boards: &watch::Sender<Arc<Boards>>, log: Log) {
     while let Ok(job) = rx.recv() {
         match job {
             Job::Record(r) => {

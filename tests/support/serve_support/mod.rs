@@ -2,7 +2,9 @@
 //! this file with `#[path]`): an in-process server on a free loopback port, and a real russh
 //! client whose output goes through a vt100 terminal model.
 
+pub mod http;
 pub mod openssh;
+pub mod postgres;
 
 use std::sync::Arc;
 use std::time::Duration;

@@ -26,7 +26,18 @@ pub struct SshPty {
 impl SshPty {
     /// Runs `ssh -tt EXTRA… ann@127.0.0.1` against `port` in a `cols`×`rows` pty, with no user
     /// config, host-key checks off and batch mode (no prompt can stall a test).
-    pub fn spawn(port: u16, extra: &[&std::ffi::OsStr], (cols, rows): (u16, u16)) -> Self {
+    pub fn spawn(port: u16, extra: &[&std::ffi::OsStr], size: (u16, u16)) -> Self {
+        Self::spawn_checking(port, None, extra, size)
+    }
+
+    /// [`SshPty::spawn`], checking the host key against the `known_hosts` file when given (as
+    /// a returning player's `ssh` does: a new host is added, a changed key is refused).
+    pub fn spawn_checking(
+        port: u16,
+        known_hosts: Option<&std::path::Path>,
+        extra: &[&std::ffi::OsStr],
+        (cols, rows): (u16, u16),
+    ) -> Self {
         let pty = native_pty_system()
             .openpty(PtySize {
                 rows,
@@ -37,8 +48,14 @@ impl SshPty {
             .expect("pty");
         let mut cmd = CommandBuilder::new("ssh");
         cmd.args(["-tt", "-F", "/dev/null", "-p", &port.to_string()]);
-        cmd.args(["-o", "StrictHostKeyChecking=no"]);
-        cmd.args(["-o", "UserKnownHostsFile=/dev/null"]);
+        if let Some(file) = known_hosts {
+            cmd.args(["-o", "StrictHostKeyChecking=accept-new"]);
+            cmd.arg("-o");
+            cmd.arg(format!("UserKnownHostsFile={}", file.display()));
+        } else {
+            cmd.args(["-o", "StrictHostKeyChecking=no"]);
+            cmd.args(["-o", "UserKnownHostsFile=/dev/null"]);
+        }
         cmd.args(["-o", "BatchMode=yes", "-o", "ConnectTimeout=10"]);
         cmd.args(extra);
         cmd.arg("ann@127.0.0.1");
