@@ -412,42 +412,50 @@ mod tests {
         }
     }
 
-    /// A session on a link of `rate` bytes/s for `secs`, simulated in steps of 3 ms (how often
-    /// a session looks at its link while a frame waits): a frame of `size(level)` wire bytes is
-    /// wanted every period and sent once the pacer says so, stepping as it says. Returns the
-    /// levels used, in order, and the end time.
-    fn drive(
-        p: &mut LinkPacer,
-        wire: &mut u64,
-        t0: Instant,
-        mut level: ColorLevel,
-        rate: f64,
-        size: impl Fn(ColorLevel) -> u64,
-        secs: f64,
-    ) -> (Vec<ColorLevel>, Instant) {
-        let step = Duration::from_millis(3);
-        let mut now = t0;
-        let mut outstanding = 0.0f64;
-        let mut next_want = t0;
-        let mut levels = vec![level];
-        while now.duration_since(t0).as_secs_f64() < secs {
-            outstanding = (outstanding - rate * step.as_secs_f64()).max(0.0);
-            let s = sample(outstanding as u64, rate as u64);
-            if now >= next_want && p.clear(*wire, Some(&s), true, now) {
-                if let Some(step) = p.step(level, now) {
-                    level = match step {
-                        Step::Down(l) | Step::Up(l) => l,
-                    };
-                    levels.push(level);
-                }
-                p.sent(*wire, level, now);
-                *wire += size(level);
-                outstanding += size(level) as f64;
-                next_want = now + PERIOD;
+    /// A session on a simulated link, looked at every 3 ms (how often a session looks at its
+    /// link while a frame waits): a frame of [`sizes`] wire bytes at its level is wanted every
+    /// period and sent once the pacer says so, stepping as it says.
+    struct Sim {
+        p: LinkPacer,
+        wire: u64,
+        now: Instant,
+        level: ColorLevel,
+    }
+
+    impl Sim {
+        fn new(level: ColorLevel) -> Self {
+            Self {
+                p: LinkPacer::new(PERIOD, level),
+                wire: 0,
+                now: Instant::now(),
+                level,
             }
-            now += step;
         }
-        (levels, now)
+
+        /// `secs` on a link of `rate` bytes/s; the levels used, in order.
+        fn run(&mut self, rate: f64, secs: f64) -> Vec<ColorLevel> {
+            let step = Duration::from_millis(3);
+            let end = self.now + Duration::from_secs_f64(secs);
+            let mut outstanding = 0.0f64;
+            let mut next_want = self.now;
+            let mut levels = vec![self.level];
+            while self.now < end {
+                outstanding = (outstanding - rate * step.as_secs_f64()).max(0.0);
+                let s = sample(outstanding as u64, rate as u64);
+                if self.now >= next_want && self.p.clear(self.wire, Some(&s), true, self.now) {
+                    if let Some(Step::Down(l) | Step::Up(l)) = self.p.step(self.level, self.now) {
+                        self.level = l;
+                        levels.push(l);
+                    }
+                    self.p.sent(self.wire, self.level, self.now);
+                    self.wire += sizes(self.level);
+                    outstanding += sizes(self.level) as f64;
+                    next_want = self.now + PERIOD;
+                }
+                self.now += step;
+            }
+            levels
+        }
     }
 
     fn sizes(level: ColorLevel) -> u64 {
@@ -506,130 +514,79 @@ mod tests {
 
     #[test]
     fn a_slow_link_steps_truecolor_down_to_where_it_carries_fifteen_frames() {
-        let t = Instant::now();
-        let mut p = LinkPacer::new(PERIOD, ColorLevel::TrueColor);
+        use ColorLevel::*;
         // 64 kB/s: truecolor (33 kB) ~2 fps, 256 (8 kB) 8 fps, 16 colours (3 kB) 21 fps.
-        let (levels, _) = drive(
-            &mut p,
-            &mut 0,
-            t,
-            ColorLevel::TrueColor,
-            64_000.0,
-            sizes,
-            10.0,
-        );
+        let mut sim = Sim::new(TrueColor);
         assert_eq!(
-            levels,
-            [
-                ColorLevel::TrueColor,
-                ColorLevel::Ansi256,
-                ColorLevel::Ansi16
-            ],
+            sim.run(64_000.0, 10.0),
+            [TrueColor, Ansi256, Ansi16],
             "down twice, never back up (16 colours would need 1.5 x the rate for 256)"
         );
-        assert_eq!(p.figures().steps_down, 2);
-        assert_eq!(p.figures().steps_up, 0);
+        assert_eq!(sim.p.figures().steps_down, 2);
+        assert_eq!(sim.p.figures().steps_up, 0);
     }
 
     #[test]
     fn a_fast_link_keeps_its_level_and_a_link_that_recovers_steps_back_up() {
-        let t = Instant::now();
-        let mut p = LinkPacer::new(PERIOD, ColorLevel::TrueColor);
-        let (levels, _) = drive(
-            &mut p,
-            &mut 0,
-            t,
-            ColorLevel::TrueColor,
-            10_000_000.0,
-            sizes,
-            5.0,
-        );
-        assert_eq!(levels, [ColorLevel::TrueColor]);
-        let mut p = LinkPacer::new(PERIOD, ColorLevel::TrueColor);
-        let mut wire = 0;
-        let (levels, t1) = drive(
-            &mut p,
-            &mut wire,
-            t,
-            ColorLevel::TrueColor,
-            200_000.0,
-            sizes,
-            4.0,
-        );
-        assert_eq!(levels, [ColorLevel::TrueColor, ColorLevel::Ansi256]);
+        use ColorLevel::*;
+        assert_eq!(Sim::new(TrueColor).run(10_000_000.0, 5.0), [TrueColor]);
+        let mut sim = Sim::new(TrueColor);
+        assert_eq!(sim.run(200_000.0, 4.0), [TrueColor, Ansi256]);
         // The link widens to 2 MB/s: after the hold, back to truecolor, and it stays.
-        let (levels, _) = drive(
-            &mut p,
-            &mut wire,
-            t1,
-            ColorLevel::Ansi256,
-            2_000_000.0,
-            sizes,
-            8.0,
-        );
-        assert_eq!(levels, [ColorLevel::Ansi256, ColorLevel::TrueColor]);
-        assert_eq!(p.figures().steps_up, 1);
+        assert_eq!(sim.run(2_000_000.0, 8.0), [Ansi256, TrueColor]);
+        assert_eq!(sim.p.figures().steps_up, 1);
     }
 
     #[test]
     fn a_step_up_that_does_not_hold_makes_the_next_wait_longer() {
-        let t = Instant::now();
-        let mut p = LinkPacer::new(PERIOD, ColorLevel::TrueColor);
-        // Truecolor frames measured at 33 kB first, then the link is just too slow for them
-        // while the guess from 256-colour frames (four times 8 kB) says it fits: the kernel's
-        // peak rate says 1 MB/s, frames arrive at 400 kB/s.
-        let (_, t1) = drive(
-            &mut p,
-            &mut 0,
-            t,
-            ColorLevel::TrueColor,
-            400_000.0,
-            sizes,
-            2.0,
-        );
+        let mut sim = Sim::new(ColorLevel::TrueColor);
+        sim.run(400_000.0, 2.0);
+        // As if the last step had gone up to truecolor and its frames were then held up.
+        let (p, t) = (&mut sim.p, sim.now);
         let hold = p.up_hold;
-        p.last_up = Some((ColorLevel::TrueColor, t1));
+        p.last_up = Some((ColorLevel::TrueColor, t));
         p.settled = SETTLE_FRAMES;
         assert_eq!(
-            p.step(ColorLevel::TrueColor, t1),
+            p.step(ColorLevel::TrueColor, t),
             Some(Step::Down(ColorLevel::Ansi256))
         );
         assert_eq!(p.up_hold, hold * 2);
     }
 
     #[test]
-    fn a_link_at_the_edge_does_not_flap() {
+    fn a_frame_the_client_has_not_answered_for_holds_the_next_and_counts_as_held_up() {
         let t = Instant::now();
+        let mut p = LinkPacer::new(PERIOD, ColorLevel::Ansi256);
+        let acked = sample(0, 10_000_000);
+        p.sent(0, ColorLevel::Ansi256, t);
+        assert!(p.clear(10_000, Some(&acked), true, t + PERIOD));
+        // The next frame, a period later (moving): written and acknowledged by the kernel (the
+        // hop to a balancer), not yet answered by the client.
+        p.sent(10_000, ColorLevel::Ansi256, t + PERIOD);
+        assert!(!p.clear(30_000, Some(&acked), false, t + 2 * PERIOD));
+        assert!(p.clear(30_000, Some(&acked), true, t + 3 * PERIOD));
+        assert_eq!(p.take_waited(), Some(PERIOD));
+        // 20 kB in two periods: the link measured end to end, not the fast first hop.
+        let rate = p.measured().expect("measured");
+        let want = 20_000.0 / (2.0 * PERIOD.as_secs_f64());
+        assert!((rate - want).abs() < 1_000.0, "{rate} against {want}");
+    }
+
+    #[test]
+    fn a_link_at_the_edge_does_not_flap() {
+        use ColorLevel::*;
         // 140 kB/s: 256-colour frames (8 kB) still make 17 a second, truecolor ones 4.
-        let mut p = LinkPacer::new(PERIOD, ColorLevel::TrueColor);
-        let (levels, _) = drive(
-            &mut p,
-            &mut 0,
-            t,
-            ColorLevel::TrueColor,
-            140_000.0,
-            sizes,
-            60.0,
-        );
-        assert_eq!(levels, [ColorLevel::TrueColor, ColorLevel::Ansi256]);
-        // 300 kB/s: 256-colour frames never wait, so now and then truecolor is tried; each
-        // failed try doubles the wait before the next (3, 6, 12, 24, 48 s …).
-        let mut p = LinkPacer::new(PERIOD, ColorLevel::TrueColor);
-        let (levels, _) = drive(
-            &mut p,
-            &mut 0,
-            t,
-            ColorLevel::TrueColor,
-            300_000.0,
-            sizes,
-            120.0,
-        );
-        assert_eq!(levels.last(), Some(&ColorLevel::Ansi256), "{levels:?}");
-        assert!(p.figures().steps_up <= 5, "{levels:?}");
         assert_eq!(
-            p.figures().steps_down,
-            p.figures().steps_up + 1,
-            "{levels:?}"
+            Sim::new(TrueColor).run(140_000.0, 60.0),
+            [TrueColor, Ansi256]
         );
+        // 300 kB/s: 256-colour frames never wait, so now and then truecolor is tried; each
+        // failed try doubles the wait before the next (5, 10, 20, 40 s …).
+        let mut sim = Sim::new(TrueColor);
+        let levels = sim.run(300_000.0, 120.0);
+        assert_eq!(levels.last(), Some(&Ansi256), "{levels:?}");
+        let f = sim.p.figures();
+        assert!(f.steps_up <= 5, "{levels:?}");
+        assert_eq!(f.steps_down, f.steps_up + 1, "{levels:?}");
     }
 }
