@@ -227,20 +227,13 @@ fn listed_glyph(code: &str) -> Option<Glyph> {
     text.filter(|t| !t.is_empty()).map(|t| Glyph::new(&t))
 }
 
-/// Reads the cells text form back (this version or `halfcast-cells v1`); errors name the line.
-///
-/// # Errors
-/// A header that is not `halfcast-cells v2 COLSxROWS` (or v1), or a malformed row or line.
-pub fn from_cells_text(text: &str) -> Result<TermFrame, String> {
-    if text.starts_with(super::text_v1::CELLS_HEADER_V1) {
-        return super::text_v1::from_cells_text_v1(text);
-    }
-    let mut lines = text.lines();
-    let header = lines.next().unwrap_or_default();
+/// The size a cells text's first line gives after `magic` (`halfcast-cells v2 80x24`), within
+/// [`super::MAX_FRAME`]; shared by both versions' readers.
+pub(super) fn cells_header(header: &str, magic: &str) -> Result<(usize, usize), String> {
     let size = header
-        .strip_prefix(CELLS_HEADER)
+        .strip_prefix(magic)
         .map(str::trim)
-        .ok_or_else(|| format!("line 1: expected '{CELLS_HEADER} COLSxROWS'"))?;
+        .ok_or_else(|| format!("line 1: expected '{magic} COLSxROWS'"))?;
     let (c, r) = size.split_once('x').ok_or("line 1: bad size")?;
     let (cols, rows): (usize, usize) = (
         c.parse().map_err(|_| "line 1: bad size")?,
@@ -252,6 +245,19 @@ pub fn from_cells_text(text: &str) -> Result<TermFrame, String> {
             "line 1: size {cols}x{rows} is over the limit of {max_cols}x{max_rows} cells"
         ));
     }
+    Ok((cols, rows))
+}
+
+/// Reads the cells text form back (this version or `halfcast-cells v1`); errors name the line.
+///
+/// # Errors
+/// A header that is not `halfcast-cells v2 COLSxROWS` (or v1), or a malformed row or line.
+pub fn from_cells_text(text: &str) -> Result<TermFrame, String> {
+    if text.starts_with(super::text_v1::CELLS_HEADER_V1) {
+        return super::text_v1::from_cells_text_v1(text);
+    }
+    let mut lines = text.lines();
+    let (cols, rows) = cells_header(lines.next().unwrap_or_default(), CELLS_HEADER)?;
     // Both are now small, so `cols * rows` cannot overflow.
     let mut cells = Vec::with_capacity(cols * rows);
     for y in 0..rows {

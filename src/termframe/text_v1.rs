@@ -31,22 +31,8 @@ fn parse_colour(s: &str) -> Option<Option<Rgb>> {
 /// A header that is not `halfcast-cells v1 COLSxROWS`, or a malformed row or cell.
 pub fn from_cells_text_v1(text: &str) -> Result<TermFrame, String> {
     let mut lines = text.lines();
-    let header = lines.next().unwrap_or_default();
-    let size = header
-        .strip_prefix(CELLS_HEADER_V1)
-        .map(str::trim)
-        .ok_or_else(|| format!("line 1: expected '{CELLS_HEADER_V1} COLSxROWS'"))?;
-    let (c, r) = size.split_once('x').ok_or("line 1: bad size")?;
-    let (cols, rows): (usize, usize) = (
-        c.parse().map_err(|_| "line 1: bad size")?,
-        r.parse().map_err(|_| "line 1: bad size")?,
-    );
-    let (max_cols, max_rows) = super::MAX_FRAME;
-    if cols > max_cols || rows > max_rows {
-        return Err(format!(
-            "line 1: size {cols}x{rows} is over the limit of {max_cols}x{max_rows} cells"
-        ));
-    }
+    let (cols, rows) =
+        super::text::cells_header(lines.next().unwrap_or_default(), CELLS_HEADER_V1)?;
     // Both are now small, so `cols * CELL_STRIDE` and `cols * rows` cannot overflow.
     let mut cells = Vec::with_capacity(cols * rows);
     for y in 0..rows {
