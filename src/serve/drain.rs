@@ -11,6 +11,9 @@ pub const SHUTTING_DOWN: &str = "the server is shutting down";
 /// behind a balancer, reconnecting lands them on another world of the fleet.
 pub const RESTARTING: &str = "this world restarts: reconnect to continue";
 
+/// What players see over the status line while their world drains.
+pub const DRAINING_NOTICE: &str = "this world restarts soon: reconnect when it closes";
+
 /// The default `--drain-seconds`: how long a draining world waits for its round to end.
 pub const DEFAULT_DRAIN: Duration = Duration::from_secs(30);
 

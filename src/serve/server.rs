@@ -131,9 +131,12 @@ impl RunningServer {
     /// closes (connections already waiting in its queue are still taken in), and this waits
     /// until nobody is logging in or playing, or until a round ends (then [`AFTER_LAST_ROUND`]
     /// more, so its results are seen), or until `patience` has passed. Sessions go on
-    /// meanwhile; [`RunningServer::shutdown_restarting`] then ends them.
+    /// meanwhile, their players told the world restarts soon;
+    /// [`RunningServer::shutdown_restarting`] then ends them.
     pub async fn drain(&self, patience: Duration) {
         self.ready.drain();
+        // Sessions tell their players now (over the status line), and say it again at the end.
+        self.farewell.send_replace(RESTARTING);
         super::metrics::draining();
         let _ = self.stop_accepting.send(true);
         let deadline = tokio::time::Instant::now() + patience;

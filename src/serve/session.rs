@@ -134,6 +134,8 @@ struct Tally {
 pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
     let mut s = State::new(&p, *inputs.size.borrow());
     let mut shutdown = p.shutdown.clone();
+    let mut farewell = p.farewell.clone();
+    let mut farewell_alive = true;
     let frame_metrics = FrameMetrics::new();
     metrics::session(p.spectator, true);
     let boards = p.boards.as_ref().map(|b| b.board.boards());
@@ -196,6 +198,18 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
             biased;
             Some(end) = std::future::ready(early_end), if early_end.is_some() => break end,
             _ = shutdown.changed() => break End::Shutdown,
+            changed = farewell.changed(), if farewell_alive => {
+                // Err: the server is gone; its shutdown signal ends the session.
+                farewell_alive = changed.is_ok();
+                if farewell_alive && *farewell.borrow_and_update() == super::drain::RESTARTING {
+                    // Draining: the player hears it now, not only when the world stops.
+                    s.screen.set_notice(
+                        super::drain::DRAINING_NOTICE.to_owned(),
+                        Instant::now() + Duration::from_secs(3600),
+                    );
+                    want = true;
+                }
+            }
             data = inputs.data.recv() => {
                 let Some(bytes) = data else { break End::ClientGone };
                 s.last_input = Instant::now();

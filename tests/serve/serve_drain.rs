@@ -49,7 +49,14 @@ async fn sigterm_drains_then_tells_players_to_reconnect() {
         assert!(Instant::now() < deadline, "the SSH port stayed open");
         tokio::time::sleep(Duration::from_millis(20)).await;
     }
-    // Ann plays on meanwhile: she turns, and her view follows.
+    // Ann is told at once, over her status line, and plays on meanwhile: she turns, and her
+    // view follows.
+    assert!(
+        ann.until(|s| s.contents().contains("this world restarts soon"))
+            .await,
+        "{}",
+        ann.screen.screen().contents()
+    );
     let before = ann.bytes;
     ann.keys(b"d").await;
     ann.drain_for(Duration::from_millis(500)).await;
