@@ -360,6 +360,7 @@ impl russh::server::Handler for ConnHandler {
             log: sh.log,
             shutdown: sh.shutdown.clone(),
             life: Arc::clone(&self.life),
+            echo: sh.config.proxy_protocol,
             farewell: sh.farewell.clone(),
         };
         let inputs = SessionInputs {

@@ -5,6 +5,10 @@
 //! the balancer's buffers hold the queue, so only an answer from the client itself says a frame
 //! arrived.
 //!
+//! Used behind a load balancer (`--proxy-protocol`) only: there the kernel's figures describe the
+//! hop to the balancer. A direct client's path is the socket's own, and an echo per frame would
+//! cost the server a task and two packets per frame for nothing.
+//!
 //! The request is `cancel-tcpip-forward` for no forward (RFC 4254 §7.1): clients answer it with
 //! a failure and do nothing else (OpenSSH, PuTTY, paramiko and russh reply to any global request
 //! that wants a reply). A client that never answers the first one within [`FIRST_PATIENCE`] is
@@ -60,6 +64,15 @@ impl EchoGate {
             sent: 0,
             first_sent: None,
             on: true,
+        }
+    }
+
+    /// A gate that never holds a frame (echoes unused).
+    #[must_use]
+    pub fn off() -> Self {
+        Self {
+            on: false,
+            ..Self::new()
         }
     }
 

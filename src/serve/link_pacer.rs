@@ -20,6 +20,11 @@ const UP_MARGIN: f64 = 1.5;
 /// The least a session keeps in flight beyond what it waits on: about three full TCP segments,
 /// so the next frame starts while the last one's tail is still on the way.
 const MIN_ALLOWANCE: u64 = 4_096;
+/// Frames the kernel found all but delivered at the first look, in a row, before the link is
+/// asked only every [`ASK_EVERY`] frames.
+const KEPT_UP_STREAK: u32 = 30;
+/// How often a link that keeps up is asked.
+const ASK_EVERY: u32 = 4;
 /// Frames closer together than this many frame periods count as one moving stretch.
 const STRETCH: f64 = 2.5;
 /// Moving frames seen at a level before it may step down.
@@ -113,6 +118,10 @@ pub struct LinkPacer {
     /// How long after a step the next step up may come; doubles each time a step up is
     /// followed by a step down (no flapping on a link at the edge).
     up_hold: Duration,
+    /// Frames in a row the kernel found delivered at the first look.
+    kept_up: u32,
+    /// Frames let go without asking the kernel since it was last asked.
+    unasked: u32,
     /// Since when every large moving frame found the link empty as it went.
     quiet_since: Option<Instant>,
     /// Large moving frames in that quiet.
@@ -157,6 +166,8 @@ impl LinkPacer {
             last_level: None,
             up_hold: UP_HOLD,
             last_up: None,
+            kept_up: 0,
+            unasked: 0,
             quiet_since: None,
             quiet_frames: 0,
             outstanding: 0,
@@ -185,7 +196,13 @@ impl LinkPacer {
         let done = wire > f.wire_before
             && answered
             && sample.is_none_or(|s| s.outstanding <= self.allowance(s));
+        if sample.is_some() {
+            self.unasked = 0;
+        } else if done {
+            self.unasked = self.unasked.saturating_add(1);
+        }
         if !done {
+            self.kept_up = 0;
             self.held_up = true;
             self.blocked_since.get_or_insert(now);
             self.quiet_since = None;
@@ -194,6 +211,9 @@ impl LinkPacer {
         }
         self.in_flight = None;
         let blocked = self.blocked_since.take();
+        if blocked.is_none() && sample.is_some() {
+            self.kept_up = self.kept_up.saturating_add(1);
+        }
         self.waited = Some(blocked.map_or(Duration::ZERO, |b| now.duration_since(b)));
         // Only a frame whose arrival was watched for (the session wanted the next one and
         // looked every few ms) says how fast the link is, and only if the link held it up.
@@ -213,7 +233,11 @@ impl LinkPacer {
     /// already written (`wire` bytes so far), so only its acknowledgement is in question.
     #[must_use]
     pub fn needs_sample(&self, wire: u64) -> bool {
-        self.in_flight.is_some_and(|f| wire > f.wire_before)
+        // A link that has kept up with every frame lately is asked every few frames only (the
+        // question costs the server a netlink round trip); one frame's hold-up is enough to go
+        // back to asking every time.
+        let due = self.kept_up < KEPT_UP_STREAK || self.unasked + 1 >= ASK_EVERY;
+        due && self.in_flight.is_some_and(|f| wire > f.wire_before)
     }
 
     /// What may stay unacknowledged when the next frame goes: what the path holds by itself
@@ -588,5 +612,39 @@ mod tests {
         let f = sim.p.figures();
         assert!(f.steps_up <= 5, "{levels:?}");
         assert_eq!(f.steps_down, f.steps_up + 1, "{levels:?}");
+    }
+
+    #[test]
+    fn a_link_that_keeps_up_is_asked_every_few_frames_until_it_holds_one_up() {
+        let t = Instant::now();
+        let mut p = LinkPacer::new(PERIOD, ColorLevel::Ansi256);
+        let mut wire = 0;
+        let mut asked = 0;
+        for i in 0..(KEPT_UP_STREAK + 4 * ASK_EVERY) {
+            let now = t + PERIOD * i;
+            p.sent(wire, ColorLevel::Ansi256, now);
+            wire += 8_000;
+            let ask = p.needs_sample(wire);
+            asked += u32::from(ask);
+            let s = sample(0, 1_000_000);
+            assert!(p.clear(wire, ask.then_some(&s), true, now + PERIOD / 2));
+        }
+        assert_eq!(
+            asked,
+            KEPT_UP_STREAK + 4,
+            "every frame, then one in {ASK_EVERY}"
+        );
+        // Held up once: asked every frame again.
+        p.sent(wire, ColorLevel::Ansi256, t);
+        wire += 8_000;
+        while !p.needs_sample(wire) {
+            assert!(p.clear(wire, None, true, t));
+            p.sent(wire, ColorLevel::Ansi256, t);
+            wire += 8_000;
+        }
+        assert!(!p.clear(wire, Some(&sample(8_000, 1_000_000)), true, t));
+        assert!(p.clear(wire, Some(&sample(0, 1_000_000)), true, t + PERIOD));
+        p.sent(wire, ColorLevel::Ansi256, t + PERIOD);
+        assert!(p.needs_sample(wire + 8_000));
     }
 }

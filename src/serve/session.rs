@@ -101,6 +101,10 @@ pub struct SessionParams {
     /// The connection's socket: bytes written so far, its TCP addresses, and where the link
     /// figures go when the session ends.
     pub life: Arc<Lifeline>,
+    /// Whether frames are acknowledged end to end ([`super::link_echo`]): behind a load balancer
+    /// (`--proxy-protocol`), where the kernel sees only the hop to the balancer. A direct client's
+    /// path is the socket's own, which the kernel's figures cover at no cost.
+    pub echo: bool,
     /// The last line a player sees when the server stops (see [`super::drain`]).
     pub farewell: watch::Receiver<&'static str>,
 }
@@ -185,7 +189,11 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
         .life
         .tcp()
         .and_then(|(local, peer)| LinkProbe::open(local, peer));
-    let mut echo = EchoGate::new();
+    let mut echo = if p.echo {
+        EchoGate::new()
+    } else {
+        EchoGate::off()
+    };
     s.link_known = probe.is_some();
     // Whether the screen may have changed since the last frame; when the next look is due
     // (the frame-rate cap, or the link still carrying the last frame).
@@ -257,6 +265,7 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
                     if let Some(end) = s.on_keys(&keys, &snaps.borrow()) {
                         break end;
                     }
+                    want = true;
                 }
                 if !p.spectator && now.duration_since(s.last_input) >= p.idle_timeout {
                     break End::Idle;
@@ -280,7 +289,9 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
                     // Wanted at a tick and still not drawn: the link held it back.
                     tally.dropped += u64::from(again.is_some());
                 }
-                want = true;
+                // The world's snapshots bring its changes; the tick brings only what time
+                // changes by itself: a note over the status line running out.
+                want |= s.screen.notice_showing(now) != s.notice_shown;
             }
             () = sleep_until_some(again), if again.is_some() => {
                 again = None;
@@ -290,8 +301,13 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
             continue;
         }
         let now = tokio::time::Instant::now();
-        // At most one frame a period; the first change after a pause goes at once.
-        if let Some(next) = last_frame.map(|t| t + period).filter(|&t| t > now) {
+        // At most one frame a period (less a quarter, so the world's snapshots, a period apart
+        // with some jitter, are each drawn as they come); the first change after a pause goes at
+        // once.
+        if let Some(next) = last_frame
+            .map(|t| t + period - period / 4)
+            .filter(|&t| t > now)
+        {
             again = Some(next);
             continue;
         }
@@ -600,6 +616,8 @@ struct State {
     /// The last header and what it was made from: it changes only when someone joins, leaves
     /// or scores, so most frames reuse it.
     header: Option<(HeaderFrom, String)>,
+    /// Whether a note was over the status line in the frame on screen.
+    notice_shown: bool,
     /// Whether the kernel's figures for this link can be read (then the header shows them).
     link_known: bool,
     /// The link figures the header shows, and when they last changed.
@@ -671,6 +689,7 @@ impl State {
             show_leaders: false,
             glyph_cycle: GlyphCycle::new(dropper, glyphs, FORCE_OCTANTS),
             header: None,
+            notice_shown: false,
             link_known: false,
             link: None,
         }
@@ -854,6 +873,7 @@ impl State {
         if self.shown.as_ref() == Some(&key) {
             return;
         }
+        self.notice_shown = key.3 .1;
         self.shown = Some(key);
         self.screen
             .set_leaders(self.leaders.clone(), self.show_leaders);
