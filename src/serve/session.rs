@@ -199,7 +199,8 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
     // (the frame-rate cap, or the link still carrying the last frame).
     let mut want = true;
     let mut again: Option<tokio::time::Instant> = None;
-    let mut last_frame: Option<tokio::time::Instant> = None;
+    // When the next frame is due on the `--fps` grid.
+    let mut next_slot: Option<tokio::time::Instant> = None;
     let mut world_alive = true;
     let end = loop {
         tokio::select! {
@@ -301,13 +302,10 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
             continue;
         }
         let now = tokio::time::Instant::now();
-        // At most one frame a period (less a quarter, so the world's snapshots, a period apart
-        // with some jitter, are each drawn as they come); the first change after a pause goes at
-        // once.
-        if let Some(next) = last_frame
-            .map(|t| t + period - period / 4)
-            .filter(|&t| t > now)
-        {
+        // `--fps` frames a second at most, on a grid a period apart; a frame may come a quarter
+        // period early, so the world's snapshots (a period apart, with some jitter) are each
+        // drawn as they come. The first change after a pause goes at once.
+        if let Some(next) = next_slot.map(|t| t - period / 4).filter(|&t| t > now) {
             again = Some(next);
             continue;
         }
@@ -401,7 +399,7 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
                 if echo.on() {
                     send_echo(&p.handle, &mut echo, std_now);
                 }
-                last_frame = Some(now);
+                next_slot = Some(next_slot.map_or(now, |t| t.max(now - period / 4)) + period);
                 tally.frames += 1;
                 tally.bytes += n;
                 frame_metrics.sent(n as usize);
