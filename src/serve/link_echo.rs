@@ -9,10 +9,10 @@
 //! hop to the balancer. A direct client's path is the socket's own, and an echo per frame would
 //! cost the server a task and two packets per frame for nothing.
 //!
-//! The request is `cancel-tcpip-forward` for no forward (RFC 4254 §7.1): clients answer it with
-//! a failure and do nothing else (OpenSSH, PuTTY, paramiko and russh reply to any global request
-//! that wants a reply). A client that never answers the first one within [`FIRST_PATIENCE`] is
-//! paced on the kernel's figures alone.
+//! The request is `cancel-tcpip-forward` for no forward (RFC 4254 §7.1): a client answers it
+//! with a failure and does nothing else (OpenSSH's client does, checked through HAProxy; russh's
+//! client code replies to any global request that wants a reply). A client that never answers
+//! the first one within [`FIRST_PATIENCE`] is paced on the kernel's figures alone.
 
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
