@@ -15,6 +15,7 @@ mod world_common;
 
 mod game_serve;
 mod input_hardening;
+mod scores_json;
 mod serve_abuse;
 mod serve_auth;
 mod serve_backup;

@@ -8,7 +8,6 @@ use crate::serve_process::{free_port, spawn};
 use crate::serve_support;
 
 use std::path::PathBuf;
-use std::process::Command;
 use std::time::{Duration, Instant};
 
 use halfcast::serve::{RunningServer, ServeConfig};
@@ -27,16 +26,7 @@ fn quick_rounds(db: &str) -> impl FnOnce(&mut ServeConfig) {
 
 /// `halfcast scores --json --db URL`: the rounds recorded on its one map.
 fn scored_rounds(url: &str) -> (u64, Vec<String>) {
-    let out = Command::new(env!("CARGO_BIN_EXE_halfcast"))
-        .args(["scores", "--json", "--db", url])
-        .output()
-        .expect("halfcast scores runs");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let v = crate::scores_json::scores_json(url);
     let maps = v["maps"].as_array().expect("maps");
     assert_eq!(maps.len(), 1, "one map, one board: {v:#}");
     let names = maps[0]["top"]

@@ -126,17 +126,7 @@ async fn results_land_in_the_database_show_next_round_and_scores_json_reads_them
 
     // A restart opens the same file (its boards load at start) and keeps serving.
     let srv = serve(config(tree.path(), Some(db.clone())), &paths).await;
-    let out = Command::new(env!("CARGO_BIN_EXE_halfcast"))
-        .args(["scores", "--json", "--db"])
-        .arg(&db)
-        .output()
-        .expect("halfcast scores runs");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let v = crate::scores_json::scores_json(&db);
     assert_eq!(v["schema"], 2);
     let maps = v["maps"].as_array().expect("maps");
     assert_eq!(maps.len(), 1, "{v}");

@@ -5,7 +5,6 @@
 
 use crate::serve_support;
 
-use std::process::Command;
 use std::time::Duration;
 
 use halfcast::serve::{RunningServer, ServeConfig};
@@ -68,17 +67,7 @@ async fn two_worlds_on_one_sqlite_file_lose_no_round_and_scores_counts_them_all(
     a.shutdown().await;
     b.shutdown().await;
 
-    let out = Command::new(env!("CARGO_BIN_EXE_halfcast"))
-        .args(["scores", "--json", "--db"])
-        .arg(&db)
-        .output()
-        .expect("halfcast scores runs");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let v = crate::scores_json::scores_json(&db);
     let maps = v["maps"].as_array().expect("maps");
     assert_eq!(maps.len(), 1, "one map, one board: {v:#}");
     let recorded = maps[0]["rounds"].as_u64().unwrap();
