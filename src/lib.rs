@@ -164,6 +164,11 @@ pub mod fuzzing;
 pub mod input_file;
 #[doc(hidden)]
 pub mod output;
+// One player's game over any transport, paced to its link (the server's edges drive it).
+#[doc(hidden)]
+#[allow(missing_docs)]
+#[cfg(feature = "serve")]
+pub mod play;
 #[doc(hidden)]
 pub mod present;
 #[doc(hidden)]

@@ -4,13 +4,9 @@ use std::net::SocketAddr;
 use std::path::PathBuf;
 use std::time::Duration;
 
-use super::auth::AuthMode;
 use super::limits::Startups;
+use super::ssh::auth::AuthMode;
 
-/// Widest terminal a client may claim, in columns (larger claims are clamped, never trusted).
-pub const MAX_COLS: u16 = 500;
-/// Tallest terminal a client may claim, in rows.
-pub const MAX_ROWS: u16 = 200;
 /// The size used when a client opens a shell without asking for a pty first.
 pub const DEFAULT_SIZE: (u16, u16) = (80, 24);
 
@@ -74,7 +70,7 @@ pub struct ServeConfig {
     /// Every connection starts with a PROXY protocol header naming the client's address.
     pub proxy_protocol: bool,
     /// Text lines or one JSON object per event (`--log-format`).
-    pub log_format: super::log::LogFormat,
+    pub log_format: super::ops::log::LogFormat,
     /// On SIGTERM, how long the world may drain (its round ending) before it stops
     /// (`--drain-seconds`).
     pub drain: Duration,
@@ -110,38 +106,9 @@ impl ServeConfig {
             db: None,
             metrics: None,
             proxy_protocol: false,
-            log_format: super::log::LogFormat::Text,
-            drain: super::drain::DEFAULT_DRAIN,
+            log_format: super::ops::log::LogFormat::Text,
+            drain: super::ops::drain::DEFAULT_DRAIN,
             threads: None,
         }
-    }
-}
-
-/// Turns a client's claimed terminal size into one we render: each side clamped to 1..=max.
-///
-/// The SSH wire carries `u32`; anything above the bounds (including values that would wrap a
-/// `u16`) becomes the bound, and 0 becomes 1.
-#[must_use]
-pub fn clamp_size(cols: u32, rows: u32) -> (u16, u16) {
-    let c = cols.clamp(1, u32::from(MAX_COLS));
-    let r = rows.clamp(1, u32::from(MAX_ROWS));
-    // Both are now within u16 range by construction.
-    (
-        u16::try_from(c).unwrap_or(MAX_COLS),
-        u16::try_from(r).unwrap_or(MAX_ROWS),
-    )
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn sizes_are_clamped_without_wrapping() {
-        assert_eq!(clamp_size(0, 0), (1, 1));
-        assert_eq!(clamp_size(80, 24), (80, 24));
-        assert_eq!(clamp_size(501, 201), (500, 200));
-        assert_eq!(clamp_size(65_536 + 80, 65_536 + 24), (500, 200));
-        assert_eq!(clamp_size(u32::MAX, u32::MAX), (500, 200));
     }
 }

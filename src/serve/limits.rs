@@ -27,8 +27,8 @@ pub enum Refusal {
 impl Refusal {
     /// The metrics and log label for this refusal.
     #[must_use]
-    pub fn reason(&self) -> super::metrics::Reason {
-        use super::metrics::Reason;
+    pub fn reason(&self) -> super::ops::metrics::Reason {
+        use super::ops::metrics::Reason;
         match self {
             Self::Full(_) => Reason::Full,
             Self::TooManyFromAddress => Reason::PerAddress,
@@ -233,7 +233,7 @@ impl Limiter {
         e.0 += 1;
         e.1 += 1;
         drop(c);
-        super::metrics::logging_in(true);
+        super::ops::metrics::logging_in(true);
         Ok(Pending {
             ip,
             limiter: self.clone(),
@@ -284,7 +284,7 @@ impl Pending {
 impl Drop for Pending {
     fn drop(&mut self) {
         self.limiter.lock().release(self.ip, true);
-        super::metrics::logging_in(false);
+        super::ops::metrics::logging_in(false);
     }
 }
 

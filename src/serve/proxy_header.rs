@@ -184,7 +184,7 @@ impl<S: AsyncRead + Unpin> AsyncRead for Inbound<S> {
             let room = V2_SIGNATURE.len().saturating_sub(seen.len());
             seen.extend_from_slice(&new[..new.len().min(room)]);
             if opens_header(seen) {
-                super::metrics::refused(super::metrics::Reason::Proxy);
+                super::ops::metrics::refused(super::ops::metrics::Reason::Proxy);
                 return Poll::Ready(Err(io::Error::new(
                     io::ErrorKind::InvalidData,
                     "a PROXY protocol header, but --proxy-protocol is off",

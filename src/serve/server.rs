@@ -21,26 +21,27 @@ use tokio::net::TcpListener;
 use tokio::sync::watch;
 use tokio::task::JoinHandle;
 
-use super::auth::Backoff;
-use super::avatars::with_avatar_sheet;
 use super::config::ServeConfig;
-use super::drain::{AFTER_LAST_ROUND, RESTARTING, SHUTTING_DOWN};
-use super::handler::{BoardLine, ConnHandler, Shared};
-use super::health::{Health, Readiness};
-use super::hostkey;
 use super::leaderboard::database::{self, Database};
 use super::leaderboard::writer::Leaderboard;
 use super::leaderboard::RoundRecord;
-use super::lifecycle::Lifeline;
 use super::limits::{Caps, Limiter, Refusal};
-use super::log::Log;
-use super::metrics::Reason;
+use super::ops::drain::{AFTER_LAST_ROUND, RESTARTING, SHUTTING_DOWN};
+use super::ops::health::{Health, Readiness};
+use super::ops::lifecycle::Lifeline;
+use super::ops::log::Log;
+use super::ops::metrics::Reason;
+use super::ops::stats::{ServeStats, StatsSnapshot};
 use super::proxy_header::{read_header, Inbound, Source, HEADER_WAIT};
 use super::served_map::ServedMap;
-use super::stats::{ServeStats, StatsSnapshot};
+use super::session_hooks::BoardLine;
+use super::ssh::auth::Backoff;
+use super::ssh::handler::{ConnHandler, Shared};
+use super::ssh::hostkey;
 use super::world_task::spawn_rounds;
 use crate::game::multi::players::Rules;
 use crate::game::multi::round::RoundEnd;
+use crate::play::avatars::with_avatar_sheet;
 use crate::world::World;
 
 /// Compression offered to clients, most preferred first: the delayed `zlib@openssh.com`
@@ -137,7 +138,7 @@ impl RunningServer {
         self.ready.drain();
         // Sessions tell their players now (over the status line), and say it again at the end.
         self.farewell.send_replace(RESTARTING);
-        super::metrics::draining();
+        super::ops::metrics::draining();
         let _ = self.stop_accepting.send(true);
         let deadline = tokio::time::Instant::now() + patience;
         let mut rounds = self.rounds.clone();
@@ -218,7 +219,7 @@ pub async fn start_maps(
     };
     let metrics = match config.metrics {
         Some(addr) => {
-            let handle = super::metrics::install()?;
+            let handle = super::ops::metrics::install()?;
             let http = TcpListener::bind(addr)
                 .await
                 .map_err(|e| format!("cannot serve metrics on {addr}: {e}"))?;
@@ -276,7 +277,11 @@ pub async fn start_maps(
     let (rounds_tx, rounds) = watch::channel(0u64);
     let ready = Arc::new(Readiness::new(limiter.clone()));
     let metrics_http = metrics.map(|(handle, http)| {
-        tokio::spawn(super::metrics_http::serve(http, handle, Arc::clone(&ready)))
+        tokio::spawn(super::ops::metrics_http::serve(
+            http,
+            handle,
+            Arc::clone(&ready),
+        ))
     });
     let stats = Arc::new(ServeStats::default());
     let rules = Rules {
@@ -346,7 +351,7 @@ fn round_recorder(
     let names: Vec<String> = worlds.iter().map(|w| w.map.name.clone()).collect();
     let hashes = hashes.to_vec();
     move |end: &RoundEnd| {
-        super::metrics::round(mode);
+        super::ops::metrics::round(mode);
         let (name, hash) = (&names[end.map], &hashes[end.map]);
         let players: Vec<serde_json::Value> = end
             .players
@@ -473,7 +478,7 @@ fn enter(door: &Arc<Door>, socket: tokio::net::TcpStream, tcp_peer: SocketAddr) 
 /// Closes a connection whose PROXY header is missing or malformed.
 fn bad_header(door: &Door, socket: tokio::net::TcpStream, tcp_peer: SocketAddr, why: &str) {
     ServeStats::add(&door.shared.stats.refused, 1);
-    super::metrics::refused(Reason::Proxy);
+    super::ops::metrics::refused(Reason::Proxy);
     door.shared
         .log
         .refusal(None, tcp_peer, Reason::Proxy.label(), why);
@@ -494,7 +499,7 @@ fn admit(
         Ok(s) => s,
         Err(why) => {
             ServeStats::add(&shared.stats.refused, 1);
-            super::metrics::refused(why.reason());
+            super::ops::metrics::refused(why.reason());
             let (logging_in, playing) = shared.limiter.live();
             shared.log.refusal(
                 None,
@@ -507,7 +512,7 @@ fn admit(
         }
     };
     ServeStats::add(&shared.stats.connections, 1);
-    super::metrics::connected();
+    super::ops::metrics::connected();
     let id = door.next_id.fetch_add(1, Ordering::Relaxed);
     let ssh = Arc::clone(&door.ssh);
     let shared = Arc::clone(shared);
@@ -536,7 +541,7 @@ fn admit(
             .as_deref()
             .is_some_and(|e| e.starts_with("login grace time over"))
         {
-            super::metrics::refused(Reason::Grace);
+            super::ops::metrics::refused(Reason::Grace);
         }
         shared.log.disconnect(
             id,

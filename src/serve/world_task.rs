@@ -1,6 +1,6 @@
 //! The one task that owns the shared game state and advances it at a fixed tick.
 //!
-//! Sessions talk to it only through [`WorldHandle`]: messages in (join, leave, held keys) and the
+//! Sessions talk to it only through a [`WorldHandle`]: messages in (join, leave, held keys) and the
 //! latest [`Snapshot`] out through a `watch` channel, so a slow session never slows the world.
 
 use std::sync::Arc;
@@ -9,50 +9,10 @@ use std::time::Duration;
 use tokio::sync::{mpsc, watch};
 use tokio::time::MissedTickBehavior;
 
-use crate::game::multi::players::{PlayerId, Players, Rules, SharedSnapshot, Snapshot};
+use crate::game::multi::players::{Players, Rules, Snapshot};
 use crate::game::multi::round::RoundEnd;
-use crate::game::Input;
+use crate::play::world_port::{WorldHandle, WorldMsg};
 use crate::world::World;
-
-/// What a session tells the world.
-#[derive(Debug, Clone)]
-pub enum WorldMsg {
-    Join {
-        id: PlayerId,
-        name: String,
-    },
-    Leave {
-        id: PlayerId,
-    },
-    /// The keys held now and the commands since the last message (the same `game::Input` the
-    /// local TUI steps with), and the player's view width in columns.
-    Input {
-        id: PlayerId,
-        input: Input,
-        view_width: usize,
-    },
-}
-
-/// A session's line to the world task; cheap to clone.
-#[derive(Debug, Clone)]
-pub struct WorldHandle {
-    tx: mpsc::Sender<WorldMsg>,
-    snapshots: watch::Receiver<SharedSnapshot>,
-}
-
-impl WorldHandle {
-    /// Sends a message; waits if the world's inbox is full (it drains it every tick).
-    pub async fn send(&self, msg: WorldMsg) {
-        // An error means the world task has ended (server shutdown): nothing left to tell.
-        let _ = self.tx.send(msg).await;
-    }
-
-    /// A receiver that always holds the newest snapshot.
-    #[must_use]
-    pub fn snapshots(&self) -> watch::Receiver<SharedSnapshot> {
-        self.snapshots.clone()
-    }
-}
 
 /// The world task for a server: rounds over `worlds` in turn by `rules`; `round_over` is called
 /// (on the world task: it must not block) with each finished round's results as it ends.
@@ -99,7 +59,7 @@ pub fn spawn_rounds(
             }
             let started = std::time::Instant::now();
             players.tick(dt);
-            super::metrics::world_tick(started.elapsed());
+            super::ops::metrics::world_tick(started.elapsed());
             let over = players.ended();
             if let (Some(end), false) = (over, was_over) {
                 round_over(end);
@@ -111,10 +71,7 @@ pub fn spawn_rounds(
             }
         }
     });
-    WorldHandle {
-        tx,
-        snapshots: snap_rx,
-    }
+    WorldHandle::new(tx, snap_rx)
 }
 
 #[cfg(test)]

@@ -87,6 +87,7 @@ impl HelpOverlay<'_> {
         let how = match self.mode {
             InputMode::Kitty => "keys: kitty protocol (exact press / release)",
             InputMode::Emulated => "keys: a tap is one short step; hold to keep moving",
+            InputMode::Released => "keys: browser (exact press / release)",
         };
         out.push((String::new(), String::new()));
         out.push((String::new(), how.to_string()));

@@ -24,6 +24,9 @@ pub enum InputMode {
     Kitty,
     /// Presses only; holds are inferred from auto-repeat with timeouts.
     Emulated,
+    /// Press and release as they happened, without repeats (a browser page, which lets go of
+    /// every key when it loses focus): a key is held until its release.
+    Released,
 }
 
 impl InputMode {
@@ -33,12 +36,24 @@ impl InputMode {
         match self {
             InputMode::Kitty => "kitty keys",
             InputMode::Emulated => "key-repeat",
+            InputMode::Released => "browser keys",
+        }
+    }
+
+    /// How long a held key with no event stays held (never asked in emulated mode).
+    fn stale_after(self) -> Duration {
+        match self {
+            InputMode::Released => RELEASED_STALE,
+            _ => KITTY_STALE,
         }
     }
 }
 
 /// Kitty mode: a key with no event for this long is let go (tmux and friends drop releases).
 pub const KITTY_STALE: Duration = Duration::from_millis(900);
+/// Released mode: the client sends no repeats, so a hold lasts until its release; this only
+/// bounds a release that never comes.
+pub const RELEASED_STALE: Duration = Duration::from_secs(3600);
 
 /// One tap's turn without release events, in degrees.
 pub const TAP_TURN_DEG: f64 = 8.0;
@@ -242,7 +257,7 @@ impl Controls {
             let r = &mut self.runs[i];
             let gap = now.saturating_duration_since(r.last);
             if !emulated {
-                r.until = Some(now + KITTY_STALE);
+                r.until = Some(now + self.mode.stale_after());
                 return;
             }
             if gap <= RepeatTiming::MAX_DELAY {
@@ -272,7 +287,7 @@ impl Controls {
         self.runs.push(KeyRun {
             key,
             action,
-            until: (!emulated).then_some(now + KITTY_STALE),
+            until: (!emulated).then_some(now + self.mode.stale_after()),
             presses: 1,
             last: now,
             first_gap: None,

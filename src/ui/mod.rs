@@ -20,6 +20,7 @@ pub mod centred_box;
 pub mod colour_query;
 // The game and the SSH sessions own a glyph cycle each and read their terminal's octant
 // support; with `ui` alone (on-screen replays) neither is used.
+pub mod frame_grid;
 #[cfg(any(feature = "tui", feature = "serve", test))]
 pub(crate) mod glyph_cycle;
 pub mod help;
@@ -28,6 +29,7 @@ pub mod key_route;
 pub mod keymap;
 pub mod keys;
 pub mod layout;
+pub mod notice;
 #[cfg(any(feature = "tui", feature = "serve", test))]
 pub(crate) mod octant_support;
 pub mod render;

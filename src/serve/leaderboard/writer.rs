@@ -10,8 +10,8 @@ use tokio::sync::watch;
 
 use super::database::Database;
 use super::{board_key, Boards, RoundRecord};
-use crate::serve::log::Log;
-use crate::serve::metrics;
+use crate::serve::ops::log::Log;
+use crate::serve::ops::metrics;
 
 /// Jobs that may wait for the thread; more are dropped.
 const QUEUE: usize = 256;

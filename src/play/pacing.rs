@@ -1,5 +1,5 @@
-//! When an SSH session may send its next frame, and which colour level its link carries: pure
-//! arithmetic over [`TcpSample`]s and frame sizes, the caller owns the clock.
+//! When a play session may send its next frame, and which colour level its link carries: pure
+//! arithmetic over [`LinkSample`]s and frame sizes, the caller owns the clock.
 //!
 //! A frame goes only once the last one has nearly arrived (bytes not yet acknowledged below about
 //! what the path itself holds), as mosh sends a new state only as the last is acknowledged. So
@@ -10,7 +10,7 @@
 
 use std::time::{Duration, Instant};
 
-use super::link_probe::TcpSample;
+use super::link::LinkSample;
 use crate::encode::ColorLevel;
 
 /// Frames per second a moving view should get; below it the level steps down.
@@ -175,11 +175,11 @@ impl LinkPacer {
     /// Whether the next frame may go now: the last one has been written to the socket (`wire`
     /// bytes so far), per the kernel's `sample` nearly all of it acknowledged, and the client
     /// itself has answered for enough of the frames before it (`answered`, from
-    /// [`super::link_echo`]). Without a sample the kernel's part is skipped.
+    /// [`super::acks`]). Without a sample the kernel's part is skipped.
     pub fn clear(
         &mut self,
         wire: u64,
-        sample: Option<&TcpSample>,
+        sample: Option<&LinkSample>,
         answered: bool,
         now: Instant,
     ) -> bool {
@@ -238,7 +238,7 @@ impl LinkPacer {
 
     /// What may stay unacknowledged when the next frame goes: what the path holds by itself
     /// (delivery rate × least round trip), at least [`MIN_ALLOWANCE`].
-    fn allowance(&self, s: &TcpSample) -> u64 {
+    fn allowance(&self, s: &LinkSample) -> u64 {
         // The link's measured speed where frames were held up (the kernel's peak on a shaped
         // link can be a burst through the shaper's bucket, far above what it sustains).
         let rate = self.measured().or(self.peak.map(|(r, _)| r)).unwrap_or(0.0);
@@ -246,7 +246,7 @@ impl LinkPacer {
         (bdp as u64).max(MIN_ALLOWANCE)
     }
 
-    fn observe(&mut self, s: &TcpSample, now: Instant) {
+    fn observe(&mut self, s: &LinkSample, now: Instant) {
         self.seen = Some(now);
         self.figures.rtt = s.rtt;
         self.figures.queued = s.outstanding;
@@ -422,13 +422,13 @@ mod tests {
 
     const PERIOD: Duration = Duration::from_millis(33);
 
-    fn sample(outstanding: u64, rate: u64) -> TcpSample {
-        TcpSample {
+    fn sample(outstanding: u64, rate: u64) -> LinkSample {
+        LinkSample {
             outstanding,
             rtt: Duration::from_millis(20),
             min_rtt: Duration::from_micros(100),
             delivery_rate: rate,
-            ..TcpSample::default()
+            ..LinkSample::default()
         }
     }
 
@@ -523,11 +523,11 @@ mod tests {
         let mut p = LinkPacer::new(PERIOD, ColorLevel::Ansi256);
         p.sent(0, ColorLevel::Ansi256, t);
         // 2.5 MB/s over an 80 ms path holds 200 kB: a 20 kB frame still queued is no wait.
-        let far = TcpSample {
+        let far = LinkSample {
             outstanding: 20_000,
             min_rtt: Duration::from_millis(80),
             delivery_rate: 2_500_000,
-            ..TcpSample::default()
+            ..LinkSample::default()
         };
         assert!(p.clear(30_000, Some(&far), true, t));
     }

@@ -3,7 +3,7 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use super::limits::Limiter;
+use crate::serve::limits::Limiter;
 
 /// A world's readiness as a balancer's health check sees it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

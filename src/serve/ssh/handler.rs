@@ -11,15 +11,16 @@ use russh::{Channel, ChannelId, Pty};
 use tokio::sync::{mpsc, watch};
 
 use super::auth::Backoff;
-use super::config::{ServeConfig, DEFAULT_SIZE};
-use super::leaderboard::writer::Leaderboard;
-use super::lifecycle::Lifeline;
-use super::limits::{Limiter, Pending, Playing, Refusal};
-use super::log::Log;
-use super::metrics::{self, Reason};
-use super::session::{self, End, SessionInputs, SessionParams};
-use super::stats::ServeStats;
-use super::world_task::WorldHandle;
+use super::session::{self, SessionInputs, SessionParams};
+use crate::play::session::End;
+use crate::play::world_port::WorldHandle;
+use crate::serve::config::{ServeConfig, DEFAULT_SIZE};
+use crate::serve::limits::{Limiter, Pending, Playing, Refusal};
+use crate::serve::ops::lifecycle::Lifeline;
+use crate::serve::ops::log::Log;
+use crate::serve::ops::metrics::{self, Reason};
+use crate::serve::ops::stats::ServeStats;
+use crate::serve::session_hooks::BoardLine;
 use crate::world::World;
 
 /// The user name that watches instead of playing (`ssh -p 2222 watch@host`).
@@ -39,7 +40,7 @@ pub struct Shared {
     pub stats: Arc<ServeStats>,
     pub log: Log,
     pub shutdown: watch::Receiver<bool>,
-    /// What sessions are told when they end with the server (see [`super::drain`]).
+    /// What sessions are told when they end with the server (see [`crate::serve::ops::drain`]).
     pub farewell: watch::Receiver<&'static str>,
     /// Who is logging in and who plays, against the caps.
     pub limiter: Limiter,
@@ -47,17 +48,6 @@ pub struct Shared {
     pub backoff: Backoff,
     /// The lasting leaderboard, when the server keeps one.
     pub boards: Option<BoardLine>,
-}
-
-/// A session's line to the leaderboard: the boards, and how to find a map's board.
-#[derive(Debug, Clone)]
-pub struct BoardLine {
-    /// The leaderboard thread's handle.
-    pub board: Leaderboard,
-    /// The served maps' content hashes, by index.
-    pub hashes: Arc<Vec<String>>,
-    /// The mode played ("coop", "tag").
-    pub mode: &'static str,
 }
 
 /// How long a connection whose game ended may linger before it is closed (the client normally

@@ -23,6 +23,7 @@ use crate::render::kept_background::KeptBackground;
 use crate::ui::keymap::KeyMap;
 use crate::ui::keys::InputMode;
 use crate::ui::layout::{Panes, Toggles};
+use crate::ui::notice::Notice;
 use crate::ui::render::render_view_kept;
 use crate::ui::results::{Board, Results, Then};
 use crate::ui::screen::{draw_for_presenter, draw_notice, Screen};
@@ -64,8 +65,8 @@ pub struct SessionScreen {
     pub toggles: Toggles,
     /// This client's block characters (U cycles them; each session its own).
     glyphs: Glyphs,
-    /// A note over the status line, and until when it shows.
-    notice: Option<(String, Instant)>,
+    /// A note over the status line.
+    pub notice: Notice,
 }
 
 /// Where a terminal of `size` puts the 3D view, below the header.
@@ -150,7 +151,7 @@ impl SessionScreen {
             buf: Buffer::empty(Rect::default()),
             toggles: Toggles::default(),
             glyphs: Glyphs::Half,
-            notice: None,
+            notice: Notice::default(),
         }
     }
 
@@ -164,17 +165,6 @@ impl SessionScreen {
     pub fn set_glyphs(&mut self, glyphs: Glyphs) {
         self.glyphs = glyphs;
         self.stats.glyphs = glyphs;
-    }
-
-    /// Shows `text` over the status line until `until`.
-    pub fn set_notice(&mut self, text: String, until: Instant) {
-        self.notice = Some((text, until));
-    }
-
-    /// Whether a note is over the status line at `now`.
-    #[must_use]
-    pub fn notice_showing(&self, now: Instant) -> bool {
-        self.notice.as_ref().is_some_and(|(_, until)| now < *until)
     }
 
     /// The map served.
@@ -236,6 +226,7 @@ impl SessionScreen {
         header: &str,
         size: (u16, u16),
         mode: InputMode,
+        now: Instant,
     ) -> &[u8] {
         let area = Rect::new(0, 0, size.0, size.1);
         let mut buf = std::mem::take(&mut self.buf);
@@ -301,10 +292,8 @@ impl SessionScreen {
                     ray_text: Some(&self.ray_text),
                 };
                 draw_for_presenter(&screen, &panes, body, &mut buf, KeyMap::shared_default());
-                if let (Some((text, until)), Panes::Game { status, .. }) = (&self.notice, panes) {
-                    if started < *until {
-                        draw_notice(text, status, &mut buf);
-                    }
+                if let (Some(text), Panes::Game { status, .. }) = (self.notice.at(now), panes) {
+                    draw_notice(text, status, &mut buf);
                 }
                 if let Panes::Game {
                     minimap: Some(r), ..
@@ -386,7 +375,14 @@ mod tests {
         let mut s = SessionScreen::new(&world, sheet, ColorLevel::TrueColor);
         let size = (140, 40);
         let bytes = s
-            .frame(&snap, Some(1), " you are ann", size, InputMode::Emulated)
+            .frame(
+                &snap,
+                Some(1),
+                " you are ann",
+                size,
+                InputMode::Emulated,
+                Instant::now(),
+            )
             .to_vec();
         let p = show(&bytes, size);
         let text = p.screen().contents();
@@ -428,11 +424,25 @@ mod tests {
         let mut b = SessionScreen::new(&world, sheet, ColorLevel::TrueColor);
         let size = (80, 30);
         let with = show(
-            a.frame(&looking, Some(1), "", size, InputMode::Emulated),
+            a.frame(
+                &looking,
+                Some(1),
+                "",
+                size,
+                InputMode::Emulated,
+                Instant::now(),
+            ),
             size,
         );
         let without = show(
-            b.frame(&alone, Some(1), "", size, InputMode::Emulated),
+            b.frame(
+                &alone,
+                Some(1),
+                "",
+                size,
+                InputMode::Emulated,
+                Instant::now(),
+            ),
             size,
         );
         let Panes::Game { view, .. } = panes_for(size, Toggles::default()) else {
@@ -461,20 +471,48 @@ mod tests {
         for level in [ColorLevel::TrueColor, ColorLevel::Ansi256, ColorLevel::Mono] {
             let mut s = SessionScreen::new(&world, sheet, level);
             let mut p = vt100::Parser::new(size.1, size.0, 0);
-            p.process(s.frame(&snap, Some(1), "hdr", size, InputMode::Emulated));
+            p.process(s.frame(
+                &snap,
+                Some(1),
+                "hdr",
+                size,
+                InputMode::Emulated,
+                Instant::now(),
+            ));
             // The second frame shows the first one's figures; after it, the same world draws
             // the same screen until the status line's fps window ends (every half second).
-            p.process(s.frame(&snap, Some(1), "hdr", size, InputMode::Emulated));
+            p.process(s.frame(
+                &snap,
+                Some(1),
+                "hdr",
+                size,
+                InputMode::Emulated,
+                Instant::now(),
+            ));
             let still = (0..6).any(|_| {
-                s.frame(&snap, Some(1), "hdr", size, InputMode::Emulated)
-                    .is_empty()
+                s.frame(
+                    &snap,
+                    Some(1),
+                    "hdr",
+                    size,
+                    InputMode::Emulated,
+                    Instant::now(),
+                )
+                .is_empty()
             });
             assert!(still, "{level}: every frame of a still world sent bytes");
             let before = p.screen().contents();
             let mut turned = snap.clone();
             let cam = &mut turned.players[0].state.camera;
             *cam = crate::Camera::from_angle(cam.pos, 123.0, crate::camera::DEFAULT_FOV_DEG);
-            let bytes = s.frame(&turned, Some(1), "hdr", size, InputMode::Emulated);
+            let bytes = s.frame(
+                &turned,
+                Some(1),
+                "hdr",
+                size,
+                InputMode::Emulated,
+                Instant::now(),
+            );
             assert!(!bytes.is_empty(), "{level}: the turn was not sent");
             p.process(bytes);
             assert_ne!(p.screen().contents(), before, "{level}");
@@ -490,7 +528,14 @@ mod tests {
         let mut s = SessionScreen::new(&world, sheet, ColorLevel::Ansi256);
         let mut p = vt100::Parser::new(size.1, size.0, 0);
         let long = "a long header that runs well past the short one";
-        p.process(s.frame(&snap, Some(1), long, size, InputMode::Emulated));
+        p.process(s.frame(
+            &snap,
+            Some(1),
+            long,
+            size,
+            InputMode::Emulated,
+            Instant::now(),
+        ));
         let none = Snapshot::default();
         // Each frame draws into the buffer of the frame before last.
         for (snap, eye, header) in [
@@ -500,10 +545,10 @@ mod tests {
             (&snap, Some(1), "short"),
             (&none, None, "waiting"),
         ] {
-            p.process(s.frame(snap, eye, header, size, InputMode::Emulated));
+            p.process(s.frame(snap, eye, header, size, InputMode::Emulated, Instant::now()));
             let mut fresh = SessionScreen::new(&world, sheet, ColorLevel::Ansi256);
             let mut q = vt100::Parser::new(size.1, size.0, 0);
-            q.process(fresh.frame(snap, eye, header, size, InputMode::Emulated));
+            q.process(fresh.frame(snap, eye, header, size, InputMode::Emulated, Instant::now()));
             // Every cell as it looks (a space written or never written look alike).
             let cells = |p: &vt100::Parser| -> Vec<String> {
                 (0..size.1 - 1)
@@ -533,6 +578,7 @@ mod tests {
                 "hdr",
                 (60, 12),
                 InputMode::Kitty,
+                Instant::now(),
             )
             .to_vec();
         assert!(show(&bytes, (60, 12))
@@ -543,7 +589,14 @@ mod tests {
         ps.join(1, "ann");
         let snap = ps.snapshot();
         for size in [(1, 1), (2, 1), (20, 9), (19, 30), (500, 200)] {
-            let _ = s.frame(&snap, Some(1), "hdr", size, InputMode::Kitty);
+            let _ = s.frame(
+                &snap,
+                Some(1),
+                "hdr",
+                size,
+                InputMode::Kitty,
+                Instant::now(),
+            );
         }
     }
 
@@ -586,7 +639,14 @@ mod tests {
             let mut s = SessionScreen::new(&world, sheet, level);
             s.set_glyphs(glyphs);
             let mut p = vt100::Parser::new(size.1, size.0, 0);
-            p.process(s.frame(&near, Some(1), "", size, InputMode::Emulated));
+            p.process(s.frame(
+                &near,
+                Some(1),
+                "",
+                size,
+                InputMode::Emulated,
+                Instant::now(),
+            ));
             let text = view_text(&p, view);
             assert!(text.contains("bob"), "{level}: {text}");
             if level == ColorLevel::TrueColor {
@@ -603,7 +663,7 @@ mod tests {
             }
             // Bob walks off down the corridor: his name leaves the view, no letter stays behind.
             let (_, _, far) = facing(8.0);
-            p.process(s.frame(&far, Some(1), "", size, InputMode::Emulated));
+            p.process(s.frame(&far, Some(1), "", size, InputMode::Emulated, Instant::now()));
             let text = view_text(&p, view);
             assert!(!text.contains("bob"), "{level}: {text}");
             assert!(
@@ -622,10 +682,24 @@ mod tests {
         let (world, sheet, near) = facing(2.5);
         let mut s = SessionScreen::new(&world, sheet, ColorLevel::TrueColor);
         let mut p = vt100::Parser::new(size.1, size.0, 0);
-        p.process(s.frame(&near, Some(1), "", size, InputMode::Emulated));
+        p.process(s.frame(
+            &near,
+            Some(1),
+            "",
+            size,
+            InputMode::Emulated,
+            Instant::now(),
+        ));
         assert!(view_text(&p, view).contains("bob"));
         s.toggles.help = true;
-        p.process(s.frame(&near, Some(1), "", size, InputMode::Emulated));
+        p.process(s.frame(
+            &near,
+            Some(1),
+            "",
+            size,
+            InputMode::Emulated,
+            Instant::now(),
+        ));
         let text = view_text(&p, view);
         assert!(text.contains("help") && !text.contains("bob"), "{text}");
     }

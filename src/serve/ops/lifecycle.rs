@@ -18,7 +18,7 @@ use std::task::{Context, Poll};
 use tokio::io::{AsyncRead, AsyncWrite, ReadBuf};
 use tokio::sync::watch;
 
-use super::link_pacer::LinkFigures;
+use crate::play::pacing::LinkFigures;
 
 /// Shared by the accept task, the SSH handler and the session of one connection.
 #[derive(Debug)]

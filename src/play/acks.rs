@@ -1,18 +1,10 @@
-//! End-to-end acknowledgement of frames through the SSH connection itself: after each frame the
-//! session sends the client a request that wants a reply, which the client answers only once it
-//! has read everything before it (SSH is in order). The kernel's figures
-//! ([`super::link_probe`]) see only the first hop; behind a load balancer that hop is fast and
-//! the balancer's buffers hold the queue, so only an answer from the client itself says a frame
-//! arrived.
-//!
-//! Used behind a load balancer (`--proxy-protocol`) only: there the kernel's figures describe the
-//! hop to the balancer. A direct client's path is the socket's own, and an echo per frame would
-//! cost the server a task and two packets per frame for nothing.
-//!
-//! The request is `cancel-tcpip-forward` for no forward (RFC 4254 §7.1): a client answers it
-//! with a failure and does nothing else (OpenSSH's client does, checked through HAProxy; russh's
-//! client code replies to any global request that wants a reply). A client that never answers
-//! the first one within [`FIRST_PATIENCE`] is paced on the kernel's figures alone.
+//! End-to-end acknowledgement of frames: the client answers for each frame once it has read it,
+//! and the next frame goes only when enough were answered for the path's own round trip. The
+//! transport says how the client answers: over SSH, a request that wants a reply, answered only
+//! once everything before it was read (`cancel-tcpip-forward` for no forward, RFC 4254 §7.1, sent
+//! behind a load balancer where the kernel's figures see only the first hop); a browser page acks
+//! each frame it drew. A client that never answers the first one within [`FIRST_PATIENCE`] is
+//! paced without acknowledgements.
 
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;

@@ -1,7 +1,7 @@
 //! What the kernel knows about one client's TCP connection: bytes written but not yet
 //! acknowledged, the smoothed round trip and the delivery rate. A session reads it before each
 //! frame, so it sends a new frame only once the last has (nearly) arrived, and steps its colour
-//! level to what the link carries ([`super::link_pacer`]).
+//! level to what the link carries ([`crate::play::pacing`]).
 //!
 //! Read through the sock_diag netlink interface (what `ss -ti` uses), one exact-socket query per
 //! sample; no `unsafe`, no extra privileges. On other systems, or where the query fails (a
@@ -11,25 +11,7 @@
 use std::net::SocketAddr;
 use std::time::Duration;
 
-/// One reading of a connection's send side.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct TcpSample {
-    /// Bytes written to the socket and not yet acknowledged by the client (unsent included).
-    pub outstanding: u64,
-    /// Of those, bytes not yet sent at all.
-    pub unsent: u64,
-    /// Smoothed round trip.
-    pub rtt: Duration,
-    /// The kernel's latest delivery-rate sample, in bytes per second.
-    pub delivery_rate: u64,
-    /// Whether that sample was taken while the sender had too little to send (it then says less
-    /// than the link could carry).
-    pub app_limited: bool,
-    /// Bytes acknowledged since the connection opened.
-    pub acked: u64,
-    /// The least round trip seen: the path's own delay, without queues (ours included).
-    pub min_rtt: Duration,
-}
+pub use crate::play::link::LinkSample;
 
 #[cfg(target_os = "linux")]
 pub use linux::LinkProbe;
@@ -39,7 +21,7 @@ pub use other::LinkProbe;
 
 #[cfg(target_os = "linux")]
 mod linux {
-    use super::{Duration, SocketAddr, TcpSample};
+    use super::{Duration, LinkSample, SocketAddr};
     use netlink_packet_core::{NetlinkHeader, NetlinkMessage, NetlinkPayload, NLM_F_REQUEST};
     use netlink_packet_sock_diag::constants::{AF_INET, AF_INET6, IPPROTO_TCP};
     use netlink_packet_sock_diag::inet::{
@@ -103,7 +85,7 @@ mod linux {
         }
 
         /// The connection's send side now; `None` when the kernel no longer knows it (closed).
-        pub fn sample(&mut self) -> Option<TcpSample> {
+        pub fn sample(&mut self) -> Option<LinkSample> {
             self.socket.send(&self.request, 0).ok()?;
             self.reply.clear();
             self.socket.recv(&mut self.reply, 0).ok()?;
@@ -112,9 +94,9 @@ mod linux {
             else {
                 return None;
             };
-            let mut sample = TcpSample {
+            let mut sample = LinkSample {
                 outstanding: u64::from(resp.header.send_queue),
-                ..TcpSample::default()
+                ..LinkSample::default()
             };
             for nla in &resp.nlas {
                 if let Nla::TcpInfo(info) = nla {
@@ -133,7 +115,7 @@ mod linux {
 
 #[cfg(not(target_os = "linux"))]
 mod other {
-    use super::{SocketAddr, TcpSample};
+    use super::{LinkSample, SocketAddr};
 
     /// No probe where sock_diag does not exist: sessions pace on the socket's writes.
     #[derive(Debug)]
@@ -147,7 +129,7 @@ mod other {
         }
 
         /// Never called: no probe opens.
-        pub fn sample(&mut self) -> Option<TcpSample> {
+        pub fn sample(&mut self) -> Option<LinkSample> {
             None
         }
     }

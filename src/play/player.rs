@@ -1,0 +1,310 @@
+//! What one session keeps of its client between frames: what is on its screen, its keys and
+//! where they go, whom it watches, and what the next frame would be drawn from.
+
+use std::time::Instant;
+
+use super::header_text::HeaderFrom;
+use super::link_text::{rate_text, rtt_text};
+use super::pacing::LinkFigures;
+use super::screen::{panes_for, view_rect, SessionScreen};
+use super::session::{End, Setup};
+use super::world_port::WorldMsg;
+use crate::encode::{ColourChoice, ColourReason};
+use crate::game::multi::players::{PlayerId, Snapshot};
+use crate::game::Held;
+use crate::render::glyphs::Glyphs;
+use crate::ui::glyph_cycle::GlyphCycle;
+use crate::ui::key_bytes::{InputEvent, InputParser};
+use crate::ui::key_route::{route, Routed};
+use crate::ui::keys::{Controls, InputMode, UiCommand};
+use crate::ui::layout::Toggles;
+use crate::ui::results::Board;
+
+/// How often the link figures on the header may change.
+const LINK_SHOWN_EVERY: std::time::Duration = std::time::Duration::from_secs(1);
+
+/// (snapshot version, size, colour level, block characters, note shown, eye, panes,
+/// leaderboard shown): everything a frame is drawn from.
+type Shown = (
+    u64,
+    (u16, u16),
+    ColourChoice,
+    (Glyphs, bool),
+    Option<PlayerId>,
+    Toggles,
+    Option<(Board, bool)>,
+);
+
+/// What is on the client's screen and what it asked for; everything the frame depends on.
+pub(super) struct Player {
+    pub spectator: bool,
+    pub me: PlayerId,
+    pub size: (u16, u16),
+    /// Whether the client claimed a bigger terminal than we draw (the header says so).
+    pub clamped: bool,
+    following: Option<PlayerId>,
+    pub parser: InputParser,
+    pub pending_since: Option<Instant>,
+    pub controls: Controls,
+    /// What the world was last told: held keys and view width.
+    sent: (Held, usize),
+    pub last_input: Instant,
+    pub screen: SessionScreen,
+    /// What the frame on screen was drawn from, to skip identical frames.
+    shown: Option<Shown>,
+    /// The leaderboard to show (on the results, and over the game while `L` is on).
+    pub leaders: Option<Board>,
+    /// Whether `L` put the leaderboard over the game.
+    pub show_leaders: bool,
+    /// The glyph key's cycle for this client (without octant behind tmux, unless asked for).
+    glyph_cycle: GlyphCycle,
+    /// The last header and what it was made from: it changes only when someone joins, leaves
+    /// or scores, so most frames reuse it.
+    header: Option<(HeaderFrom, String)>,
+    /// Whether a note was over the status line in the frame on screen.
+    pub notice_shown: bool,
+    /// Whether the transport measures this link (then the header shows its figures).
+    link_known: bool,
+    /// The link figures the header shows, and when they last changed.
+    pub link: Option<(String, Instant)>,
+}
+
+impl Player {
+    pub fn new(setup: &Setup, size: (u32, u32), link_known: bool, now: Instant) -> Self {
+        let mut screen =
+            SessionScreen::new(&setup.world_data, setup.avatar_sheet, setup.colour.level);
+        screen.set_colour(setup.colour);
+        screen.set_glyphs(setup.glyphs);
+        Self {
+            spectator: setup.spectator,
+            me: setup.id,
+            size: clamp_size(size),
+            clamped: is_clamped(size),
+            following: None,
+            parser: InputParser::new(),
+            pending_since: None,
+            controls: Controls::new(setup.input_mode),
+            sent: (Held::default(), usize::MAX),
+            last_input: now,
+            screen,
+            shown: None,
+            leaders: None,
+            show_leaders: false,
+            glyph_cycle: GlyphCycle::new(
+                setup.octant_dropper.clone(),
+                setup.glyphs,
+                setup.force_octants,
+            ),
+            header: None,
+            notice_shown: false,
+            link_known,
+            link: None,
+        }
+    }
+
+    /// Takes new link figures for the header, at most once per [`LINK_SHOWN_EVERY`] (so the
+    /// header, and the frame, change rarely for them). They show while the link limits the
+    /// frames or set the colour level; a link that keeps up leaves the header as it was.
+    pub fn show_link(&mut self, f: LinkFigures, now: Instant) {
+        if !self.link_known
+            || self
+                .link
+                .as_ref()
+                .is_some_and(|(_, at)| now.duration_since(*at) < LINK_SHOWN_EVERY)
+        {
+            return;
+        }
+        let shown = f.limiting || self.screen.colour().reason == ColourReason::Link;
+        let text = match (shown, f.rate) {
+            (true, Some(rate)) => Some(format!("link {} {}", rate_text(rate), rtt_text(f.rtt))),
+            _ => None,
+        };
+        if self.link.as_ref().map(|(t, _)| t) != text.as_ref() {
+            self.link = text.map(|t| (t, now));
+        }
+    }
+
+    /// Follows the client's claimed terminal size, within the bounds.
+    pub fn resize(&mut self, cols: u32, rows: u32) {
+        self.size = clamp_size((cols, rows));
+        self.clamped = is_clamped((cols, rows));
+    }
+
+    /// Acts on parsed keys at `now`; returns an end if one of them quits.
+    pub fn on_keys(&mut self, events: &[InputEvent], snap: &Snapshot, now: Instant) -> Option<End> {
+        if let Some(p) = snap.player(self.me) {
+            // Paused, the turn keys move the debugged column instead of turning.
+            self.controls.set_paused(p.state.debugger.paused);
+        }
+        for ev in events {
+            match *ev {
+                InputEvent::KittyFlags(_) => self.releases_known(InputMode::Kitty),
+                InputEvent::Key(k) => match route(k) {
+                    Routed::NextTarget => self.following = cycle(snap, self.following, true),
+                    Routed::PrevTarget => self.following = cycle(snap, self.following, false),
+                    Routed::Leaderboard => self.show_leaders = !self.show_leaders,
+                    Routed::Tui(ev) => self.controls.handle(&ev, now),
+                    Routed::Nothing => {}
+                },
+            }
+        }
+        let mut uis = self.controls.take_ui();
+        if let Some(note) = self.glyph_cycle.resolve(&mut uis, self.screen.glyphs()) {
+            self.screen.notice.show(note, now);
+        }
+        for ui in uis {
+            let toggles = &mut self.screen.toggles;
+            match ui {
+                UiCommand::Quit => return Some(End::Quit),
+                UiCommand::Back if toggles.help => toggles.help = false,
+                UiCommand::Back => return Some(End::Quit),
+                UiCommand::ToggleMinimap => toggles.minimap = !toggles.minimap,
+                UiCommand::ToggleDebug => toggles.debug = !toggles.debug,
+                UiCommand::ToggleHelp => toggles.help = !toggles.help,
+                UiCommand::CycleColours => self.screen.set_colour(self.screen.colour().cycled()),
+                UiCommand::SetGlyphs(g) => self.screen.set_glyphs(g),
+                // Resolved into `SetGlyphs` by the glyph cycle above.
+                UiCommand::CycleGlyphs => self.screen.set_glyphs(self.screen.glyphs().cycled()),
+                // In a session the figure key is off: it would write on the server's disk.
+                UiCommand::SaveFigure => {}
+            }
+        }
+        None
+    }
+
+    /// The client reports key releases (`mode`: the kitty keyboard protocol, or a browser's
+    /// events): holds end at release instead of being inferred from auto-repeat.
+    pub fn releases_known(&mut self, mode: InputMode) {
+        if self.controls.mode() != mode {
+            self.controls = Controls::new(mode);
+        }
+    }
+
+    /// The message for the world at `now`, when the player's input changed since the last one.
+    pub fn world_input(&mut self, now: Instant) -> Option<WorldMsg> {
+        let input = self.controls.take_input(now);
+        let width = usize::from(view_rect(&panes_for(self.size, self.screen.toggles)).width);
+        if input.commands.is_empty() && (input.held, width) == self.sent {
+            return None;
+        }
+        self.sent = (input.held, width);
+        Some(WorldMsg::Input {
+            id: self.me,
+            input,
+            view_width: width,
+        })
+    }
+
+    /// Whose eyes this session looks through now.
+    fn eye(&mut self, snap: &Snapshot) -> Option<PlayerId> {
+        if !self.spectator {
+            return Some(self.me);
+        }
+        if self.following.is_none_or(|id| snap.player(id).is_none()) {
+            self.following = snap.players.first().map(|p| p.id);
+        }
+        self.following
+    }
+
+    /// Whether the frame drawn from `snap` at `now` would be the one on screen (nothing to send).
+    pub fn unchanged(&mut self, snap: &Snapshot, now: Instant) -> bool {
+        let key = self.key(snap, now);
+        self.shown.as_ref() == Some(&key)
+    }
+
+    /// Everything the frame drawn from `snap` depends on.
+    fn key(&mut self, snap: &Snapshot, now: Instant) -> Shown {
+        let eye = self.eye(snap);
+        (
+            snap.version,
+            self.size,
+            self.screen.colour(),
+            (self.screen.glyphs(), self.screen.notice.showing(now)),
+            eye,
+            self.screen.toggles,
+            self.leaders.clone().map(|b| (b, self.show_leaders)),
+        )
+    }
+
+    /// Appends the bytes of the next frame to `out` (nothing if the screen would not change).
+    pub fn compose(&mut self, snap: &Snapshot, now: Instant, out: &mut Vec<u8>) {
+        let key = self.key(snap, now);
+        let eye = key.4;
+        if self.shown.as_ref() == Some(&key) {
+            return;
+        }
+        self.notice_shown = key.3 .1;
+        self.shown = Some(key);
+        self.screen
+            .set_leaders(self.leaders.clone(), self.show_leaders);
+        let eye_name = eye.and_then(|e| snap.player(e)).map(|p| p.name.as_str());
+        let from = HeaderFrom::cheap(
+            self.screen.colour(),
+            (self.size, self.clamped),
+            self.screen.map().has_game(),
+            self.link.as_ref().map(|(t, _)| t.clone()),
+        );
+        let fresh = self
+            .header
+            .as_ref()
+            .is_some_and(|(was, _)| was.same(snap, eye_name, &from));
+        if !fresh {
+            let from = from.with_names(snap, eye_name);
+            let text = from.header(snap, eye, self.spectator);
+            self.header = Some((from, text));
+        }
+        let header = self.header.as_ref().map_or("", |(_, h)| h.as_str());
+        let mode = self.controls.mode();
+        out.extend_from_slice(self.screen.frame(snap, eye, header, self.size, mode, now));
+    }
+}
+
+/// A claimed size within what we draw.
+fn clamp_size((cols, rows): (u32, u32)) -> (u16, u16) {
+    super::size::clamp_size(cols, rows)
+}
+
+/// Whether a claimed size is outside what we draw (beyond the bounds, or zero).
+fn is_clamped((cols, rows): (u32, u32)) -> bool {
+    let (c, r) = clamp_size((cols, rows));
+    (u32::from(c), u32::from(r)) != (cols, rows)
+}
+
+/// The next (or previous) player after `current` in join order, wrapping; `None` if nobody.
+fn cycle(snap: &Snapshot, current: Option<PlayerId>, forward: bool) -> Option<PlayerId> {
+    let ids: Vec<PlayerId> = snap.players.iter().map(|p| p.id).collect();
+    if ids.is_empty() {
+        return None;
+    }
+    let at = current.and_then(|c| ids.iter().position(|&i| i == c));
+    let n = ids.len();
+    let next = match (at, forward) {
+        (None, _) => 0,
+        (Some(i), true) => (i + 1) % n,
+        (Some(i), false) => (i + n - 1) % n,
+    };
+    Some(ids[next])
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Arc;
+
+    use super::*;
+    use crate::game::multi::players::Players;
+    use crate::world::World;
+
+    #[test]
+    fn tab_cycles_through_players_both_ways() {
+        let mut ps = Players::new(Arc::new(World::default_world()));
+        for (id, n) in [(5, "a"), (7, "b"), (9, "c")] {
+            ps.join(id, n);
+        }
+        let snap = ps.snapshot();
+        assert_eq!(cycle(&snap, None, true), Some(5));
+        assert_eq!(cycle(&snap, Some(5), true), Some(7));
+        assert_eq!(cycle(&snap, Some(9), true), Some(5));
+        assert_eq!(cycle(&snap, Some(5), false), Some(9));
+        assert_eq!(cycle(&Snapshot::default(), Some(5), true), None);
+    }
+}

@@ -1,0 +1,472 @@
+//! One client's play session, whatever carries it: reads its input, follows the world's
+//! snapshots, and sends it frames at its own size and pace through a [`FrameSink`].
+//!
+//! Keys go through the local game's key map into the same `game::Input` the local game steps
+//! with; the world task applies it. Frames are the game's panes under a header
+//! ([`super::screen`]).
+//!
+//! Output follows the link ([`super::pacing`]): a frame is drawn only once the last one has
+//! nearly arrived (what the sink knows of its link, and the client's own acknowledgements), from
+//! the newest snapshot. So a slow client gets fewer, newer frames and nothing queues behind the
+//! player's keys; when the link carries fewer than 15 frames a second the colour level steps
+//! down (`256 (link)`), and back up when it allows. Keys reach the world at once, and a changed
+//! snapshot is drawn at once when the link is free, so a tap from idle shows without waiting
+//! for a frame tick.
+//!
+//! Time is tokio's clock throughout, so a test can run a session on a paused clock.
+
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use tokio::sync::watch;
+use tokio::time::MissedTickBehavior;
+
+use super::hooks::Hooks;
+use super::input::{Input, InputSource};
+use super::pacing::{LinkFigures, LinkPacer, Step};
+use super::player::Player;
+use super::sink::FrameSink;
+use super::world_port::{WorldHandle, WorldMsg};
+use crate::encode::{ColourChoice, ColourReason};
+use crate::game::multi::players::{PlayerId, Snapshot};
+use crate::render::glyphs::Glyphs;
+use crate::ui::frame_grid::FrameGrid;
+use crate::ui::key_bytes::InputEvent;
+use crate::ui::keys::InputMode;
+use crate::ui::octant_support::OctantDropper;
+use crate::world::World;
+
+/// How long an unfinished escape sequence may wait before a lone ESC counts as the Esc key.
+const ESC_WAIT: Duration = Duration::from_millis(50);
+/// How soon to look at the link again while a frame waits for it.
+const LINK_RECHECK: Duration = Duration::from_millis(3);
+/// How long a note from the server (a world draining) stays: until the session ends.
+const STANDING_NOTE: Duration = Duration::from_secs(3600);
+
+/// Who plays and how a session starts: what the transport learnt of its client before play.
+pub struct Setup {
+    pub id: PlayerId,
+    pub name: String,
+    /// Watches a player's view instead of playing.
+    pub spectator: bool,
+    /// The colour level to start at (the transport's guess or its client's answer).
+    pub colour: ColourChoice,
+    /// The block characters to start with.
+    pub glyphs: Glyphs,
+    /// What drops octants from the glyph key's cycle for this client (tmux), and the words that
+    /// tell the player how to force them.
+    pub octant_dropper: Option<OctantDropper>,
+    pub force_octants: &'static str,
+    /// How keys arrive: inferred holds (a plain terminal) or true releases.
+    pub input_mode: InputMode,
+    /// Input the client sent before play began (typed while the transport asked its terminal).
+    pub early: Vec<u8>,
+    pub world: WorldHandle,
+    /// The served world (with the avatar sheet at `avatar_sheet`).
+    pub world_data: Arc<World>,
+    pub avatar_sheet: usize,
+    pub fps: u32,
+    /// Players with no input for this long are closed; spectators never are.
+    pub idle_timeout: Duration,
+    /// A client that takes no frame for this long is dropped (its link is dead or it never
+    /// reads).
+    pub stall_timeout: Duration,
+}
+
+/// What a transport feeds a session while it runs.
+pub struct Feeds<I> {
+    /// The client's input ([`InputSource`]).
+    pub input: I,
+    /// The client's latest size in columns and rows.
+    pub size: watch::Receiver<(u32, u32)>,
+    /// `true` ends the session at once (server shutdown).
+    pub shutdown: watch::Receiver<bool>,
+    /// A note from the server for every player (a world draining), shown until the session ends.
+    pub announce: watch::Receiver<Option<String>>,
+}
+
+/// Why a session ended (for the log, and for how the transport says goodbye).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum End {
+    Quit,
+    ClientGone,
+    Idle,
+    Stalled,
+    Shutdown,
+}
+
+/// A finished session's figures, for the transport's log line and counters.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Tally {
+    pub frames: u64,
+    pub bytes: u64,
+    /// Frame ticks that passed without a frame: the session was late, or the link held it.
+    pub dropped: u64,
+    pub link: LinkFigures,
+}
+
+/// The clock a session runs on: tokio's, so a paused test clock drives it.
+#[must_use]
+pub fn now() -> Instant {
+    tokio::time::Instant::now().into_std()
+}
+
+/// Runs a session until the client quits or leaves, stops reading, the idle timeout, or server
+/// shutdown; says which, with the session's figures. The transport says goodbye afterwards.
+pub async fn run<I: InputSource, S: FrameSink, H: Hooks>(
+    setup: Setup,
+    mut feeds: Feeds<I>,
+    sink: S,
+    hooks: H,
+) -> (End, Tally) {
+    let size = *feeds.size.borrow();
+    let mut lp = Loop::new(&setup, size, sink, hooks);
+    if !setup.spectator {
+        let join = WorldMsg::Join {
+            id: setup.id,
+            name: setup.name.clone(),
+        };
+        setup.world.send(join).await;
+    }
+    let mut early_end = lp.feed(Input::Bytes(setup.early.clone()), &Snapshot::default());
+    let period = lp.grid.period();
+    let mut tick = tokio::time::interval(period);
+    tick.set_missed_tick_behavior(MissedTickBehavior::Skip);
+    let mut world_alive = true;
+    let end = loop {
+        let step = tokio::select! {
+            biased;
+            Some(end) = std::future::ready(early_end.take()), if early_end.is_some() => Err(end),
+            _ = feeds.shutdown.changed() => Err(End::Shutdown),
+            changed = feeds.announce.changed() => {
+                if changed.is_ok() {
+                    lp.announce(feeds.announce.borrow_and_update().clone());
+                }
+                Ok(())
+            }
+            input = feeds.input.recv() => lp.on_input(input, &setup).await,
+            changed = feeds.size.changed() => match changed {
+                Err(_) => Err(End::ClientGone),
+                Ok(()) => {
+                    let (c, r) = *feeds.size.borrow_and_update();
+                    lp.p.resize(c, r);
+                    lp.want = true;
+                    Ok(())
+                }
+            },
+            changed = lp.snaps.changed(), if world_alive => {
+                world_alive = changed.is_ok();
+                lp.want = true;
+                Ok(())
+            }
+            at = tick.tick() => lp.on_tick(at, &setup).await,
+            () = sleep_until_some(lp.again), if lp.again.is_some() => {
+                lp.again = None;
+                Ok(())
+            }
+        };
+        if let Err(end) = step {
+            break end;
+        }
+        if lp.want {
+            if let Err(end) = lp.frame(&setup).await {
+                break end;
+            }
+        }
+    };
+    if !setup.spectator {
+        setup.world.send(WorldMsg::Leave { id: setup.id }).await;
+    }
+    lp.tally.link = lp.figures();
+    (end, lp.tally)
+}
+
+/// A session's state between the events of its loop.
+struct Loop<S, H> {
+    p: Player,
+    sink: S,
+    hooks: H,
+    snaps: watch::Receiver<Arc<Snapshot>>,
+    pacer: LinkPacer,
+    grid: FrameGrid,
+    tally: Tally,
+    /// Parsed input events, reused.
+    keys: Vec<InputEvent>,
+    /// Frame bytes, reused.
+    out: Vec<u8>,
+    /// Whether the screen may have changed since the last frame.
+    want: bool,
+    /// When to look again at a wanted frame (the frame-rate cap, or the link still carrying the
+    /// last frame).
+    again: Option<tokio::time::Instant>,
+    last_tick: Option<tokio::time::Instant>,
+    /// Whether the world's (unique) name for us has been seen; spectators have none.
+    named: bool,
+    /// (map index, name) whose own best was last asked for.
+    asked: Option<(usize, String)>,
+}
+
+impl<S: FrameSink, H: Hooks> Loop<S, H> {
+    fn new(setup: &Setup, size: (u32, u32), sink: S, hooks: H) -> Self {
+        let grid = FrameGrid::new(setup.fps);
+        let p = Player::new(setup, size, sink.measures(), now());
+        Self {
+            pacer: LinkPacer::new(grid.period(), p.screen.colour().level),
+            p,
+            sink,
+            hooks,
+            snaps: setup.world.snapshots(),
+            grid,
+            tally: Tally::default(),
+            keys: Vec::new(),
+            out: Vec::new(),
+            want: true,
+            again: None,
+            last_tick: None,
+            named: setup.spectator,
+            asked: None,
+        }
+    }
+
+    /// Takes input from the client; returns an end if it quits.
+    fn feed(&mut self, input: Input, snap: &Snapshot) -> Option<End> {
+        let now = now();
+        self.keys.clear();
+        match input {
+            Input::Bytes(bytes) => {
+                self.p.parser.feed(&bytes, &mut self.keys);
+                if self.p.parser.has_pending() {
+                    self.p.pending_since.get_or_insert(now);
+                } else {
+                    self.p.pending_since = None;
+                }
+            }
+            Input::Keys(events) => {
+                self.p.releases_known(InputMode::Released);
+                self.keys.extend(events.into_iter().map(InputEvent::Key));
+            }
+        }
+        let keys = std::mem::take(&mut self.keys);
+        let end = self.p.on_keys(&keys, snap, now);
+        self.keys = keys;
+        end
+    }
+
+    /// Input arrived (or the client closed its side: `None`).
+    async fn on_input(&mut self, input: Option<Input>, setup: &Setup) -> Result<(), End> {
+        let input = input.ok_or(End::ClientGone)?;
+        self.p.last_input = now();
+        let snap = Arc::clone(&self.snaps.borrow());
+        if let Some(end) = self.feed(input, &snap) {
+            return Err(end);
+        }
+        // At once, not at the next frame tick: the world applies it on its next tick.
+        self.tell_world(setup).await;
+        self.want = true;
+        Ok(())
+    }
+
+    /// The player's input, when it changed, to the world.
+    async fn tell_world(&mut self, setup: &Setup) {
+        if !setup.spectator {
+            if let Some(msg) = self.p.world_input(now()) {
+                setup.world.send(msg).await;
+            }
+        }
+    }
+
+    /// A note from the server for the rest of the session.
+    fn announce(&mut self, note: Option<String>) {
+        if let Some(note) = note {
+            let now = now();
+            self.p.screen.notice.show_until(note, now + STANDING_NOTE);
+            self.want = true;
+        }
+    }
+
+    /// A frame tick: what time changes by itself (a lone Esc, idleness, a held key's inferred
+    /// end, a stalled link, a note running out).
+    async fn on_tick(&mut self, at: tokio::time::Instant, setup: &Setup) -> Result<(), End> {
+        let period = self.grid.period();
+        if let Some(prev) = self.last_tick {
+            let gap = at.duration_since(prev).as_secs_f64() / period.as_secs_f64();
+            let skipped = (gap.round() as u64).saturating_sub(1);
+            self.tally.dropped += skipped;
+            self.hooks.ticks_skipped(skipped);
+        }
+        self.last_tick = Some(at);
+        let now = now();
+        if self
+            .p
+            .pending_since
+            .is_some_and(|t| now.duration_since(t) >= ESC_WAIT)
+        {
+            self.keys.clear();
+            self.p.parser.flush(&mut self.keys);
+            self.p.pending_since = None;
+            let keys = std::mem::take(&mut self.keys);
+            let end = self
+                .p
+                .on_keys(&keys, &Arc::clone(&self.snaps.borrow()), now);
+            self.keys = keys;
+            if let Some(end) = end {
+                return Err(end);
+            }
+            self.want = true;
+        }
+        if !setup.spectator && now.duration_since(self.p.last_input) >= setup.idle_timeout {
+            return Err(End::Idle);
+        }
+        // A held key's end is inferred from time, so the world hears it from here too.
+        self.tell_world(setup).await;
+        // A frame the client has not taken for the stall timeout: its link is dead or it
+        // stopped reading.
+        if self
+            .pacer
+            .waiting(now)
+            .is_some_and(|w| w >= setup.stall_timeout)
+        {
+            let sample = self.sink.sample();
+            let answered = self.sink.answered(period, now);
+            if !self
+                .pacer
+                .clear(self.sink.written(), sample.as_ref(), answered, now)
+            {
+                return Err(End::Stalled);
+            }
+        }
+        if self.want {
+            // Wanted at a tick and still not drawn: the link held it back.
+            self.tally.dropped += u64::from(self.again.is_some());
+        }
+        // The world's snapshots bring its changes; the tick brings only what time changes by
+        // itself: a note over the status line running out.
+        self.want |= self.p.screen.notice.showing(now) != self.p.notice_shown;
+        Ok(())
+    }
+
+    /// Draws and sends a frame if the cap, the link and the screen allow; otherwise notes when
+    /// to look again.
+    async fn frame(&mut self, setup: &Setup) -> Result<(), End> {
+        let now = now();
+        if let Some(at) = self.grid.wait_until(now) {
+            self.again = Some(tokio::time::Instant::from_std(at));
+            return Ok(());
+        }
+        let snap = Arc::clone(&self.snaps.borrow_and_update());
+        self.follow(&snap, setup);
+        if self.p.unchanged(&snap, now) {
+            self.want = false;
+            return Ok(());
+        }
+        if !self.link_clear(now) {
+            self.again = Some(tokio::time::Instant::from_std(now) + LINK_RECHECK);
+            return Ok(());
+        }
+        self.again = None;
+        self.want = false;
+        self.step_level(now);
+        self.p.show_link(self.figures(), now);
+        self.p.compose(&snap, now, &mut self.out);
+        if self.out.is_empty() {
+            return Ok(());
+        }
+        let (render, encode) = self.p.screen.last_times();
+        self.hooks.frame_timed(render, encode);
+        let n = self.out.len();
+        let bytes = std::mem::take(&mut self.out);
+        let wire_before = self.sink.written();
+        match tokio::time::timeout(setup.stall_timeout, self.sink.send(bytes)).await {
+            Err(_) => Err(End::Stalled),
+            Ok(Err(_)) => Err(End::ClientGone),
+            Ok(Ok(())) => {
+                self.pacer
+                    .sent(wire_before, self.p.screen.colour().level, now);
+                self.grid.drawn(now);
+                self.tally.frames += 1;
+                self.tally.bytes += n as u64;
+                self.hooks.frame_sent(n);
+                Ok(())
+            }
+        }
+    }
+
+    /// What the frame from `snap` shows besides the world: the name the world gave us, our best
+    /// asked for on each map, the leaderboard while it shows.
+    fn follow(&mut self, snap: &Snapshot, setup: &Setup) {
+        let me = snap.player(setup.id);
+        if let (false, Some(me)) = (self.named, me) {
+            self.named = true;
+            if me.name != setup.name {
+                self.hooks.renamed(&setup.name, &me.name);
+            }
+        }
+        if let Some(me) = me {
+            let here = (snap.map, me.name.clone());
+            if self.asked.as_ref() != Some(&here) {
+                self.hooks.best_wanted(here.0, &here.1);
+                self.asked = Some(here);
+            }
+        }
+        // Only while shown: a frame of play builds no board.
+        self.p.leaders = if snap.ended.is_some() || self.p.show_leaders {
+            self.hooks.board(snap, setup.id)
+        } else {
+            None
+        };
+    }
+
+    /// Whether the link lets the next frame go now (the last one has nearly arrived).
+    fn link_clear(&mut self, now: Instant) -> bool {
+        let wire = self.sink.written();
+        // Nothing in flight, or not yet written: no need to ask the transport.
+        let sample = if self.pacer.needs_sample(wire) {
+            self.sink.sample()
+        } else {
+            None
+        };
+        let answered = self.sink.answered(self.grid.period(), now);
+        if !self.pacer.clear(wire, sample.as_ref(), answered, now) {
+            return false;
+        }
+        if let Some(d) = self.pacer.take_waited() {
+            self.hooks.link_waited(d);
+        }
+        true
+    }
+
+    /// Steps the colour level as the link asks, unless the player chose it.
+    fn step_level(&mut self, now: Instant) {
+        if self.p.screen.colour().reason == ColourReason::Key {
+            return;
+        }
+        if let Some(step) = self.pacer.step(self.p.screen.colour().level, now) {
+            let (level, down) = match step {
+                Step::Down(l) => (l, true),
+                Step::Up(l) => (l, false),
+            };
+            self.hooks.level_stepped(down);
+            self.p.screen.set_colour(ColourChoice {
+                level,
+                reason: ColourReason::Link,
+            });
+        }
+    }
+
+    /// The link's figures, with the round trip of the client's own answers where it gives them
+    /// (behind a load balancer the kernel sees only the hop to the balancer).
+    fn figures(&self) -> LinkFigures {
+        let mut f = self.pacer.figures();
+        if let Some(rtt) = self.sink.acked_rtt() {
+            f.rtt = rtt;
+        }
+        f
+    }
+}
+
+/// Sleeps until `at` (never called with `None`: the select arm is disabled then).
+async fn sleep_until_some(at: Option<tokio::time::Instant>) {
+    if let Some(at) = at {
+        tokio::time::sleep_until(at).await;
+    }
+}
