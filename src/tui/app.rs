@@ -12,14 +12,16 @@ use ratatui::layout::Rect;
 use super::events::Events;
 use super::terminal::Session;
 use crate::encode::{ColourChoice, ColourReason, EncodeOptions, Pacer};
-use crate::game::{step, Command, GameState};
+use crate::game::{step, Command, GameState, Input};
 use crate::present::Presenter;
 use crate::render::framebuffer::Framebuffer;
 use crate::render::kept_background::KeptBackground;
 use crate::replay::FrameInput;
+use crate::ui::frame_grid::FrameGrid;
 use crate::ui::glyph_cycle::GlyphCycle;
 use crate::ui::keys::{Controls, UiCommand};
 use crate::ui::layout::{Panes, Toggles, COMPACT_MIN_WIDTH};
+use crate::ui::notice::Notice;
 use crate::ui::render::render_view_kept;
 use crate::ui::results::{Results, Then};
 use crate::ui::screen::{draw_for_presenter, draw_notice, KeptLines, Screen};
@@ -119,24 +121,23 @@ struct App {
     recording_open: bool,
     last_size: Option<(u16, u16)>,
     keys: crate::ui::keymap::KeyMap,
-    /// A note for the status line and until when it shows (a pane hidden for lack of room).
-    notice: Option<(String, Instant)>,
+    /// A note for the status line (a pane hidden for lack of room, a figure written).
+    notice: Notice,
     /// The wanted panes that did not fit last frame, to notice a change.
     hidden: Vec<&'static str>,
     /// The glyph key's cycle here (without octant inside tmux, unless asked for).
     glyph_cycle: GlyphCycle,
+    /// When the next frame is due.
+    grid: FrameGrid,
 }
 
-/// How long a note stays on the status line.
-const NOTICE_FOR: Duration = Duration::from_secs(4);
+/// Most keys taken between two frames once the frame is already due (the input queue's size).
+const LATE_KEYS: usize = 256;
 
 /// Runs frames until quit or a signal; `signal` holds the number of a caught signal (0 = none).
 ///
 /// # Errors
 /// Terminal I/O failures (reading events, writing frames).
-/// Most keys taken between two frames once the frame is already due (the input queue's size).
-const LATE_KEYS: usize = 256;
-
 pub fn run_loop(
     session: &mut Session,
     campaign: Campaign,
@@ -146,40 +147,7 @@ pub fn run_loop(
     signal: &Arc<AtomicUsize>,
 ) -> io::Result<(Ending, FrameStats, Option<Recording>)> {
     let fps = f64::from(options.fps.max(1));
-    let state = campaign.start(0, setup.speeds);
-    let mut controls = Controls::new(session.input_mode());
-    controls.set_keymap(setup.keys.clone());
-    controls.set_speeds(state.speeds);
-    let mut app = App {
-        state,
-        campaign,
-        stage: 0,
-        results: None,
-        controls,
-        toggles: setup.toggles,
-        stats: FrameStats::default(),
-        fb: Framebuffer::new(0, 0),
-        presenter: Presenter::new(options.encode),
-        ray_text: RefCell::default(),
-        background: KeptBackground::default(),
-        pacer: options.max_bandwidth.map(|bits| Pacer::new(bits, fps)),
-        recording: options.record.then(Recording::default),
-        recording_open: true,
-        last_size: None,
-        keys: setup.keys.clone(),
-        notice: None,
-        hidden: Vec::new(),
-        glyph_cycle: GlyphCycle::new(
-            super::octant_dropper_here(),
-            setup.glyphs,
-            "--glyphs octant forces",
-        ),
-    };
-    app.stats.level = Some(ColourChoice {
-        level: options.encode.level,
-        reason: options.colour_reason,
-    });
-    app.stats.glyphs = setup.glyphs;
+    let mut app = App::new(campaign, &options, setup, session);
     // Keys typed while the start-up colour query ran come first.
     let now = Instant::now();
     for ev in &early_keys {
@@ -188,37 +156,13 @@ pub fn run_loop(
     let period = Duration::from_secs_f64(1.0 / fps);
     let events = Events::spawn()?;
     let mut last = Instant::now();
-    let mut next = last;
     loop {
-        // 1. Input: take events until this frame is due (blocking in poll, never spinning). A
-        // frame that took longer than the period leaves no time to wait: the keys already typed
-        // are still taken (up to the queue's size), so a slow machine lags but never drops keys.
-        let mut late = 0;
-        loop {
-            let wait = next.saturating_duration_since(Instant::now());
-            match events.next_within(wait)? {
-                Some(ev) => app.controls.handle(&ev, Instant::now()),
-                None => break,
-            }
-            if wait.is_zero() {
-                late += 1;
-                if late >= LATE_KEYS {
-                    break;
-                }
-            }
-            if signal.load(Ordering::SeqCst) != 0 {
-                break;
-            }
+        // 1. Input: take events until this frame is due.
+        app.take_events(&events, signal)?;
+        if let Some(sig) = caught(signal) {
+            return Ok((Ending::Signal(sig), app.stats, app.recording));
         }
-        let sig = signal.load(Ordering::SeqCst);
-        if sig != 0 {
-            return Ok((Ending::Signal(sig as i32), app.stats, app.recording));
-        }
-        let mut ui = app.controls.take_ui();
-        // The glyph key becomes the setting it leads to here, which is what gets recorded.
-        if let Some(note) = app.glyph_cycle.resolve(&mut ui, app.stats.glyphs) {
-            app.notice = Some((note, Instant::now() + NOTICE_FOR));
-        }
+        let ui = app.take_ui();
         if app.ui_commands(&ui) {
             return Ok((Ending::Quit, app.stats, app.recording));
         }
@@ -234,20 +178,142 @@ pub fn run_loop(
             .pacer
             .as_ref()
             .map_or(period, |p| p.frame_interval().max(period));
-        next += interval;
-        if next < now {
-            next = now + interval;
-        }
+        app.grid.set_period(interval);
+        app.grid.drawn(now);
 
         // 2. Step: the layout decides the view width the debugger works in.
         let size = session.size()?;
+        let (panes, view) = app.lay_out(size, &ui, now);
+        app.save_figure(&ui, view, now);
+        let input = app.controls.take_input(now);
+        app.record(&input, &ui, (size.width, size.height), options.fps);
+        app.advance(&input, view, dt);
+
+        // 3. Render the view and draw the panes; 4. encode and write the frame once.
+        let sent = match app.draw(session, size, panes, view, now) {
+            Ok(sent) => sent,
+            // A full terminal gave way to a signal: end like any signalled frame.
+            Err(_) if caught(signal).is_some() => {
+                let sig = caught(signal).unwrap_or_default();
+                return Ok((Ending::Signal(sig), app.stats, app.recording));
+            }
+            Err(e) => return Err(e),
+        };
+        app.adapt(&options, fps, sent);
+        // Lets the end-to-end tests prove the panic hook restores the terminal (debug builds only).
+        #[cfg(debug_assertions)]
+        if std::env::var_os("HALFCAST_TEST_PANIC").is_some() {
+            panic!("HALFCAST_TEST_PANIC is set");
+        }
+    }
+}
+
+/// The signal caught, if any.
+fn caught(signal: &Arc<AtomicUsize>) -> Option<i32> {
+    match signal.load(Ordering::SeqCst) {
+        0 => None,
+        sig => Some(sig as i32),
+    }
+}
+
+impl App {
+    fn new(
+        campaign: Campaign,
+        options: &LoopOptions,
+        setup: &super::Setup,
+        session: &Session,
+    ) -> Self {
+        let fps = f64::from(options.fps.max(1));
+        let state = campaign.start(0, setup.speeds);
+        let mut controls = Controls::new(session.input_mode());
+        controls.set_keymap(setup.keys.clone());
+        controls.set_speeds(state.speeds);
+        let mut stats = FrameStats::default();
+        stats.level = Some(ColourChoice {
+            level: options.encode.level,
+            reason: options.colour_reason,
+        });
+        stats.glyphs = setup.glyphs;
+        App {
+            state,
+            campaign,
+            stage: 0,
+            results: None,
+            controls,
+            toggles: setup.toggles,
+            stats,
+            fb: Framebuffer::new(0, 0),
+            presenter: Presenter::new(options.encode),
+            ray_text: RefCell::default(),
+            background: KeptBackground::default(),
+            pacer: options.max_bandwidth.map(|bits| Pacer::new(bits, fps)),
+            recording: options.record.then(Recording::default),
+            recording_open: true,
+            last_size: None,
+            keys: setup.keys.clone(),
+            notice: Notice::default(),
+            hidden: Vec::new(),
+            glyph_cycle: GlyphCycle::new(
+                super::octant_dropper_here(),
+                setup.glyphs,
+                "--glyphs octant forces",
+            ),
+            grid: FrameGrid::new(options.fps),
+        }
+    }
+
+    /// Takes events until the next frame is due (blocking in poll, never spinning). A frame
+    /// that took longer than the period leaves no time to wait: the keys already typed are
+    /// still taken (up to the queue's size), so a slow machine lags but never drops keys.
+    fn take_events(&mut self, events: &Events, signal: &Arc<AtomicUsize>) -> io::Result<()> {
+        let mut late = 0;
+        loop {
+            let now = Instant::now();
+            let wait = self
+                .grid
+                .wait_until(now)
+                .map_or(Duration::ZERO, |t| t - now);
+            match events.next_within(wait)? {
+                Some(ev) => self.controls.handle(&ev, Instant::now()),
+                None => return Ok(()),
+            }
+            if wait.is_zero() {
+                late += 1;
+                if late >= LATE_KEYS {
+                    return Ok(());
+                }
+            }
+            if caught(signal).is_some() {
+                return Ok(());
+            }
+        }
+    }
+
+    /// The UI commands since the last frame; the glyph key becomes the setting it leads to
+    /// here, which is what gets recorded.
+    fn take_ui(&mut self) -> Vec<UiCommand> {
+        let mut ui = self.controls.take_ui();
+        if let Some(note) = self.glyph_cycle.resolve(&mut ui, self.stats.glyphs) {
+            self.notice.show(note, Instant::now());
+        }
+        ui
+    }
+
+    /// Lays the panes out for `size`: says when a wanted pane has no room, and sets the view
+    /// width the game and the turn keys work in.
+    fn lay_out(
+        &mut self,
+        size: ratatui::layout::Size,
+        ui: &[UiCommand],
+        now: Instant,
+    ) -> (Panes, Rect) {
         let area = Rect::new(0, 0, size.width, size.height);
-        let panes = Panes::compute(area, app.toggles);
-        let hidden = panes.hidden(app.toggles);
+        let panes = Panes::compute(area, self.toggles);
+        let hidden = panes.hidden(self.toggles);
         let asked = ui
             .iter()
             .any(|u| matches!(u, UiCommand::ToggleMinimap | UiCommand::ToggleDebug));
-        if (asked || hidden != app.hidden) && !hidden.is_empty() {
+        if (asked || hidden != self.hidden) && !hidden.is_empty() {
             let need = if size.width < COMPACT_MIN_WIDTH {
                 format!("needs {COMPACT_MIN_WIDTH} columns")
             } else {
@@ -259,53 +325,50 @@ pub fn run_loop(
                 size.width,
                 size.height
             );
-            app.notice = Some((text, now + NOTICE_FOR));
+            self.notice.show(text, now);
         }
-        app.hidden = hidden;
+        self.hidden = hidden;
         let view = match panes {
             Panes::Game { view, .. } => view,
             Panes::TooSmall(_) => Rect::default(),
         };
-        app.state.view_width = usize::from(view.width);
+        self.state.view_width = usize::from(view.width);
         if view.width > 0 {
-            let fov = app.state.camera.fov_deg().to_radians();
-            app.controls
+            let fov = self.state.camera.fov_deg().to_radians();
+            self.controls
                 .set_turn_per_column(fov / f64::from(view.width));
         }
-        if ui.contains(&UiCommand::SaveFigure) && view.width > 0 {
-            let text = match super::figure_key::write_figure(
-                &app.state,
-                (view.width, view.height),
-                std::path::Path::new("."),
-            ) {
-                Ok(path) => format!(
-                    "figure of column {} written to {}",
-                    app.state.debug_column(),
-                    path.display()
-                ),
-                Err(e) => format!("figure not written: {e}"),
-            };
-            app.notice = Some((text, now + NOTICE_FOR));
+        (panes, view)
+    }
+
+    /// Writes the debugged column's ray as a figure when the figure key was pressed.
+    fn save_figure(&mut self, ui: &[UiCommand], view: Rect, now: Instant) {
+        if !ui.contains(&UiCommand::SaveFigure) || view.width == 0 {
+            return;
         }
-        let input = app.controls.take_input(now);
-        if app.results.is_some() {
-            // Enter (the run-to-hit key) on the results screen: the next level, or the last one
-            // again (as the results screen says).
-            if input.commands.contains(&Command::RunToHit) {
-                if app.stage + 1 < app.campaign.stages.len() {
-                    app.stage += 1;
-                }
-                app.state = app.campaign.start(app.stage, app.state.speeds);
-                app.background.forget();
-                app.state.view_width = usize::from(view.width);
-                app.results = None;
-            }
+        let text = match super::figure_key::write_figure(
+            &self.state,
+            (view.width, view.height),
+            std::path::Path::new("."),
+        ) {
+            Ok(path) => format!(
+                "figure of column {} written to {}",
+                self.state.debug_column(),
+                path.display()
+            ),
+            Err(e) => format!("figure not written: {e}"),
+        };
+        self.notice.show(text, now);
+    }
+
+    /// Adds this frame's input to the recording while it is open.
+    fn record(&mut self, input: &Input, ui: &[UiCommand], size: (u16, u16), fps: u32) {
+        if self.results.is_some() {
             // A recording is one level: it ends at the exit.
-            app.recording_open = false;
+            self.recording_open = false;
         }
-        if let Some(rec) = app.recording.as_mut().filter(|_| app.recording_open) {
-            let size = (size.width, size.height);
-            let resize = match app.last_size {
+        if let Some(rec) = self.recording.as_mut().filter(|_| self.recording_open) {
+            let resize = match self.last_size {
                 None => {
                     rec.size = size;
                     None
@@ -315,86 +378,103 @@ pub fn run_loop(
             };
             rec.frames.push(FrameInput {
                 input: input.clone(),
-                ui,
+                ui: ui.to_vec(),
                 resize,
             });
             // An hour at most, so every recording replays within the default `--max-frames`
             // and a game left running does not grow the recording without bound.
-            if rec.frames.len() >= crate::replay::default_max_frames(options.fps) {
-                app.recording_open = false;
+            if rec.frames.len() >= crate::replay::default_max_frames(fps) {
+                self.recording_open = false;
             }
         }
-        app.last_size = Some((size.width, size.height));
-        if app.results.is_none() {
-            step(&mut app.state, &input, dt);
-            if app.state.level.finished().is_some() {
-                app.results = Some(app.campaign.results(app.stage, &app.state));
-            }
-        }
-        app.controls.set_paused(app.state.debugger.paused);
+        self.last_size = Some(size);
+    }
 
-        // 3. Render the 3D view at exactly the pane's size.
+    /// Moves on from the results screen when asked, and steps the game by `dt` seconds.
+    fn advance(&mut self, input: &Input, view: Rect, dt: f64) {
+        // Enter (the run-to-hit key) on the results screen: the next level, or the last one
+        // again (as the results screen says).
+        if self.results.is_some() && input.commands.contains(&Command::RunToHit) {
+            if self.stage + 1 < self.campaign.stages.len() {
+                self.stage += 1;
+            }
+            self.state = self.campaign.start(self.stage, self.state.speeds);
+            self.background.forget();
+            self.state.view_width = usize::from(view.width);
+            self.results = None;
+        }
+        if self.results.is_none() {
+            step(&mut self.state, input, dt);
+            if self.state.level.finished().is_some() {
+                self.results = Some(self.campaign.results(self.stage, &self.state));
+            }
+        }
+        self.controls.set_paused(self.state.debugger.paused);
+    }
+
+    /// Renders the 3D view at exactly the pane's size, draws the panes, and writes the frame;
+    /// returns its bytes.
+    fn draw(
+        &mut self,
+        session: &mut Session,
+        size: ratatui::layout::Size,
+        panes: Panes,
+        view: Rect,
+        now: Instant,
+    ) -> io::Result<usize> {
         let t = Instant::now();
         // Mono is ASCII shades: it draws half-blocks' worth whatever the setting.
-        let glyphs = if app.presenter.level() == crate::encode::ColorLevel::Mono {
+        let glyphs = if self.presenter.level() == crate::encode::ColorLevel::Mono {
             crate::render::glyphs::Glyphs::Half
         } else {
-            app.stats.glyphs
+            self.stats.glyphs
         };
-        app.fb.resize_cells(view.width, view.height, glyphs);
-        app.fb.set_phases_wanted(app.presenter.level().mixes());
-        let cast = render_view_kept(&app.state, &mut app.fb, &mut app.background);
+        self.fb.resize_cells(view.width, view.height, glyphs);
+        self.fb.set_phases_wanted(self.presenter.level().mixes());
+        let cast = render_view_kept(&self.state, &mut self.fb, &mut self.background);
         let render_time = t.elapsed();
-
-        // 4. Draw the panes into a buffer, encode the frame, write it once.
         let t = Instant::now();
+        let area = Rect::new(0, 0, size.width, size.height);
         let screen = Screen {
-            state: &app.state,
-            view: &app.fb,
+            state: &self.state,
+            view: &self.fb,
             cast: &cast,
-            stats: &app.stats,
-            toggles: app.toggles,
-            input_mode: app.controls.mode(),
-            results: app.results.as_ref(),
-            ray_text: Some(&app.ray_text),
+            stats: &self.stats,
+            toggles: self.toggles,
+            input_mode: self.controls.mode(),
+            results: self.results.as_ref(),
+            ray_text: Some(&self.ray_text),
         };
         let mut buf = Buffer::empty(area);
-        draw_for_presenter(&screen, &panes, area, &mut buf, &app.keys);
-        if let (Some((text, until)), Panes::Game { status, .. }) = (&app.notice, panes) {
-            if now < *until {
-                draw_notice(text, status, &mut buf);
-            }
+        draw_for_presenter(&screen, &panes, area, &mut buf, &self.keys);
+        if let (Some(text), Panes::Game { status, .. }) = (self.notice.at(now), panes) {
+            draw_notice(text, status, &mut buf);
         }
-        let bytes = app.presenter.frame_taking(&mut buf, &app.fb, view);
-        if let Err(e) = session.write_frame(bytes) {
-            // A full terminal gave way to a signal: end like any signalled frame.
-            let sig = signal.load(Ordering::SeqCst);
-            if sig != 0 {
-                return Ok((Ending::Signal(sig as i32), app.stats, app.recording));
-            }
-            return Err(e);
-        }
+        let bytes = self.presenter.frame_taking(&mut buf, &self.fb, view);
+        session.write_frame(bytes)?;
         let sent = bytes.len();
         let draw_time = t.elapsed();
-        app.stats.record_bytes(sent);
-        if let Some(p) = app.pacer.as_mut() {
-            p.record(sent);
-            let level = app.presenter.level();
-            let lower = p.level_for(level, MIN_ADAPT_FPS);
-            if options.adapt_colours && lower != level {
-                app.presenter.set_level(lower);
-                app.stats.level = Some(ColourChoice {
-                    level: lower,
-                    reason: ColourReason::Bandwidth,
-                });
-                *p = Pacer::new(options.max_bandwidth.unwrap_or(u64::MAX), fps);
-            }
-        }
-        app.stats.record(Instant::now(), render_time, draw_time);
-        // Lets the end-to-end tests prove the panic hook restores the terminal (debug builds only).
-        #[cfg(debug_assertions)]
-        if std::env::var_os("HALFCAST_TEST_PANIC").is_some() {
-            panic!("HALFCAST_TEST_PANIC is set");
+        self.stats.record_bytes(sent);
+        self.stats.record(Instant::now(), render_time, draw_time);
+        Ok(sent)
+    }
+
+    /// Under a bandwidth cap: records the frame's size, and lowers the colour level when the
+    /// cap cannot carry the least frame rate at this one.
+    fn adapt(&mut self, options: &LoopOptions, fps: f64, sent: usize) {
+        let Some(p) = self.pacer.as_mut() else {
+            return;
+        };
+        p.record(sent);
+        let level = self.presenter.level();
+        let lower = p.level_for(level, MIN_ADAPT_FPS);
+        if options.adapt_colours && lower != level {
+            self.presenter.set_level(lower);
+            self.stats.level = Some(ColourChoice {
+                level: lower,
+                reason: ColourReason::Bandwidth,
+            });
+            *p = Pacer::new(options.max_bandwidth.unwrap_or(u64::MAX), fps);
         }
     }
 }
