@@ -3,7 +3,7 @@
 //! edge in `serve`, a browser edge) adapts its connection to [`sink::FrameSink`] and
 //! [`input::Input`] and runs [`session::run`].
 //!
-//! - [`session`]: the loop (when to draw, idle and stall rules, the frame-rate cap);
+//! - [`session`]: the loop, given a [`setup`] (when to draw, idle and stall rules, the frame-rate cap);
 //!   [`player`]: what one client has on screen (keys, whom it watches, what a frame is drawn
 //!   from); [`header_text`] and [`header_fit`]: the header row; [`screen`] and [`avatars`]: the
 //!   panes with the other players in them.
@@ -25,6 +25,7 @@ pub mod pacing;
 mod player;
 pub(crate) mod screen;
 pub mod session;
+pub mod setup;
 pub mod sink;
 pub mod size;
 pub mod world_port;

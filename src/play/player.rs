@@ -7,7 +7,7 @@ use super::header_text::HeaderFrom;
 use super::link_text::{rate_text, rtt_text};
 use super::pacing::LinkFigures;
 use super::screen::{panes_for, view_rect, SessionScreen};
-use super::session::{End, Setup};
+use super::setup::{End, Setup};
 use super::world_port::WorldMsg;
 use crate::encode::{ColourChoice, ColourReason};
 use crate::game::multi::players::{PlayerId, Snapshot};

@@ -227,9 +227,18 @@ impl Run {
 
     /// Frames handed over from `from` on: (when, bytes, when it reached the client).
     fn frames_since(&self, from: Instant) -> Vec<(Instant, u64, Instant)> {
+        self.frames_of(from, 0)
+    }
+
+    /// Frames of the view (at least [`VIEW_BYTES`]) handed over from `from` on.
+    fn view_frames_since(&self, from: Instant) -> Vec<(Instant, u64, Instant)> {
+        self.frames_of(from, VIEW_BYTES)
+    }
+
+    fn frames_of(&self, from: Instant, least: u64) -> Vec<(Instant, u64, Instant)> {
         let link = self.link.lock().unwrap();
         (0..link.frames.len())
-            .filter(|&i| link.frames[i].at >= from)
+            .filter(|&i| link.frames[i].at >= from && link.frames[i].bytes >= least)
             .map(|i| (link.frames[i].at, link.frames[i].bytes, link.arrived(i)))
             .collect()
     }
@@ -239,6 +248,10 @@ impl Run {
         self.done.await.unwrap()
     }
 }
+
+/// Bytes below which a frame changed no more than the status line (a turning 80×24 view at 256
+/// colours changes over a thousand).
+const VIEW_BYTES: u64 = 500;
 
 async fn wait(d: Duration) {
     tokio::time::sleep(d).await;
@@ -279,18 +292,25 @@ async fn frames_are_paced_to_the_link_and_nothing_queues_behind_a_release() {
             w[0].2 - held
         );
     }
-    // Nothing queued behind the release: the screen stops moving within one frame's trip.
-    let after: Vec<_> = turning.iter().filter(|f| f.0 >= released).collect();
+    // Nothing queued behind the release: the view stops moving within one frame's trip. (A
+    // frame of a few dozen bytes later redraws only the status line's figures, which follow the
+    // machine's own clock.)
+    let view_frames = run.view_frames_since(held);
+    let after: Vec<_> = view_frames.iter().filter(|f| f.0 >= released).collect();
     println!(
-        "turning 4 s: {} frames, {bytes} B (the link carried {carried:.0} B); {} frames after the release",
+        "turning 4 s: {} frames, {bytes} B (the link carried {carried:.0} B); {} view frames after the release",
         during.len(),
         after.len()
     );
-    assert!(after.len() <= 3, "{} frames after the release", after.len());
-    let last_arrival = turning.iter().map(|f| f.2).max().unwrap();
+    assert!(
+        after.len() <= 2,
+        "{} view frames after the release",
+        after.len()
+    );
+    let last_arrival = view_frames.iter().map(|f| f.2).max().unwrap();
     assert!(
         last_arrival <= released + Duration::from_millis(300),
-        "the screen moved until {:?} after the release",
+        "the view moved until {:?} after the release",
         last_arrival - released
     );
     let (end, tally) = run.quit().await;
@@ -337,21 +357,24 @@ async fn the_level_steps_down_on_a_slow_link_and_back_up_when_it_is_fast_again()
 #[tokio::test(start_paused = true)]
 async fn a_tap_from_idle_is_drawn_at_once() {
     let run = start(64_000.0, Duration::from_millis(40), ColorLevel::Ansi256);
-    // Idle: the first frames are drawn, then the screen stays as it is.
+    // Idle: the first frames are drawn, then the view stays as it is (the status line's
+    // figures, which follow the machine's clock, may still change).
     wait(Duration::from_secs(3)).await;
     let idle = now();
     wait(Duration::from_secs(1)).await;
     assert!(
-        run.frames_since(idle).is_empty(),
+        run.view_frames_since(idle).is_empty(),
         "frames while nothing moved: {:?}",
-        run.frames_since(idle)
+        run.view_frames_since(idle)
     );
     let tapped = now();
     run.key('d', KeyKind::Press).await;
+    // A quick finger: down for 80 ms.
+    wait(Duration::from_millis(80)).await;
     run.key('d', KeyKind::Release).await;
     wait(Duration::from_secs(1)).await;
-    let frames = run.frames_since(tapped);
-    assert!(!frames.is_empty(), "the tap drew nothing");
+    let frames = run.view_frames_since(tapped);
+    assert!(!frames.is_empty(), "the tap drew nothing: {:?}", run.frames_since(tapped));
     // The world applies the tap on its next tick (a 30th of a second); the frame follows it.
     let first = frames[0].0 - tapped;
     println!(

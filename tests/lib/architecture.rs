@@ -33,11 +33,21 @@ fn backticked(cell: &str) -> Vec<String> {
 }
 
 /// The source without comments, string contents or `#[cfg(test)]` modules.
-fn code_only(src: &str) -> String {
+pub(crate) fn code_only(src: &str) -> String {
+    stripped(src, true)
+}
+
+/// The source without comments or string contents, and without `#[cfg(test)]` modules when
+/// `drop_tests`; every line break is kept, so lines are where they were.
+pub(crate) fn stripped(src: &str, drop_tests: bool) -> String {
     let mut out = String::with_capacity(src.len());
     let b = src.as_bytes();
     let mut i = 0;
+    let breaks = |span: &str, out: &mut String| {
+        out.extend(span.chars().filter(|&c| c == '\n'));
+    };
     while i < b.len() {
+        let from = i;
         if src[i..].starts_with("//") {
             while i < b.len() && b[i] != b'\n' {
                 i += 1;
@@ -56,13 +66,18 @@ fn code_only(src: &str) -> String {
             }
             i += 1;
             out.push_str("\"\"");
-        } else if src[i..].starts_with("#[cfg(test)]") && test_module_follows(&src[i + 12..]) {
+        } else if drop_tests
+            && src[i..].starts_with("#[cfg(test)]")
+            && test_module_follows(&src[i + 12..])
+        {
             i = skip_braced(src, i);
         } else {
             let c = src[i..].chars().next().unwrap();
             out.push(c);
             i += c.len_utf8();
+            continue;
         }
+        breaks(&src[from..i.min(b.len())], &mut out);
     }
     out
 }
@@ -94,7 +109,7 @@ fn test_module_follows(rest: &str) -> bool {
 }
 
 /// The index just past the brace block (or `;`) that starts after `from`.
-fn skip_braced(src: &str, from: usize) -> usize {
+pub(crate) fn skip_braced(src: &str, from: usize) -> usize {
     let b = src.as_bytes();
     let mut i = from;
     while i < b.len() && b[i] != b'{' && b[i] != b';' {
@@ -153,7 +168,7 @@ fn rooms_named(code: &str) -> BTreeSet<String> {
     found
 }
 
-fn ident(s: &str) -> String {
+pub(crate) fn ident(s: &str) -> String {
     s.chars()
         .take_while(|c| c.is_alphanumeric() || *c == '_')
         .collect()
@@ -171,7 +186,7 @@ fn room_of(src: &Path, file: &Path) -> String {
     first.trim_end_matches(".rs").to_owned()
 }
 
-fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
+pub(crate) fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
     for entry in std::fs::read_dir(dir).unwrap() {
         let path = entry.unwrap().path();
         if path.is_dir() {
@@ -233,7 +248,7 @@ fn violations(root: &Path, table: &BTreeMap<String, BTreeSet<String>>) -> Vec<St
     bad
 }
 
-fn root() -> &'static Path {
+pub(crate) fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
 

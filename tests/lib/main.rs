@@ -9,6 +9,7 @@ mod capture;
 mod world_common;
 
 mod architecture;
+mod code_shape;
 mod embed_view;
 mod encode_roundtrip;
 mod game_creatures;
