@@ -4,6 +4,7 @@
 use std::time::Instant;
 
 use super::header_text::HeaderFrom;
+use super::input::Input;
 use super::link_text::{rate_text, rtt_text};
 use super::pacing::LinkFigures;
 use super::screen::{panes_for, view_rect, SessionScreen};
@@ -43,7 +44,9 @@ pub(super) struct Player {
     /// Whether the client claimed a bigger terminal than we draw (the header says so).
     pub clamped: bool,
     following: Option<PlayerId>,
-    pub parser: InputParser,
+    parser: InputParser,
+    /// Parsed input events, reused.
+    keys: Vec<InputEvent>,
     pub pending_since: Option<Instant>,
     pub controls: Controls,
     /// What the world was last told: held keys and view width.
@@ -82,6 +85,7 @@ impl Player {
             clamped: is_clamped(size),
             following: None,
             parser: InputParser::new(),
+            keys: Vec::new(),
             pending_since: None,
             controls: Controls::new(setup.input_mode),
             sent: (Held::default(), usize::MAX),
@@ -130,8 +134,45 @@ impl Player {
         self.clamped = is_clamped((cols, rows));
     }
 
+    /// Takes the client's input at `now`: a terminal's bytes are parsed (an unfinished escape
+    /// waits for [`Player::flush_escape`]), key events are taken as they are. Returns an end if a
+    /// key quits.
+    pub fn take(&mut self, input: Input, snap: &Snapshot, now: Instant) -> Option<End> {
+        let mut keys = std::mem::take(&mut self.keys);
+        keys.clear();
+        match input {
+            Input::Bytes(bytes) => {
+                self.parser.feed(&bytes, &mut keys);
+                if self.parser.has_pending() {
+                    self.pending_since.get_or_insert(now);
+                } else {
+                    self.pending_since = None;
+                }
+            }
+            Input::Keys(events) => {
+                self.releases_known(InputMode::Released);
+                keys.extend(events.into_iter().map(InputEvent::Key));
+            }
+        }
+        let end = self.on_keys(&keys, snap, now);
+        self.keys = keys;
+        end
+    }
+
+    /// An unfinished escape sequence that waited long enough: its bytes are keys after all (a
+    /// lone Esc). Returns an end if one quits.
+    pub fn flush_escape(&mut self, snap: &Snapshot, now: Instant) -> Option<End> {
+        let mut keys = std::mem::take(&mut self.keys);
+        keys.clear();
+        self.parser.flush(&mut keys);
+        self.pending_since = None;
+        let end = self.on_keys(&keys, snap, now);
+        self.keys = keys;
+        end
+    }
+
     /// Acts on parsed keys at `now`; returns an end if one of them quits.
-    pub fn on_keys(&mut self, events: &[InputEvent], snap: &Snapshot, now: Instant) -> Option<End> {
+    fn on_keys(&mut self, events: &[InputEvent], snap: &Snapshot, now: Instant) -> Option<End> {
         if let Some(p) = snap.player(self.me) {
             // Paused, the turn keys move the debugged column instead of turning.
             self.controls.set_paused(p.state.debugger.paused);
@@ -174,7 +215,7 @@ impl Player {
 
     /// The client reports key releases (`mode`: the kitty keyboard protocol, or a browser's
     /// events): holds end at release instead of being inferred from auto-repeat.
-    pub fn releases_known(&mut self, mode: InputMode) {
+    fn releases_known(&mut self, mode: InputMode) {
         if self.controls.mode() != mode {
             self.controls = Controls::new(mode);
         }

@@ -31,8 +31,6 @@ use super::world_port::WorldMsg;
 use crate::encode::{ColourChoice, ColourReason};
 use crate::game::multi::players::Snapshot;
 use crate::ui::frame_grid::FrameGrid;
-use crate::ui::key_bytes::InputEvent;
-use crate::ui::keys::InputMode;
 
 /// How long an unfinished escape sequence may wait before a lone ESC counts as the Esc key.
 const ESC_WAIT: Duration = Duration::from_millis(50);
@@ -64,18 +62,21 @@ pub async fn run<I: InputSource, S: FrameSink, H: Hooks>(
         };
         setup.world.send(join).await;
     }
-    let mut early_end = lp.feed(Input::Bytes(setup.early.clone()), &Snapshot::default());
+    let early = Input::Bytes(setup.early.clone());
+    let mut early_end = lp.p.take(early, &Snapshot::default(), now());
     let period = lp.grid.period();
     let mut tick = tokio::time::interval(period);
     tick.set_missed_tick_behavior(MissedTickBehavior::Skip);
-    let mut world_alive = true;
+    let (mut world_alive, mut announce_alive) = (true, true);
     let end = loop {
         let step = tokio::select! {
             biased;
             Some(end) = std::future::ready(early_end.take()), if early_end.is_some() => Err(end),
             _ = feeds.shutdown.changed() => Err(End::Shutdown),
-            changed = feeds.announce.changed() => {
-                if changed.is_ok() {
+            changed = feeds.announce.changed(), if announce_alive => {
+                // Err: the server is gone; its shutdown signal ends the session.
+                announce_alive = changed.is_ok();
+                if announce_alive {
                     lp.announce(feeds.announce.borrow_and_update().clone());
                 }
                 Ok(())
@@ -126,8 +127,6 @@ struct Loop<S, H> {
     pacer: LinkPacer,
     grid: FrameGrid,
     tally: Tally,
-    /// Parsed input events, reused.
-    keys: Vec<InputEvent>,
     /// Frame bytes, reused.
     out: Vec<u8>,
     /// Whether the screen may have changed since the last frame.
@@ -154,7 +153,6 @@ impl<S: FrameSink, H: Hooks> Loop<S, H> {
             snaps: setup.world.snapshots(),
             grid,
             tally: Tally::default(),
-            keys: Vec::new(),
             out: Vec::new(),
             want: true,
             again: None,
@@ -164,36 +162,12 @@ impl<S: FrameSink, H: Hooks> Loop<S, H> {
         }
     }
 
-    /// Takes input from the client; returns an end if it quits.
-    fn feed(&mut self, input: Input, snap: &Snapshot) -> Option<End> {
-        let now = now();
-        self.keys.clear();
-        match input {
-            Input::Bytes(bytes) => {
-                self.p.parser.feed(&bytes, &mut self.keys);
-                if self.p.parser.has_pending() {
-                    self.p.pending_since.get_or_insert(now);
-                } else {
-                    self.p.pending_since = None;
-                }
-            }
-            Input::Keys(events) => {
-                self.p.releases_known(InputMode::Released);
-                self.keys.extend(events.into_iter().map(InputEvent::Key));
-            }
-        }
-        let keys = std::mem::take(&mut self.keys);
-        let end = self.p.on_keys(&keys, snap, now);
-        self.keys = keys;
-        end
-    }
-
     /// Input arrived (or the client closed its side: `None`).
     async fn on_input(&mut self, input: Option<Input>, setup: &Setup) -> Result<(), End> {
         let input = input.ok_or(End::ClientGone)?;
         self.p.last_input = now();
         let snap = Arc::clone(&self.snaps.borrow());
-        if let Some(end) = self.feed(input, &snap) {
+        if let Some(end) = self.p.take(input, &snap, now()) {
             return Err(end);
         }
         // At once, not at the next frame tick: the world applies it on its next tick.
@@ -237,15 +211,8 @@ impl<S: FrameSink, H: Hooks> Loop<S, H> {
             .pending_since
             .is_some_and(|t| now.duration_since(t) >= ESC_WAIT)
         {
-            self.keys.clear();
-            self.p.parser.flush(&mut self.keys);
-            self.p.pending_since = None;
-            let keys = std::mem::take(&mut self.keys);
-            let end = self
-                .p
-                .on_keys(&keys, &Arc::clone(&self.snaps.borrow()), now);
-            self.keys = keys;
-            if let Some(end) = end {
+            let snap = Arc::clone(&self.snaps.borrow());
+            if let Some(end) = self.p.flush_escape(&snap, now) {
                 return Err(end);
             }
             self.want = true;
