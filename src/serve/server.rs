@@ -28,7 +28,7 @@ use super::drain::{AFTER_LAST_ROUND, RESTARTING, SHUTTING_DOWN};
 use super::handler::{BoardLine, ConnHandler, Shared};
 use super::health::{Health, Readiness};
 use super::hostkey;
-use super::leaderboard::database::{self, Database};
+use super::leaderboard::database;
 use super::leaderboard::writer::Leaderboard;
 use super::leaderboard::RoundRecord;
 use super::lifecycle::Lifeline;
@@ -197,25 +197,7 @@ pub async fn start_maps(
     for n in notes {
         log.server(n);
     }
-    let mode = config.mode.name();
-    let leaderboard = match &config.db {
-        Some(path) => {
-            let served: Vec<(String, String)> = maps
-                .iter()
-                .map(|m| (m.hash.clone(), mode.to_owned()))
-                .collect();
-            // On a thread outside the runtime: PostgreSQL's blocking client runs a runtime of
-            // its own (start-up only; the writer thread has it from then on).
-            let started = std::thread::scope(|s| {
-                s.spawn(|| Leaderboard::start(Database::open(path)?, &served, log))
-                    .join()
-                    .unwrap_or_else(|_| Err("leaderboard: opening it panicked".into()))
-            })?;
-            log.server(format_args!("leaderboard in {}", database::shown(path)));
-            Some(started)
-        }
-        None => None,
-    };
+    // First: the leaderboard's backlog found at start shows in the metrics.
     let metrics = match config.metrics {
         Some(addr) => {
             let handle = super::metrics::install()?;
@@ -227,6 +209,32 @@ pub async fn start_maps(
                 "metrics on http://{bound}/metrics, health on http://{bound}/healthz"
             ));
             Some((handle, http))
+        }
+        None => None,
+    };
+    let mode = config.mode.name();
+    let leaderboard = match &config.db {
+        Some(path) => {
+            let served: Vec<(String, String)> = maps
+                .iter()
+                .map(|m| (m.hash.clone(), mode.to_owned()))
+                .collect();
+            let target = super::leaderboard::writer::Target {
+                db: path.clone(),
+                password_file: config.db_password_file.clone(),
+                queue_dir: config.queue_dir.clone().unwrap_or_else(|| {
+                    super::leaderboard::writer::default_queue_dir(&config.host_key)
+                }),
+            };
+            // On a thread outside the runtime: PostgreSQL's blocking client runs a runtime of
+            // its own (start-up only; the writer thread has it from then on).
+            let started = std::thread::scope(|s| {
+                s.spawn(|| Leaderboard::start(target, &served, log))
+                    .join()
+                    .unwrap_or_else(|_| Err("leaderboard: opening it panicked".into()))
+            })?;
+            log.server(format_args!("leaderboard in {}", database::shown(path)));
+            Some(started)
         }
         None => None,
     };
@@ -345,6 +353,7 @@ fn round_recorder(
 ) -> impl FnMut(&RoundEnd) + Send + 'static {
     let names: Vec<String> = worlds.iter().map(|w| w.map.name.clone()).collect();
     let hashes = hashes.to_vec();
+    let mut ids = super::leaderboard::round_id::RoundIds::new();
     move |end: &RoundEnd| {
         super::metrics::round(mode);
         let (name, hash) = (&names[end.map], &hashes[end.map]);
@@ -369,6 +378,7 @@ fn round_recorder(
                 .duration_since(UNIX_EPOCH)
                 .map_or(0, |d| d.as_secs() as i64);
             lb.record(RoundRecord {
+                uid: ids.next_id(),
                 map_hash: hash.clone(),
                 map_name: name.clone(),
                 mode: mode.to_owned(),
