@@ -24,7 +24,7 @@ use tokio::task::JoinHandle;
 use super::auth::Backoff;
 use super::avatars::with_avatar_sheet;
 use super::config::ServeConfig;
-use super::drain::{AFTER_LAST_ROUND, RESTARTING, SHUTTING_DOWN};
+use super::drain::{RESTARTING, SHUTTING_DOWN};
 use super::handler::{BoardLine, ConnHandler, Shared};
 use super::health::{Health, Readiness};
 use super::hostkey;
@@ -61,8 +61,14 @@ pub struct RunningServer {
     stop_accepting: watch::Sender<bool>,
     /// What sessions are told when they end with the server.
     farewell: watch::Sender<&'static str>,
-    /// Rounds finished so far (a draining world waits for the next).
+    /// Rounds finished so far.
     rounds: watch::Receiver<u64>,
+    /// Where the round stands (a draining world waits for its end), and the switch that
+    /// holds its results (no next round) while draining.
+    phase: (
+        watch::Receiver<super::round_phase::RoundPhase>,
+        watch::Sender<bool>,
+    ),
     ready: Arc<Readiness>,
     /// True once the SSH port is closed and its queue taken in.
     closed: watch::Receiver<bool>,
@@ -128,9 +134,10 @@ impl RunningServer {
     }
 
     /// Drains the world before it stops: `/healthz` answers 503 from now on, the SSH port
-    /// closes (connections already waiting in its queue are still taken in), and this waits
-    /// until nobody is logging in or playing, or until a round ends (then [`AFTER_LAST_ROUND`]
-    /// more, so its results are seen), or until `patience` has passed. Sessions go on
+    /// closes (connections already waiting in its queue are still taken in), no new round
+    /// starts, and this waits until nobody is logging in or playing, or until the round ends
+    /// (then [`super::drain::AFTER_LAST_ROUND`] more, so its results are seen; at once-ish when
+    /// they already show), or until `patience` has passed ([`super::drain_wait`]). Sessions go on
     /// meanwhile, their players told the world restarts soon;
     /// [`RunningServer::shutdown_restarting`] then ends them.
     pub async fn drain(&self, patience: Duration) {
@@ -140,28 +147,20 @@ impl RunningServer {
         super::metrics::draining();
         let _ = self.stop_accepting.send(true);
         let deadline = tokio::time::Instant::now() + patience;
-        let mut rounds = self.rounds.clone();
-        rounds.borrow_and_update();
+        // No next round: the one in play (or whose results show) is the last.
+        self.phase.1.send_replace(true);
         // Every connection the port took is counted before "nobody is here" can be believed.
         let mut closed = self.closed.clone();
         let _ = tokio::time::timeout_at(deadline, closed.wait_for(|c| *c)).await;
-        loop {
-            let arriving = self.header_waits.load(Ordering::Relaxed);
-            if self.limiter.live() == (0, 0) && arriving == 0 {
-                return;
-            }
-            tokio::select! {
-                () = tokio::time::sleep_until(deadline) => return,
-                r = rounds.changed() => {
-                    if r.is_ok() {
-                        let pause = tokio::time::Instant::now() + AFTER_LAST_ROUND;
-                        tokio::time::sleep_until(pause.min(deadline)).await;
-                    }
-                    return;
-                }
-                () = tokio::time::sleep(Duration::from_millis(50)) => {}
-            }
-        }
+        let present = || {
+            let (logging_in, playing) = self.limiter.live();
+            let arriving = self.header_waits.load(Ordering::Relaxed) > 0;
+            (
+                logging_in + playing > 0 || arriving,
+                logging_in > 0 || arriving,
+            )
+        };
+        super::drain_wait::until_round_over(self.phase.0.clone(), &present, deadline).await;
     }
 
     /// [`RunningServer::shutdown`], telling every player "this world restarts: reconnect to
@@ -299,8 +298,11 @@ pub async fn start_maps(
         recorder(end);
         rounds_tx.send_modify(|n| *n += 1);
     };
+    let (hold, held) = watch::channel(false);
+    let handle = spawn_rounds(worlds, config.tick_hz, rules, on_round, held);
+    let phase = (handle.phase(), hold);
     let shared = Arc::new(Shared {
-        world: spawn_rounds(worlds, config.tick_hz, rules, on_round),
+        world: handle,
         world_data: Arc::new(world),
         avatar_sheet,
         stats: Arc::clone(&stats),
@@ -333,6 +335,7 @@ pub async fn start_maps(
         stop_accepting,
         farewell,
         rounds,
+        phase,
         ready,
         closed,
         header_waits,

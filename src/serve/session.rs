@@ -412,7 +412,7 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
     }
     if !matches!(end, End::ClientGone | End::Stalled) {
         let mut bye = LEAVE.to_vec();
-        let farewell = super::drain::farewell_line(*p.farewell.borrow());
+        let farewell = super::drain::farewell_line_for(*p.farewell.borrow(), p.id);
         bye.extend_from_slice(match end {
             End::Idle => b"halfcast: closed after being idle too long.\r\n".as_slice(),
             End::Shutdown => &farewell,

@@ -246,17 +246,35 @@ impl Writer {
             return;
         }
         let mut wrote = 0;
+        // The boards to read again afterwards, once each however many rounds a backlog held,
+        // with the names that played on them.
+        let mut played: Vec<(String, String, Vec<String>)> = Vec::new();
+        let mut failed = None;
         while let (Some(r), Some(db)) = (self.backlog.front(), self.db.as_mut()) {
             if let Err(e) = db.record(r) {
-                metrics::db_write("error");
-                self.write_failed(&e, false);
-                return;
+                failed = Some(e);
+                break;
             }
             metrics::db_write("ok");
             wrote += 1;
             if let Some(r) = self.backlog.written() {
-                self.refresh(&r);
+                let names = r.players.into_iter().map(|p| p.name);
+                match played
+                    .iter_mut()
+                    .find(|p| p.0 == r.map_hash && p.1 == r.mode)
+                {
+                    Some(p) => p.2.extend(names),
+                    None => played.push((r.map_hash, r.mode, names.collect())),
+                }
             }
+        }
+        for (map_hash, mode, names) in played {
+            self.refresh(&map_hash, &mode, names);
+        }
+        if let Some(e) = failed {
+            metrics::db_write("error");
+            self.write_failed(&e, false);
+            return;
         }
         if let Some(away) = self.writes.recovered(Instant::now()) {
             self.log.server(format_args!(
@@ -287,22 +305,22 @@ impl Writer {
         }
     }
 
-    /// Publishes the board of `r`'s map after it was written: everyone asked about before
-    /// keeps an up-to-date best, and so does everyone who just played.
-    fn refresh(&mut self, r: &RoundRecord) {
-        let key = board_key(&r.map_hash, &r.mode);
-        let mut asked: Vec<String> = self
-            .boards
-            .borrow()
-            .maps
-            .get(&key)
-            .map(|b| b.bests.keys().cloned().collect())
-            .unwrap_or_default();
-        asked.extend(r.players.iter().map(|p| p.name.clone()));
-        asked.sort();
-        asked.dedup();
+    /// Publishes a map's board after rounds were written on it: everyone asked about before
+    /// keeps an up-to-date best, and so does everyone who just played (`names`).
+    fn refresh(&mut self, map_hash: &str, mode: &str, mut names: Vec<String>) {
+        let key = board_key(map_hash, mode);
+        names.extend(
+            self.boards
+                .borrow()
+                .maps
+                .get(&key)
+                .map(|b| b.bests.keys().cloned().collect::<Vec<_>>())
+                .unwrap_or_default(),
+        );
+        names.sort();
+        names.dedup();
         let Some(db) = self.db.as_mut() else { return };
-        match db.board(&r.map_hash, &r.mode, &asked) {
+        match db.board(map_hash, mode, &names) {
             Ok(b) => publish(&self.boards, key, |m| *m = b),
             Err(e) => self.read_failed("a board", &e),
         }
@@ -364,3 +382,6 @@ pub fn default_queue_dir(host_key: &Path) -> PathBuf {
         .unwrap_or_else(|| Path::new(""))
         .join(super::queue::DEFAULT_DIR)
 }
+
+#[cfg(test)]
+mod full_disk;

@@ -73,7 +73,13 @@ async fn settle(world: &WorldHandle) -> (f64, f64) {
 #[tokio::test]
 async fn the_world_task_moves_players_by_the_same_height_rules() {
     let world = Arc::new(world(ZONES, GRID));
-    let handle = spawn_rounds(vec![world], TICK_HZ, Rules::new(Mode::Coop, 0), |_| {});
+    let handle = spawn_rounds(
+        vec![world],
+        TICK_HZ,
+        Rules::new(Mode::Coop, 0),
+        |_| {},
+        tokio::sync::watch::channel(false).1,
+    );
     handle
         .send(WorldMsg::Join {
             id: 1,

@@ -64,10 +64,7 @@ impl OwnCluster {
                 return skip("running as root, and no `postgres` user to run initdb as".into());
             }
         }
-        let port = std::net::TcpListener::bind("127.0.0.1:0")
-            .and_then(|l| l.local_addr())
-            .expect("a free port")
-            .port();
+        let port = quiet_port();
         let me = Self {
             dir,
             bin,
@@ -221,4 +218,17 @@ fn nix_is_root() -> bool {
         .arg("-u")
         .output()
         .is_ok_and(|o| o.stdout.starts_with(b"0\n"))
+}
+
+/// A port free now below the range the OS hands out for port 0 (32768 and up on Linux): the
+/// server gives it up while stopped, and a world asking for a free port then must not get it.
+fn quiet_port() -> u16 {
+    let nanos = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.subsec_nanos());
+    let start = (nanos ^ std::process::id().rotate_left(7)) % 12_000;
+    (0..12_000)
+        .map(|i| 20_000 + ((start + i) % 12_000) as u16)
+        .find(|&p| std::net::TcpListener::bind(("127.0.0.1", p)).is_ok())
+        .expect("a free port below 32000")
 }
