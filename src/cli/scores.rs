@@ -72,6 +72,15 @@ pub(crate) fn scores(args: &ScoresArgs) -> Result<(), Failure> {
         );
         return Ok(());
     }
+    if postgres_url(&args.db).is_some_and(halfcast::serve::leaderboard::pg_config::url_has_password)
+    {
+        // Warned, not refused (as `serve` does): this runs for a moment, in the operator's own
+        // shell, whose history holds the URL anyway.
+        eprintln!(
+            "halfcast scores: warning: the password in --db is readable by every local user \
+             while this runs; PGPASSWORD or ~/.pgpass (PGPASSFILE) keep it out of the process list"
+        );
+    }
     let mut store = Database::open_read(&args.db).map_err(Failure::input)?;
     let only = match &args.map {
         Some(p) => {

@@ -29,11 +29,21 @@ pub(crate) struct ServeArgs {
     /// A round lasts at most this many minutes (coop: otherwise until the exit; tag: 3).
     #[arg(long, value_name = "N", value_parser = parse_minutes)]
     pub(crate) round_minutes: Option<f64>,
+    /// How long a round's results show before the next round, in seconds.
+    #[arg(long, value_name = "SECONDS", value_parser = parse_results_seconds)]
+    pub(crate) results_seconds: Option<f64>,
     /// The leaderboard's SQLite file (default: halfcast.sqlite beside the host key; `none`
-    /// keeps no leaderboard), or a postgres://USER:PASSWORD@HOST/DB URL shared by worlds on
-    /// several hosts.
+    /// keeps no leaderboard), or a postgres://USER@HOST/DB URL shared by worlds on several
+    /// hosts (its password from --db-password-file, PGPASSWORD or ~/.pgpass: never the URL).
     #[arg(long, value_name = "FILE|URL")]
     pub(crate) db: Option<PathBuf>,
+    /// The PostgreSQL password on this file's first line (systemd: LoadCredential=).
+    #[arg(long, value_name = "FILE")]
+    pub(crate) db_password_file: Option<PathBuf>,
+    /// Where rounds wait, on disk, while the leaderboard is away (default: halfcast-queue
+    /// beside the host key); a world started with the same directory writes them.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) queue_dir: Option<PathBuf>,
     /// Serve Prometheus metrics on http://ADDR/metrics (a bare port listens on 127.0.0.1).
     #[arg(long, value_name = "ADDR", value_parser = parse_metrics_addr)]
     pub(crate) metrics: Option<SocketAddr>,
@@ -128,6 +138,18 @@ fn parse_minutes(s: &str) -> Result<f64, String> {
     }
 }
 
+/// Seconds, at least 0.1 and at most an hour.
+fn parse_results_seconds(s: &str) -> Result<f64, String> {
+    let v = super::options::parse_finite(s)?;
+    if (0.1..=3600.0).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!(
+            "{v} seconds: results show from 0.1 to 3600 seconds"
+        ))
+    }
+}
+
 /// `HOST:PORT`, or a bare `PORT` on the loopback address.
 pub(crate) fn parse_metrics_addr(s: &str) -> Result<SocketAddr, String> {
     if let Ok(port) = s.parse::<u16>() {
@@ -176,6 +198,23 @@ fn db_path(db: Option<&Path>, host_key: &Path) -> Option<PathBuf> {
     }
 }
 
+/// Refuses a `--db` URL that carries a password: a world runs for weeks, and all that time
+/// every local user could read the password in its command line (`ps`, /proc/PID/cmdline).
+/// Refused rather than warned about, since a warning is read once and the leak goes on; the
+/// message says where the password goes instead.
+fn no_password_in_url(db: Option<&Path>) -> Result<(), Failure> {
+    use halfcast::serve::leaderboard::{database, pg_config};
+    match db.and_then(database::postgres_url) {
+        Some(url) if pg_config::url_has_password(url) => Err(Failure::input(format!(
+            "--db {}: a password in the URL is readable by every local user in the process \
+             list; give it in --db-password-file FILE (systemd: LoadCredential=), PGPASSWORD, \
+             or ~/.pgpass (PGPASSFILE), and drop it from the URL",
+            database::shown(Path::new(url))
+        ))),
+        _ => Ok(()),
+    }
+}
+
 /// The authentication mode from the flags and the environment; warns about `--password`.
 fn auth_mode(args: &ServeArgs) -> Result<halfcast::serve::auth::AuthMode, Failure> {
     use halfcast::serve::auth::{password_from_file, AuthMode};
@@ -204,7 +243,23 @@ fn auth_mode(args: &ServeArgs) -> Result<halfcast::serve::auth::AuthMode, Failur
     }
 }
 
+/// `halfcast serve`; under `--log-format json` a failure to start is written as a JSON event
+/// too (with its cause), so a log shipper sees why a world never came up.
 pub(crate) fn serve(args: ServeArgs) -> Result<(), Failure> {
+    let format = args.log_format;
+    match start_and_run(args) {
+        Err(f) if format == LogFormat::Json => {
+            halfcast::serve::log::Log::with_format(false, format).failed_to_start(&f.message);
+            Err(Failure {
+                code: f.code,
+                message: String::new(),
+            })
+        }
+        done => done,
+    }
+}
+
+fn start_and_run(args: ServeArgs) -> Result<(), Failure> {
     use halfcast::serve::limits::Startups;
     use halfcast::serve::{run_until_signal, ServeConfig};
     use std::time::Duration;
@@ -215,12 +270,18 @@ pub(crate) fn serve(args: ServeArgs) -> Result<(), Failure> {
     let auth = auth_mode(&args)?;
     let maps = load_maps(&args.maps, args.strict)?;
     let db = db_path(args.db.as_deref(), &args.host_key);
+    no_password_in_url(db.as_deref())?;
     let mut config = ServeConfig::local(args.listen, args.host_key);
     config.db = db;
+    config.db_password_file = args.db_password_file;
+    config.queue_dir = args.queue_dir;
     config.metrics = args.metrics;
     config.proxy_protocol = args.proxy_protocol;
     config.log_format = args.log_format;
     config.shuffle = args.shuffle;
+    if let Some(secs) = args.results_seconds {
+        config.results_time = Duration::from_secs_f64(secs);
+    }
     config.round_limit = args
         .round_minutes
         .map(|m| Duration::from_secs_f64(m * 60.0));

@@ -150,6 +150,7 @@ struct Run {
     steps: Steps,
     done: tokio::task::JoinHandle<(End, Tally)>,
     _shutdown: watch::Sender<bool>,
+    _hold: watch::Sender<bool>,
     _size: watch::Sender<(u32, u32)>,
     _announce: watch::Sender<Option<String>>,
 }
@@ -159,14 +160,15 @@ struct Run {
 fn start(rate: f64, rtt: Duration, level: ColorLevel) -> Run {
     let (world, sheet) = with_avatar_sheet(World::default_world());
     let world = Arc::new(world);
-    let rules = Rules {
-        mode: Mode::Coop,
-        seed: 1,
-        round_limit: None,
-        results_seconds: 5.0,
-        shuffle: false,
-    };
-    let port = crate::serve::world_task::spawn_rounds(vec![Arc::clone(&world)], 30, rules, |_| {});
+    // Never drained (`hold` stays false): the world's rounds go on for the test's whole run.
+    let (hold, held) = watch::channel(false);
+    let (port, _phase) = crate::serve::world_task::spawn_rounds(
+        vec![Arc::clone(&world)],
+        30,
+        Rules::new(Mode::Coop, 1),
+        |_| {},
+        held,
+    );
     let setup = Setup {
         id: 1,
         name: "ann".into(),
@@ -211,6 +213,7 @@ fn start(rate: f64, rtt: Duration, level: ColorLevel) -> Run {
         steps,
         done,
         _shutdown: shutdown,
+        _hold: hold,
         _size: size,
         _announce: announce,
     }

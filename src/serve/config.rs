@@ -65,6 +65,12 @@ pub struct ServeConfig {
     /// The leaderboard's SQLite file, or a `postgres://` URL (`--db`); `None` keeps no
     /// leaderboard.
     pub db: Option<PathBuf>,
+    /// A file whose first line is the PostgreSQL password (`--db-password-file`); else libpq's
+    /// conventions (`PGPASSWORD`, `~/.pgpass`, …) apply.
+    pub db_password_file: Option<PathBuf>,
+    /// Where rounds wait while the leaderboard is away (`--queue-dir`; `None`: beside the host
+    /// key).
+    pub queue_dir: Option<PathBuf>,
     /// Where to serve Prometheus metrics (`--metrics`); `None` serves none.
     pub metrics: Option<SocketAddr>,
     /// Every connection starts with a PROXY protocol header naming the client's address.
@@ -104,6 +110,8 @@ impl ServeConfig {
             results_time: Duration::from_secs_f64(crate::game::multi::round::RESULTS_SECONDS),
             shuffle: false,
             db: None,
+            db_password_file: None,
+            queue_dir: None,
             metrics: None,
             proxy_protocol: false,
             log_format: super::ops::log::LogFormat::Text,

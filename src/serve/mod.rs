@@ -15,10 +15,12 @@
 //! - [`ops`]: metrics, `/healthz`, drain, process figures, the log.
 
 pub(crate) mod config;
+pub(crate) mod drain_wait;
 pub mod leaderboard;
 pub mod limits;
 pub mod ops;
 pub(crate) mod proxy_header;
+pub(crate) mod round_phase;
 pub(crate) mod served_map;
 pub mod server;
 pub(crate) mod session_hooks;

@@ -22,11 +22,11 @@ use tokio::sync::watch;
 use tokio::task::JoinHandle;
 
 use super::config::ServeConfig;
-use super::leaderboard::database::{self, Database};
+use super::leaderboard::database;
 use super::leaderboard::writer::Leaderboard;
 use super::leaderboard::RoundRecord;
 use super::limits::{Caps, Limiter, Refusal};
-use super::ops::drain::{AFTER_LAST_ROUND, RESTARTING, SHUTTING_DOWN};
+use super::ops::drain::{RESTARTING, SHUTTING_DOWN};
 use super::ops::health::{Health, Readiness};
 use super::ops::lifecycle::Lifeline;
 use super::ops::log::Log;
@@ -62,8 +62,14 @@ pub struct RunningServer {
     stop_accepting: watch::Sender<bool>,
     /// What sessions are told when they end with the server.
     farewell: watch::Sender<&'static str>,
-    /// Rounds finished so far (a draining world waits for the next).
+    /// Rounds finished so far.
     rounds: watch::Receiver<u64>,
+    /// Where the round stands (a draining world waits for its end), and the switch that
+    /// holds its results (no next round) while draining.
+    phase: (
+        watch::Receiver<super::round_phase::RoundPhase>,
+        watch::Sender<bool>,
+    ),
     ready: Arc<Readiness>,
     /// True once the SSH port is closed and its queue taken in.
     closed: watch::Receiver<bool>,
@@ -129,9 +135,10 @@ impl RunningServer {
     }
 
     /// Drains the world before it stops: `/healthz` answers 503 from now on, the SSH port
-    /// closes (connections already waiting in its queue are still taken in), and this waits
-    /// until nobody is logging in or playing, or until a round ends (then [`AFTER_LAST_ROUND`]
-    /// more, so its results are seen), or until `patience` has passed. Sessions go on
+    /// closes (connections already waiting in its queue are still taken in), no new round
+    /// starts, and this waits until nobody is logging in or playing, or until the round ends
+    /// (then [`super::ops::drain::AFTER_LAST_ROUND`] more, so its results are seen; at once-ish when
+    /// they already show), or until `patience` has passed ([`super::drain_wait`]). Sessions go on
     /// meanwhile, their players told the world restarts soon;
     /// [`RunningServer::shutdown_restarting`] then ends them.
     pub async fn drain(&self, patience: Duration) {
@@ -141,28 +148,20 @@ impl RunningServer {
         super::ops::metrics::draining();
         let _ = self.stop_accepting.send(true);
         let deadline = tokio::time::Instant::now() + patience;
-        let mut rounds = self.rounds.clone();
-        rounds.borrow_and_update();
+        // No next round: the one in play (or whose results show) is the last.
+        self.phase.1.send_replace(true);
         // Every connection the port took is counted before "nobody is here" can be believed.
         let mut closed = self.closed.clone();
         let _ = tokio::time::timeout_at(deadline, closed.wait_for(|c| *c)).await;
-        loop {
-            let arriving = self.header_waits.load(Ordering::Relaxed);
-            if self.limiter.live() == (0, 0) && arriving == 0 {
-                return;
-            }
-            tokio::select! {
-                () = tokio::time::sleep_until(deadline) => return,
-                r = rounds.changed() => {
-                    if r.is_ok() {
-                        let pause = tokio::time::Instant::now() + AFTER_LAST_ROUND;
-                        tokio::time::sleep_until(pause.min(deadline)).await;
-                    }
-                    return;
-                }
-                () = tokio::time::sleep(Duration::from_millis(50)) => {}
-            }
-        }
+        let present = || {
+            let (logging_in, playing) = self.limiter.live();
+            let arriving = self.header_waits.load(Ordering::Relaxed) > 0;
+            (
+                logging_in + playing > 0 || arriving,
+                logging_in > 0 || arriving,
+            )
+        };
+        super::drain_wait::until_round_over(self.phase.0.clone(), &present, deadline).await;
     }
 
     /// [`RunningServer::shutdown`], telling every player "this world restarts: reconnect to
@@ -198,25 +197,7 @@ pub async fn start_maps(
     for n in notes {
         log.server(n);
     }
-    let mode = config.mode.name();
-    let leaderboard = match &config.db {
-        Some(path) => {
-            let served: Vec<(String, String)> = maps
-                .iter()
-                .map(|m| (m.hash.clone(), mode.to_owned()))
-                .collect();
-            // On a thread outside the runtime: PostgreSQL's blocking client runs a runtime of
-            // its own (start-up only; the writer thread has it from then on).
-            let started = std::thread::scope(|s| {
-                s.spawn(|| Leaderboard::start(Database::open(path)?, &served, log))
-                    .join()
-                    .unwrap_or_else(|_| Err("leaderboard: opening it panicked".into()))
-            })?;
-            log.server(format_args!("leaderboard in {}", database::shown(path)));
-            Some(started)
-        }
-        None => None,
-    };
+    // First: the leaderboard's backlog found at start shows in the metrics.
     let metrics = match config.metrics {
         Some(addr) => {
             let handle = super::ops::metrics::install()?;
@@ -228,6 +209,32 @@ pub async fn start_maps(
                 "metrics on http://{bound}/metrics, health on http://{bound}/healthz"
             ));
             Some((handle, http))
+        }
+        None => None,
+    };
+    let mode = config.mode.name();
+    let leaderboard = match &config.db {
+        Some(path) => {
+            let served: Vec<(String, String)> = maps
+                .iter()
+                .map(|m| (m.hash.clone(), mode.to_owned()))
+                .collect();
+            let target = super::leaderboard::writer::Target {
+                db: path.clone(),
+                password_file: config.db_password_file.clone(),
+                queue_dir: config.queue_dir.clone().unwrap_or_else(|| {
+                    super::leaderboard::writer::default_queue_dir(&config.host_key)
+                }),
+            };
+            // On a thread outside the runtime: PostgreSQL's blocking client runs a runtime of
+            // its own (start-up only; the writer thread has it from then on).
+            let started = std::thread::scope(|s| {
+                s.spawn(|| Leaderboard::start(target, &served, log))
+                    .join()
+                    .unwrap_or_else(|_| Err("leaderboard: opening it panicked".into()))
+            })?;
+            log.server(format_args!("leaderboard in {}", database::shown(path)));
+            Some(started)
         }
         None => None,
     };
@@ -296,8 +303,11 @@ pub async fn start_maps(
         recorder(end);
         rounds_tx.send_modify(|n| *n += 1);
     };
+    let (hold, held) = watch::channel(false);
+    let (handle, round_phase) = spawn_rounds(worlds, config.tick_hz, rules, on_round, held);
+    let phase = (round_phase, hold);
     let shared = Arc::new(Shared {
-        world: spawn_rounds(worlds, config.tick_hz, rules, on_round),
+        world: handle,
         world_data: Arc::new(world),
         avatar_sheet,
         stats: Arc::clone(&stats),
@@ -330,6 +340,7 @@ pub async fn start_maps(
         stop_accepting,
         farewell,
         rounds,
+        phase,
         ready,
         closed,
         header_waits,
@@ -350,6 +361,7 @@ fn round_recorder(
 ) -> impl FnMut(&RoundEnd) + Send + 'static {
     let names: Vec<String> = worlds.iter().map(|w| w.map.name.clone()).collect();
     let hashes = hashes.to_vec();
+    let mut ids = super::leaderboard::round_id::RoundIds::new();
     move |end: &RoundEnd| {
         super::ops::metrics::round(mode);
         let (name, hash) = (&names[end.map], &hashes[end.map]);
@@ -374,6 +386,7 @@ fn round_recorder(
                 .duration_since(UNIX_EPOCH)
                 .map_or(0, |d| d.as_secs() as i64);
             lb.record(RoundRecord {
+                uid: ids.next_id(),
                 map_hash: hash.clone(),
                 map_name: name.clone(),
                 mode: mode.to_owned(),

@@ -36,6 +36,7 @@ mod serve_names;
 mod serve_openssh;
 mod serve_openssh_colour;
 mod serve_openssh_limits;
+mod serve_pg_outage;
 mod serve_postgres;
 mod serve_proxy;
 mod serve_putty;

@@ -26,6 +26,7 @@ fn halfcast(args: &[&str], db: &Path) -> Output {
 
 fn round(i: u32) -> RoundRecord {
     RoundRecord {
+        uid: format!("backup-test-{i}"),
         map_hash: "00000000000000aa".into(),
         map_name: "maps/a.cub".into(),
         mode: "coop".into(),

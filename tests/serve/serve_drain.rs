@@ -196,3 +196,70 @@ async fn a_round_that_ends_while_draining_ends_the_drain_after_its_results() {
             .await
     );
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_drain_begun_while_the_results_show_ends_with_them_and_starts_no_round() {
+    // Results that would show for 40 s, and a drain that could last 60 s.
+    let (srv, _dir) = serve_support::server(|cfg| {
+        cfg.round_limit = Some(Duration::from_millis(800));
+        cfg.results_time = Duration::from_secs(40);
+    })
+    .await;
+    let mut ann = Client::connect(srv.local_addr(), "ann", 80, 24, "xterm-256color").await;
+    assert!(ann.until(|s| header_has(s, "you are ann")).await);
+    assert!(ann.until(|s| s.contents().contains("next round in")).await);
+    assert_eq!(srv.rounds_finished(), 1);
+    let started = Instant::now();
+    {
+        let drain = srv.drain(Duration::from_secs(60));
+        let reading = async {
+            loop {
+                ann.drain_for(Duration::from_millis(100)).await;
+            }
+        };
+        tokio::select! {
+            () = drain => {}
+            () = reading => {}
+        }
+    }
+    let took = started.elapsed();
+    // At most the results' 5 s after the round's end, not the 40 s of results or a round more.
+    assert!(took < Duration::from_secs(7), "the drain took {took:?}");
+    assert_eq!(srv.rounds_finished(), 1, "a round ended while draining");
+    srv.shutdown_restarting().await;
+    assert!(
+        ann.until(|s| s
+            .contents()
+            .contains("this world restarts: reconnect to continue in"))
+            .await
+    );
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_draining_world_holds_the_results_instead_of_starting_the_next_round() {
+    // Short results: undrained, the next round would start within half a second.
+    let (srv, _dir) = serve_support::server(|cfg| {
+        cfg.round_limit = Some(Duration::from_millis(800));
+        cfg.results_time = Duration::from_millis(300);
+    })
+    .await;
+    let mut ann = Client::connect(srv.local_addr(), "ann", 80, 24, "xterm-256color").await;
+    assert!(ann.until(|s| header_has(s, "you are ann")).await);
+    let drained = {
+        let drain = srv.drain(Duration::from_secs(60));
+        let reading = async {
+            loop {
+                ann.drain_for(Duration::from_millis(100)).await;
+            }
+        };
+        tokio::select! {
+            () = drain => srv.rounds_finished(),
+            () = reading => unreachable!(),
+        }
+    };
+    // The round in play ended the drain, and its results still show: no round was started
+    // after it, though several would have fitted in the drain's 5 s.
+    assert_eq!(drained, 1);
+    assert!(ann.until(|s| s.contents().contains("next round in")).await);
+    srv.shutdown_restarting().await;
+}

@@ -40,12 +40,45 @@ async fn healthz_says_accepting_then_full_and_its_checks_are_not_players() {
         5.0,
         "{m}"
     );
-    // The world says which build it runs, and how the process fares.
+    // The world says which build it runs (the release and the commit), and how the process
+    // fares.
+    let commit = env!("HALFCAST_COMMIT");
     let version = format!(
-        r#"halfcast_build_info{{version="{}"}}"#,
+        r#"halfcast_build_info{{version="{}",commit="{commit}"}}"#,
         env!("CARGO_PKG_VERSION")
     );
     assert_eq!(series(&m, &version), 1.0, "{m}");
+    let head = std::process::Command::new("git")
+        .args(["-C", env!("CARGO_MANIFEST_DIR"), "rev-parse", "HEAD"])
+        .output()
+        .ok()
+        .filter(|o| o.status.success());
+    match head {
+        // A checkout: the commit it was built from.
+        Some(o)
+            if std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join(".git")
+                .exists() =>
+        {
+            assert_eq!(commit, String::from_utf8_lossy(&o.stdout).trim());
+        }
+        // A package without its history.
+        _ => assert_eq!(commit, "unknown"),
+    }
+    // Every labelled series is there from the start, at 0: a first refusal or failed write is
+    // an increase from 0, not a series appearing.
+    for zero in [
+        r#"halfcast_refusals_total{reason="full"} 0"#,
+        r#"halfcast_refusals_total{reason="proxy"} 0"#,
+        r#"halfcast_leaderboard_writes_total{result="error"} 0"#,
+        r#"halfcast_leaderboard_writes_total{result="dropped"} 0"#,
+        r#"halfcast_rounds_total{mode="tag"} 0"#,
+        r#"halfcast_link_level_steps_total{direction="down"} 0"#,
+        r#"halfcast_health_checks_total{answer="draining"} 0"#,
+        "halfcast_leaderboard_pending_rounds 0",
+    ] {
+        assert!(m.lines().any(|l| l == zero), "no {zero}: {m}");
+    }
     assert!(series(&m, "process_resident_memory_bytes") > 1e6, "{m}");
     assert!(series(&m, "process_open_fds") >= 3.0, "{m}");
     assert!(series(&m, "process_max_fds") >= series(&m, "process_open_fds"));

@@ -127,7 +127,7 @@ async fn results_land_in_the_database_show_next_round_and_scores_json_reads_them
     // A restart opens the same file (its boards load at start) and keeps serving.
     let srv = serve(config(tree.path(), Some(db.clone())), &paths).await;
     let v = crate::scores_json::scores_json(&db);
-    assert_eq!(v["schema"], 2);
+    assert_eq!(v["schema"], 3);
     let maps = v["maps"].as_array().expect("maps");
     assert_eq!(maps.len(), 1, "{v}");
     let m = &maps[0];

@@ -4,6 +4,7 @@
 
 use std::path::Path;
 
+use super::pg_config::PgTarget;
 use super::pg_store::{self, PgStore};
 use super::store::Store;
 use super::{Entry, MapBoard, RoundRecord};
@@ -29,15 +30,40 @@ pub fn shown(db: &Path) -> String {
     postgres_url(db).map_or_else(|| db.display().to_string(), pg_store::shown)
 }
 
+/// Why a leaderboard could not be opened.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum OpenError {
+    /// It cannot be reached now (PostgreSQL down or unreachable): a world starts anyway,
+    /// queues its rounds, and tries again.
+    Away(String),
+    /// It answered and must not be used (newer schema, another program's, damaged, a bad
+    /// password file): a start-up error.
+    Refused(String),
+}
+
+impl std::fmt::Display for OpenError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Away(m) | Self::Refused(m) => f.write_str(m),
+        }
+    }
+}
+
 impl Database {
-    /// Opens `db` for a server (created or migrated as needed).
+    /// Opens `db` for a server (created or migrated as needed); a PostgreSQL password may come
+    /// from `password_file` ([`PgTarget::resolve`]).
     ///
     /// # Errors
-    /// As [`Store::open`] or [`PgStore::open`].
-    pub fn open(db: &Path) -> Result<Self, String> {
+    /// As [`Store::open`] (always [`OpenError::Refused`]) or [`PgStore::open`].
+    pub fn open(db: &Path, password_file: Option<&Path>) -> Result<Self, OpenError> {
         match postgres_url(db) {
-            Some(url) => PgStore::open(url).map(|s| Self::Postgres(Box::new(s))),
-            None => Store::open(db).map(Self::Sqlite),
+            Some(url) => {
+                let target = PgTarget::resolve(url, password_file).map_err(OpenError::Refused)?;
+                PgStore::open(&target).map(|s| Self::Postgres(Box::new(s)))
+            }
+            None => Store::open(db)
+                .map(Self::Sqlite)
+                .map_err(OpenError::Refused),
         }
     }
 
@@ -47,7 +73,8 @@ impl Database {
     /// As [`Store::open_read`] or [`PgStore::open_read`].
     pub fn open_read(db: &Path) -> Result<Self, String> {
         match postgres_url(db) {
-            Some(url) => PgStore::open_read(url).map(|s| Self::Postgres(Box::new(s))),
+            Some(url) => PgStore::open_read(&PgTarget::resolve(url, None)?)
+                .map(|s| Self::Postgres(Box::new(s))),
             None => Store::open_read(db).map(Self::Sqlite),
         }
     }

@@ -5,11 +5,22 @@
 //! Names are the in-game names (SSH user names, made unique); they are bounded when stored
 //! ([`bounded_name`]) and escaped wherever printed ([`shown_name`]). [`backup`] copies the file
 //! while worlds write it. [`pg_store`] keeps the same board in PostgreSQL for worlds on several
-//! hosts; [`database`] opens whichever `--db` names.
+//! hosts ([`pg_config`]: where it is, and the password, as libpq finds them); [`database`] opens
+//! whichever `--db` names.
+//!
+//! No round is lost while the database is away: each round has an identity ([`round_id`]) the
+//! stores use to ignore a second insert; it goes to a queue on disk ([`queue`]) before the
+//! database is tried, and stays in the writer's backlog ([`backlog`]) until the database has it;
+//! the writer retries with a growing pause and logs an outage once ([`outage`]).
 
+pub mod backlog;
 pub mod backup;
 pub mod database;
+pub mod outage;
+pub mod pg_config;
 pub mod pg_store;
+pub mod queue;
+pub mod round_id;
 pub mod store;
 pub mod writer;
 
@@ -34,6 +45,9 @@ pub const DEFAULT_FILE: &str = "halfcast.sqlite";
 /// One finished round as the database records it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RoundRecord {
+    /// The round's identity, unique across worlds and restarts ([`round_id`]): the stores
+    /// write a round once however often it is sent.
+    pub uid: String,
     /// The served map's content hash ([`content_hash`] of its file).
     pub map_hash: String,
     /// The map's name.

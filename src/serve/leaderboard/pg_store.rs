@@ -2,15 +2,16 @@
 //! SQLite file ([`super::store`]), for worlds on several hosts that share one board.
 //!
 //! The blocking client runs on the leaderboard's own thread only, so a slow or unreachable
-//! server delays the board, never a frame. A server that is down at start-up is a start-up
-//! error; one that goes away later fails the writes meanwhile (each failed round is logged and
-//! counted, as with SQLite), and the next write connects again. No TLS: reach the server over a
-//! network you trust (loopback, a private network, or a tunnel).
-
-use std::time::Duration;
+//! server delays the board, never a frame. A server that is down (at start-up or later) fails
+//! the writes meanwhile; the writer keeps the rounds in its queue ([`super::queue`]) and tries
+//! again, connecting anew. Each round carries its identity (`uid`, unique), so one written twice
+//! is stored once. No TLS: reach the server over a network you trust (loopback, a private
+//! network, or a tunnel). Where it is and the password: [`super::pg_config`].
 
 use postgres::{Client, Config, NoTls, Row};
 
+use super::database::OpenError;
+use super::pg_config::PgTarget;
 use super::store::SCHEMA_VERSION;
 use super::{bounded_name, Entry, MapBoard, RoundRecord};
 
@@ -36,13 +37,12 @@ const MIGRATIONS: &[&str] = &[
     );
     CREATE INDEX rounds_by_map ON rounds(map_hash, mode);",
     "CREATE INDEX results_by_name ON results(name, round_id);",
+    "ALTER TABLE rounds ADD COLUMN uid TEXT;
+    CREATE UNIQUE INDEX rounds_by_uid ON rounds(uid);",
 ];
 
 /// The advisory lock worlds take while they migrate, so two starting at once migrate once.
 const MIGRATION_LOCK: i64 = 0x6861_6c66_6361_7374; // "halfcast"
-
-/// How long connecting may take before it is an error.
-const CONNECT_TIMEOUT: Duration = Duration::from_secs(5);
 
 /// Whether `db` (what `--db` was given) names a PostgreSQL database rather than a file.
 #[must_use]
@@ -85,24 +85,45 @@ fn failed(url: &str, what: &str, e: impl std::fmt::Display) -> String {
     format!("leaderboard {url}: {what}: {e}")
 }
 
+/// An error with its causes ("error connecting to server: Connection refused (os error 111)"):
+/// the client's own message alone rarely says what went wrong.
+#[must_use]
+pub fn causes(e: &(dyn std::error::Error + 'static)) -> String {
+    let mut out = e.to_string();
+    let mut next = e.source();
+    while let Some(cause) = next {
+        let c = cause.to_string();
+        if !out.ends_with(&c) {
+            out.push_str(": ");
+            out.push_str(&c);
+        }
+        next = cause.source();
+    }
+    out
+}
+
 impl PgStore {
-    /// Connects to `url` for the server: the schema created or migrated forward.
+    /// Connects to `target` for the server: the schema created or migrated forward.
     ///
     /// # Errors
-    /// The server cannot be reached or refuses the login, the database holds a newer schema or
-    /// another program's `rounds` table, or a migration fails.
-    pub fn open(url: &str) -> Result<Self, String> {
-        let mut store = Self::connect(url)?;
-        store.migrate()?;
-        Ok(store)
+    /// [`OpenError::Away`] when the server cannot be reached now (or the connection is lost
+    /// while migrating); [`OpenError::Refused`] when it refuses the login, the database holds a
+    /// newer schema or another program's `rounds` table, or a migration fails.
+    pub fn open(target: &PgTarget) -> Result<Self, OpenError> {
+        let mut store = Self::connect(target).map_err(OpenError::Away)?;
+        match store.migrate() {
+            Ok(()) => Ok(store),
+            Err(e) if store.client.is_closed() => Err(OpenError::Away(e)),
+            Err(e) => Err(OpenError::Refused(e)),
+        }
     }
 
-    /// Connects to `url` to read it (`halfcast scores`).
+    /// Connects to `target` to read it (`halfcast scores`).
     ///
     /// # Errors
     /// As [`PgStore::open`], and when the schema is older than this build's.
-    pub fn open_read(url: &str) -> Result<Self, String> {
-        let mut store = Self::connect(url)?;
+    pub fn open_read(target: &PgTarget) -> Result<Self, String> {
+        let mut store = Self::connect(target)?;
         let version = store.version()?;
         if version != SCHEMA_VERSION {
             return Err(failed(
@@ -116,20 +137,14 @@ impl PgStore {
         Ok(store)
     }
 
-    fn connect(url: &str) -> Result<Self, String> {
-        let shown_url = shown(url);
-        let mut config: Config = url
-            .parse()
-            .map_err(|e| failed(&shown_url, "not a PostgreSQL URL", e))?;
-        if config.get_connect_timeout().is_none() {
-            config.connect_timeout(CONNECT_TIMEOUT);
-        }
-        let client = config
+    fn connect(target: &PgTarget) -> Result<Self, String> {
+        let client = target
+            .config
             .connect(NoTls)
-            .map_err(|e| failed(&shown_url, "cannot connect", e))?;
+            .map_err(|e| failed(&target.shown, "cannot connect", causes(&e)))?;
         Ok(Self {
-            config,
-            url: shown_url,
+            config: target.config.clone(),
+            url: target.shown.clone(),
             client,
         })
     }
@@ -140,7 +155,7 @@ impl PgStore {
             self.client = self
                 .config
                 .connect(NoTls)
-                .map_err(|e| format!("PostgreSQL {} is unreachable: {e}", self.url))?;
+                .map_err(|e| format!("PostgreSQL {} is unreachable: {}", self.url, causes(&e)))?;
         }
         Ok(())
     }
@@ -151,14 +166,14 @@ impl PgStore {
         let mut tx = self
             .client
             .transaction()
-            .map_err(|e| failed(&url, "cannot migrate", e))?;
+            .map_err(|e| failed(&url, "cannot migrate", causes(&e)))?;
         tx.execute("SELECT pg_advisory_xact_lock($1)", &[&MIGRATION_LOCK])
-            .map_err(|e| failed(&url, "cannot lock for migrating", e))?;
+            .map_err(|e| failed(&url, "cannot lock for migrating", causes(&e)))?;
         tx.batch_execute("CREATE TABLE IF NOT EXISTS halfcast_schema (version INTEGER NOT NULL)")
-            .map_err(|e| failed(&url, "cannot migrate", e))?;
+            .map_err(|e| failed(&url, "cannot migrate", causes(&e)))?;
         let version: i64 = tx
             .query_opt("SELECT version FROM halfcast_schema", &[])
-            .map_err(|e| failed(&url, "cannot read", e))?
+            .map_err(|e| failed(&url, "cannot read", causes(&e)))?
             .map_or(0, |r| i64::from(r.get::<_, i32>(0)));
         if version > SCHEMA_VERSION {
             return Err(failed(
@@ -173,7 +188,7 @@ impl PgStore {
         if version == 0 {
             let theirs: bool = tx
                 .query_one("SELECT to_regclass('rounds') IS NOT NULL", &[])
-                .map_err(|e| failed(&url, "cannot read", e))?
+                .map_err(|e| failed(&url, "cannot read", causes(&e)))?
                 .get(0);
             if theirs {
                 return Err(failed(
@@ -183,7 +198,7 @@ impl PgStore {
                 ));
             }
             tx.execute("INSERT INTO halfcast_schema (version) VALUES (0)", &[])
-                .map_err(|e| failed(&url, "cannot migrate", e))?;
+                .map_err(|e| failed(&url, "cannot migrate", causes(&e)))?;
         }
         for (i, step) in MIGRATIONS.iter().enumerate().skip(version as usize) {
             let to = i as i32 + 1;
@@ -192,9 +207,12 @@ impl PgStore {
                     tx.execute("UPDATE halfcast_schema SET version = $1", &[&to])
                         .map(|_| ())
                 })
-                .map_err(|e| failed(&url, &format!("cannot migrate to version {to}"), e))?;
+                .map_err(|e| {
+                    failed(&url, &format!("cannot migrate to version {to}"), causes(&e))
+                })?;
         }
-        tx.commit().map_err(|e| failed(&url, "cannot migrate", e))
+        tx.commit()
+            .map_err(|e| failed(&url, "cannot migrate", causes(&e)))
     }
 
     /// The schema version of the database (0 before the first migration).
@@ -206,7 +224,7 @@ impl PgStore {
         let exists: bool = self
             .client
             .query_one("SELECT to_regclass('halfcast_schema') IS NOT NULL", &[])
-            .map_err(|e| e.to_string())?
+            .map_err(|e| causes(&e))?
             .get(0);
         if !exists {
             return Ok(0);
@@ -214,7 +232,7 @@ impl PgStore {
         let row = self
             .client
             .query_opt("SELECT version FROM halfcast_schema", &[])
-            .map_err(|e| e.to_string())?;
+            .map_err(|e| causes(&e))?;
         Ok(row.map_or(0, |r| i64::from(r.get::<_, i32>(0))))
     }
 
@@ -235,12 +253,14 @@ impl PgStore {
     }
 
     fn write(&mut self, r: &RoundRecord) -> Result<(), String> {
-        let mut tx = self.client.transaction().map_err(|e| e.to_string())?;
-        let round: i64 = tx
-            .query_one(
-                "INSERT INTO rounds (map_hash, map_name, mode, seconds, cleared, ended_at)
-                 VALUES ($1, $2, $3, $4, $5, $6) RETURNING id",
+        let mut tx = self.client.transaction().map_err(|e| causes(&e))?;
+        // A round already there (sent again from the queue) adds nothing.
+        let Some(row) = tx
+            .query_opt(
+                "INSERT INTO rounds (uid, map_hash, map_name, mode, seconds, cleared, ended_at)
+                 VALUES ($1, $2, $3, $4, $5, $6, $7) ON CONFLICT (uid) DO NOTHING RETURNING id",
                 &[
+                    &r.uid,
                     &r.map_hash,
                     &r.map_name,
                     &r.mode,
@@ -249,8 +269,11 @@ impl PgStore {
                     &r.ended_at,
                 ],
             )
-            .map_err(|e| e.to_string())?
-            .get(0);
+            .map_err(|e| causes(&e))?
+        else {
+            return tx.commit().map_err(|e| causes(&e));
+        };
+        let round: i64 = row.get(0);
         for p in &r.players {
             tx.execute(
                 "INSERT INTO results (round_id, name, points, items, it_seconds, reached_exit)
@@ -264,9 +287,9 @@ impl PgStore {
                     &p.reached_exit,
                 ],
             )
-            .map_err(|e| e.to_string())?;
+            .map_err(|e| causes(&e))?;
         }
-        tx.commit().map_err(|e| e.to_string())
+        tx.commit().map_err(|e| causes(&e))
     }
 
     /// As [`super::store::Store::maps`].
@@ -284,7 +307,7 @@ impl PgStore {
                  FROM rounds r GROUP BY map_hash, mode ORDER BY 4, 2",
                 &[],
             )
-            .map_err(|e| e.to_string())?;
+            .map_err(|e| causes(&e))?;
         Ok(rows
             .iter()
             .map(|r| {
@@ -317,7 +340,7 @@ impl PgStore {
         let rows = self
             .client
             .query(&sql, &[&map_hash, &mode, &(n as i64)])
-            .map_err(|e| e.to_string())?;
+            .map_err(|e| causes(&e))?;
         Ok(rows.iter().map(entry).collect())
     }
 
@@ -343,7 +366,7 @@ impl PgStore {
         let row = self
             .client
             .query_opt(&sql, &[&map_hash, &mode, &bounded_name(name)])
-            .map_err(|e| e.to_string())?;
+            .map_err(|e| causes(&e))?;
         Ok(row.as_ref().map(entry))
     }
 

@@ -20,7 +20,7 @@ use rusqlite::{params, Connection, OpenFlags, OptionalExtension, TransactionBeha
 use super::{bounded_name, Entry, MapBoard, RoundRecord};
 
 /// The schema version this build writes and reads.
-pub const SCHEMA_VERSION: i64 = 2;
+pub const SCHEMA_VERSION: i64 = 3;
 
 /// The steps from version N-1 to N, index N-1; each runs in one transaction with the version
 /// bump.
@@ -46,6 +46,10 @@ const MIGRATIONS: &[&str] = &[
     CREATE INDEX rounds_by_map ON rounds(map_hash, mode);",
     // 2: a player's own best is looked up by name.
     "CREATE INDEX results_by_name ON results(name, round_id);",
+    // 3: a round's identity, so a round written again (from a world's queue, after an outage
+    // or a kill -9) is ignored; rounds written before it have none.
+    "ALTER TABLE rounds ADD COLUMN uid TEXT;
+    CREATE UNIQUE INDEX rounds_by_uid ON rounds(uid);",
 ];
 
 /// How long to wait for another process's lock before giving up: other worlds sharing the
@@ -214,7 +218,8 @@ impl Store {
             .map_err(|e| e.to_string())
     }
 
-    /// Writes one finished round and its players, all or nothing.
+    /// Writes one finished round and its players, all or nothing; a round whose `uid` is
+    /// already there is left as it is (written once, however often it is sent).
     ///
     /// # Errors
     /// SQLite's message (disk full, I/O error, locked too long).
@@ -223,12 +228,16 @@ impl Store {
             .conn
             .transaction_with_behavior(TransactionBehavior::Immediate)
             .map_err(|e| e.to_string())?;
-        tx.execute(
-            "INSERT INTO rounds (map_hash, map_name, mode, seconds, cleared, ended_at)
-             VALUES (?1, ?2, ?3, ?4, ?5, ?6)",
-            params![r.map_hash, r.map_name, r.mode, r.seconds, r.cleared, r.ended_at],
-        )
-        .map_err(|e| e.to_string())?;
+        let added = tx
+            .execute(
+                "INSERT INTO rounds (uid, map_hash, map_name, mode, seconds, cleared, ended_at)
+                 VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7) ON CONFLICT (uid) DO NOTHING",
+                params![r.uid, r.map_hash, r.map_name, r.mode, r.seconds, r.cleared, r.ended_at],
+            )
+            .map_err(|e| e.to_string())?;
+        if added == 0 {
+            return Ok(());
+        }
         let round = tx.last_insert_rowid();
         for p in &r.players {
             tx.execute(
@@ -367,8 +376,14 @@ mod tests {
     use super::*;
     use crate::game::multi::round::PlayerResult;
 
+    static NEXT_UID: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+
     fn round(hash: &str, seconds: f64, cleared: bool, players: &[(&str, i64, f64)]) -> RoundRecord {
         RoundRecord {
+            uid: format!(
+                "test-{}",
+                NEXT_UID.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
+            ),
             map_hash: hash.into(),
             map_name: "m.cub".into(),
             mode: if players.iter().any(|p| p.2 > 0.0) {
@@ -525,6 +540,40 @@ mod tests {
             .query_row("PRAGMA journal_mode", [], |r| r.get(0))
             .unwrap();
         assert_eq!(mode, "wal");
+    }
+
+    #[test]
+    fn a_round_sent_twice_is_written_once_and_old_rounds_keep_after_the_migration() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("lb.sqlite");
+        {
+            // A version-2 file with one round in it (no identity).
+            let c = Connection::open(&path).unwrap();
+            c.execute_batch(MIGRATIONS[0]).unwrap();
+            c.execute_batch(MIGRATIONS[1]).unwrap();
+            c.pragma_update(None, "user_version", 2).unwrap();
+            c.execute_batch(
+                "INSERT INTO rounds (map_hash, map_name, mode, seconds, cleared, ended_at)
+                 VALUES ('h', 'm.cub', 'coop', 9.0, 0, 1);
+                 INSERT INTO results VALUES (1, 'old', 3, 0, 0.0, 0);",
+            )
+            .unwrap();
+        }
+        let mut s = Store::open(&path).unwrap();
+        let r = round("h", 30.0, false, &[("ann", 7, 0.0), ("bob", 5, 0.0)]);
+        s.record(&r).unwrap();
+        s.record(&r).unwrap();
+        let mut again = round("h", 31.0, false, &[("cat", 1, 0.0)]);
+        again.uid.clone_from(&r.uid);
+        s.record(&again).unwrap();
+        let count = |sql: &str| -> i64 { s.conn.query_row(sql, [], |row| row.get(0)).unwrap() };
+        assert_eq!(
+            count("SELECT COUNT(*) FROM rounds"),
+            2,
+            "the old round and ann's"
+        );
+        assert_eq!(count("SELECT COUNT(*) FROM results"), 3);
+        assert_eq!(s.maps().unwrap()[0].3, 2);
     }
 
     const TOP_FOR_TEST: usize = 10;

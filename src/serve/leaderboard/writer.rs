@@ -1,14 +1,24 @@
-//! The leaderboard's own thread: it owns the SQLite connection, writes each finished round,
+//! The leaderboard's own thread: it owns the database connection, writes each finished round,
 //! answers "what is this player's best here", and publishes the boards sessions draw through a
 //! `watch` channel. The world task and sessions only ever queue a job (never wait on the
-//! disk); a full queue drops the job and counts it.
+//! disk or the network); a full job queue drops the job and counts it.
+//!
+//! A round goes to the backlog ([`super::backlog`]: on disk first) and then to the database;
+//! while the database is away (not there at start, stopped, its disk full) the backlog grows
+//! and the thread tries again after a growing pause ([`super::outage`]), writing the backlog
+//! in order once it answers. Reads wait out an outage the same way and log it once.
 
-use std::sync::mpsc::{sync_channel, Receiver, SyncSender, TrySendError};
+use std::path::{Path, PathBuf};
+use std::sync::mpsc::{sync_channel, Receiver, RecvTimeoutError, SyncSender, TrySendError};
 use std::sync::Arc;
+use std::time::Instant;
 
 use tokio::sync::watch;
 
-use super::database::Database;
+use super::backlog::Backlog;
+use super::database::{self, Database, OpenError};
+use super::outage::Outage;
+use super::queue::DiskQueue;
 use super::{board_key, Boards, RoundRecord};
 use crate::serve::ops::log::Log;
 use crate::serve::ops::metrics;
@@ -25,8 +35,20 @@ enum Job {
         mode: String,
         name: String,
     },
-    /// Answers once every job queued before it is done.
+    /// Answers once every job queued before it is done (or tried, while the database is away).
     Flush(std::sync::mpsc::Sender<()>),
+}
+
+/// Where the leaderboard is and where its rounds queue: what the thread needs to open it
+/// (again).
+#[derive(Debug, Clone)]
+pub struct Target {
+    /// `--db`: a SQLite file or a `postgres://` URL.
+    pub db: PathBuf,
+    /// `--db-password-file`.
+    pub password_file: Option<PathBuf>,
+    /// `--queue-dir`.
+    pub queue_dir: PathBuf,
 }
 
 /// A line to the leaderboard thread; cheap to clone.
@@ -38,27 +60,41 @@ pub struct Leaderboard {
 }
 
 impl Leaderboard {
-    /// Loads the boards of the `served` maps (hash, mode) from `store`, then starts the thread.
+    /// Opens the queue and the database at `target`, loads the boards of the `served` maps
+    /// (hash, mode), and starts the thread. A database that cannot be reached now is no
+    /// error: the world starts, says so, and its rounds queue until the database answers.
     ///
     /// # Errors
-    /// When the boards cannot be read, or the thread cannot start.
-    pub fn start(
-        mut store: Database,
-        served: &[(String, String)],
-        log: Log,
-    ) -> Result<Self, String> {
-        let mut boards = Boards::default();
-        for (hash, mode) in served {
-            let b = store
-                .board(hash, mode, &[])
-                .map_err(|e| format!("leaderboard: cannot read the boards: {e}"))?;
-            boards.maps.insert(board_key(hash, mode), b);
+    /// When the queue directory cannot be made, the database refuses to be used (newer schema,
+    /// another program's, damaged), its boards cannot be read, or the thread cannot start.
+    pub fn start(target: Target, served: &[(String, String)], log: Log) -> Result<Self, String> {
+        let (queue, (found, notes)) = DiskQueue::open(&target.queue_dir)?;
+        for n in notes {
+            log.server(n);
         }
+        if !found.is_empty() {
+            log.server(format_args!(
+                "leaderboard: {} rounds queued in {} by an earlier run; writing them",
+                found.len(),
+                target.queue_dir.display()
+            ));
+        }
+        let mut writer = Writer {
+            db: None,
+            served: served.to_vec(),
+            backlog: Backlog::new(queue, found),
+            writes: Outage::new(),
+            reads: Outage::new(),
+            boards: watch::channel(Arc::new(Boards::default())).0,
+            log,
+            target,
+        };
+        writer.connect(true)?;
         let (tx, rx) = sync_channel(QUEUE);
-        let (board_tx, board_rx) = watch::channel(Arc::new(boards));
+        let board_rx = writer.boards.subscribe();
         std::thread::Builder::new()
             .name("halfcast-leaderboard".into())
-            .spawn(move || run(store, &rx, &board_tx, log))
+            .spawn(move || writer.run(&rx))
             .map_err(|e| format!("leaderboard: cannot start its thread: {e}"))?;
         Ok(Self {
             tx,
@@ -85,8 +121,8 @@ impl Leaderboard {
         });
     }
 
-    /// Waits (up to `patience`) until every round queued so far is written: a server that is
-    /// shutting down loses no finished round.
+    /// Waits (up to `patience`) until every round queued so far is written, or saved in the
+    /// queue when the database is away: a server that is shutting down loses no finished round.
     pub async fn flush(&self, patience: std::time::Duration) {
         let (tx, rx) = std::sync::mpsc::channel();
         let queue = self.tx.clone();
@@ -105,51 +141,223 @@ impl Leaderboard {
     }
 }
 
-/// The thread's loop: until every sender is gone.
-fn run(mut store: Database, rx: &Receiver<Job>, boards: &watch::Sender<Arc<Boards>>, log: Log) {
-    while let Ok(job) = rx.recv() {
-        match job {
-            Job::Record(r) => {
-                let names: Vec<String> = r.players.iter().map(|p| p.name.clone()).collect();
-                match store.record(&r) {
-                    Ok(()) => metrics::db_write("ok"),
-                    Err(e) => {
-                        metrics::db_write("error");
-                        log.server(format_args!("leaderboard: cannot record a round: {e}"));
-                        continue;
+/// The thread's state.
+struct Writer {
+    target: Target,
+    /// None while the database has not answered yet.
+    db: Option<Database>,
+    served: Vec<(String, String)>,
+    backlog: Backlog,
+    writes: Outage,
+    reads: Outage,
+    boards: watch::Sender<Arc<Boards>>,
+    log: Log,
+}
+
+impl Writer {
+    /// The thread's loop: until every sender is gone, trying the backlog again when it is due.
+    fn run(mut self, rx: &Receiver<Job>) {
+        self.catch_up();
+        loop {
+            let waiting = !self.backlog.is_empty() || self.db.is_none();
+            let job = if waiting {
+                match rx.recv_timeout(self.writes.until_next_try(Instant::now())) {
+                    Ok(job) => Some(job),
+                    Err(RecvTimeoutError::Timeout) => None,
+                    Err(RecvTimeoutError::Disconnected) => return,
+                }
+            } else {
+                match rx.recv() {
+                    Ok(job) => Some(job),
+                    Err(_) => return,
+                }
+            };
+            match job {
+                Some(Job::Record(r)) => {
+                    self.backlog.push(r, self.log);
+                    if self.writes.is_away() {
+                        self.log.server(format_args!(
+                            "leaderboard: a round is queued; {} waiting in {}",
+                            self.backlog.len(),
+                            self.backlog.dir().display()
+                        ));
                     }
+                    self.catch_up();
                 }
-                // Everyone asked about before keeps an up-to-date best, and so does everyone
-                // who just played.
-                let key = board_key(&r.map_hash, &r.mode);
-                let mut asked: Vec<String> = boards
-                    .borrow()
-                    .maps
-                    .get(&key)
-                    .map(|b| b.bests.keys().cloned().collect())
-                    .unwrap_or_default();
-                asked.extend(names);
-                asked.sort();
-                asked.dedup();
-                match store.board(&r.map_hash, &r.mode, &asked) {
-                    Ok(b) => publish(boards, key, |m| *m = b),
-                    Err(e) => log.server(format_args!("leaderboard: cannot read a board: {e}")),
+                Some(Job::Lookup {
+                    map_hash,
+                    mode,
+                    name,
+                }) => self.lookup(&map_hash, &mode, name),
+                Some(Job::Flush(done)) => {
+                    if !self.backlog.is_empty() {
+                        self.log.server(format_args!(
+                            "leaderboard: {} rounds wait in {}; a world started with it writes them",
+                            self.backlog.len(),
+                            self.backlog.dir().display()
+                        ));
+                    }
+                    let _ = done.send(());
+                }
+                None => self.catch_up(),
+            }
+        }
+    }
+
+    /// Opens the database if it is not open; false while it is away. At start (`first`), a
+    /// refusal is an error; later it is logged as an outage.
+    fn connect(&mut self, first: bool) -> Result<bool, String> {
+        if self.db.is_some() {
+            return Ok(true);
+        }
+        let t = &self.target;
+        match Database::open(&t.db, t.password_file.as_deref()) {
+            Ok(mut db) => {
+                let mut boards = Boards::clone(&self.boards.borrow());
+                for (hash, mode) in &self.served {
+                    match db.board(hash, mode, &[]) {
+                        Ok(b) => boards.maps.insert(board_key(hash, mode), b),
+                        Err(e) if first => {
+                            return Err(format!("leaderboard: cannot read the boards: {e}"))
+                        }
+                        Err(e) => {
+                            self.write_failed(&format!("cannot read the boards: {e}"), false);
+                            return Ok(false);
+                        }
+                    };
+                }
+                boards.version += 1;
+                self.boards.send_replace(Arc::new(boards));
+                self.db = Some(db);
+                Ok(true)
+            }
+            Err(OpenError::Refused(e)) if first => Err(e),
+            Err(OpenError::Away(e) | OpenError::Refused(e)) => {
+                self.write_failed(&e, first);
+                Ok(false)
+            }
+        }
+    }
+
+    /// Writes the backlog in order, if a try is due, until it is empty or a write fails.
+    fn catch_up(&mut self) {
+        let now = Instant::now();
+        if !self.writes.may_try(now) || !matches!(self.connect(false), Ok(true)) {
+            return;
+        }
+        let mut wrote = 0;
+        // The boards to read again afterwards, once each however many rounds a backlog held,
+        // with the names that played on them.
+        let mut played: Vec<(String, String, Vec<String>)> = Vec::new();
+        let mut failed = None;
+        while let (Some(r), Some(db)) = (self.backlog.front(), self.db.as_mut()) {
+            if let Err(e) = db.record(r) {
+                failed = Some(e);
+                break;
+            }
+            metrics::db_write("ok");
+            wrote += 1;
+            if let Some(r) = self.backlog.written() {
+                let names = r.players.into_iter().map(|p| p.name);
+                match played
+                    .iter_mut()
+                    .find(|p| p.0 == r.map_hash && p.1 == r.mode)
+                {
+                    Some(p) => p.2.extend(names),
+                    None => played.push((r.map_hash, r.mode, names.collect())),
                 }
             }
-            Job::Lookup {
-                map_hash,
-                mode,
-                name,
-            } => match store.best(&map_hash, &mode, &name) {
-                Ok(Some(e)) => publish(boards, board_key(&map_hash, &mode), |m| {
-                    m.bests.insert(name, e);
-                }),
-                Ok(None) => {}
-                Err(e) => log.server(format_args!("leaderboard: cannot read a best: {e}")),
-            },
-            Job::Flush(done) => {
-                let _ = done.send(());
+        }
+        for (map_hash, mode, names) in played {
+            self.refresh(&map_hash, &mode, names);
+        }
+        if let Some(e) = failed {
+            metrics::db_write("error");
+            self.write_failed(&e, false);
+            return;
+        }
+        if let Some(away) = self.writes.recovered(Instant::now()) {
+            self.log.server(format_args!(
+                "leaderboard {}: back after {:.1} s; {wrote} queued rounds written",
+                database::shown(&self.target.db),
+                away.as_secs_f64()
+            ));
+        }
+    }
+
+    /// A write (or opening the database) failed: logged when it starts an outage.
+    fn write_failed(&mut self, e: &str, at_start: bool) {
+        if self.writes.failed(Instant::now()) {
+            let shown = database::shown(&self.target.db);
+            let dir = self.backlog.dir().display();
+            let pending = self.backlog.len();
+            if at_start {
+                self.log.server(format_args!(
+                    "leaderboard {shown} is away ({e}); starting anyway: rounds are queued in \
+                     {dir} ({pending} now) and written when it answers"
+                ));
+            } else {
+                self.log.server(format_args!(
+                    "leaderboard {shown}: cannot write ({e}); rounds are queued in {dir} \
+                     ({pending} now) and written when it answers (logged again when it does)"
+                ));
             }
+        }
+    }
+
+    /// Publishes a map's board after rounds were written on it: everyone asked about before
+    /// keeps an up-to-date best, and so does everyone who just played (`names`).
+    fn refresh(&mut self, map_hash: &str, mode: &str, mut names: Vec<String>) {
+        let key = board_key(map_hash, mode);
+        names.extend(
+            self.boards
+                .borrow()
+                .maps
+                .get(&key)
+                .map(|b| b.bests.keys().cloned().collect::<Vec<_>>())
+                .unwrap_or_default(),
+        );
+        names.sort();
+        names.dedup();
+        let Some(db) = self.db.as_mut() else { return };
+        match db.board(map_hash, mode, &names) {
+            Ok(b) => publish(&self.boards, key, |m| *m = b),
+            Err(e) => self.read_failed("a board", &e),
+        }
+    }
+
+    /// Looks up `name`'s best, unless reads are waiting out an outage.
+    fn lookup(&mut self, map_hash: &str, mode: &str, name: String) {
+        let now = Instant::now();
+        if !self.reads.may_try(now) {
+            return;
+        }
+        let Some(db) = self.db.as_mut() else { return };
+        match db.best(map_hash, mode, &name) {
+            Ok(found) => {
+                if let Some(away) = self.reads.recovered(now) {
+                    self.log.server(format_args!(
+                        "leaderboard: reads work again after {:.1} s",
+                        away.as_secs_f64()
+                    ));
+                }
+                if let Some(e) = found {
+                    publish(&self.boards, board_key(map_hash, mode), |m| {
+                        m.bests.insert(name, e);
+                    });
+                }
+            }
+            Err(e) => self.read_failed("a best", &e),
+        }
+    }
+
+    /// A read failed: logged once per outage; reads pause meanwhile.
+    fn read_failed(&mut self, what: &str, e: &str) {
+        if self.reads.failed(Instant::now()) {
+            self.log.server(format_args!(
+                "leaderboard: cannot read {what}: {e} (reads pause and retry; logged again when \
+                 they work)"
+            ));
         }
     }
 }
@@ -165,3 +373,15 @@ fn publish(
     next.version += 1;
     boards.send_replace(Arc::new(next));
 }
+
+/// The default queue directory: beside the host key.
+#[must_use]
+pub fn default_queue_dir(host_key: &Path) -> PathBuf {
+    host_key
+        .parent()
+        .unwrap_or_else(|| Path::new(""))
+        .join(super::queue::DEFAULT_DIR)
+}
+
+#[cfg(test)]
+mod full_disk;

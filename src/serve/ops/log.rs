@@ -1,6 +1,7 @@
 //! The server's log on stderr: one line per event, each naming its session; `--quiet`
 //! silences it. Text lines by default; `--log-format json` writes each event as one JSON
-//! object (`event`: connect, login, refusal, round_end, disconnect, or message for the rest),
+//! object (`event`: connect, login, refusal, round_end, disconnect, start_failed, or message
+//! for the rest),
 //! for log shippers. docs/serving.md lists the fields.
 
 use std::fmt::Display;
@@ -73,6 +74,14 @@ impl Log {
         match self.format {
             LogFormat::Text => eprintln!("halfcast serve: {msg}"),
             LogFormat::Json => self.json("message", json!({ "text": msg.to_string() })),
+        }
+    }
+
+    /// The server could not start, and why (written even when quiet: it is the last word).
+    pub fn failed_to_start(&self, why: impl Display) {
+        match self.format {
+            LogFormat::Text => eprintln!("halfcast serve: cannot start: {why}"),
+            LogFormat::Json => self.json("start_failed", json!({ "text": why.to_string() })),
         }
     }
 

@@ -36,8 +36,11 @@ pub const ENCODE_SECONDS: &str = "halfcast_frame_encode_seconds";
 pub const TICK_SECONDS: &str = "halfcast_world_tick_seconds";
 /// Rounds finished, by `mode`.
 pub const ROUNDS: &str = "halfcast_rounds_total";
-/// Leaderboard writes, by `result` ("ok", "error", "dropped": the writer's queue was full).
+/// Leaderboard writes, by `result` ("ok": a round written; "error": a try that failed, its
+/// round kept in the queue; "dropped": a round lost, the writer's queues being full).
 pub const DB_WRITES: &str = "halfcast_leaderboard_writes_total";
+/// Rounds waiting to be written to the leaderboard (the database away, or its disk full).
+pub const PENDING_ROUNDS: &str = "halfcast_leaderboard_pending_rounds";
 
 /// How long a frame ready to be drawn waited for the client's link to take the last one (zero
 /// for most frames on a fast link): the lag a slow link adds to what the player sees.
@@ -70,6 +73,17 @@ pub enum Reason {
 }
 
 impl Reason {
+    /// Every reason, for the series that exist at 0 from the start.
+    pub const ALL: [Reason; 7] = [
+        Reason::Full,
+        Reason::PerAddress,
+        Reason::Startups,
+        Reason::Auth,
+        Reason::Grace,
+        Reason::Stall,
+        Reason::Proxy,
+    ];
+
     /// The label value.
     #[must_use]
     pub fn label(self) -> &'static str {
@@ -97,7 +111,43 @@ pub fn install() -> Result<PrometheusHandle, String> {
         .map_err(|e| format!("cannot record metrics: {e}"))?;
     describe();
     describe_fleet();
+    zeroes();
     Ok(handle)
+}
+
+/// Every series, each label value included, at 0 from the start: `increase()` and `rate()`
+/// then see a world's first refusal or failed write as the step from 0 it is, not as a new
+/// series with no past.
+fn zeroes() {
+    for why in Reason::ALL {
+        counter!(REFUSALS, "reason" => why.label()).absolute(0);
+    }
+    for result in ["ok", "error", "dropped"] {
+        counter!(DB_WRITES, "result" => result).absolute(0);
+    }
+    for mode in ["coop", "tag"] {
+        counter!(ROUNDS, "mode" => mode).absolute(0);
+    }
+    for answer in ["accepting", "draining", "full"] {
+        counter!(HEALTH_CHECKS, "answer" => answer).absolute(0);
+    }
+    for state in ["playing", "watching"] {
+        gauge!(SESSIONS, "state" => state).set(0.0);
+    }
+    for direction in ["down", "up"] {
+        counter!(LINK_LEVEL_STEPS, "direction" => direction).absolute(0);
+    }
+    for name in [
+        CONNECTIONS,
+        FRAMES_SENT,
+        FRAMES_SKIPPED,
+        PAYLOAD_BYTES,
+        WIRE_BYTES,
+    ] {
+        counter!(name).absolute(0);
+    }
+    gauge!(LOGGING_IN).set(0.0);
+    gauge!(PENDING_ROUNDS).set(0.0);
 }
 
 /// Help lines for every series.
@@ -139,6 +189,10 @@ fn describe() {
     );
     describe_counter!(ROUNDS, "Rounds finished, by mode.");
     describe_counter!(DB_WRITES, "Leaderboard writes, by result.");
+    describe_gauge!(
+        PENDING_ROUNDS,
+        "Rounds queued for the leaderboard, not yet written."
+    );
 }
 
 /// A connection was turned away.
@@ -184,6 +238,11 @@ pub fn round(mode: &'static str) {
 /// A leaderboard write ended with `result` ("ok", "error", "dropped").
 pub fn db_write(result: &'static str) {
     counter!(DB_WRITES, "result" => result).increment(1);
+}
+
+/// `n` rounds wait for the leaderboard.
+pub fn pending_rounds(n: usize) {
+    gauge!(PENDING_ROUNDS).set(n as f64);
 }
 
 /// The per-frame series, resolved once per session.
@@ -255,8 +314,12 @@ pub fn wire_bytes() -> Counter {
 /// `/healthz` requests answered, by `answer` ("accepting", "draining", "full"): a balancer's
 /// checks, kept apart from the players' connections.
 pub const HEALTH_CHECKS: &str = "halfcast_health_checks_total";
-/// Always 1, labelled with the build's `version`: which release each world of a fleet runs.
+/// Always 1, labelled with the build's `version` and `commit`: which release, and which build
+/// of it, each world of a fleet runs.
 pub const BUILD_INFO: &str = "halfcast_build_info";
+/// The git commit this binary was built from (build.rs: `HALFCAST_COMMIT` if set, else `git
+/// rev-parse HEAD` in a checkout), or "unknown" (a crates.io package has no `.git`).
+pub const COMMIT: &str = env!("HALFCAST_COMMIT");
 /// Whether the world is draining before it stops (1) or accepting players (0).
 pub const DRAINING: &str = "halfcast_draining";
 
@@ -266,7 +329,10 @@ fn describe_fleet() {
         HEALTH_CHECKS,
         "Health checks answered on /healthz, by answer."
     );
-    describe_gauge!(BUILD_INFO, "Always 1; the build's version as a label.");
+    describe_gauge!(
+        BUILD_INFO,
+        "Always 1; the build's version and git commit as labels."
+    );
     describe_gauge!(DRAINING, "1 while the world drains before stopping.");
     describe_gauge!(
         "process_resident_memory_bytes",
@@ -291,7 +357,7 @@ fn describe_fleet() {
         Unit::Seconds,
         "Start time, in Unix seconds."
     );
-    gauge!(BUILD_INFO, "version" => env!("CARGO_PKG_VERSION")).set(1.0);
+    gauge!(BUILD_INFO, "version" => env!("CARGO_PKG_VERSION"), "commit" => COMMIT).set(1.0);
     gauge!(DRAINING).set(0.0);
 }
 

@@ -162,7 +162,7 @@ fn draining_notes(mut farewell: watch::Receiver<&'static str>) -> watch::Receive
 /// client may already be gone (a dead link is not waited on).
 async fn goodbye(p: &SessionParams, end: End) {
     let mut bye = LEAVE.to_vec();
-    let farewell = drain::farewell_line(*p.farewell.borrow());
+    let farewell = drain::farewell_line_for(*p.farewell.borrow(), p.id);
     bye.extend_from_slice(match end {
         End::Idle => b"halfcast: closed after being idle too long.\r\n".as_slice(),
         End::Shutdown => &farewell,

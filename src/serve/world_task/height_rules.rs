@@ -5,11 +5,12 @@
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use super::{spawn_rounds, WorldHandle, WorldMsg};
+use super::spawn_rounds;
 use crate::game::multi::players::Rules;
 use crate::game::multi::round::Mode;
 use crate::game::{Action, Command, Held, Input, PLAYER_RADIUS};
 use crate::map::parse_map;
+use crate::play::world_port::{WorldHandle, WorldMsg};
 use crate::world::{TextureSource, World};
 
 /// A corridor east from the start: floor 0, a quarter step (a), a ledge 0.5 higher (c), and one
@@ -73,7 +74,13 @@ async fn settle(world: &WorldHandle) -> (f64, f64) {
 #[tokio::test]
 async fn the_world_task_moves_players_by_the_same_height_rules() {
     let world = Arc::new(world(ZONES, GRID));
-    let handle = spawn_rounds(vec![world], TICK_HZ, Rules::new(Mode::Coop, 0), |_| {});
+    let (handle, _phase) = spawn_rounds(
+        vec![world],
+        TICK_HZ,
+        Rules::new(Mode::Coop, 0),
+        |_| {},
+        tokio::sync::watch::channel(false).1,
+    );
     handle
         .send(WorldMsg::Join {
             id: 1,

@@ -4,6 +4,7 @@
 
 pub mod http;
 pub mod openssh;
+pub mod pg_cluster;
 pub mod postgres;
 
 use std::sync::Arc;

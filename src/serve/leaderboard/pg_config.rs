@@ -1,0 +1,352 @@
+//! Where a PostgreSQL leaderboard is and how to log in to it, the way libpq (`psql`,
+//! `pg_dump`) finds out: the `--db postgres://…` URL first, then a password file named on the
+//! command line (`--db-password-file`, for systemd's `LoadCredential=`), then the environment
+//! (`PGSERVICE`'s entry in the service file, `PGHOST`, `PGPORT`, `PGUSER`, `PGDATABASE`,
+//! `PGPASSWORD`, `PGCONNECT_TIMEOUT`), then the password file (`PGPASSFILE`, else
+//! `~/.pgpass`; ignored, as libpq does, when others may read it). The password never has to be
+//! on a command line, where every local user reads it.
+
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use postgres::Config;
+
+use super::pg_store::{causes, shown};
+
+/// How long connecting may take before it is an error, unless the URL or
+/// `PGCONNECT_TIMEOUT` says otherwise.
+const CONNECT_TIMEOUT: Duration = Duration::from_secs(5);
+
+/// A resolved PostgreSQL target: what to connect to, and how it is shown (no password).
+#[derive(Clone)]
+pub struct PgTarget {
+    /// The client's settings, password included.
+    pub config: Config,
+    /// The URL as logs and errors show it.
+    pub shown: String,
+}
+
+impl std::fmt::Debug for PgTarget {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("PgTarget")
+            .field("shown", &self.shown)
+            .finish()
+    }
+}
+
+/// Whether `url` carries a password itself (`postgres://user:PASSWORD@…` or `?password=`).
+#[must_use]
+pub fn url_has_password(url: &str) -> bool {
+    url.parse::<Config>()
+        .is_ok_and(|c| c.get_password().is_some())
+}
+
+impl PgTarget {
+    /// `url` completed from `password_file` and the process's environment, as libpq would.
+    ///
+    /// # Errors
+    /// The URL does not parse, or `password_file` cannot be read.
+    pub fn resolve(url: &str, password_file: Option<&Path>) -> Result<Self, String> {
+        Self::resolve_with(url, password_file, &|k| {
+            std::env::var(k).ok().filter(|v| !v.is_empty())
+        })
+    }
+
+    /// [`PgTarget::resolve`] with the environment read through `env`.
+    ///
+    /// # Errors
+    /// As [`PgTarget::resolve`].
+    pub fn resolve_with(
+        url: &str,
+        password_file: Option<&Path>,
+        env: &dyn Fn(&str) -> Option<String>,
+    ) -> Result<Self, String> {
+        let shown_url = shown(url);
+        let mut config: Config = url.parse().map_err(|e| {
+            format!(
+                "leaderboard {shown_url}: not a PostgreSQL URL: {}",
+                causes(&e)
+            )
+        })?;
+        if config.get_password().is_none() {
+            if let Some(path) = password_file {
+                config.password(
+                    crate::serve::auth::password_from_file(path)
+                        .map_err(|e| format!("--db-password-file: {e}"))?,
+                );
+            }
+        }
+        let service = env("PGSERVICE")
+            .map(|name| service_entry(&name, env))
+            .transpose()?
+            .unwrap_or_default();
+        let setting = |key: &str, var: &str| {
+            service
+                .iter()
+                .find(|(k, _)| k == key)
+                .map(|(_, v)| v.clone())
+                .or_else(|| env(var))
+        };
+        if config.get_hosts().is_empty() {
+            config.host(&setting("host", "PGHOST").unwrap_or_else(|| "localhost".into()));
+        }
+        if config.get_ports().is_empty() {
+            if let Some(p) = setting("port", "PGPORT").and_then(|p| p.parse().ok()) {
+                config.port(p);
+            }
+        }
+        if config.get_user().is_none() {
+            let user = setting("user", "PGUSER")
+                .or_else(|| env("USER"))
+                .or_else(|| env("LOGNAME"));
+            if let Some(u) = user {
+                config.user(&u);
+            }
+        }
+        if config.get_dbname().is_none() {
+            if let Some(d) = setting("dbname", "PGDATABASE") {
+                config.dbname(&d);
+            }
+        }
+        if config.get_connect_timeout().is_none() {
+            let secs = setting("connect_timeout", "PGCONNECT_TIMEOUT").and_then(|s| s.parse().ok());
+            config.connect_timeout(secs.map_or(CONNECT_TIMEOUT, Duration::from_secs));
+        }
+        if config.get_password().is_none() {
+            if let Some(p) = setting("password", "PGPASSWORD") {
+                config.password(p);
+            } else if let Some(p) = from_pgpass(&config, env) {
+                config.password(p);
+            }
+        }
+        Ok(Self {
+            config,
+            shown: shown_url,
+        })
+    }
+}
+
+/// The password file libpq reads: `PGPASSFILE`, else `~/.pgpass`.
+fn pgpass_path(env: &dyn Fn(&str) -> Option<String>) -> Option<PathBuf> {
+    env("PGPASSFILE")
+        .map(PathBuf::from)
+        .or_else(|| env("HOME").map(|h| Path::new(&h).join(".pgpass")))
+}
+
+/// The password of the first `host:port:database:user:password` line of the password file
+/// matching `config` (`*` matches anything), if the file is the owner's alone.
+fn from_pgpass(config: &Config, env: &dyn Fn(&str) -> Option<String>) -> Option<String> {
+    let path = pgpass_path(env)?;
+    if !owner_only(&path) {
+        return None;
+    }
+    let text = std::fs::read_to_string(&path).ok()?;
+    let host = match config.get_hosts().first()? {
+        postgres::config::Host::Tcp(h) => h.clone(),
+        #[cfg(unix)]
+        postgres::config::Host::Unix(_) => "localhost".into(),
+    };
+    let port = config
+        .get_ports()
+        .first()
+        .copied()
+        .unwrap_or(5432)
+        .to_string();
+    let user = config.get_user()?;
+    let db = config.get_dbname().unwrap_or(user);
+    let wanted = [host.as_str(), port.as_str(), db, user];
+    text.lines()
+        .filter(|l| !l.starts_with('#'))
+        .map(pgpass_fields)
+        .find(|f| f.len() == 5 && wanted.iter().zip(f).all(|(w, f)| f == "*" || f == w))
+        .map(|f| f[4].clone())
+}
+
+/// A password file line's fields, split at `:` (`\:` and `\\` escape).
+fn pgpass_fields(line: &str) -> Vec<String> {
+    let mut fields = vec![String::new()];
+    let mut chars = line.chars();
+    while let Some(c) = chars.next() {
+        match c {
+            '\\' => fields
+                .last_mut()
+                .into_iter()
+                .for_each(|f| f.extend(chars.next())),
+            ':' if fields.len() < 5 => fields.push(String::new()),
+            c => fields.last_mut().into_iter().for_each(|f| f.push(c)),
+        }
+    }
+    fields
+}
+
+/// Whether only its owner may read `path` (libpq ignores a password file others can read).
+fn owner_only(path: &Path) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        std::fs::metadata(path).is_ok_and(|m| m.is_file() && m.permissions().mode() & 0o077 == 0)
+    }
+    #[cfg(not(unix))]
+    {
+        path.is_file()
+    }
+}
+
+/// The `key=value` settings of service `name`: from `PGSERVICEFILE` (else
+/// `~/.pg_service.conf`), or else `PGSYSCONFDIR/pg_service.conf`.
+fn service_entry(
+    name: &str,
+    env: &dyn Fn(&str) -> Option<String>,
+) -> Result<Vec<(String, String)>, String> {
+    let files = [
+        env("PGSERVICEFILE")
+            .map(PathBuf::from)
+            .or_else(|| env("HOME").map(|h| Path::new(&h).join(".pg_service.conf"))),
+        Some(
+            Path::new(&env("PGSYSCONFDIR").unwrap_or_else(|| "/etc/postgresql-common".into()))
+                .join("pg_service.conf"),
+        ),
+    ];
+    for file in files.into_iter().flatten() {
+        let Ok(text) = std::fs::read_to_string(&file) else {
+            continue;
+        };
+        if let Some(entry) = service_in(&text, name) {
+            return Ok(entry);
+        }
+    }
+    Err(format!(
+        "PGSERVICE={name}: no such service in the service files"
+    ))
+}
+
+/// Service `name`'s settings in a service file's `text` (`[name]` then `key=value` lines).
+fn service_in(text: &str, name: &str) -> Option<Vec<(String, String)>> {
+    let mut inside = None;
+    for line in text.lines().map(str::trim) {
+        if let Some(section) = line.strip_prefix('[').and_then(|l| l.strip_suffix(']')) {
+            if inside.is_some() {
+                break;
+            }
+            if section == name {
+                inside = Some(Vec::new());
+            }
+        } else if let (Some(entry), Some((k, v))) = (inside.as_mut(), line.split_once('=')) {
+            if !line.starts_with('#') {
+                entry.push((k.trim().to_owned(), v.trim().to_owned()));
+            }
+        }
+    }
+    inside
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::HashMap;
+
+    fn resolve(url: &str, file: Option<&Path>, vars: &[(&str, &str)]) -> Config {
+        let vars: HashMap<String, String> = vars
+            .iter()
+            .map(|(k, v)| ((*k).to_owned(), (*v).to_owned()))
+            .collect();
+        PgTarget::resolve_with(url, file, &|k| vars.get(k).cloned())
+            .unwrap()
+            .config
+    }
+
+    fn password(c: &Config) -> Option<&str> {
+        c.get_password().map(|p| std::str::from_utf8(p).unwrap())
+    }
+
+    #[test]
+    fn the_password_comes_from_the_url_the_file_the_environment_then_pgpass() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("pw");
+        std::fs::write(&file, "from-file\n").unwrap();
+        let pgpass = dir.path().join("pgpass");
+        std::fs::write(
+            &pgpass,
+            "# comment\nother:*:*:*:nope\ndb.example:5433:*:ann:a\\:b\\\\c\n",
+        )
+        .unwrap();
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            std::fs::set_permissions(&pgpass, std::fs::Permissions::from_mode(0o600)).unwrap();
+        }
+        let pass = pgpass.to_str().unwrap();
+        let url = "postgres://ann@db.example:5433/halfcast";
+        let c = resolve("postgres://ann:inurl@db.example/h", Some(&file), &[]);
+        assert_eq!(password(&c), Some("inurl"));
+        let c = resolve(url, Some(&file), &[("PGPASSWORD", "env")]);
+        assert_eq!(password(&c), Some("from-file"));
+        let c = resolve(url, None, &[("PGPASSWORD", "env"), ("PGPASSFILE", pass)]);
+        assert_eq!(password(&c), Some("env"));
+        let c = resolve(url, None, &[("PGPASSFILE", pass)]);
+        assert_eq!(password(&c), Some("a:b\\c"));
+        let c = resolve(
+            "postgres://bob@db.example:5433/h",
+            None,
+            &[("PGPASSFILE", pass)],
+        );
+        assert_eq!(password(&c), None);
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            std::fs::set_permissions(&pgpass, std::fs::Permissions::from_mode(0o644)).unwrap();
+            let c = resolve(url, None, &[("PGPASSFILE", pass)]);
+            assert_eq!(password(&c), None, "a password file others read is ignored");
+        }
+    }
+
+    #[test]
+    fn the_environment_and_a_service_fill_what_the_url_leaves_out() {
+        let c = resolve(
+            "postgres://",
+            None,
+            &[
+                ("PGHOST", "db.example"),
+                ("PGPORT", "6543"),
+                ("PGUSER", "ann"),
+                ("PGDATABASE", "hc"),
+            ],
+        );
+        assert_eq!(
+            c.get_hosts(),
+            [postgres::config::Host::Tcp("db.example".into())]
+        );
+        assert_eq!(c.get_ports(), [6543]);
+        assert_eq!((c.get_user(), c.get_dbname()), (Some("ann"), Some("hc")));
+        let dir = tempfile::tempdir().unwrap();
+        let services = dir.path().join("services");
+        std::fs::write(
+            &services,
+            "[other]\nhost=nope\n[fleet]\nhost=pg.example\nuser=fleet\npassword=svc\n",
+        )
+        .unwrap();
+        let vars = [
+            ("PGSERVICE", "fleet"),
+            ("PGSERVICEFILE", services.to_str().unwrap()),
+            ("PGUSER", "ann"),
+        ];
+        let c = resolve("postgres:///hc", None, &vars);
+        assert_eq!(
+            c.get_hosts(),
+            [postgres::config::Host::Tcp("pg.example".into())]
+        );
+        assert_eq!((c.get_user(), password(&c)), (Some("fleet"), Some("svc")));
+        let e = PgTarget::resolve_with("postgres://h/d", None, &|k| {
+            (k == "PGSERVICE").then(|| "missing".to_owned())
+        })
+        .unwrap_err();
+        assert!(e.contains("no such service"), "{e}");
+    }
+
+    #[test]
+    fn a_password_in_the_url_is_seen() {
+        assert!(url_has_password("postgres://ann:pw@h/db"));
+        assert!(url_has_password("postgres://ann@h/db?password=pw"));
+        assert!(!url_has_password("postgres://ann@h/db"));
+    }
+}
