@@ -7,7 +7,7 @@
 //! [`Framebuffer`] pixels ([`FramePixels`], [`CellRgb`]), the loose comparison that also knows
 //! quadrant, sextant and octant cells ([`diff`], [`appearance`]), PNG frame files ([`load`],
 //! [`parse_frame`]), the picture of a diff ([`highlight`]) and, with the `vt100` feature,
-//! reading a `vt100` screen ([`from_screen`]).
+//! reading a `vt100` screen (`from_screen`).
 //!
 //! [`Framebuffer`]: crate::Framebuffer
 

@@ -205,6 +205,7 @@ impl Grid {
 
     /// Moves rows `first..=last` up by `n`, blank rows coming in at `last`.
     fn shift_up(&mut self, first: usize, last: usize, n: usize) {
+        self.last = None;
         let n = n.min(last + 1 - first);
         let (a, b, c) = (
             self.at(0, first),
@@ -218,6 +219,7 @@ impl Grid {
 
     /// Moves rows `first..=last` down by `n`, blank rows coming in at `first`.
     fn shift_down(&mut self, first: usize, last: usize, n: usize) {
+        self.last = None;
         let n = n.min(last + 1 - first);
         let (a, c) = (self.at(0, first), self.at(0, last + 1));
         self.cells[a..c].rotate_right(n * self.cols);

@@ -206,4 +206,88 @@ mod tests {
         assert_eq!((f.cols, f.rows), (6, 3));
         assert_eq!(f.cell(5, 2).glyph, 'b');
     }
+
+    fn row(f: &TermFrame, y: usize) -> String {
+        (0..f.cols)
+            .map(|x| f.cell(x, y).glyph.to_string())
+            .collect()
+    }
+
+    #[test]
+    fn a_scrolling_region_moves_only_its_rows() {
+        let f = from_ansi_sized(b"a\r\nb\r\nc\r\nd\x1b[2;3r\x1b[3;1H\n\x1b[r", 1, 4);
+        assert_eq!((0..4).map(|y| row(&f, y)).collect::<String>(), "ac d");
+        let f = from_ansi_sized(b"a\r\nb\r\nc\x1b[2;3r\x1b[2;1H\x1bM", 1, 3);
+        assert_eq!((0..3).map(|y| row(&f, y)).collect::<String>(), "a b");
+    }
+
+    #[test]
+    fn erasing_inserting_and_deleting_cells() {
+        let f = from_ansi_sized(b"abcdef\x1b[1;3H\x1b[44m\x1b[K", 6, 1);
+        assert_eq!(row(&f, 0), "ab    ");
+        assert_eq!(
+            (f.cell(1, 0).bg, f.cell(2, 0).bg),
+            (Color::Reset, Color::Blue)
+        );
+        let f = from_ansi_sized(b"abcdef\x1b[1;2H\x1b[2P\x1b[1;1H\x1b[@", 6, 1);
+        assert_eq!(row(&f, 0), " adef ");
+        let f = from_ansi_sized(b"abcdef\x1b[1;2H\x1b[3X", 6, 1);
+        assert_eq!(row(&f, 0), "a   ef");
+    }
+
+    #[test]
+    fn text_wraps_at_the_edge_unless_autowrap_is_off() {
+        let f = from_ansi_sized(b"abcde", 3, 2);
+        assert_eq!((row(&f, 0), row(&f, 1)), ("abc".into(), "de ".into()));
+        let f = from_ansi_sized(b"\x1b[?7labcde", 3, 2);
+        assert_eq!((row(&f, 0), row(&f, 1)), ("abe".into(), "   ".into()));
+    }
+
+    #[test]
+    fn half_of_a_wide_character_overwritten_erases_the_other_half() {
+        let f = from_ansi_sized("界x\x1b[1;2Hy".as_bytes(), 4, 1);
+        assert_eq!(row(&f, 0), " yx ");
+        let f = from_ansi_sized("ab\x1b[1;1H界".as_bytes(), 3, 1);
+        assert_eq!(f.cell(0, 0).glyph, "界");
+        assert!(f.cell(1, 0).glyph.is_continuation());
+    }
+
+    #[test]
+    fn every_attribute_and_colour_form_reads_in_one_pass() {
+        let f = from_ansi_sized(
+            b"\x1b[1;2;3;4;5;7;8;9m\x1b[38:2::1:2:3;48:5:200;58:2:4:5:6ma\x1b[0;6;4:3;58;5;9;21mb\x1b[4:0;59;22;25mc",
+            3,
+            1,
+        );
+        let a = f.cell(0, 0);
+        assert_eq!(a.modifiers, Modifier::all() - Modifier::RAPID_BLINK);
+        assert_eq!(
+            (a.fg, a.bg, a.underline),
+            (
+                Color::Rgb(1, 2, 3),
+                Color::Indexed(200),
+                Color::Rgb(4, 5, 6)
+            )
+        );
+        let b = f.cell(1, 0);
+        assert_eq!(
+            (b.modifiers, b.underline),
+            (
+                Modifier::RAPID_BLINK | Modifier::UNDERLINED,
+                Color::LightRed
+            )
+        );
+        let c = f.cell(2, 0);
+        assert_eq!(
+            (c.modifiers, c.underline),
+            (Modifier::empty(), Color::Reset)
+        );
+        assert_eq!(
+            *f.cell(2, 0),
+            TermCell {
+                glyph: 'c'.into(),
+                ..TermCell::default()
+            }
+        );
+    }
 }
