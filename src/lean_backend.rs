@@ -14,6 +14,10 @@ use crate::encode::{ColorLevel, SYNC_BEGIN, SYNC_END};
 ///
 /// - one merged SGR per change (colours and attributes together, only what changed),
 /// - the cheapest cursor move between changed cells (`ESC[nC`, `CR LF`, `ESC[nG`, or absolute),
+/// - a run of plain `▀` cells (a half-block picture) sent as `▀`, `▄`, a space or `█`, whichever
+///   needs fewer colour changes: the screen looks the same, the glyphs may differ
+///   ([`LeanBackend::keeping_glyphs`] sends them as drawn, for tests that read the bytes back
+///   cell for cell),
 /// - colours mapped down the ladder: [`ColorLevel::Ansi256`] / [`ColorLevel::Ansi16`] pick the
 ///   nearest palette colour in OKLab, [`ColorLevel::Mono`] drops colours,
 /// - each [`Backend::flush`] sends the frame as one write wrapped in one DEC 2026 synchronized
