@@ -144,6 +144,7 @@ mod tests {
         assert!(Glyph::CONTINUATION.is_continuation());
         assert_eq!(Glyph::new("🇯🇵").width(), 2);
         assert_eq!(Glyph::new(family).width(), 2);
+        assert_eq!(Glyph::new("1\u{fe0f}\u{20e3}").width(), 2);
         assert_eq!(Glyph::CONTINUATION.first_char(), ' ');
     }
 }
