@@ -16,10 +16,11 @@ use ratatui::style::{Color, Modifier, Style};
 /// What one cell may hold: letters, block characters, a space, clusters with combining marks,
 /// wide characters (CJK, Hangul), emoji with a skin tone, flags, ZWJ sequences (a family, a
 /// rainbow flag, a technologist with a skin tone), keycaps, emoji made so by VS16, a halfwidth
-/// letter with its sound mark, Devanagari and Thai clusters. Not a lone regional indicator or
+/// letter with its sound mark, Devanagari and Thai clusters, a tag-sequence flag, a soft
+/// hyphen, a letter in an enclosing keycap, a fullwidth letter. Not a lone regional indicator or
 /// skin-tone modifier: two such neighbours are one cluster in the bytes (see ratatui-cells'
 /// README, "What cannot come back").
-const GLYPHS: [&str; 30] = [
+const GLYPHS: [&str; 36] = [
     "a",
     "Z",
     "7",
@@ -50,6 +51,12 @@ const GLYPHS: [&str; 30] = [
     "क्षि",
     "กำ",
     "ℹ\u{fe0f}",
+    "🏴\u{e0067}\u{e0062}\u{e0073}\u{e0063}\u{e0074}\u{e007f}",
+    "🧑🏻\u{200d}🤝\u{200d}🧑🏿",
+    "\u{ad}",
+    "a\u{20e3}",
+    "界\u{fe0f}",
+    "Ａ",
 ];
 
 fn colour() -> impl Strategy<Value = Color> {

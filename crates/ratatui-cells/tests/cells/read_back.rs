@@ -9,9 +9,10 @@ use ratatui::style::{Color, Modifier, Style};
 use ratatui_cells::{diff, from_ansi_sized, named_colour, Screen, TermFrame};
 
 /// Clusters of every kind: ASCII, blocks, combining marks, CJK, Hangul (precomposed and as
-/// jamo), emoji with skin tones, flags, ZWJ sequences, keycaps, VS16 emoji, a halfwidth letter
-/// with its sound mark, Devanagari and Thai clusters.
-const GLYPHS: [&str; 26] = [
+/// jamo), emoji with skin tones, flags (a tag sequence too), ZWJ sequences, keycaps, VS16 and
+/// VS15 emoji, a halfwidth letter with its sound mark, Devanagari, Thai, Tamil, Arabic and
+/// Hebrew clusters, a soft hyphen, a fullwidth letter.
+const GLYPHS: [&str; 36] = [
     "a",
     " ",
     "▀",
@@ -38,6 +39,16 @@ const GLYPHS: [&str; 26] = [
     "กำ",
     "x",
     "─",
+    "🏴\u{e0067}\u{e0062}\u{e0073}\u{e0063}\u{e0074}\u{e007f}",
+    "🧑🏻\u{200d}🤝\u{200d}🧑🏿",
+    "\u{ad}",
+    "لا",
+    "שָׁ",
+    "a\u{20e3}",
+    "界\u{fe0f}",
+    "நி",
+    "☺\u{fe0e}",
+    "Ａ",
 ];
 
 /// What ratatui sends for a first frame: the diff from a blank screen, through crossterm.
