@@ -6,7 +6,7 @@
 //!
 //! `cargo run --release --features vt100 --example screen_sheet -- OUT.png SCALE CAPTURE...`
 
-use halfcast::termframe::load;
+use halfcast::termframe::{load, FramePixels};
 use halfcast::Framebuffer;
 
 /// Black pixels between screens.

@@ -14,6 +14,10 @@ use crate::encode::{ColorLevel, SYNC_BEGIN, SYNC_END};
 ///
 /// - one merged SGR per change (colours and attributes together, only what changed),
 /// - the cheapest cursor move between changed cells (`ESC[nC`, `CR LF`, `ESC[nG`, or absolute),
+/// - a run of plain `▀` cells (a half-block picture) sent as `▀`, `▄`, a space or `█`, whichever
+///   needs fewer colour changes: the screen looks the same, the glyphs may differ
+///   ([`LeanBackend::keeping_glyphs`] sends them as drawn, for tests that read the bytes back
+///   cell for cell),
 /// - colours mapped down the ladder: [`ColorLevel::Ansi256`] / [`ColorLevel::Ansi16`] pick the
 ///   nearest palette colour in OKLab, [`ColorLevel::Mono`] drops colours,
 /// - each [`Backend::flush`] sends the frame as one write wrapped in one DEC 2026 synchronized
@@ -38,7 +42,8 @@ use crate::encode::{ColorLevel, SYNC_BEGIN, SYNC_END};
 /// with [`LeanBackend::with_size`] and [`LeanBackend::resize`]. The cursor position it reports
 /// is where ratatui last put it (asked of the local terminal only with `crossterm` and no fixed
 /// size), so an inline viewport on a remote writer starts at the top. Attributes are kept at
-/// every level (mono drops colours only); ratatui's underline colour is not sent.
+/// every level (mono drops colours only). ratatui's underline colour is sent at truecolor and
+/// 256 colours (`58:2::R:G:B`, `58:5:N`), not at 16 colours or mono.
 #[derive(Debug)]
 pub struct LeanBackend<W: Write> {
     writer: W,
@@ -79,6 +84,18 @@ impl<W: Write> LeanBackend<W> {
     /// Tells the backend the terminal's new size (for writers that cannot be asked).
     pub fn resize(&mut self, cols: u16, rows: u16) {
         self.size = Some(Size::new(cols, rows));
+    }
+
+    /// Sends every cell's glyph as drawn. By default a run of plain `▀` cells (a half-block
+    /// picture) may go out as `▄`, a space or `█` with the colours arranged to match, whichever
+    /// needs fewer colour changes: the screen looks the same, but the bytes read back hold other
+    /// glyphs. This keeps them, for a test that compares what is read back cell for cell.
+    #[must_use]
+    pub fn keeping_glyphs(mut self) -> Self {
+        let level = self.level();
+        self.cells =
+            std::mem::replace(&mut self.cells, CellWriter::new(level)).keeping_half_blocks();
+        self
     }
 
     /// Turns DEC 2026 synchronized updates on or off (on by default, except in mono).

@@ -9,10 +9,10 @@
 //!
 //! | feature | what it adds | pulls in |
 //! |---|---|---|
-//! | *(none)* | engine, widgets, encoder, [`LeanBackend`], [`snapshot`], [`termframe`], [`replay`] files | ratatui (no backend), image, serde |
+//! | *(none)* | engine, widgets, encoder, [`LeanBackend`], [`snapshot`], [`termframe`], [`replay`] files | ratatui (no backend), ratatui-cells, image, serde |
 //! | `crossterm` | ratatui's crossterm backend; [`LeanBackend`] asks the terminal its size | crossterm |
 //! | `scrolling-regions` | [`LeanBackend`]'s scrolling-region methods (when ratatui's feature of that name is on) | — |
-//! | `vt100` | reading ANSI frames back (`termframe::from_ansi_sized`, `.ans` files); re-exports `halfcast::vt100` | vt100 |
+//! | `vt100` | `termframe::from_screen` (cells from a `vt100` model of your own); re-exports `halfcast::vt100` | vt100 |
 //! | `tui` | the interactive terminal (`halfcast play`) | crossterm, signal-hook, toml |
 //! | `serve` | the SSH server (`halfcast serve`) | russh, tokio |
 //! | `cli` (default, with all above) | the `halfcast` binary | clap |
@@ -83,10 +83,12 @@
 //!
 //! # Pin a frame in a test
 //!
-//! [`snapshot::cells_text`] turns any frame (a framebuffer, a ratatui `Buffer`, a `vt100`
-//! screen) into colour-aware text for `insta::assert_snapshot!`; [`snapshot::assert_png_golden`]
-//! compares a framebuffer with a golden PNG within a tolerance (with no golden yet, it says to
-//! run once with `HALFCAST_UPDATE_GOLDEN=1`). `examples/snapshot.rs` pins a custom map both ways.
+//! [`snapshot::cells_text`] turns any frame (a framebuffer, a ratatui `Buffer`, the bytes a
+//! terminal received) into colour-aware text for `insta::assert_snapshot!` or a stored snapshot;
+//! [`snapshot::assert_png_golden`] compares a framebuffer with a golden PNG within a tolerance
+//! (with no golden yet, it says to run once with `RATATUI_CELLS_UPDATE=1`). The text helpers are
+//! the [`ratatui_cells`] crate's, for any ratatui app. `examples/snapshot.rs` pins a custom map
+//! both ways.
 //!
 //! ```
 //! use halfcast::{snapshot, Camera, Scene, Vec2, World};
@@ -217,7 +219,7 @@ pub use vec2::Vec2;
 pub use widget::{DebugPane, HalfBlockView, Minimap};
 pub use world::World;
 
-/// The terminal model `termframe::from_ansi_sized` reads bytes through, at the version halfcast
-/// was built with, so a test that builds its own `vt100::Parser` needs no second dependency.
+/// The `vt100` terminal model at the version `termframe::from_screen` reads, so a test that
+/// builds its own `vt100::Parser` needs no second dependency.
 #[cfg(feature = "vt100")]
 pub use vt100;

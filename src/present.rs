@@ -354,7 +354,7 @@ fn covering(
 mod tests {
     use super::*;
     use crate::color::Rgb;
-    use crate::termframe::{from_screen, TermFrame};
+    use crate::termframe::{appearance, from_screen, FramePixels, TermFrame};
     use crate::widget::half_block::VIEW_CELL;
     use ratatui::style::{Color, Style};
     use ratatui::widgets::Widget;
@@ -404,8 +404,8 @@ mod tests {
         for y in 0..6 {
             for x in 0..20 {
                 assert_eq!(
-                    seen.cell(x, y).appearance(),
-                    want.cell(x, y).appearance(),
+                    appearance(seen.cell(x, y)),
+                    appearance(want.cell(x, y)),
                     "frame {i} cell ({x},{y})"
                 );
             }
@@ -526,8 +526,8 @@ mod tests {
                     );
                 } else if level == ColorLevel::TrueColor {
                     assert_eq!(
-                        cell.appearance(),
-                        want.cell(x, 0).appearance(),
+                        appearance(cell),
+                        appearance(want.cell(x, 0)),
                         "{level:?} {x}"
                     );
                 } else {

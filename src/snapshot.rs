@@ -1,11 +1,14 @@
 //! Pinning frames in tests, two ways for two kinds of frame:
 //!
 //! - **Text** ([`cells_text`]): any frame — a [`Framebuffer`], a ratatui `Buffer` (widgets, the
-//!   whole TUI screen), a `vt100` screen (the real binary in a pseudo-terminal) — as text: the
+//!   whole TUI screen), the bytes a terminal received (`termframe::from_ansi_sized`) — as text: the
 //!   glyph grid, then style runs with every colour (as named) and attribute. Pin it with
 //!   `insta::assert_snapshot!`; a changed frame shows as a readable diff in review.
-//! - **Equality** ([`assert_frames_eq`]): two frames, one assertion, the differing cells in the
-//!   failure message.
+//! - **Equality** ([`assert_frames_eq`]): two frames, one assertion, strict (every part of every
+//!   cell), the differing cells in the failure message; [`assert_frames_look_same`] compares
+//!   only what the screen shows.
+//! - **A stored snapshot** ([`assert_cells_snapshot!`](ratatui_cells::assert_cells_snapshot)):
+//!   a frame against a file of cells text, with the cell diff on failure.
 //! - **Pixels** ([`assert_png_golden`]): a framebuffer against a golden PNG, within a
 //!   [`Tolerance`], for frames too large to review as text; any text frame becomes one with
 //!   [`crate::output::screenshot::screenshot`] (compare those with [`Tolerance::EXACT`]).
@@ -44,8 +47,13 @@
 //! "#);
 //! ```
 //!
-//! A golden PNG (rewritten instead of compared when `HALFCAST_UPDATE_GOLDEN` is set; on a
-//! mismatch the actual frame is saved beside it as `<name>.actual.png`):
+//! These are the [`ratatui_cells`] crate's, which works on any ratatui screen; halfcast adds
+//! frames of [`Framebuffer`] pixels to what they take.
+//!
+//! A golden PNG (rewritten instead of compared when [`UPDATE_ENV`], `RATATUI_CELLS_UPDATE=1`,
+//! is set, the switch that also rewrites stored cells snapshots; on a mismatch the actual frame
+//! is saved in the system's temporary folder, never beside the golden, and the failure names
+//! it):
 //!
 //! ```
 //! use halfcast::snapshot::{assert_png_golden, Tolerance};
@@ -59,36 +67,24 @@
 //! assert_png_golden(&fb, golden, Tolerance::default());
 //! ```
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
+
+pub use ratatui_cells::{
+    assert_cells_snapshot, assert_frames_eq, assert_frames_look_same, cells_text,
+    check_stored_snapshot, UPDATE_ENV,
+};
 
 use crate::render::framebuffer::Framebuffer;
-use crate::termframe::{to_cells_text, TermFrame};
 
-/// The text form snapshots pin, of anything shown as cells (`halfcast-cells v2`: a size header,
-/// the glyph grid, then style runs such as `y3 x0-11 fg=green bold`; see
-/// [`crate::termframe::to_cells_text`]).
+/// The switch's older name, still honoured for golden PNGs.
+pub const LEGACY_UPDATE_ENV: &str = "HALFCAST_UPDATE_GOLDEN";
+
+/// Whether golden files are to be written instead of compared: [`UPDATE_ENV`] (the one switch
+/// for PNG goldens and stored cells snapshots alike) or its older name.
 #[must_use]
-pub fn cells_text(frame: impl Into<TermFrame>) -> String {
-    to_cells_text(&frame.into())
+pub fn update_requested() -> bool {
+    ratatui_cells::update_requested() || std::env::var_os(LEGACY_UPDATE_ENV).is_some()
 }
-
-/// Asserts two frames show the same (every glyph, colour, underline colour and attribute;
-/// anything [`cells_text`] takes), so a test needs no snapshot file for an equality.
-///
-/// # Panics
-/// When they differ, with the cell diff: each differing cell's position, what changed, and
-/// both values (and the panic points at the caller).
-#[track_caller]
-pub fn assert_frames_eq(expected: impl Into<TermFrame>, actual: impl Into<TermFrame>) {
-    let (expected, actual) = (expected.into(), actual.into());
-    let report = crate::termframe::diff(&expected, &actual);
-    if !report.is_equal() {
-        panic!("frames differ (expected -> actual):\n{}", report.summary());
-    }
-}
-
-/// Set this environment variable (to anything) to rewrite golden files instead of comparing.
-pub const UPDATE_ENV: &str = "HALFCAST_UPDATE_GOLDEN";
 
 /// How different two frames may be and still count as equal (rounding, not regressions).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -157,13 +153,13 @@ pub fn diff_frames(a: &Framebuffer, b: &Framebuffer, threshold: u8) -> Option<Fr
 /// Asserts `fb` matches the PNG at `path` within `tol`; with [`UPDATE_ENV`] set, writes it instead.
 ///
 /// # Panics
-/// When the golden file is missing (saying how to create it) or unreadable, the sizes differ, or too many pixels differ
-/// (the actual frame is then saved beside the golden as `<name>.actual.png`); the panic points at
-/// the caller.
+/// When the golden file is missing (saying how to create it) or unreadable, the sizes differ, or
+/// too many pixels differ (the actual frame is then saved under the system's temporary folder,
+/// never in the source tree, and the message names the file); the panic points at the caller.
 #[track_caller]
 pub fn assert_png_golden(fb: &Framebuffer, path: impl AsRef<Path>, tol: Tolerance) {
     let path = path.as_ref();
-    if std::env::var_os(UPDATE_ENV).is_some() {
+    if update_requested() {
         if let Some(dir) = path.parent() {
             std::fs::create_dir_all(dir).expect("create golden folder");
         }
@@ -172,8 +168,8 @@ pub fn assert_png_golden(fb: &Framebuffer, path: impl AsRef<Path>, tol: Toleranc
     }
     if !path.exists() {
         panic!(
-            "no golden image at {} yet: run the test once with {UPDATE_ENV}=1 to create it \
-             from this frame, look at the PNG, and commit it",
+            "no golden image at {} yet: run the test once with {UPDATE_ENV}=1 or \
+             {LEGACY_UPDATE_ENV}=1 to create it from this frame, look at the PNG, and commit it",
             path.display()
         );
     }
@@ -191,14 +187,45 @@ pub fn assert_png_golden(fb: &Framebuffer, path: impl AsRef<Path>, tol: Toleranc
         d.differing_pixels as f64 <= tol.max_differing_fraction * d.total_pixels as f64
     });
     if !ok {
-        let actual = path.with_extension("actual.png");
-        let _ = std::fs::write(&actual, fb.to_png().expect("encode PNG"));
+        let actual = actual_path(path);
+        let saved = actual
+            .parent()
+            .map(std::fs::create_dir_all)
+            .unwrap_or(Ok(()))
+            .and_then(|()| std::fs::write(&actual, fb.to_png().expect("encode PNG")));
+        if let Err(e) = saved {
+            panic!(
+                "frame differs from {} ({verdict:?}); the actual frame could not be saved as {} ({e})",
+                path.display(),
+                actual.display()
+            );
+        }
         panic!(
             "frame differs from {} ({verdict:?}); actual saved as {}; if the change is intended run with {UPDATE_ENV}=1",
             path.display(),
             actual.display()
         );
     }
+}
+
+/// Where a failing frame is saved: the system's temporary folder, under a name made of the
+/// golden's whole path (so two goldens of one name in different folders do not collide).
+fn actual_path(golden: &Path) -> PathBuf {
+    let name: String = golden
+        .with_extension("actual.png")
+        .to_string_lossy()
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '.' || c == '-' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    std::env::temp_dir()
+        .join("halfcast-actual")
+        .join(name.trim_start_matches('_'))
 }
 
 #[cfg(test)]
@@ -208,7 +235,7 @@ mod tests {
 
     #[test]
     fn a_missing_golden_says_how_to_create_it() {
-        if std::env::var_os(UPDATE_ENV).is_some() {
+        if update_requested() {
             return; // the variable would create the file instead
         }
         let dir = std::env::temp_dir().join(format!("halfcast-golden-{}", std::process::id()));
@@ -227,8 +254,33 @@ mod tests {
     }
 
     #[test]
+    fn a_failing_golden_saves_the_actual_frame_outside_the_source_tree() {
+        if update_requested() {
+            return; // the variable would rewrite the golden instead
+        }
+        let dir = std::env::temp_dir().join(format!("halfcast-golden-src-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let golden = dir.join("frame.png");
+        std::fs::write(&golden, Framebuffer::new(2, 2).to_png().unwrap()).unwrap();
+        let mut fb = Framebuffer::new(2, 2);
+        fb.set(0, 0, Rgb::new(255, 255, 255));
+        let (msg, _) = panic_of(|| assert_png_golden(&fb, &golden, Tolerance::EXACT));
+        let saved = actual_path(&golden);
+        assert!(msg.contains(&saved.display().to_string()), "{msg}");
+        assert!(saved.starts_with(std::env::temp_dir().join("halfcast-actual")));
+        assert_eq!(
+            Framebuffer::from_image_bytes(&std::fs::read(&saved).unwrap()).unwrap(),
+            fb
+        );
+        let beside: Vec<_> = std::fs::read_dir(&dir).unwrap().flatten().collect();
+        assert_eq!(beside.len(), 1, "only the golden is in its folder");
+        std::fs::remove_dir_all(&dir).unwrap();
+        std::fs::remove_file(saved).unwrap();
+    }
+
+    #[test]
     fn frames_that_differ_fail_at_the_caller_with_the_cell_diff() {
-        use crate::termframe::{Glyph, TermCell};
+        use crate::termframe::{Glyph, TermCell, TermFrame};
         use ratatui::style::Modifier;
         let a = TermFrame {
             cols: 2,

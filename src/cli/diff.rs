@@ -28,7 +28,7 @@ pub(crate) fn diff(args: &DiffArgs) -> Result<(), Failure> {
     if let Some(out) = &args.out {
         let pixels = format_a == FrameFormat::Png || format_b == FrameFormat::Png;
         let picture = if pixels {
-            report.highlight(&a, &b)
+            termframe::highlight(&report, &a, &b)
         } else {
             let base = if report.size_a == report.size_b {
                 &b

@@ -132,9 +132,7 @@ pub(crate) fn render(args: &RenderArgs) -> Result<(), Failure> {
         Format::Txt => {
             text::to_text(&halfcast::encode::glyph_frame::as_half_blocks(&fb)).into_bytes()
         }
-        Format::Cells => {
-            termframe::to_cells_text(&termframe::TermFrame::from_framebuffer(&fb)).into_bytes()
-        }
+        Format::Cells => termframe::to_cells_text(&termframe::TermFrame::from(&fb)).into_bytes(),
         Format::Json => {
             let mut s = RayReport::new(&camera, &cast, usize::from(rows))
                 .with_sprites(&world, &camera, &frame.sprites)

@@ -31,6 +31,8 @@ const RESET: Paint = Paint {
 struct Pen {
     fg: Paint,
     bg: Paint,
+    /// The underline colour (`RESET`: the foreground's).
+    ul: Paint,
     modifier: Modifier,
 }
 
@@ -38,6 +40,7 @@ struct Pen {
 const PLAIN: Pen = Pen {
     fg: RESET,
     bg: RESET,
+    ul: RESET,
     modifier: Modifier::empty(),
 };
 
@@ -176,6 +179,7 @@ impl CellWriter {
         let plannable = |c: &Cell| {
             c.symbol() == UPPER_HALF
                 && c.modifier.is_empty()
+                && self.underline_paint(c.underline_color) == RESET
                 && self.planned_code(self.paint(c.fg)).is_some()
                 && self.planned_code(self.paint(c.bg)).is_some()
         };
@@ -196,7 +200,7 @@ impl CellWriter {
 
     /// Sends a run of `▀` cells (one row, neighbours) as the row planner chooses.
     fn draw_half_blocks(&mut self, out: &mut Vec<u8>, run: &[(u16, u16, &Cell)]) {
-        if !self.pen.modifier.is_empty() {
+        if !self.pen.modifier.is_empty() || self.pen.ul != RESET {
             self.change_pen(out, PLAIN);
         }
         let level = self.level();
@@ -250,6 +254,7 @@ impl CellWriter {
         self.pen = Pen {
             fg: paint(colours.0, self.pen.fg),
             bg: paint(colours.1, self.pen.bg),
+            ul: RESET,
             modifier: Modifier::empty(),
         };
     }
@@ -259,7 +264,18 @@ impl CellWriter {
         Pen {
             fg: self.paint(cell.fg),
             bg: self.paint(cell.bg),
+            ul: self.underline_paint(cell.underline_color),
             modifier: cell.modifier,
+        }
+    }
+
+    /// The underline colour as sent: at truecolor and 256 colours as [`Self::paint`] maps a
+    /// colour (a palette index or 24-bit; SGR 58 has no short form for the 16), and not at all
+    /// at 16 colours or mono, whose terminals predate coloured underlines.
+    fn underline_paint(&self, c: Color) -> Paint {
+        match self.level() {
+            ColorLevel::TrueColor | ColorLevel::Ansi256 => self.paint(c),
+            ColorLevel::Ansi16 | ColorLevel::Mono => RESET,
         }
     }
 
@@ -306,7 +322,8 @@ impl CellWriter {
     }
 
     /// Writes the shortest SGR that takes the terminal from the current pen to `to`: only what
-    /// changed (attributes switched off by their own codes), or a reset and all of `to`.
+    /// changed (attributes switched off by their own codes), or a reset and all of `to`; then
+    /// the underline colour when it changed (or a reset cleared it).
     fn change_pen(&mut self, out: &mut Vec<u8>, to: Pen) {
         let from = self.pen;
         if from == to {
@@ -317,6 +334,17 @@ impl CellWriter {
             out.extend_from_slice(b"\x1b[m");
             return;
         }
+        let reset = self.change_colours_and_attributes(out, from, to);
+        let ul_before = if reset { RESET } else { from.ul };
+        if to.ul != ul_before {
+            let ul = (to.ul != RESET).then_some((to.ul.kind, to.ul.code));
+            sgr::write_underline(out, ul);
+        }
+    }
+
+    /// The colours and attributes part of [`Self::change_pen`]; whether it began with a reset
+    /// (which also ends the underline colour).
+    fn change_colours_and_attributes(&mut self, out: &mut Vec<u8>, from: Pen, to: Pen) -> bool {
         let colour = |p: Paint| (p.kind, p.code);
         let (fg_changed, bg_changed) = (from.fg != to.fg, from.bg != to.bg);
         if from.modifier == to.modifier {
@@ -326,7 +354,7 @@ impl CellWriter {
                 fg_changed.then(|| colour(to.fg)),
                 bg_changed.then(|| colour(to.bg)),
             );
-            return;
+            return false;
         }
         // Attributes changed: by their own codes, or a reset first; the shorter one wins.
         let removed = from.modifier - to.modifier;
@@ -372,11 +400,9 @@ impl CellWriter {
             (to.fg != RESET).then(|| colour(to.fg)),
             (to.bg != RESET).then(|| colour(to.bg)),
         );
-        out.extend_from_slice(if by_reset.len() < by_codes.len() {
-            by_reset
-        } else {
-            by_codes
-        });
+        let reset = by_reset.len() < by_codes.len();
+        out.extend_from_slice(if reset { by_reset } else { by_codes });
+        reset
     }
 }
 
@@ -481,6 +507,24 @@ mod tests {
             String::from_utf8(out).unwrap(),
             "\x1b[H\x1b[38;2;1;1;1;48;2;2;2;2m▀\x1b[38;2;2;2;2m▀\x1b[m"
         );
+    }
+
+    #[test]
+    fn the_underline_colour_is_sent_where_the_level_allows() {
+        let mut b = Buffer::empty(Rect::new(0, 0, 3, 1));
+        let ul = Style::new().add_modifier(Modifier::UNDERLINED);
+        b.set_string(0, 0, "a", ul.underline_color(Color::Rgb(1, 2, 3)));
+        b.set_string(1, 0, "b", ul.underline_color(Color::Indexed(9)));
+        b.set_string(2, 0, "c", ul);
+        assert_eq!(
+            text(&b, ColorLevel::TrueColor),
+            "\x1b[H\x1b[4m\x1b[58:2::1:2:3ma\x1b[58:5:9mb\x1b[59mc\x1b[m"
+        );
+        assert_eq!(
+            text(&b, ColorLevel::Ansi256),
+            "\x1b[H\x1b[4m\x1b[58:5:16ma\x1b[58:5:9mb\x1b[59mc\x1b[m"
+        );
+        assert_eq!(text(&b, ColorLevel::Ansi16), "\x1b[H\x1b[4mabc\x1b[m");
     }
 
     #[test]

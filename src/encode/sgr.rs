@@ -244,6 +244,28 @@ pub(crate) fn write_mixed(
     out.extend_from_slice(&buf.bytes[..buf.len]);
 }
 
+/// Writes the underline colour as its own SGR in the colon forms terminals that draw coloured
+/// underlines read (`58:2::R:G:B` for 24-bit, `58:5:N` for a palette index), or `59` (back to
+/// the foreground's colour) for `None`.
+pub(crate) fn write_underline(out: &mut Vec<u8>, colour: Option<(ColorLevel, Code)>) {
+    out.extend_from_slice(b"\x1b[");
+    match colour {
+        None => out.extend_from_slice(b"59"),
+        Some((ColorLevel::TrueColor, code)) => {
+            out.extend_from_slice(b"58:2:");
+            for shift in [16, 8, 0] {
+                out.push(b':');
+                super::number::push_num(out, (code >> shift) & 0xff);
+            }
+        }
+        Some((_, code)) => {
+            out.extend_from_slice(b"58:5:");
+            super::number::push_num(out, code);
+        }
+    }
+    out.push(b'm');
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::palette::UNKNOWN;

@@ -7,7 +7,7 @@ use crate::common;
 use crate::pty_support;
 
 use common::root;
-use halfcast::termframe::TermFrame;
+use halfcast::termframe::{CellRgb, TermFrame};
 use halfcast::Rgb;
 use pty_support::{final_screen, replay_size, PtyRun};
 

@@ -1,6 +1,6 @@
 //! The README's screenshot is the game screen (view, map and ray panes, the message, the status
 //! line) of a replay, drawn by `output::screenshot`: replaying docs/screenshots/readme.hcr and
-//! drawing its last frame gives docs/screenshot.png exactly (`HALFCAST_UPDATE_GOLDEN=1` redraws
+//! drawing its last frame gives docs/screenshot.png exactly (`RATATUI_CELLS_UPDATE=1` redraws
 //! it after an intended change to the screen).
 
 use halfcast::output::screenshot::screenshot;

@@ -19,7 +19,7 @@ fn pose() -> Camera {
 fn view_40x12_of_the_default_map() {
     let world = World::default_world();
     let scene = Scene::new(&world, pose());
-    let text = cells_text(&scene.to_buffer(40, 12));
+    let text = cells_text(scene.to_buffer(40, 12));
     // The view widget's cells and the framebuffer's half blocks are the same frame.
     assert_eq!(text, scene.to_cells_text(40, 12));
     insta::assert_snapshot!(text);

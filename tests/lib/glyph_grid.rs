@@ -103,7 +103,7 @@ fn golden_default_view_at_each_setting() {
 #[test]
 fn ansi_frames_read_back_at_their_glyph_setting() {
     use halfcast::encode::full_frame;
-    use halfcast::termframe::{parse_frame, FrameFormat, TermFrame};
+    use halfcast::termframe::{parse_frame, FrameFormat, FramePixels, TermFrame};
     let world = World::default_world();
     let cam = Camera::from_angle(world.map.start.pos(), 20.0, 66.0);
     for glyphs in Glyphs::ALL {
@@ -136,7 +136,7 @@ fn ansi_frames_read_back_at_their_glyph_setting() {
 #[test]
 fn octant_corner_pixels_go_out_as_their_complements() {
     use halfcast::encode::full_frame;
-    use halfcast::termframe::{parse_frame, TermFrame};
+    use halfcast::termframe::{parse_frame, FramePixels, TermFrame};
     let quarter = ['\u{1CEA0}', '\u{1CEA3}', '\u{1CEA8}', '\u{1CEAB}'];
     for corner in [(0, 0), (1, 0), (0, 3), (1, 3)] {
         let mut fb = Framebuffer::for_glyphs(6, 3, Glyphs::Octant);

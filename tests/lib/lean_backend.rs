@@ -363,14 +363,15 @@ fn the_lean_backend_sends_the_3d_view_as_lean_as_the_presenter() {
                             vt100::Color::Rgb(r, g, b) => Some(halfcast::Rgb::new(r, g, b)),
                             _ => None,
                         };
-                        let got = halfcast::termframe::TermCell::rgb(
+                        use halfcast::termframe::{appearance, CellRgb, TermCell};
+                        let got = TermCell::rgb(
                             c.contents().as_str(),
                             rgb(c.fgcolor()),
                             rgb(c.bgcolor()),
                         );
                         assert_eq!(
-                            got.appearance(),
-                            shown.cell(x, y).appearance(),
+                            appearance(&got),
+                            appearance(shown.cell(x, y)),
                             "frame {i} ({x},{y})"
                         );
                     }

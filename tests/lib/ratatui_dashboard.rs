@@ -185,7 +185,7 @@ fn every_change_shows_in_the_cells_text_the_diff_and_the_assertion() {
             "{name}: {msg}"
         );
     }
-    assert_frames_eq(&before, &dashboard(&Dash::default()));
+    assert_frames_eq(&before, dashboard(&Dash::default()));
 }
 
 #[test]
@@ -227,9 +227,9 @@ fn a_moved_selection_is_a_short_diff_that_names_the_rows() {
 #[test]
 fn a_screenshot_shows_the_visible_changes_and_only_those() {
     use halfcast::output::screenshot::screenshot;
-    let before = screenshot(&TermFrame::from(&dashboard(&Dash::default())));
+    let before = screenshot(&TermFrame::from(dashboard(&Dash::default())));
     for (name, dash) in changes() {
-        let after = screenshot(&TermFrame::from(&dashboard(&dash)));
+        let after = screenshot(&TermFrame::from(dashboard(&dash)));
         let changed = before
             .pixels()
             .iter()

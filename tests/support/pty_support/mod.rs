@@ -239,7 +239,7 @@ pub fn final_screen(bytes: &[u8], size: (u16, u16)) -> TermFrame {
     let end = last_index(bytes, LEAVE_ALT_SCREEN).unwrap_or(bytes.len());
     let mut term = vt100::Parser::new(size.1, size.0, 0);
     term.process(&bytes[..end]);
-    TermFrame::from(term.screen())
+    halfcast::termframe::from_parser(&term)
 }
 
 /// The terminal size a replay file was recorded at.

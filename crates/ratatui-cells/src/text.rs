@@ -23,13 +23,14 @@
 
 use std::fmt::Write;
 
-use ratatui::style::{Color, Modifier};
+use ratatui_core::style::{Color, Modifier};
 use unicode_segmentation::UnicodeSegmentation;
-use unicode_width::UnicodeWidthStr;
 
-use super::colour::{colour_name, parse_colour_name};
-use super::glyph::Glyph;
-use super::{TermCell, TermFrame};
+use crate::cell::TermCell;
+use crate::colour::{colour_name, parse_colour_name};
+use crate::frame::TermFrame;
+use crate::glyph::{width_of, Glyph};
+use crate::limits::MAX_FRAME;
 
 /// First line of the cells text form; carries the version and the size.
 pub const CELLS_HEADER: &str = "halfcast-cells v2";
@@ -91,11 +92,11 @@ pub fn cell_code(c: &TermCell) -> String {
 
 /// Reads one grid row's glyphs: a cell per grapheme cluster, plus a continuation cell for each
 /// extra column a wide one takes.
-pub(super) fn read_grid_row(row: &str) -> Vec<Glyph> {
+pub(crate) fn read_grid_row(row: &str) -> Vec<Glyph> {
     let mut glyphs = Vec::new();
     for g in row.graphemes(true) {
         glyphs.push(Glyph::new(g));
-        for _ in 1..g.width() {
+        for _ in 1..width_of(g) {
             glyphs.push(Glyph::CONTINUATION);
         }
     }
@@ -126,6 +127,14 @@ fn grid_row(cells: &[TermCell]) -> (String, Vec<usize>) {
         })
         .collect();
     (row, listed)
+}
+
+/// The text form snapshots pin, of anything that converts into a [`TermFrame`] (a ratatui
+/// `Buffer`, owned or borrowed, or a frame): a size header, the glyph grid, then style runs
+/// such as `y3 x0-11 fg=green bold`.
+#[must_use]
+pub fn cells_text(frame: impl Into<TermFrame>) -> String {
+    to_cells_text(&frame.into())
 }
 
 /// Writes the frame's text form: the header with the size, the glyph grid, the style runs and
@@ -228,8 +237,8 @@ fn listed_glyph(code: &str) -> Option<Glyph> {
 }
 
 /// The size a cells text's first line gives after `magic` (`halfcast-cells v2 80x24`), within
-/// [`super::MAX_FRAME`]; shared by both versions' readers.
-pub(super) fn cells_header(header: &str, magic: &str) -> Result<(usize, usize), String> {
+/// [`MAX_FRAME`]; shared by both versions' readers.
+pub(crate) fn cells_header(header: &str, magic: &str) -> Result<(usize, usize), String> {
     let size = header
         .strip_prefix(magic)
         .map(str::trim)
@@ -239,7 +248,7 @@ pub(super) fn cells_header(header: &str, magic: &str) -> Result<(usize, usize), 
         c.parse().map_err(|_| "line 1: bad size")?,
         r.parse().map_err(|_| "line 1: bad size")?,
     );
-    let (max_cols, max_rows) = super::MAX_FRAME;
+    let (max_cols, max_rows) = MAX_FRAME;
     if cols > max_cols || rows > max_rows {
         return Err(format!(
             "line 1: size {cols}x{rows} is over the limit of {max_cols}x{max_rows} cells"
@@ -253,8 +262,8 @@ pub(super) fn cells_header(header: &str, magic: &str) -> Result<(usize, usize), 
 /// # Errors
 /// A header that is not `halfcast-cells v2 COLSxROWS` (or v1), or a malformed row or line.
 pub fn from_cells_text(text: &str) -> Result<TermFrame, String> {
-    if text.starts_with(super::text_v1::CELLS_HEADER_V1) {
-        return super::text_v1::from_cells_text_v1(text);
+    if text.starts_with(crate::text_v1::CELLS_HEADER_V1) {
+        return crate::text_v1::from_cells_text_v1(text);
     }
     let mut lines = text.lines();
     let (cols, rows) = cells_header(lines.next().unwrap_or_default(), CELLS_HEADER)?;

@@ -3,7 +3,7 @@
 
 use std::fmt;
 
-use unicode_width::UnicodeWidthStr;
+use ratatui_core::buffer::CellWidth;
 
 /// Bytes kept inline: a letter with two combining marks, or an emoji with a modifier, fits.
 const INLINE: usize = 15;
@@ -66,10 +66,23 @@ impl Glyph {
         self.as_str().is_empty()
     }
 
-    /// Columns the cluster takes on screen (2 for a wide character, 0 for a continuation).
+    /// Columns the cluster takes on screen (2 for a wide character, 0 for a continuation), by
+    /// ratatui's own rule ([`width_of`]).
     #[must_use]
     pub fn width(&self) -> usize {
-        self.as_str().width()
+        width_of(self.as_str())
+    }
+}
+
+/// The columns ratatui gives `cluster` in a `Buffer` (its `CellWidth`: `unicode-width`'s width
+/// of the whole cluster, one column for any single byte), so a frame read back from bytes lays
+/// out its cells where the buffer did.
+#[must_use]
+pub fn width_of(cluster: &str) -> usize {
+    match cluster.len() {
+        0 => 0,
+        1 => 1,
+        _ => usize::from(cluster.cell_width()),
     }
 }
 
@@ -129,6 +142,9 @@ mod tests {
         assert_eq!(Glyph::new(family).as_str(), family);
         assert_eq!(Glyph::from('▀'), '▀');
         assert!(Glyph::CONTINUATION.is_continuation());
+        assert_eq!(Glyph::new("🇯🇵").width(), 2);
+        assert_eq!(Glyph::new(family).width(), 2);
+        assert_eq!(Glyph::new("1\u{fe0f}\u{20e3}").width(), 2);
         assert_eq!(Glyph::CONTINUATION.first_char(), ' ');
     }
 }

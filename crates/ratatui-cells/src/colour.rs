@@ -2,9 +2,7 @@
 //! [`Color`]: the terminal default, the 16 named colours, the 256 indexed ones, 24-bit RGB), and
 //! how the cells text writes them.
 
-use ratatui::style::Color;
-
-use crate::color::Rgb;
+use ratatui_core::style::Color;
 
 /// The 16 named colours in ANSI index order, with the names the cells text gives them.
 const NAMED: [(Color, &str); 16] = [
@@ -38,22 +36,58 @@ fn named_index(c: Color) -> Option<u8> {
     NAMED.iter().position(|&(n, _)| n == c).map(|i| i as u8)
 }
 
-/// The RGB a ratatui colour shows as in xterm's palette (`None` = the terminal's default):
-/// for pictures and colour distances only, since a user's palette may differ.
-#[must_use]
-pub fn ratatui_rgb(c: Color) -> Option<Rgb> {
-    match c {
-        Color::Reset => None,
-        Color::Rgb(r, g, b) => Some(Rgb::new(r, g, b)),
-        Color::Indexed(i) => Some(crate::encode::palette::xterm_rgb(i)),
-        named => named_index(named).map(crate::encode::palette::xterm_rgb),
+/// The 16 ANSI colours as xterm shows them by default.
+const ANSI16: [[u8; 3]; 16] = [
+    [0, 0, 0],
+    [205, 0, 0],
+    [0, 205, 0],
+    [205, 205, 0],
+    [0, 0, 238],
+    [205, 0, 205],
+    [0, 205, 205],
+    [229, 229, 229],
+    [127, 127, 127],
+    [255, 0, 0],
+    [0, 255, 0],
+    [255, 255, 0],
+    [92, 92, 255],
+    [255, 0, 255],
+    [0, 255, 255],
+    [255, 255, 255],
+];
+
+/// The six channel levels of the 256-colour palette's 6×6×6 cube.
+const CUBE_LEVELS: [u8; 6] = [0, 95, 135, 175, 215, 255];
+
+/// The RGB of palette index `i` in xterm's default palette (the 16 colours, the cube, the greys).
+fn palette_rgb(i: u8) -> [u8; 3] {
+    match i {
+        0..=15 => ANSI16[usize::from(i)],
+        16..=231 => {
+            let n = usize::from(i - 16);
+            [
+                CUBE_LEVELS[n / 36],
+                CUBE_LEVELS[(n / 6) % 6],
+                CUBE_LEVELS[n % 6],
+            ]
+        }
+        _ => {
+            let g = 8 + 10 * (i - 232);
+            [g, g, g]
+        }
     }
 }
 
-/// A 24-bit colour (`None` = the terminal's default) as a ratatui colour.
+/// The RGB a ratatui colour shows as in xterm's default palette (`None` = the terminal's
+/// default): for colour distances in diff reports only, since a user's palette may differ.
 #[must_use]
-pub fn rgb_colour(c: Option<Rgb>) -> Color {
-    c.map_or(Color::Reset, |c| Color::Rgb(c.r, c.g, c.b))
+pub fn xterm_rgb(c: Color) -> Option<[u8; 3]> {
+    match c {
+        Color::Reset => None,
+        Color::Rgb(r, g, b) => Some([r, g, b]),
+        Color::Indexed(i) => Some(palette_rgb(i)),
+        named => named_index(named).map(palette_rgb),
+    }
 }
 
 /// A colour as the cells text writes it: `green`, `idx2`, `#00cd00` (`reset` for the default).
@@ -106,8 +140,9 @@ mod tests {
         }
         let names: Vec<String> = colours.iter().map(|&c| colour_name(c)).collect();
         assert_eq!(names, ["green", "idx2", "#00cd00", "reset"]);
-        // The same xterm RGB, for pictures only.
-        assert_eq!(ratatui_rgb(Color::Green), ratatui_rgb(Color::Indexed(2)));
+        // The same xterm RGB, for colour distances only.
+        assert_eq!(xterm_rgb(Color::Green), xterm_rgb(Color::Indexed(2)));
+        assert_eq!(xterm_rgb(Color::Green), Some([0, 205, 0]));
         assert_eq!(parse_colour_name("#12345"), None);
         assert_eq!(parse_colour_name("idx256"), None);
     }

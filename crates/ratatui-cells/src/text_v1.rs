@@ -2,8 +2,10 @@
 //! row of `GLYPH` + fg hex + `/` + bg hex cells (`~~~~~~` = default), 24-bit colours only and no
 //! attributes. Nothing writes it any more.
 
-use super::{TermCell, TermFrame};
-use crate::color::Rgb;
+use ratatui_core::style::Color;
+
+use crate::cell::TermCell;
+use crate::frame::TermFrame;
 
 /// First line of the first cells text form.
 pub const CELLS_HEADER_V1: &str = "halfcast-cells v1";
@@ -14,15 +16,15 @@ const CELL_STRIDE: usize = 15;
 /// How the terminal's default colour was written.
 const DEFAULT: &str = "~~~~~~";
 
-fn parse_colour(s: &str) -> Option<Option<Rgb>> {
+fn parse_colour(s: &str) -> Option<Color> {
     if s == DEFAULT {
-        return Some(None);
+        return Some(Color::Reset);
     }
     if s.len() != 6 || !s.bytes().all(|b| b.is_ascii_hexdigit()) {
         return None;
     }
     let v = u32::from_str_radix(s, 16).ok()?;
-    Some(Some(Rgb::new((v >> 16) as u8, (v >> 8) as u8, v as u8)))
+    Some(Color::Rgb((v >> 16) as u8, (v >> 8) as u8, v as u8))
 }
 
 /// Reads a `halfcast-cells v1` file (cells written before attributes were kept); errors name the line.
@@ -32,7 +34,7 @@ fn parse_colour(s: &str) -> Option<Option<Rgb>> {
 pub fn from_cells_text_v1(text: &str) -> Result<TermFrame, String> {
     let mut lines = text.lines();
     let (cols, rows) =
-        super::text::cells_header(lines.next().unwrap_or_default(), CELLS_HEADER_V1)?;
+        crate::text::cells_header(lines.next().unwrap_or_default(), CELLS_HEADER_V1)?;
     // Both are now small, so `cols * CELL_STRIDE` and `cols * rows` cannot overflow.
     let mut cells = Vec::with_capacity(cols * rows);
     for y in 0..rows {
@@ -57,7 +59,7 @@ pub fn from_cells_text_v1(text: &str) -> Result<TermFrame, String> {
                 return Err(bad());
             }
             let (fg, bg): (String, String) = (fg.iter().collect(), bg.iter().collect());
-            cells.push(TermCell::rgb(
+            cells.push(TermCell::new(
                 glyph,
                 parse_colour(&fg).ok_or_else(bad)?,
                 parse_colour(&bg).ok_or_else(bad)?,
@@ -78,11 +80,7 @@ mod tests {
         assert_eq!(
             frame.cells,
             [
-                TermCell::rgb(
-                    '▀',
-                    Some(Rgb::new(0xa0, 0xb0, 0xc0)),
-                    Some(Rgb::new(16, 16, 16))
-                ),
+                TermCell::new('▀', Color::Rgb(0xa0, 0xb0, 0xc0), Color::Rgb(16, 16, 16)),
                 TermCell::default(),
             ]
         );

@@ -2,10 +2,13 @@
 //! `insta::assert_debug_snapshot!(buffer)` pins, so `halfcast diff` compares such snapshots
 //! with each other or with any other frame.
 
-use ratatui::style::{Color, Modifier};
+use ratatui_core::style::{Color, Modifier};
 
-use super::text::read_grid_row;
-use super::{named_colour, TermCell, TermFrame, MAX_FRAME};
+use crate::cell::TermCell;
+use crate::colour::named_colour;
+use crate::frame::{mark_continuations, TermFrame};
+use crate::limits::MAX_FRAME;
+use crate::text::read_grid_row;
 
 /// How a ratatui buffer's `Debug` form starts.
 pub const BUFFER_DEBUG_HEADER: &str = "Buffer {";
@@ -138,16 +141,16 @@ pub fn from_buffer_debug(text: &str) -> Result<TermFrame, String> {
         }
     }
     let mut frame = TermFrame { cols, rows, cells };
-    super::mark_continuations(&mut frame.cells, cols);
+    mark_continuations(&mut frame.cells, cols);
     Ok(frame)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use ratatui::buffer::Buffer;
-    use ratatui::layout::Rect;
-    use ratatui::style::Style;
+    use ratatui_core::buffer::Buffer;
+    use ratatui_core::layout::Rect;
+    use ratatui_core::style::Style;
 
     #[test]
     fn a_buffers_debug_reads_back_as_the_buffer() {
