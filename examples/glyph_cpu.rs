@@ -2,7 +2,8 @@
 //! first, which is a full redraw): each frame's fastest of several passes, so other work on a
 //! shared machine mostly drops out, then the mean per frame.
 //! `cargo run --release --example glyph_cpu [passes] [half|quadrant|sextant|octant] [WxH]
-//! [truecolor|256|16]` (one pass of one setting and size is for a profiler such as callgrind).
+//! [truecolor|256|16]` (one pass of one setting and size is for a profiler such as callgrind:
+//! build it with `--profile profiling` so the profiler sees line tables, docs/testing.md).
 use std::time::Instant;
 
 use halfcast::bench::{camera_path, BenchScene};

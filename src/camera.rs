@@ -20,9 +20,8 @@ impl Camera {
     /// Builds the camera from the CLI convention: degrees, 0 = east, 90 = north.
     #[must_use]
     pub fn from_angle(pos: Vec2, angle_deg: f64, fov_deg: f64) -> Self {
-        let a = angle_deg.to_radians();
-        let dir = Vec2::new(a.cos(), -a.sin());
-        Self::from_dir(pos, dir, fov_deg)
+        let (cos, sin) = cos_sin_deg(angle_deg);
+        Self::from_dir(pos, Vec2::new(cos, -sin), fov_deg)
     }
 
     /// Builds the camera from a facing vector (normalised here) and a FOV in degrees.
@@ -56,6 +55,19 @@ impl Camera {
         (-self.dir.y).atan2(self.dir.x).to_degrees()
     }
 
+    /// The facing as the status line and `trace`'s figure print it: degrees in [0, 360), so
+    /// both name one heading the same way (181.9, never −178.1).
+    #[must_use]
+    pub fn heading_deg(&self) -> f64 {
+        let h = self.angle_deg().rem_euclid(360.0);
+        // rem_euclid of a tiny negative angle rounds up to 360.0 itself.
+        if h >= 360.0 {
+            0.0
+        } else {
+            h
+        }
+    }
+
     /// Turns by `radians` (positive = to the left, toward north from east), keeping |dir| = 1.
     pub fn rotate(&mut self, radians: f64) {
         let fov = self.fov_deg();
@@ -76,6 +88,25 @@ impl Camera {
     }
 }
 
+/// cos and sin of an angle in degrees, exact at multiples of 90°: there `to_radians` leaves
+/// cos(90°) = 6e-17, so a camera facing north would not look straight north and its centre ray
+/// would print deltaDistX 2e16 instead of Lode's 1e30 (docs/learning-dda.md).
+fn cos_sin_deg(deg: f64) -> (f64, f64) {
+    let r = deg.rem_euclid(360.0);
+    if r == 0.0 {
+        (1.0, 0.0)
+    } else if r == 90.0 {
+        (0.0, 1.0)
+    } else if r == 180.0 {
+        (-1.0, 0.0)
+    } else if r == 270.0 {
+        (0.0, -1.0)
+    } else {
+        let a = deg.to_radians();
+        (a.cos(), a.sin())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -85,6 +116,34 @@ mod tests {
         let c = Camera::from_angle(Vec2::new(2.5, 2.5), 90.0, 90.0);
         assert!(c.dir.x.abs() < 1e-12 && (c.dir.y + 1.0).abs() < 1e-12);
         assert!((c.plane.x - 1.0).abs() < 1e-12 && c.plane.y.abs() < 1e-12);
+    }
+
+    #[test]
+    fn right_angles_face_exactly_along_the_axes() {
+        for (deg, dir) in [(0.0, (1.0, 0.0)), (90.0, (0.0, -1.0)), (-90.0, (0.0, 1.0))] {
+            let c = Camera::from_angle(Vec2::default(), deg, 66.0);
+            assert_eq!((c.dir.x, c.dir.y), dir, "{deg}");
+        }
+        for deg in [180.0, 540.0] {
+            assert_eq!(Camera::from_angle(Vec2::default(), deg, 66.0).dir.x, -1.0);
+        }
+        // Straight north, the centre ray has rayDirX = 0 exactly.
+        assert_eq!(
+            Camera::from_angle(Vec2::default(), 90.0, 66.0)
+                .ray_dir(40, 80)
+                .x,
+            0.0
+        );
+    }
+
+    #[test]
+    fn the_heading_is_in_0_to_360() {
+        let c = Camera::from_angle(Vec2::default(), -178.14, 66.0);
+        assert!((c.heading_deg() - 181.86).abs() < 1e-9);
+        assert_eq!(
+            Camera::from_angle(Vec2::default(), 0.0, 66.0).heading_deg(),
+            0.0
+        );
     }
 
     #[test]

@@ -27,6 +27,10 @@ pub(crate) struct BenchArgs {
     /// Lossy: don't resend cells whose colours moved less than N (0–255).
     #[arg(long, value_name = "N")]
     pub(crate) delta: Option<u8>,
+    /// Bytes only: encode each frame once, without the timing re-runs and the colour figures
+    /// (fast even in a debug build, so the docs' byte figures can be checked by a test).
+    #[arg(long)]
+    pub(crate) bytes_only: bool,
     /// Row-planner beam width (1 = greedy), for comparing planner settings.
     #[arg(long, hide = true)]
     pub(crate) beam: Option<usize>,
@@ -56,6 +60,7 @@ pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
         levels: args.colors.into_iter().collect(),
         delta: args.delta,
         beam: args.beam,
+        bytes_only: args.bytes_only,
     };
     let report = match &args.frames {
         Some(dir) => run_frames(

@@ -58,6 +58,8 @@ pub struct BenchPlan {
     pub delta: Option<u8>,
     /// Row-planner beam width (None = the encoder's default).
     pub beam: Option<usize>,
+    /// Count bytes only: no timing re-runs, no colour figures (`--bytes-only`).
+    pub bytes_only: bool,
 }
 
 impl BenchPlan {
@@ -91,13 +93,30 @@ fn mean(v: &[usize]) -> f64 {
     }
 }
 
-/// Encodes `frames` at one level; `dump` receives each frame's bytes.
+/// The encoder's time on `frames` after the first, summing each frame's fastest of
+/// [`TIMING_REPEATS`] runs (the machine may be shared).
+fn fastest_encode_ms(frames: &[Framebuffer], opts: EncodeOptions) -> f64 {
+    let mut best: Vec<f64> = vec![f64::MAX; frames.len()];
+    for _ in 0..TIMING_REPEATS {
+        let mut enc = Encoder::new(opts);
+        for (i, fb) in frames.iter().enumerate() {
+            let t = Instant::now();
+            let n = enc.encode(fb, 0, 0).len();
+            best[i] = best[i].min(ms(t));
+            std::hint::black_box(n);
+        }
+    }
+    best.iter().skip(1).sum()
+}
+
+/// Encodes `frames` at one level; `dump` receives each frame's bytes. `bytes_only` skips the
+/// colour figures and the timing re-runs.
 fn measure(
     name: &str,
     frames: &[Framebuffer],
     opts: EncodeOptions,
-    render_ms: f64,
-    truecolor_ratatui: f64,
+    (render_ms, truecolor_ratatui): (f64, f64),
+    bytes_only: bool,
     mut dump: impl FnMut(usize, &[u8]) -> Result<(), BenchError>,
 ) -> Result<Run, BenchError> {
     let (cols, rows) = (frames[0].width() as u16, frames[0].cell_rows() as u16);
@@ -117,7 +136,7 @@ fn measure(
         let z = zlib.frame(out);
         dump(i, out)?;
         let n = out.len();
-        if i % FIDELITY_EVERY == 0 {
+        if !bytes_only && i % FIDELITY_EVERY == 0 {
             if let Some(shown) = enc.shown_frame() {
                 let source = scielab::Source::new(fb);
                 fidelities.push(source.compare(&shown));
@@ -142,18 +161,9 @@ fn measure(
             draw_ms += rt;
         }
     }
-    // The machine may be shared: re-time the encoder and keep each frame's fastest run.
-    let mut best: Vec<f64> = vec![f64::MAX; frames.len()];
-    for _ in 0..TIMING_REPEATS {
-        let mut enc = Encoder::new(opts);
-        for (i, fb) in frames.iter().enumerate() {
-            let t = Instant::now();
-            let n = enc.encode(fb, 0, 0).len();
-            best[i] = best[i].min(ms(t));
-            std::hint::black_box(n);
-        }
+    if !bytes_only {
+        enc_ms = enc_ms.min(fastest_encode_ms(frames, opts));
     }
-    enc_ms = enc_ms.min(best.iter().skip(1).sum());
     let diff_frames = frames.len().saturating_sub(1).max(1) as f64;
     let fidelity = scielab::mean(&fidelities);
     let bytes_per_frame = mean(&bytes);
@@ -234,8 +244,8 @@ pub fn run_default(plan: &BenchPlan) -> Result<Report, BenchError> {
                     scene.name(),
                     &frames,
                     plan.options(level),
-                    render_ms,
-                    baseline,
+                    (render_ms, baseline),
+                    plan.bytes_only,
                     |_, _| Ok(()),
                 )?;
                 if level == ColorLevel::TrueColor {
@@ -386,8 +396,8 @@ pub fn run_frames(
         &name,
         &frames,
         plan.options(level),
-        0.0,
-        baseline,
+        (0.0, baseline),
+        plan.bytes_only,
         |i, bytes| {
             if let Some(out) = dump {
                 let path = out.join(format!("frame-{i:0width$}.ansi"));

@@ -52,7 +52,7 @@ pub(crate) struct PlayArgs {
     /// With --max-bandwidth: also step down the colour level when the cap allows under 12 fps.
     #[arg(long, requires = "max_bandwidth")]
     pub(crate) adapt_colors: bool,
-    /// Turning speed in degrees per second (default 149; also `turn` in the config file).
+    /// Turning speed in degrees per second (default 2.6 rad/s, about 149; also `turn` in the config file).
     #[arg(long, value_name = "DEG_PER_S")]
     pub(crate) turn_speed: Option<f64>,
     /// Walking speed in cells per second (default 3; also `move` in the config file).

@@ -449,6 +449,17 @@ impl Level {
         self.treasures
     }
 
+    /// Treasures of `map` (this level's map) not yet picked up: what the status line counts,
+    /// so it agrees with the start message's "0/12 treasures" (keys show once held).
+    #[must_use]
+    pub fn treasures_left(&self, map: &Map) -> usize {
+        map.items
+            .iter()
+            .enumerate()
+            .filter(|(k, item)| item.is_treasure() && !self.is_taken(*k))
+            .count()
+    }
+
     /// The player who reached an exit, once the level is over.
     #[must_use]
     pub fn finished(&self) -> Option<usize> {

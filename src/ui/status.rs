@@ -139,10 +139,7 @@ pub fn status_line(
     };
     segs.push(seg(
         5,
-        vec![
-            l("angle "),
-            v(format!("{:.1}{deg}", cam.angle_deg().rem_euclid(360.0))),
-        ],
+        vec![l("angle "), v(format!("{:.1}{deg}", cam.heading_deg()))],
     ));
     segs.push(seg(
         0,
@@ -172,7 +169,7 @@ pub fn status_line(
 }
 
 /// The game's figures (on maps with something to find), as one segment kept before the speed
-/// figures: points, keys held (each in its colour) and items left; then the time, which yields
+/// figures: points, keys held (each in its colour) and treasures left; then the time, which yields
 /// to the position on a short row.
 fn hud(state: &GameState) -> Vec<Segment> {
     let level = &state.level;
@@ -194,9 +191,9 @@ fn hud(state: &GameState) -> Vec<Segment> {
             ));
         }
     }
-    if level.items_total() > 0 {
+    if level.treasures_total() > 0 {
         spans.push(l("  "));
-        spans.push(v(level.items_left().to_string()));
+        spans.push(v(level.treasures_left(&state.world.map).to_string()));
         spans.push(l(" left"));
     }
     // The time goes before the position when the row is short (the results show it too).
@@ -294,7 +291,7 @@ mod tests {
             let t = status_line(&state, &stats, InputMode::Emulated, None, width).to_string();
             assert!(t.contains("256 (TERM)"), "{width}: {t}");
             assert!(
-                t.contains(" 0 pts  13 left │ ")
+                t.contains(" 0 pts  12 left │ ")
                     && t.contains("pos 15.50,5.50")
                     && t.contains("q quit"),
                 "{width}: {t}"
@@ -318,7 +315,7 @@ mod tests {
     fn narrow_rows_keep_the_game_fps_and_the_quit_hint() {
         let t = text(60, false);
         assert!(t.chars().count() <= 60, "{t}");
-        for part in [" 0 pts", "13 left", "fps", "q quit"] {
+        for part in [" 0 pts", "12 left", "fps", "q quit"] {
             assert!(t.contains(part), "{part}: {t}");
         }
         assert!(!t.contains("kitty"));
@@ -327,7 +324,7 @@ mod tests {
     }
 
     #[test]
-    fn the_game_hud_shows_points_keys_items_left_and_time_only_on_maps_with_a_game() {
+    fn the_game_hud_shows_points_keys_treasures_left_and_time_only_on_maps_with_a_game() {
         let mut state = at_start();
         state.score.points = 120;
         state.score.keys.insert("gold".into());
@@ -340,7 +337,7 @@ mod tests {
             200,
         );
         let t = line.to_string();
-        assert!(t.contains(" 120 pts  keys gold  13 left │ 1:23"), "{t}");
+        assert!(t.contains(" 120 pts  keys gold  12 left │ 1:23"), "{t}");
         // The key is written in its own colour.
         let gold = crate::texture::key_tint::key_colour("gold");
         let span = line

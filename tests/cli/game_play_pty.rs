@@ -47,13 +47,13 @@ fn level1_starts_with_its_message_and_hud_and_a_treasure_scores_ten() {
     run.wait_for_screen("the start message and the HUD", |sc| {
         top_row(sc).contains("Find the exit. 0/8 treasures.")
             && status_line(sc).contains("0 pts")
-            && status_line(sc).contains("9 left")
+            && status_line(sc).contains("8 left")
     });
     walk_until(&mut run, "the first treasure", |sc| {
         top_row(sc).contains("Treasure! +10 points") && status_line(sc).contains("10 pts")
     });
     assert!(
-        status_line(run.screen()).contains("8 left"),
+        status_line(run.screen()).contains("7 left"),
         "{}",
         status_line(run.screen())
     );

@@ -230,7 +230,7 @@ fn mono_screens_are_plain_ascii_with_a_readable_map() {
     // At 80 columns the game's figures and the position fill the status line (ASCII too).
     let line = status(run.screen());
     assert!(
-        line.contains(" 0 pts  13 left") && line.contains("pos 15.50,5.50"),
+        line.contains(" 0 pts  12 left") && line.contains("pos 15.50,5.50"),
         "{line}"
     );
     run.send(b"?");

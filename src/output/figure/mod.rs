@@ -3,6 +3,7 @@
 //! with heights), written as SVG ([`svg`]) or painted for a PNG ([`raster`], with the project's
 //! own bitmap [`font`]). The numbers come from [`Derivation`], the same trace the JSON prints.
 
+mod crossings;
 pub mod drawing;
 pub mod font;
 pub mod palette;
@@ -75,7 +76,7 @@ impl TraceFigure<'_> {
                 "pos ({}, {})   angle {} deg   FOV {} deg",
                 num(d.pos.x),
                 num(d.pos.y),
-                num(self.camera.angle_deg()),
+                num(self.camera.heading_deg()),
                 num(self.camera.fov_deg())
             ),
             TEXT_SIZE,

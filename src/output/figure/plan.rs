@@ -5,7 +5,7 @@
 
 use super::drawing::{Anchor, Drawing, Stroke, Tag};
 use super::palette::{
-    CAMERA, GRID, HIT_CELL, PERP, PLANE, RAY, SMALL, TEXT, TEXT_SIZE, VISITED, WALL, X_SIDE, Y_SIDE,
+    CAMERA, GRID, HIT_CELL, PERP, PLANE, RAY, SMALL, TEXT, TEXT_SIZE, VISITED, WALL,
 };
 use crate::map::{Cell, Map};
 use crate::render::cast::Side;
@@ -105,7 +105,8 @@ impl Frame {
         (t0 <= t1).then(|| (a + d * t0, a + d * t1))
     }
 
-    fn contains(&self, p: Vec2) -> bool {
+    /// Whether `p` is inside the cells shown.
+    pub(super) fn contains(&self, p: Vec2) -> bool {
         p.x >= self.min.0 as f64
             && p.y >= self.min.1 as f64
             && p.x <= self.max.0 as f64
@@ -113,7 +114,8 @@ impl Frame {
     }
 }
 
-fn unit(v: Vec2) -> Vec2 {
+/// `v` scaled to length 1 (east for a zero vector).
+pub(super) fn unit(v: Vec2) -> Vec2 {
     let l = v.length();
     if l > 0.0 {
         v * (1.0 / l)
@@ -122,15 +124,26 @@ fn unit(v: Vec2) -> Vec2 {
     }
 }
 
-/// A pale box behind a label so it reads over walls and lines (sized for the wider of the
-/// two back-ends' fonts: about 8.4 px a character).
-fn halo(out: &mut Drawing, base: (f64, f64), text: &str, anchor: Anchor) {
-    let w = text.chars().count() as f64 * 8.4 + 4.0;
-    let left = match anchor {
-        Anchor::Start => base.0 - 2.0,
-        Anchor::Middle => base.0 - w / 2.0,
-        Anchor::End => base.0 - w + 2.0,
-    };
+/// A label's box width in pixels (sized for the wider of the two back-ends' fonts: about
+/// 8.4 px a character).
+pub(super) fn label_width(text: &str) -> f64 {
+    text.chars().count() as f64 * 8.4 + 4.0
+}
+
+/// The left edge of a label's box whose text is anchored at `x`.
+pub(super) fn label_left(x: f64, text: &str, anchor: Anchor) -> f64 {
+    let w = label_width(text);
+    match anchor {
+        Anchor::Start => x - 2.0,
+        Anchor::Middle => x - w / 2.0,
+        Anchor::End => x - w + 2.0,
+    }
+}
+
+/// A pale box behind a label so it reads over walls and lines.
+pub(super) fn halo(out: &mut Drawing, base: (f64, f64), text: &str, anchor: Anchor) {
+    let w = label_width(text);
+    let left = label_left(base.0, text, anchor);
     out.rect(
         (left, base.1 - TEXT_SIZE - 3.0),
         (w, TEXT_SIZE + 6.0),
@@ -242,79 +255,8 @@ pub fn draw(out: &mut Drawing, map: &Map, d: &Derivation, frame: &Frame) {
             data: vec![("perp", d.perp.to_string())],
         },
     );
-    // The crossings, numbered in step order and labelled with their sideDist; x labels on one
-    // side of the ray, y labels on the other.
-    let normal = unit(d.ray_dir.right_normal());
-    // Crossings closer than a label's width alternate between a near and a far row.
-    let spacing = |side: Side| {
-        let delta = match side {
-            Side::X => d.delta_dist.0,
-            Side::Y => d.delta_dist.1,
-        };
-        (d.ray_dir * delta).length() * cell_px
-    };
-    let mut seen = (0usize, 0usize);
-    for c in &d.choices {
-        let nth = match c.side {
-            Side::X => &mut seen.0,
-            Side::Y => &mut seen.1,
-        };
-        *nth += 1;
-        let far = if spacing(c.side) < 72.0 && *nth % 2 == 0 {
-            14.0
-        } else {
-            0.0
-        };
-        let t = c.crossing();
-        let p = d.point_at(t);
-        if !frame.contains(p) {
-            continue;
-        }
-        let (colour, class, sign) = match c.side {
-            Side::X => (X_SIDE, "crossing x", 1.0),
-            Side::Y => (Y_SIDE, "crossing y", -1.0),
-        };
-        let at = frame.at(p);
-        out.circle(
-            at,
-            5.0,
-            Some(colour),
-            Some(Stroke::solid(super::palette::BACKGROUND, 1.5)),
-        );
-        let off = (
-            normal.x * sign * (16.0 + far),
-            normal.y * sign * (16.0 + far),
-        );
-        let anchor = if off.0 > 3.0 {
-            Anchor::Start
-        } else if off.0 < -3.0 {
-            Anchor::End
-        } else {
-            Anchor::Middle
-        };
-        let name = match c.side {
-            Side::X => "sideDistX",
-            Side::Y => "sideDistY",
-        };
-        let label = format!("{}: {}", c.index, num(t));
-        let base = (at.0 + off.0, at.1 + off.1 + TEXT_SIZE / 2.0);
-        halo(out, base, &label, anchor);
-        out.tagged_text(
-            base,
-            label,
-            TEXT_SIZE,
-            colour,
-            anchor,
-            Tag {
-                class: class.into(),
-                data: vec![
-                    ("step", c.index.to_string()),
-                    ("name", name.into()),
-                    ("side-dist", t.to_string()),
-                ],
-            },
-        );
-    }
+    // The crossings, numbered and labelled, clear of the camera drawn over them.
+    super::crossings::draw(out, d, frame, &super::crossings::camera_marks(d, frame));
     // The camera on top: the plane through the eye (where perp is measured from), dir and the
     // plane.
     let pu = unit(d.plane);
