@@ -4,8 +4,8 @@
 //! names), which is drawn over the labels.
 
 use super::drawing::{Anchor, Drawing, Stroke, Tag};
+use super::frame::{halo, label_left, label_width, unit, Frame};
 use super::palette::{TEXT_SIZE, X_SIDE, Y_SIDE};
-use super::plan::{halo, label_left, label_width, unit, Frame};
 use crate::render::cast::Side;
 use crate::render::derivation::{num, Derivation};
 

@@ -6,6 +6,7 @@
 mod crossings;
 pub mod drawing;
 pub mod font;
+mod frame;
 pub mod palette;
 pub mod plan;
 pub mod raster;
@@ -46,7 +47,7 @@ impl TraceFigure<'_> {
     pub fn drawing(&self) -> Drawing {
         let d = Derivation::new(self.trace, self.camera, self.width);
         let plan_origin = (MARGIN + 36.0, 112.0);
-        let frame = plan::Frame::around(&d, plan_origin);
+        let frame = frame::Frame::around(&d, plan_origin);
         let (pw, ph) = frame.size();
         let notes = notes(&d);
         // Wide enough for the plan and for every line of text in the PNG font (2 px per font

@@ -9,5 +9,6 @@ pub mod auth;
 pub(crate) mod handler;
 pub(crate) mod hostkey;
 pub(crate) mod link_probe;
+pub(crate) mod listener;
 pub(crate) mod session;
 pub(crate) mod sink;
