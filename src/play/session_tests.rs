@@ -374,7 +374,11 @@ async fn a_tap_from_idle_is_drawn_at_once() {
     run.key('d', KeyKind::Release).await;
     wait(Duration::from_secs(1)).await;
     let frames = run.view_frames_since(tapped);
-    assert!(!frames.is_empty(), "the tap drew nothing: {:?}", run.frames_since(tapped));
+    assert!(
+        !frames.is_empty(),
+        "the tap drew nothing: {:?}",
+        run.frames_since(tapped)
+    );
     // The world applies the tap on its next tick (a 30th of a second); the frame follows it.
     let first = frames[0].0 - tapped;
     println!(

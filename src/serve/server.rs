@@ -72,6 +72,8 @@ pub struct RunningServer {
     accept: JoinHandle<()>,
     metrics_http: Option<JoinHandle<()>>,
     leaderboard: Option<Leaderboard>,
+    /// The browser listener's address, when `--web` serves one (it closes with the SSH port).
+    web: Option<SocketAddr>,
 }
 
 impl RunningServer {
@@ -79,6 +81,12 @@ impl RunningServer {
     #[must_use]
     pub fn local_addr(&self) -> SocketAddr {
         self.addr
+    }
+
+    /// The browser listener's address (useful with port 0), when `--web` serves one.
+    #[must_use]
+    pub fn web_addr(&self) -> Option<SocketAddr> {
+        self.web
     }
 
     /// Totals so far.
@@ -314,12 +322,14 @@ pub async fn start_maps(
         config,
     });
     log.server(format_args!("listening on {addr}"));
+    let next_id = Arc::new(AtomicU64::new(1));
+    let web = start_web(&shared, &ready, &next_id, stop_accepting.subscribe()).await?;
     let (closed_tx, closed) = watch::channel(false);
     let header_waits = Arc::new(AtomicU64::new(0));
     let accept = tokio::spawn(accept_loop(
         listener,
         ssh,
-        shared,
+        (shared, next_id),
         (stop_accepting_rx, closed_tx, Arc::clone(&header_waits)),
     ));
     Ok(RunningServer {
@@ -336,7 +346,37 @@ pub async fn start_maps(
         accept,
         metrics_http,
         leaderboard,
+        web,
     })
+}
+
+/// Starts the browser listener when `--web` asks for one, sharing the SSH edge's world, limits,
+/// log and leaderboard; it closes when `stop` does.
+async fn start_web(
+    shared: &Shared,
+    ready: &Arc<Readiness>,
+    next_id: &Arc<AtomicU64>,
+    stop: watch::Receiver<bool>,
+) -> Result<Option<SocketAddr>, String> {
+    let Some(options) = shared.config.web.clone() else {
+        return Ok(None);
+    };
+    let edge = super::web::edge::WebEdge {
+        options,
+        config: shared.config.clone(),
+        world: shared.world.clone(),
+        world_data: Arc::clone(&shared.world_data),
+        avatar_sheet: shared.avatar_sheet,
+        stats: Arc::clone(&shared.stats),
+        log: shared.log,
+        shutdown: shared.shutdown.clone(),
+        farewell: shared.farewell.clone(),
+        limiter: shared.limiter.clone(),
+        boards: shared.boards.clone(),
+        ready: Arc::clone(ready),
+        next_id: Arc::clone(next_id),
+    };
+    Ok(Some(super::web::listener::start(edge, stop).await?.0))
 }
 
 /// What the world task does with a finished round: log it, count it, queue it for the
@@ -397,7 +437,8 @@ const MAX_HEADER_WAITS: u64 = 256;
 struct Door {
     ssh: Arc<Config>,
     shared: Arc<Shared>,
-    next_id: AtomicU64,
+    /// Session numbers, shared with the browser listener.
+    next_id: Arc<AtomicU64>,
     lingering: Arc<AtomicU64>,
     /// Shared with [`RunningServer`]: a draining world waits for these too.
     header_waits: Arc<AtomicU64>,
@@ -406,13 +447,13 @@ struct Door {
 async fn accept_loop(
     listener: TcpListener,
     ssh: Arc<Config>,
-    shared: Arc<Shared>,
+    (shared, next_id): (Arc<Shared>, Arc<AtomicU64>),
     (mut stop, closed, header_waits): (watch::Receiver<bool>, watch::Sender<bool>, Arc<AtomicU64>),
 ) {
     let door = Arc::new(Door {
         ssh,
         shared,
-        next_id: AtomicU64::new(1),
+        next_id,
         lingering: Arc::new(AtomicU64::new(0)),
         header_waits,
     });
