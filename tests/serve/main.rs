@@ -45,3 +45,4 @@ mod serve_session;
 mod serve_shared_board;
 mod serve_slow_link;
 mod serve_stall;
+mod serve_web;

@@ -5,6 +5,7 @@
 pub mod http;
 pub mod openssh;
 pub mod postgres;
+pub mod web;
 
 use std::sync::Arc;
 use std::time::Duration;
