@@ -19,6 +19,7 @@ mod scores_json;
 mod serve_abuse;
 mod serve_auth;
 mod serve_backup;
+mod serve_browser;
 mod serve_churn;
 mod serve_cli;
 mod serve_colour;
