@@ -319,3 +319,70 @@ async fn a_draining_world_closes_the_web_port_and_tells_its_pages() {
     let closed = page.closed().await;
     assert!(closed.reason.contains("restarts"), "{closed:?}");
 }
+
+/// GET /metrics on `port`: the text format's lines.
+fn metrics_text(port: u16) -> String {
+    crate::serve_support::http::get(port, "/metrics").1
+}
+
+#[test]
+fn the_command_line_serves_the_page_and_metrics_and_log_name_the_transport() {
+    use crate::serve_process::{free_port, spawn_server};
+    let dir = tempfile::tempdir().expect("tempdir");
+    let (web_port, metrics_port) = (free_port(), free_port());
+    let web = format!("127.0.0.1:{web_port}");
+    let metrics = format!("127.0.0.1:{metrics_port}");
+    let (_server, port, rx) = spawn_server(
+        dir.path(),
+        &["--web", &web, "--metrics", &metrics, "--log-format", "json"],
+    );
+    let rt = tokio::runtime::Runtime::new().expect("runtime");
+    let addr: SocketAddr = web.parse().unwrap();
+    rt.block_on(async {
+        let mut page = None;
+        for _ in 0..100 {
+            if tokio::net::TcpStream::connect(addr).await.is_ok() {
+                page = Some(play(addr, "metered").await);
+                break;
+            }
+            tokio::time::sleep(Duration::from_millis(50)).await;
+        }
+        let mut page = page.expect("the web port opens");
+        assert!(page.until(|s| header_has(s, "you are metered")).await);
+        let ssh_addr = format!("127.0.0.1:{port}").parse().unwrap();
+        let mut ssh = Client::connect(ssh_addr, "shelly", 80, 24, "xterm-256color").await;
+        assert!(ssh.until(|s| header_has(s, "shelly")).await);
+        let text = tokio::task::spawn_blocking(move || metrics_text(metrics_port))
+            .await
+            .unwrap();
+        assert!(
+            text.contains(r#"halfcast_transport_sessions{transport="web"} 1"#),
+            "{text}"
+        );
+        assert!(
+            text.contains(r#"halfcast_transport_sessions{transport="ssh"} 1"#),
+            "{text}"
+        );
+        let health = tokio::task::spawn_blocking(move || {
+            crate::serve_support::http::get(web_port, "/healthz")
+        })
+        .await
+        .unwrap();
+        assert_eq!(health, (200, "accepting\n".to_owned()));
+    });
+    let mut seen = Vec::new();
+    let deadline = std::time::Instant::now() + crate::serve_support::PATIENCE;
+    while std::time::Instant::now() < deadline {
+        match rx.recv_timeout(Duration::from_millis(200)) {
+            Ok(line) => seen.push(line),
+            Err(_) if seen.iter().any(|l| l.contains(r#""transport":"ssh""#)) => break,
+            Err(_) => {}
+        }
+    }
+    let login = |t: &str| {
+        seen.iter().any(|l| {
+            l.contains(r#""event":"login""#) && l.contains(&format!(r#""transport":"{t}""#))
+        })
+    };
+    assert!(login("web") && login("ssh"), "{seen:#?}");
+}

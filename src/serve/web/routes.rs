@@ -122,10 +122,11 @@ async fn upgrade(mut socket: TcpStream, req: Request, peer: SocketAddr, edge: Ar
     };
     let origin = req.header("origin");
     if !super::origin::allowed(origin, req.header("host"), &edge.options.origins) {
+        metrics::refused(metrics::Reason::Origin);
         edge.log.refusal(
             None,
             peer,
-            "origin",
+            metrics::Reason::Origin.label(),
             format_args!("a page from {:?} may not play here", origin.unwrap_or("")),
         );
         ServeStats::add(&edge.stats.refused, 1);

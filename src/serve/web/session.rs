@@ -79,8 +79,9 @@ pub async fn run(ws: WebSocketStream<TcpStream>, edge: Arc<WebEdge>, p: WebPlaye
         }
     });
     metrics::session(p.spectator, true);
+    metrics::transport_session("web", true);
     ServeStats::add(&edge.stats.sessions_live, 1);
-    edge.log.login(id, peer, &p.name, p.spectator, "browser");
+    edge.log.login_web(id, peer, &p.name, p.spectator);
     let setup = setup(&edge, &p);
     let feeds = Feeds {
         input: input_rx,
@@ -171,6 +172,7 @@ fn draining_notes(mut farewell: watch::Receiver<&'static str>) -> watch::Receive
 /// The session's counts and its log line.
 fn ended(edge: &WebEdge, p: &WebPlayer, end: End, tally: &Tally) {
     metrics::session(p.spectator, false);
+    metrics::transport_session("web", false);
     if end == End::Stalled {
         metrics::refused(Reason::Stall);
     }
