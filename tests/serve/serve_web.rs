@@ -386,3 +386,18 @@ fn the_command_line_serves_the_page_and_metrics_and_log_name_the_transport() {
     };
     assert!(login("web") && login("ssh"), "{seen:#?}");
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_page_that_stops_acknowledging_is_dropped_as_a_stalled_reader() {
+    let (srv, _dir, addr) = web_server(|c| c.stall_timeout = Duration::from_secs(2)).await;
+    let mut page = play(addr, "sleepy").await;
+    assert!(page.frame(Duration::from_secs(20)).await.unwrap().is_some());
+    // From now on frames are read but never acknowledged, as a page frozen in a background tab
+    // whose socket is still open; a held key keeps the world wanting new frames.
+    page.acking = false;
+    page.key("d", true).await;
+    let closed = page.closed().await;
+    assert!(closed.reason.contains("took no frame"), "{closed:?}");
+    assert!(live_becomes(&srv, (0, 0)).await, "{:?}", srv.live());
+    srv.shutdown().await;
+}

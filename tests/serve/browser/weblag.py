@@ -6,8 +6,13 @@ Runs `halfcast serve --web` and a WebSocket player that acknowledges each frame 
 token bucket (the recipe of ../shared/tools/linklag.py: lo at MTU 1500, `tc qdisc … tbf`), then:
 
 - hold: `d` (turn right) pressed for HOLD s, then released; how long frames that change the view
-  (more than FLOOR bytes: not the status line's figures alone) keep arriving after the release.
+  keep arriving after the release. The map is the default one with nothing that moves by itself,
+  so every frame of more than FLOOR bytes after the release is a view still turning (a frame of
+  the status line's figures alone is under 100 bytes).
 - taps: `d` pressed and released 80 ms later, from idle; the same figure.
+
+Whole repaints (a colour level step redraws the same view at the new level) are counted apart
+(`level_repaints`), not as the view still turning.
 
 Re-executes itself under `unshare -rn` when not already in a fresh namespace.
 
@@ -16,7 +21,7 @@ Prints one JSON line.
 """
 import argparse, asyncio, json, os, socket, subprocess, sys, tempfile, time
 
-FLOOR = 1500
+FLOOR = 200
 
 
 def shaped(args):
@@ -34,6 +39,11 @@ class Player:
     def __init__(self, ws):
         self.ws = ws
         self.log = []  # (monotonic arrival, bytes)
+        # Whether each frame is a whole repaint (a colour level step's): the same view redrawn,
+        # counted apart from the view still turning.
+        self.repaint = []
+        self.raw = []
+        self.keep = False
         self.n = 0
 
     async def read(self):
@@ -41,14 +51,20 @@ class Player:
             if isinstance(msg, bytes):
                 self.n += 1
                 self.log.append((time.monotonic(), len(msg)))
+                self.repaint.append(b"\x1b[2J" in msg)
+                if self.keep:
+                    self.raw.append(msg)
                 await self.ws.send(json.dumps({"ack": self.n}))
 
     async def key(self, down):
         await self.ws.send(json.dumps({"key": "d", "down": down}))
 
     def last_big_after(self, t):
-        big = [u for (u, n) in self.log if u >= t and n > FLOOR]
+        big = [u for (u, n), r in zip(self.log, self.repaint) if u >= t and n > FLOOR and not r]
         return (max(big) - t) if big else 0.0
+
+    def repaints_after(self, t):
+        return len([u for u, r in zip(self.log, self.repaint) if u[0] >= t and r])
 
     def fps_between(self, a, b):
         return len([u for (u, n) in self.log if a <= u <= b and n > FLOOR]) / (b - a)
@@ -72,10 +88,12 @@ async def measure(args, port):
     url = f"ws://127.0.0.1:{port}/ws?name=lag&cols={args.cols}&rows={args.rows}"
     async with websockets.connect(url, max_size=None) as ws:
         p = Player(ws)
+        p.keep = args.verbose
         reader = asyncio.create_task(p.read())
         await asyncio.sleep(2)
         await quiet(p)
         holds, taps, fps, kbps = [], [], [], []
+        start = time.monotonic()
         for _ in range(args.runs):
             t0 = time.monotonic()
             await p.key(True)
@@ -85,7 +103,7 @@ async def measure(args, port):
             await quiet(p, 1.5)
             holds.append(p.last_big_after(up) * 1000)
             if args.verbose:
-                print([(round((u - up) * 1000), n) for (u, n) in p.log if u >= up - 0.1], file=sys.stderr)
+                print([(round((u - up) * 1000), n, r) for (u, n), r in zip(p.log, p.repaint) if u >= up - 0.1], file=sys.stderr)
             fps.append(p.fps_between(t0 + 0.5, up))
             kbps.append(p.bytes_between(t0 + 0.5, up) * 8 / 1000 / (up - t0 - 0.5))
             await p.key(True)
@@ -94,10 +112,16 @@ async def measure(args, port):
             await p.key(False)
             await quiet(p, 1.5)
             taps.append(p.last_big_after(up) * 1000)
+            if args.verbose:
+                for (u, n), m in zip(p.log, p.raw or [b""] * len(p.log)):
+                    if u > up + 0.1 and n > FLOOR:
+                        print("late", round((u - up) * 1000), m[:120], m[-200:], file=sys.stderr)
+                print("tap", [(round((u - up) * 1000), n) for (u, n) in p.log if u >= up - 0.2], file=sys.stderr)
         reader.cancel()
         return {"rate": args.rate, "cols": args.cols, "rows": args.rows,
                 "release_lag_ms": [round(x) for x in holds], "tap_lag_ms": [round(x) for x in taps],
-                "turning_fps": [round(x, 1) for x in fps], "kbit_s": [round(x) for x in kbps]}
+                "turning_fps": [round(x, 1) for x in fps], "kbit_s": [round(x) for x in kbps],
+                "level_repaints": p.repaints_after(start)}
 
 
 def main():
