@@ -8,8 +8,10 @@
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
+use halfcast::encode::glyph_mask::mask_of;
 use halfcast::serve::web::WebOptions;
-use halfcast::termframe::from_ansi_sized;
+use halfcast::termframe::{from_ansi_sized, TermFrame};
+use halfcast::Glyphs;
 use halfcast::World;
 use serde_json::Value;
 
@@ -109,6 +111,13 @@ async fn chromium_plays_on_the_page() {
             "{name}: the painter's pixels differ from termframe's reading"
         );
     }
+    let (compared, wrong) = octants_against_termframe(&out);
+    println!("octant (160×45): {compared} octant pixels compared, {wrong} differ");
+    assert!(compared > 1000, "too few octant cells drawn");
+    assert_eq!(
+        wrong, 0,
+        "the painter's octant cells differ from termframe's reading"
+    );
     srv.shutdown().await;
 }
 
@@ -142,9 +151,9 @@ fn check_figures(f: &Value) {
     );
 }
 
-/// Compares the page's pixel canvas (and which cells it drew as glyphs instead) with halfcast's
-/// own reading of the frames the page drew, over the view: (pixels compared, pixels that differ).
-fn painter_against_termframe(out: &Path, name: &str) -> (usize, usize) {
+/// The snapshot `name`: its JSON and halfcast's reading of the frames it drew (from the last
+/// full redraw, the one after the session's last resize).
+fn snapshot_and_reading(out: &Path, name: &str) -> (Value, TermFrame) {
     let snap: Value =
         serde_json::from_str(&std::fs::read_to_string(out.join(format!("{name}.json"))).unwrap())
             .unwrap();
@@ -157,7 +166,6 @@ fn painter_against_termframe(out: &Path, name: &str) -> (usize, usize) {
         at += 4 + n;
     }
     assert_eq!(frames.len() as u64, snap["frames"].as_u64().unwrap());
-    // From the last full redraw (the one after the session's last resize).
     let start = frames
         .iter()
         .rposition(|f| f.windows(4).any(|w| w == b"\x1b[2J"))
@@ -166,6 +174,59 @@ fn painter_against_termframe(out: &Path, name: &str) -> (usize, usize) {
     let cols = snap["cols"].as_u64().unwrap() as u16;
     let rows = snap["rows"].as_u64().unwrap() as u16;
     let tf = from_ansi_sized(&bytes, cols, rows);
+    (snap, tf)
+}
+
+/// A cell's foreground and background as the page shows them (defaults, reverse video).
+fn shown_colours(cell: &halfcast::termframe::TermCell) -> ((u8, u8, u8), (u8, u8, u8)) {
+    let rgb = |c: Option<halfcast::color::Rgb>, d: (u8, u8, u8)| c.map_or(d, |c| (c.r, c.g, c.b));
+    let fg = rgb(cell.fg_rgb(), (229, 229, 229));
+    let bg = rgb(cell.bg_rgb(), (0, 0, 0));
+    if cell.modifiers.contains(ratatui::style::Modifier::REVERSED) {
+        (bg, fg)
+    } else {
+        (fg, bg)
+    }
+}
+
+/// Compares the page's glyph canvas at the middle of each octant pixel with the mask and
+/// colours of halfcast's reading of the same frames, over the view's octant cells: (pixels
+/// compared, pixels that differ).
+fn octants_against_termframe(out: &Path) -> (usize, usize) {
+    let (snap, tf) = snapshot_and_reading(out, "octant");
+    let samples: Vec<u32> = serde_json::from_value(snap["samples"].clone()).unwrap();
+    let (cols, rows) = (tf.cols, tf.rows);
+    let view = view_rect(cols as u16, rows as u16);
+    let (mut compared, mut wrong) = (0, 0);
+    for y in usize::from(view.top())..usize::from(view.bottom()) {
+        for x in usize::from(view.left())..usize::from(view.right()) {
+            let cell = tf.cell(x, y);
+            let ch = cell.glyph.first_char();
+            if matches!(ch, ' ' | '▀' | '▄' | '█') {
+                continue;
+            }
+            let Some(mask) = mask_of(Glyphs::Octant, ch) else {
+                continue;
+            };
+            let (fg, bg) = shown_colours(cell);
+            for k in 0..8 {
+                let (r, g, b) = if mask & (1 << k) != 0 { fg } else { bg };
+                let want = (u32::from(r) << 16) | (u32::from(g) << 8) | u32::from(b);
+                compared += 1;
+                if samples[(y * cols + x) * 8 + k] != want {
+                    wrong += 1;
+                }
+            }
+        }
+    }
+    (compared, wrong)
+}
+
+/// Compares the page's pixel canvas (and which cells it drew as glyphs instead) with halfcast's
+/// own reading of the frames the page drew, over the view: (pixels compared, pixels that differ).
+fn painter_against_termframe(out: &Path, name: &str) -> (usize, usize) {
+    let (snap, tf) = snapshot_and_reading(out, name);
+    let (cols, rows) = (tf.cols as u16, tf.rows as u16);
     let pixels: Vec<u8> = serde_json::from_value(snap["pixels"].clone()).unwrap();
     let over: Vec<u8> = serde_json::from_value(snap["over"].clone()).unwrap();
     let (cols_u, rows_u) = (usize::from(cols), usize::from(rows));

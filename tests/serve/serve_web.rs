@@ -401,3 +401,44 @@ async fn a_page_that_stops_acknowledging_is_dropped_as_a_stalled_reader() {
     assert!(live_becomes(&srv, (0, 0)).await, "{:?}", srv.live());
     srv.shutdown().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_spectating_page_follows_an_ssh_player_and_tab_switches() {
+    let (srv, _dir, addr) = web_server(|_| {}).await;
+    let mut watcher = open(addr, "spectate&cols=120&rows=40", None)
+        .await
+        .expect("upgraded");
+    assert!(
+        watcher
+            .until(|s| header_has(s, "waiting for players"))
+            .await
+    );
+    let mut ann = Client::connect(srv.local_addr(), "ann", 60, 16, "xterm-direct").await;
+    let mut bob = play(addr, "bob").await;
+    assert!(ann.until(|s| header_has(s, "2 here")).await);
+    assert!(bob.until(|s| header_has(s, "2 here")).await);
+    assert!(
+        watcher
+            .until(|s| header_has(s, "watching ann") || header_has(s, "watching bob"))
+            .await,
+        "{}",
+        row_text(watcher.screen.screen(), 0)
+    );
+    let first = if header_has(watcher.screen.screen(), "watching ann") {
+        "bob"
+    } else {
+        "ann"
+    };
+    watcher.key("Tab", true).await;
+    watcher.key("Tab", false).await;
+    assert!(
+        watcher
+            .until(|s| header_has(s, &format!("watching {first}")))
+            .await,
+        "{}",
+        row_text(watcher.screen.screen(), 0)
+    );
+    // A spectator is not a player.
+    assert!(header_has(watcher.screen.screen(), "2 here"));
+    srv.shutdown().await;
+}

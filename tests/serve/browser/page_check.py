@@ -42,6 +42,25 @@ SNAPSHOT = """() => {
            pixels: Array.from(s.img.data), over: Array.from(s.over) };
 }"""
 
+# The glyph canvas sampled at the middle of each of a cell's 2×4 octant pixels, for every cell.
+SAMPLES = """() => {
+  const s = halfcast.screen, W = s.cells.width;
+  const d = s.cx.getImageData(0, 0, W, s.cells.height).data;
+  const out = [];
+  for (let r = 0; r < s.rows; r++) for (let c = 0; c < s.cols; c++) {
+    const [x0, y0, x1, y1] = s.edges(r, c);
+    for (let k = 0; k < 8; k++) {
+      const px = Math.floor(x0 + (x1 - x0) * ((k & 1) + 0.5) / 2);
+      const py = Math.floor(y0 + (y1 - y0) * ((k >> 1) + 0.5) / 4);
+      const i = (py * W + px) * 4;
+      out.push((d[i] << 16) | (d[i + 1] << 8) | d[i + 2]);
+    }
+  }
+  return out;
+}"""
+
+OCTANTS = "() => halfcast.screen.ch.some((c) => c >= 0x1cd00 && c <= 0x1cdff)"
+
 DISTINCT = """() => {
   const s = halfcast.screen, d = s.img.data, seen = new Set();
   for (let i = 0; i < d.length; i += 4) seen.add((d[i] << 16) | (d[i + 1] << 8) | d[i + 2]);
@@ -58,8 +77,10 @@ def changes(log, since):
     return out
 
 
-async def snapshot(page, frames, out, name):
+async def snapshot(page, frames, out, name, samples=False):
     snap = await page.evaluate(SNAPSHOT)
+    if samples:
+        snap["samples"] = await page.evaluate(SAMPLES)
     for _ in range(100):
         if len(frames) >= snap["frames"]:
             break
@@ -126,6 +147,14 @@ async def main(url, out):
         await page.wait_for_timeout(1500)
         figures["large"] = await snapshot(page, frames, out, "large")
         await page.screenshot(path=f"{out}/page-160x45.png")
+
+        # The glyph key (u) three times: quadrants, sextants, then octants, drawn as rectangles.
+        for _ in range(3):
+            await page.keyboard.press("u", delay=60)
+            await page.wait_for_timeout(300)
+        await page.wait_for_function(OCTANTS, timeout=20000)
+        await page.wait_for_timeout(1500)
+        figures["octant"] = await snapshot(page, frames, out, "octant", samples=True)
         figures["page_errors"] = errors
         figures["bytes"] = await page.evaluate("halfcast.game.bytes")
         figures["frames"] = await page.evaluate("halfcast.game.frames")
