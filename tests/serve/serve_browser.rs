@@ -1,6 +1,7 @@
 //! The page in a real browser: Debian's Chromium, headless, driven by Playwright for Python
 //! (`browser/page_check.py`). It joins the world beside an SSH player, who sees its name; the
-//! view is drawn; a held key turns it and its release stops it; a tap moves it; a larger window
+//! view is drawn; a held key turns it and its release stops it; a tap moves it; losing focus lets
+//! go of a held key; a larger window
 //! is a larger session; and the painter's pixels equal halfcast's own reading of the same frame
 //! bytes (`termframe`) cell by cell. Prints a skip notice when Chromium or Playwright is absent
 //! (`.ci/run` installs both).
@@ -143,6 +144,15 @@ fn check_figures(f: &Value) {
         "a tap did not move the view: {f}"
     );
     assert!(num("tap_lag_ms") <= RELEASE_BOUND_MS, "{f}");
+    assert!(
+        num("blur_turned") >= 1.0,
+        "holding d before the blur turned nothing: {f}"
+    );
+    assert!(
+        num("blur_lag_ms") <= RELEASE_BOUND_MS,
+        "the view still turned {} ms after the window lost focus",
+        num("blur_lag_ms")
+    );
     assert_eq!(f["small"], serde_json::json!([80, 24]));
     assert_eq!(
         f["large"],

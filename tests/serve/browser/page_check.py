@@ -1,7 +1,7 @@
 """Drives halfcast's page in headless Chromium (Debian's, through Playwright) for
 tests/serve/serve_browser.rs: loads the page and joins, checks the view is drawn, holds `d` and
 releases it (how long the view goes on changing after the release, and frames a second while
-turning), taps `d` once, takes the painter's pixels and the frame bytes they were drawn from,
+turning), taps `d` once, holds `d` while the window loses focus (the page lets go), takes the painter's pixels and the frame bytes they were drawn from,
 resizes the window and does the same again. Prints one JSON object of figures on its last line.
 
 usage: page_check.py URL OUTDIR
@@ -138,6 +138,20 @@ async def main(url, out):
         after = changes(log, up - 100)
         figures["tap_changes"] = len(after)
         figures["tap_lag_ms"] = max(0.0, after[-1] - up) if after else None
+
+        # Held while the tab loses focus: the page lets go of it, so the view stops.
+        await page.evaluate(RESET)
+        await page.keyboard.down("d")
+        await page.wait_for_timeout(600)
+        blurred = await page.evaluate("() => { dispatchEvent(new Event('blur')); return performance.now(); }")
+        await page.wait_for_timeout(1500)
+        log = await page.evaluate("window.__log")
+        turned = changes(log, 0)
+        figures["blur_turned"] = len([t for t in turned if t < blurred])
+        after = changes(log, blurred)
+        figures["blur_lag_ms"] = (after[-1] - blurred) if after else 0.0
+        await page.keyboard.up("d")
+        await page.wait_for_timeout(300)
 
         figures["small"] = await snapshot(page, frames, out, "small")
 
