@@ -290,8 +290,11 @@ class Game {
     this.screen.resize(cols, rows);
     const q = new URLSearchParams({ name, cols, rows });
     if (spectate) q.set("spectate", "");
-    const scheme = location.protocol === "https:" ? "wss:" : "ws:";
-    const ws = new WebSocket(`${scheme}//${location.host}/ws?${q}`);
+    // Beside the page, wherever a proxy serves it; wss: when the page came over https:.
+    const url = new URL("ws", location.href);
+    url.protocol = location.protocol === "https:" ? "wss:" : "ws:";
+    url.search = q.toString();
+    const ws = new WebSocket(url);
     ws.binaryType = "arraybuffer";
     ws.onmessage = (e) => this.frame(e.data);
     ws.onclose = (e) => this.closed(e.reason || "the connection closed");
