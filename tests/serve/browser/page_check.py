@@ -153,12 +153,27 @@ async def main(url, out):
         await page.keyboard.up("d")
         await page.wait_for_timeout(300)
 
+        figures["small_paint_ms"] = await page.evaluate("halfcast.game.paintMs / halfcast.game.frames")
         figures["small"] = await snapshot(page, frames, out, "small")
 
         # A larger window is a larger session.
         await page.set_viewport_size({"width": 1600, "height": 900})
         await page.wait_for_function("() => halfcast.screen.cols === 160 && halfcast.screen.rows === 45", timeout=20000)
         await page.wait_for_timeout(1500)
+        figures["large"] = await snapshot(page, frames, out, "large")
+        # Turning at the larger size: frames a second painted and the painter's time per frame.
+        await page.evaluate(RESET)
+        before = await page.evaluate("[halfcast.game.paintMs, halfcast.game.frames]")
+        await page.keyboard.down("d")
+        await page.wait_for_timeout(2000)
+        await page.keyboard.up("d")
+        after = await page.evaluate("[halfcast.game.paintMs, halfcast.game.frames]")
+        log = await page.evaluate("window.__log")
+        down, up = await page.evaluate("[window.__down, window.__up]")
+        turning = [t for t in changes(log, down + 300) if t <= up]
+        figures["large_turning_fps"] = len(turning) / ((up - down - 300) / 1000)
+        figures["large_paint_ms"] = (after[0] - before[0]) / max(1, after[1] - before[1])
+        await page.wait_for_timeout(1000)
         figures["large"] = await snapshot(page, frames, out, "large")
         await page.screenshot(path=f"{out}/page-160x45.png")
 

@@ -51,6 +51,7 @@ class Screen {
     this.cx.textBaseline = "middle";
     this.cx.textAlign = "center";
     this.font = Math.floor(this.sy * 0.8) + "px ui-monospace, 'DejaVu Sans Mono', monospace";
+    this.lastFont = null;
     this.row = 0; this.col = 0; this.cfg = -1; this.cbg = -1; this.cat = 0;
     this.esc = 0; this.params = ""; this.utf = 0; this.need = 0;
   }
@@ -162,14 +163,6 @@ class Screen {
     }
   }
 
-  // The colours a cell shows: foreground and background after reverse video and defaults.
-  colours(i) {
-    let f = this.fg[i] < 0 ? DEFAULT_FG : this.fg[i];
-    let b = this.bg[i] < 0 ? DEFAULT_BG : this.bg[i];
-    if (this.at[i] & REVERSE) [f, b] = [b, f];
-    return [f, b];
-  }
-
   // Draws the cells that changed since the last call.
   paint() {
     if (!this.anyDirty) return;
@@ -183,7 +176,9 @@ class Screen {
         this.dirty[i] = 0;
         if (r < lo) lo = r;
         if (r > hi) hi = r;
-        const [f, b] = this.colours(i);
+        let f = this.fg[i] < 0 ? DEFAULT_FG : this.fg[i];
+        let b = this.bg[i] < 0 ? DEFAULT_BG : this.bg[i];
+        if (this.at[i] & REVERSE) { const t = f; f = b; b = t; }
         const cp = this.ch[i];
         let top = b, bot = b, half = true;
         if (cp === 0x2580) top = f;
@@ -235,7 +230,9 @@ class Screen {
       return;
     }
     if (boxLine(cx, cp, x0, y0, x1, y1)) return;
-    cx.font = (at & BOLD ? "bold " : "") + (at & ITALIC ? "italic " : "") + this.font;
+    const font = (at & BOLD ? "bold " : "") + (at & ITALIC ? "italic " : "") + this.font;
+    // Setting a font parses it: only when it changes.
+    if (font !== this.lastFont) { cx.font = font; this.lastFont = font; }
     if (at & DIM) cx.globalAlpha = 0.6;
     cx.fillText(String.fromCodePoint(cp), (x0 + x1) / 2, (y0 + y1) / 2);
     cx.globalAlpha = 1;
