@@ -47,3 +47,4 @@ mod serve_shared_board;
 mod serve_slow_link;
 mod serve_stall;
 mod serve_web;
+mod serve_web_haproxy;
