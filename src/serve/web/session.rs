@@ -60,7 +60,7 @@ pub async fn run(ws: WebSocketStream<TcpStream>, edge: Arc<WebEdge>, p: WebPlaye
     let (writer, reader) = ws.split();
     let writer = Arc::new(Mutex::new(writer));
     let book = AckBook::default();
-    let mut sink = WebSink::new(Arc::clone(&writer), book.clone());
+    let sink = WebSink::new(Arc::clone(&writer), book.clone());
     let (input_tx, input_rx) = mpsc::channel(INPUT_QUEUE);
     let (size_tx, size_rx) = watch::channel(p.size);
     let page = Page {

@@ -42,7 +42,7 @@ impl WebSink {
 
     /// Where the reader tells acknowledgements for this sink's gate.
     #[must_use]
-    pub fn echoes(&mut self) -> Arc<Echoes> {
+    pub fn echoes(&self) -> Arc<Echoes> {
         self.gate.shared()
     }
 }
