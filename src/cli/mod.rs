@@ -93,7 +93,7 @@ enum Command {
     /// Play back a `.hcr` recording: write chosen frames, or an asciicast of the whole run.
     Replay(ReplayArgs),
     /// Run an SSH server where everyone connected plays in one world (`ssh -p 2222 host`).
-    Serve(ServeArgs),
+    Serve(Box<ServeArgs>),
     /// Print a server's lasting leaderboard (the SQLite file `serve --db` writes).
     Scores(ScoresArgs),
     /// Draw one column's DDA traversal as a figure (SVG or PNG), in Lode's names.
@@ -169,7 +169,7 @@ pub fn run() -> ExitCode {
         Some(Command::Play(args)) => play::play(&args, None),
         Some(Command::Record(args)) => play::play(&args.play, Some(&args.output)),
         Some(Command::Bench(args)) => bench::bench(&args),
-        Some(Command::Serve(args)) => serve::serve(args),
+        Some(Command::Serve(args)) => serve::serve(*args),
         Some(Command::Scores(args)) => scores::scores(&args),
         None => play::play(&cli.play, None),
     };

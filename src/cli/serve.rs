@@ -47,6 +47,18 @@ pub(crate) struct ServeArgs {
     /// Serve Prometheus metrics on http://ADDR/metrics (a bare port listens on 127.0.0.1).
     #[arg(long, value_name = "ADDR", value_parser = parse_metrics_addr)]
     pub(crate) metrics: Option<SocketAddr>,
+    /// Serve players in a browser: the page at http://ADDR/ and its WebSocket, in the same
+    /// world as the SSH port (a bare port listens on 127.0.0.1; TLS is a proxy's job).
+    #[arg(long, value_name = "ADDR", value_parser = parse_metrics_addr)]
+    pub(crate) web: Option<SocketAddr>,
+    /// Another site whose page may open the game's WebSocket (e.g. https://example.org);
+    /// repeatable. The page served by --web itself always may.
+    #[arg(long, value_name = "ORIGIN", requires = "web")]
+    pub(crate) web_origin: Vec<String>,
+    /// A reverse proxy in front of --web whose X-Forwarded-For / Forwarded header names the
+    /// player's address; repeatable.
+    #[arg(long, value_name = "IP", requires = "web")]
+    pub(crate) web_trusted_proxy: Vec<std::net::IpAddr>,
     /// Every connection starts with a PROXY protocol v1 or v2 header (behind HAProxy or
     /// another balancer); its address is the one limits, logs and metrics use.
     #[arg(long)]
@@ -277,6 +289,11 @@ fn start_and_run(args: ServeArgs) -> Result<(), Failure> {
     config.queue_dir = args.queue_dir;
     config.metrics = args.metrics;
     config.proxy_protocol = args.proxy_protocol;
+    config.web = args.web.map(|listen| halfcast::serve::web::WebOptions {
+        listen,
+        origins: args.web_origin.clone(),
+        trusted_proxies: args.web_trusted_proxy.clone(),
+    });
     config.log_format = args.log_format;
     config.shuffle = args.shuffle;
     if let Some(secs) = args.results_seconds {

@@ -180,6 +180,8 @@ pub enum ColourReason {
     Bandwidth,
     /// The SSH session's link carried too few frames at a richer level (or again enough).
     Link,
+    /// A browser page, which draws every 24-bit colour.
+    Browser,
 }
 
 impl ColourReason {
@@ -197,6 +199,7 @@ impl ColourReason {
             ColourReason::Key => "O key",
             ColourReason::Bandwidth => "bandwidth cap",
             ColourReason::Link => "link",
+            ColourReason::Browser => "browser",
         }
     }
 }

@@ -109,6 +109,13 @@ impl EchoGate {
         (1 + rtt_us / period_us).min(MAX_IN_FLIGHT)
     }
 
+    /// The state the client's answers are told to, for a transport whose answers arrive on a
+    /// task of their own (a browser page's acknowledgements, read beside the session).
+    #[must_use]
+    pub fn shared(&self) -> Arc<Echoes> {
+        Arc::clone(&self.shared)
+    }
+
     /// The least round trip an echo took, once one was answered.
     #[must_use]
     pub fn least_rtt(&self) -> Option<Duration> {

@@ -82,6 +82,8 @@ pub struct ServeConfig {
     pub drain: Duration,
     /// Worker threads of `halfcast serve`'s runtime (`--threads`; `None`: one per core).
     pub threads: Option<usize>,
+    /// Players in a browser (`--web`): the page and its WebSocket; `None` serves none.
+    pub web: Option<super::web::WebOptions>,
 }
 
 impl ServeConfig {
@@ -117,6 +119,7 @@ impl ServeConfig {
             log_format: super::ops::log::LogFormat::Text,
             drain: super::ops::drain::DEFAULT_DRAIN,
             threads: None,
+            web: None,
         }
     }
 }

@@ -3,6 +3,8 @@
 //! Rooms, one concept each:
 //! - [`ssh`]: the SSH edge (protocol, auth, host key, the channel as a play session's sink);
 //!   the session itself is transport-free, in [`crate::play`].
+//! - [`web`]: the browser edge (the page, its WebSocket, the page's acks as a frame sink); it
+//!   and [`ssh`] never use each other.
 //! - [`server`]: the process: worlds, listeners, leaderboard, metrics, drain; [`config`]:
 //!   operator settings; [`limits`]: admission (logging-in and playing connections counted
 //!   apart); [`proxy_header`]: PROXY protocol headers from a load balancer.
@@ -25,6 +27,7 @@ pub(crate) mod served_map;
 pub mod server;
 pub(crate) mod session_hooks;
 pub mod ssh;
+pub mod web;
 pub(crate) mod world_task;
 
 pub use config::ServeConfig;

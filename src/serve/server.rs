@@ -67,6 +67,8 @@ pub struct RunningServer {
     accept: JoinHandle<()>,
     metrics_http: Option<JoinHandle<()>>,
     leaderboard: Option<Leaderboard>,
+    /// The browser listener's address, when `--web` serves one (it closes with the SSH port).
+    web: Option<SocketAddr>,
 }
 
 impl RunningServer {
@@ -74,6 +76,12 @@ impl RunningServer {
     #[must_use]
     pub fn local_addr(&self) -> SocketAddr {
         self.addr
+    }
+
+    /// The browser listener's address (useful with port 0), when `--web` serves one.
+    #[must_use]
+    pub fn web_addr(&self) -> Option<SocketAddr> {
+        self.web
     }
 
     /// Totals so far.
@@ -241,12 +249,14 @@ pub async fn start_maps(
         config,
     });
     log.server(format_args!("listening on {addr}"));
+    let next_id = Arc::new(AtomicU64::new(1));
+    let web = start_web(&shared, &ready, &next_id, stop_accepting.subscribe()).await?;
     let (closed_tx, closed) = watch::channel(false);
     let header_waits = Arc::new(AtomicU64::new(0));
     let accept = tokio::spawn(accept_loop(
         listener,
         ssh,
-        shared,
+        (shared, next_id),
         (stop_accepting_rx, closed_tx, Arc::clone(&header_waits)),
     ));
     Ok(RunningServer {
@@ -264,6 +274,7 @@ pub async fn start_maps(
         accept,
         metrics_http,
         leaderboard,
+        web,
     })
 }
 
@@ -350,6 +361,35 @@ fn start_world(
     let (handle, round_phase) = spawn_rounds(worlds, config.tick_hz, rules, on_round, held);
     let phase = (round_phase, hold);
     (handle, phase, rounds)
+}
+
+/// Starts the browser listener when `--web` asks for one, sharing the SSH edge's world, limits,
+/// log and leaderboard; it closes when `stop` does.
+async fn start_web(
+    shared: &Shared,
+    ready: &Arc<Readiness>,
+    next_id: &Arc<AtomicU64>,
+    stop: watch::Receiver<bool>,
+) -> Result<Option<SocketAddr>, String> {
+    let Some(options) = shared.config.web.clone() else {
+        return Ok(None);
+    };
+    let edge = super::web::edge::WebEdge {
+        options,
+        config: shared.config.clone(),
+        world: shared.world.clone(),
+        world_data: Arc::clone(&shared.world_data),
+        avatar_sheet: shared.avatar_sheet,
+        stats: Arc::clone(&shared.stats),
+        log: shared.log,
+        shutdown: shared.shutdown.clone(),
+        farewell: shared.farewell.clone(),
+        limiter: shared.limiter.clone(),
+        boards: shared.boards.clone(),
+        ready: Arc::clone(ready),
+        next_id: Arc::clone(next_id),
+    };
+    Ok(Some(super::web::listener::start(edge, stop).await?.0))
 }
 
 /// What the world task does with a finished round: log it, count it, queue it for the

@@ -121,7 +121,23 @@ impl Log {
             LogFormat::Json if !self.quiet => self.json(
                 "login",
                 json!({ "session": id, "peer": peer.to_string(), "name": name,
-                        "as": what, "term": term }),
+                        "as": what, "term": term, "transport": "ssh" }),
+            ),
+            LogFormat::Json => {}
+        }
+    }
+
+    /// A browser page's player started playing (or watching) as `name`.
+    pub fn login_web(&self, id: u64, peer: SocketAddr, name: &str, spectator: bool) {
+        let what = if spectator { "watching" } else { "playing" };
+        match self.format {
+            LogFormat::Text => {
+                self.session(id, peer, format_args!("{what} as {name:?} in a browser"))
+            }
+            LogFormat::Json if !self.quiet => self.json(
+                "login",
+                json!({ "session": id, "peer": peer.to_string(), "name": name,
+                        "as": what, "transport": "web" }),
             ),
             LogFormat::Json => {}
         }

@@ -13,6 +13,8 @@ use metrics_exporter_prometheus::{Matcher, PrometheusBuilder, PrometheusHandle};
 
 /// Sessions playing or watching now, by `state` ("playing", "watching").
 pub const SESSIONS: &str = "halfcast_sessions";
+/// Sessions playing or watching now, by `transport` ("ssh", "web").
+pub const TRANSPORT_SESSIONS: &str = "halfcast_transport_sessions";
 /// Connections accepted and still logging in (TCP accept to shell start).
 pub const LOGGING_IN: &str = "halfcast_logging_in";
 /// Connections accepted since start.
@@ -70,6 +72,8 @@ pub enum Reason {
     Stall,
     /// A missing or malformed PROXY protocol header (or one sent without `--proxy-protocol`).
     Proxy,
+    /// A WebSocket upgrade from another site's page (`--web`'s Origin check).
+    Origin,
 }
 
 impl Reason {
@@ -95,6 +99,7 @@ impl Reason {
             Reason::Grace => "grace",
             Reason::Stall => "stall",
             Reason::Proxy => "proxy",
+            Reason::Origin => "origin",
         }
     }
 }
@@ -153,6 +158,10 @@ fn zeroes() {
 /// Help lines for every series.
 fn describe() {
     describe_gauge!(SESSIONS, "Sessions playing or watching now, by state.");
+    describe_gauge!(
+        TRANSPORT_SESSIONS,
+        "Sessions playing or watching now, by transport."
+    );
     describe_gauge!(LOGGING_IN, "Connections accepted and still logging in.");
     describe_counter!(CONNECTIONS, "Connections accepted.");
     describe_counter!(REFUSALS, "Connections turned away, by reason.");
@@ -208,6 +217,16 @@ pub fn connected() {
 /// One more (`up`) or one fewer connection logging in.
 pub fn logging_in(up: bool) {
     let g = gauge!(LOGGING_IN);
+    if up {
+        g.increment(1.0);
+    } else {
+        g.decrement(1.0);
+    }
+}
+
+/// One more (`up`) or one fewer session over `transport` ("ssh", "web").
+pub fn transport_session(transport: &'static str, up: bool) {
+    let g = gauge!(TRANSPORT_SESSIONS, "transport" => transport);
     if up {
         g.increment(1.0);
     } else {

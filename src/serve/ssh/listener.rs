@@ -72,7 +72,8 @@ const MAX_HEADER_WAITS: u64 = 256;
 struct Door {
     ssh: Arc<Config>,
     shared: Arc<Shared>,
-    next_id: AtomicU64,
+    /// Session numbers, shared with the browser listener.
+    next_id: Arc<AtomicU64>,
     lingering: Arc<AtomicU64>,
     /// Shared with [`RunningServer`]: a draining world waits for these too.
     header_waits: Arc<AtomicU64>,
@@ -83,13 +84,13 @@ struct Door {
 pub(crate) async fn accept_loop(
     listener: TcpListener,
     ssh: Arc<Config>,
-    shared: Arc<Shared>,
+    (shared, next_id): (Arc<Shared>, Arc<AtomicU64>),
     (mut stop, closed, header_waits): (watch::Receiver<bool>, watch::Sender<bool>, Arc<AtomicU64>),
 ) {
     let door = Arc::new(Door {
         ssh,
         shared,
-        next_id: AtomicU64::new(1),
+        next_id,
         lingering: Arc::new(AtomicU64::new(0)),
         header_waits,
     });

@@ -85,6 +85,7 @@ pub struct SessionInputs {
 /// Runs one SSH client's session until it ends, then says goodbye and logs it.
 pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
     metrics::session(p.spectator, true);
+    metrics::transport_session("ssh", true);
     let mut colour = level_for_term(&p.term, p.colorterm.as_deref());
     let mut early = Vec::new();
     // Before the first frame: a TERM guess is checked with the client's terminal itself, on the
@@ -181,6 +182,7 @@ async fn goodbye(p: &SessionParams, end: End) {
 /// The session's counts and its log line.
 fn ended(p: &SessionParams, end: End, tally: &Tally) {
     metrics::session(p.spectator, false);
+    metrics::transport_session("ssh", false);
     if end == End::Stalled {
         metrics::refused(Reason::Stall);
     }

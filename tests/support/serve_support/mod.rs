@@ -6,6 +6,7 @@ pub mod http;
 pub mod openssh;
 pub mod pg_cluster;
 pub mod postgres;
+pub mod web;
 
 use std::sync::Arc;
 use std::time::Duration;

@@ -1,0 +1,23 @@
+//! The browser edge: `halfcast serve --web ADDR` serves the page at `/` and its WebSocket at
+//! `/ws` from the same process and world as the SSH listener. A thin adapter over
+//! [`crate::play`], as [`crate::serve::ssh`] is: [`listener`] takes connections in within the
+//! server's limits (sharing [`edge`] with the rest of the server), [`request`] reads an HTTP request's head, [`routes`] answers it (the page,
+//! `/healthz`, the upgrade), [`origin`] refuses other sites' pages, [`forwarded`] reads a trusted
+//! proxy's client address, [`messages`] reads what the page sends, [`acked`] turns the page's
+//! acknowledgements into link figures, [`sink`] is the session's frame sink, [`session`] runs it,
+//! and [`page`] holds the page's own HTML, CSS and JavaScript.
+
+pub(crate) mod acked;
+pub(crate) mod edge;
+pub(crate) mod forwarded;
+pub(crate) mod listener;
+pub(crate) mod messages;
+pub(crate) mod options;
+pub(crate) mod origin;
+pub(crate) mod page;
+pub(crate) mod request;
+pub(crate) mod routes;
+pub(crate) mod session;
+pub(crate) mod sink;
+
+pub use options::WebOptions;

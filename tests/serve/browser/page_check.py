@@ -1,0 +1,194 @@
+"""Drives halfcast's page in headless Chromium (Debian's, through Playwright) for
+tests/serve/serve_browser.rs: loads the page and joins, checks the view is drawn, holds `d` and
+releases it (how long the view goes on changing after the release, and frames a second while
+turning), taps `d` once, holds `d` while the window loses focus (the page lets go), takes the painter's pixels and the frame bytes they were drawn from,
+resizes the window and does the same again. Prints one JSON object of figures on its last line.
+
+usage: page_check.py URL OUTDIR
+"""
+
+import asyncio
+import json
+import sys
+
+from playwright.async_api import async_playwright
+
+ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
+        "--disable-component-update", "--disable-sync", "--no-first-run"]
+
+# After each painted frame: when, and a hash of the pixel canvas between the header's and the
+# status line's rows (the view, the minimap and the ray pane).
+HOOK = """() => {
+  window.__log = [];
+  window.__up = null; window.__down = null;
+  addEventListener('keydown', () => { if (window.__down === null) window.__down = performance.now(); });
+  addEventListener('keyup', () => { window.__up = performance.now(); });
+  const g = halfcast.game;
+  const paint = g.frame.bind(g);
+  g.frame = (data) => {
+    paint(data);
+    const s = halfcast.screen, d = s.img.data, w = s.cols * 4;
+    let h = 0;
+    for (let i = 2 * w; i < d.length - 2 * w; i += 4) h = (Math.imul(h, 31) + d[i] + (d[i + 1] << 8) + (d[i + 2] << 16)) | 0;
+    window.__log.push([performance.now(), h]);
+  };
+}"""
+
+RESET = "() => { window.__log = []; window.__up = null; window.__down = null; }"
+
+SNAPSHOT = """() => {
+  const s = halfcast.screen;
+  return { frames: halfcast.game.frames, cols: s.cols, rows: s.rows,
+           pixels: Array.from(s.img.data), over: Array.from(s.over) };
+}"""
+
+# The glyph canvas sampled at the middle of each of a cell's 2×4 octant pixels, for every cell.
+SAMPLES = """() => {
+  const s = halfcast.screen, W = s.cells.width;
+  const d = s.cx.getImageData(0, 0, W, s.cells.height).data;
+  const out = [];
+  for (let r = 0; r < s.rows; r++) for (let c = 0; c < s.cols; c++) {
+    const [x0, y0, x1, y1] = s.edges(r, c);
+    for (let k = 0; k < 8; k++) {
+      const px = Math.floor(x0 + (x1 - x0) * ((k & 1) + 0.5) / 2);
+      const py = Math.floor(y0 + (y1 - y0) * ((k >> 1) + 0.5) / 4);
+      const i = (py * W + px) * 4;
+      out.push((d[i] << 16) | (d[i + 1] << 8) | d[i + 2]);
+    }
+  }
+  return out;
+}"""
+
+OCTANTS = "() => halfcast.screen.ch.some((c) => c >= 0x1cd00 && c <= 0x1cdff)"
+
+DISTINCT = """() => {
+  const s = halfcast.screen, d = s.img.data, seen = new Set();
+  for (let i = 0; i < d.length; i += 4) seen.add((d[i] << 16) | (d[i + 1] << 8) | d[i + 2]);
+  return seen.size;
+}"""
+
+
+def changes(log, since):
+    """Times of painted frames after `since` whose view differed from the frame before."""
+    out = []
+    for (t0, h0), (t1, h1) in zip(log, log[1:]):
+        if t1 > since and h1 != h0:
+            out.append(t1)
+    return out
+
+
+async def snapshot(page, frames, out, name, samples=False):
+    snap = await page.evaluate(SNAPSHOT)
+    if samples:
+        snap["samples"] = await page.evaluate(SAMPLES)
+    for _ in range(100):
+        if len(frames) >= snap["frames"]:
+            break
+        await asyncio.sleep(0.05)
+    with open(f"{out}/{name}.frames", "wb") as f:
+        for b in frames[: snap["frames"]]:
+            f.write(len(b).to_bytes(4, "big"))
+            f.write(b)
+    with open(f"{out}/{name}.json", "w") as f:
+        json.dump(snap, f)
+    return snap["cols"], snap["rows"]
+
+
+async def main(url, out):
+    figures = {}
+    async with async_playwright() as p:
+        browser = await p.chromium.launch(executable_path="/usr/bin/chromium", args=ARGS)
+        page = await browser.new_page(viewport={"width": 800, "height": 480})
+        errors = []
+        page.on("pageerror", lambda e: errors.append(str(e)))
+        frames = []
+
+        def on_ws(ws):
+            ws.on("framereceived", lambda payload: frames.append(payload) if isinstance(payload, bytes) else None)
+
+        page.on("websocket", on_ws)
+        await page.goto(url + "?name=chromey")
+        await page.click("#play")
+        await page.wait_for_function("() => halfcast.game.frames > 0", timeout=20000)
+        await page.wait_for_timeout(1000)
+        figures["distinct_colours"] = await page.evaluate(DISTINCT)
+        figures["grid"] = await page.evaluate("[halfcast.screen.cols, halfcast.screen.rows]")
+        await page.screenshot(path=f"{out}/page-80x24.png")
+        await page.evaluate(HOOK)
+
+        # Hold d (turning right) for two seconds, then let go.
+        await page.keyboard.down("d")
+        await page.wait_for_timeout(2000)
+        await page.keyboard.up("d")
+        await page.wait_for_timeout(1500)
+        log = await page.evaluate("window.__log")
+        down, up = await page.evaluate("[window.__down, window.__up]")
+        turning = [t for t in changes(log, down + 300) if t <= up]
+        figures["turning_fps"] = len(turning) / ((up - down - 300) / 1000)
+        after = changes(log, up)
+        figures["release_lag_ms"] = (after[-1] - up) if after else 0.0
+        figures["frames_after_release"] = len([t for t, _ in log if t > up])
+
+        # One tap.
+        await page.evaluate(RESET)
+        await page.keyboard.press("d", delay=80)
+        await page.wait_for_timeout(1500)
+        log = await page.evaluate("window.__log")
+        up = await page.evaluate("window.__up")
+        after = changes(log, up - 100)
+        figures["tap_changes"] = len(after)
+        figures["tap_lag_ms"] = max(0.0, after[-1] - up) if after else None
+
+        # Held while the tab loses focus: the page lets go of it, so the view stops.
+        await page.evaluate(RESET)
+        await page.keyboard.down("d")
+        await page.wait_for_timeout(600)
+        blurred = await page.evaluate("() => { dispatchEvent(new Event('blur')); return performance.now(); }")
+        await page.wait_for_timeout(1500)
+        log = await page.evaluate("window.__log")
+        turned = changes(log, 0)
+        figures["blur_turned"] = len([t for t in turned if t < blurred])
+        after = changes(log, blurred)
+        figures["blur_lag_ms"] = (after[-1] - blurred) if after else 0.0
+        await page.keyboard.up("d")
+        await page.wait_for_timeout(300)
+
+        figures["small_paint_ms"] = await page.evaluate("halfcast.game.paintMs / halfcast.game.frames")
+        figures["small"] = await snapshot(page, frames, out, "small")
+
+        # A larger window is a larger session.
+        await page.set_viewport_size({"width": 1600, "height": 900})
+        await page.wait_for_function("() => halfcast.screen.cols === 160 && halfcast.screen.rows === 45", timeout=20000)
+        await page.wait_for_timeout(1500)
+        figures["large"] = await snapshot(page, frames, out, "large")
+        # Turning at the larger size: frames a second painted and the painter's time per frame.
+        await page.evaluate(RESET)
+        before = await page.evaluate("[halfcast.game.paintMs, halfcast.game.frames]")
+        await page.keyboard.down("d")
+        await page.wait_for_timeout(2000)
+        await page.keyboard.up("d")
+        after = await page.evaluate("[halfcast.game.paintMs, halfcast.game.frames]")
+        log = await page.evaluate("window.__log")
+        down, up = await page.evaluate("[window.__down, window.__up]")
+        turning = [t for t in changes(log, down + 300) if t <= up]
+        figures["large_turning_fps"] = len(turning) / ((up - down - 300) / 1000)
+        figures["large_paint_ms"] = (after[0] - before[0]) / max(1, after[1] - before[1])
+        await page.wait_for_timeout(1000)
+        figures["large"] = await snapshot(page, frames, out, "large")
+        await page.screenshot(path=f"{out}/page-160x45.png")
+
+        # The glyph key (u) three times: quadrants, sextants, then octants, drawn as rectangles.
+        for _ in range(3):
+            await page.keyboard.press("u", delay=60)
+            await page.wait_for_timeout(300)
+        await page.wait_for_function(OCTANTS, timeout=20000)
+        await page.wait_for_timeout(1500)
+        figures["octant"] = await snapshot(page, frames, out, "octant", samples=True)
+        figures["page_errors"] = errors
+        figures["bytes"] = await page.evaluate("halfcast.game.bytes")
+        figures["frames"] = await page.evaluate("halfcast.game.frames")
+        await browser.close()
+    print(json.dumps(figures))
+
+
+asyncio.run(main(sys.argv[1], sys.argv[2]))

@@ -1,0 +1,170 @@
+#!/usr/bin/env python3
+"""How stale does a browser player's view get after a key's release, on a shaped link?
+
+Runs `halfcast serve --web` and a WebSocket player that acknowledges each frame as the page does
+({"ack":N} once the frame is read), inside a fresh network namespace whose loopback is shaped by a
+token bucket (the recipe of ../shared/tools/linklag.py: lo at MTU 1500, `tc qdisc … tbf`), then:
+
+- hold: `d` (turn right) pressed for HOLD s, then released; how long frames that change the view
+  keep arriving after the release. The map is the default one with nothing that moves by itself,
+  so every frame of more than FLOOR bytes after the release is a view still turning (a frame of
+  the status line's figures alone is under 100 bytes).
+- taps: `d` pressed and released 80 ms later, from idle; the same figure.
+
+Whole repaints (a colour level step redraws the same view at the new level) are counted apart
+(`level_repaints`), not as the view still turning.
+
+Re-executes itself under `unshare -rn` when not already in a fresh namespace.
+
+  python3 weblag.py BIN [--rate 1mbit|none] [--hold 3] [--cols 80 --rows 24] [--runs 3]
+Prints one JSON line.
+"""
+import argparse, asyncio, json, os, socket, subprocess, sys, tempfile, time
+
+FLOOR = 200
+
+
+def shaped(args):
+    subprocess.run(["ip", "link", "set", "lo", "up", "mtu", "1500"], check=True)
+    if args.rate != "none":
+        subprocess.run(["tc", "qdisc", "add", "dev", "lo", "root", "tbf", "rate", args.rate,
+                        "burst", "16kb", "latency", f"{args.queue_ms}ms"], check=True)
+
+
+def free_port():
+    s = socket.socket(); s.bind(("127.0.0.1", 0)); p = s.getsockname()[1]; s.close(); return p
+
+
+class Player:
+    def __init__(self, ws):
+        self.ws = ws
+        self.log = []  # (monotonic arrival, bytes)
+        # Whether each frame is a whole repaint (a colour level step's): the same view redrawn,
+        # counted apart from the view still turning.
+        self.repaint = []
+        self.raw = []
+        self.keep = False
+        self.n = 0
+
+    async def read(self):
+        async for msg in self.ws:
+            if isinstance(msg, bytes):
+                self.n += 1
+                self.log.append((time.monotonic(), len(msg)))
+                self.repaint.append(b"\x1b[2J" in msg)
+                if self.keep:
+                    self.raw.append(msg)
+                await self.ws.send(json.dumps({"ack": self.n}))
+
+    async def key(self, down):
+        await self.ws.send(json.dumps({"key": "d", "down": down}))
+
+    def last_big_after(self, t):
+        big = [u for (u, n), r in zip(self.log, self.repaint) if u >= t and n > FLOOR and not r]
+        return (max(big) - t) if big else 0.0
+
+    def repaints_after(self, t):
+        return len([u for u, r in zip(self.log, self.repaint) if u[0] >= t and r])
+
+    def fps_between(self, a, b):
+        return len([u for (u, n) in self.log if a <= u <= b and n > FLOOR]) / (b - a)
+
+    def bytes_between(self, a, b):
+        return sum(n for (u, n) in self.log if a <= u <= b)
+
+
+async def quiet(player, s=1.0, limit=30):
+    """Waits until no view-changing frame came for `s` seconds."""
+    end = time.monotonic() + limit
+    while time.monotonic() < end:
+        await asyncio.sleep(0.1)
+        big = [u for (u, n) in player.log if n > FLOOR]
+        if not big or time.monotonic() - big[-1] > s:
+            return
+
+
+async def measure(args, port):
+    import websockets
+    url = f"ws://127.0.0.1:{port}/ws?name=lag&cols={args.cols}&rows={args.rows}"
+    async with websockets.connect(url, max_size=None) as ws:
+        p = Player(ws)
+        p.keep = args.verbose
+        reader = asyncio.create_task(p.read())
+        await asyncio.sleep(2)
+        await quiet(p)
+        holds, taps, fps, kbps = [], [], [], []
+        start = time.monotonic()
+        for _ in range(args.runs):
+            t0 = time.monotonic()
+            await p.key(True)
+            await asyncio.sleep(args.hold)
+            up = time.monotonic()
+            await p.key(False)
+            await quiet(p, 1.5)
+            holds.append(p.last_big_after(up) * 1000)
+            if args.verbose:
+                print([(round((u - up) * 1000), n, r) for (u, n), r in zip(p.log, p.repaint) if u >= up - 0.1], file=sys.stderr)
+            fps.append(p.fps_between(t0 + 0.5, up))
+            kbps.append(p.bytes_between(t0 + 0.5, up) * 8 / 1000 / (up - t0 - 0.5))
+            await p.key(True)
+            await asyncio.sleep(0.08)
+            up = time.monotonic()
+            await p.key(False)
+            await quiet(p, 1.5)
+            taps.append(p.last_big_after(up) * 1000)
+            if args.verbose:
+                for (u, n), m in zip(p.log, p.raw or [b""] * len(p.log)):
+                    if u > up + 0.1 and n > FLOOR:
+                        print("late", round((u - up) * 1000), m[:120], m[-200:], file=sys.stderr)
+                print("tap", [(round((u - up) * 1000), n) for (u, n) in p.log if u >= up - 0.2], file=sys.stderr)
+        reader.cancel()
+        return {"rate": args.rate, "cols": args.cols, "rows": args.rows,
+                "release_lag_ms": [round(x) for x in holds], "tap_lag_ms": [round(x) for x in taps],
+                "turning_fps": [round(x, 1) for x in fps], "kbit_s": [round(x) for x in kbps],
+                "level_repaints": p.repaints_after(start)}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("bin")
+    ap.add_argument("--rate", default="1mbit")
+    ap.add_argument("--queue-ms", type=int, default=200)
+    ap.add_argument("--hold", type=float, default=3.0)
+    ap.add_argument("--cols", type=int, default=80)
+    ap.add_argument("--rows", type=int, default=24)
+    ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--inside", action="store_true")
+    ap.add_argument("--verbose", action="store_true")
+    args = ap.parse_args()
+    if not args.inside:
+        os.execvp("unshare", ["unshare", "-rn", sys.executable, *sys.argv, "--inside"])
+    shaped(args)
+    port, web = free_port(), free_port()
+    with tempfile.TemporaryDirectory() as d:
+        # The default map with nothing that moves by itself (creatures, animated sprites) and
+        # nothing to pick up: only the player's keys change the view.
+        repo = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
+        os.symlink(os.path.join(repo, "textures"), f"{d}/textures")
+        os.mkdir(f"{d}/maps")
+        with open(os.path.join(repo, "maps", "default.cub")) as f:
+            lines = [l for l in f if not l.startswith(("ITEM ", "DOORLOCK ", "EXIT ", "CREATURE "))
+                     and "frames=" not in l]
+        with open(f"{d}/maps/still.cub", "w") as f:
+            f.writelines(lines)
+        srv = subprocess.Popen([args.bin, "serve", f"{d}/maps/still.cub", "--listen", f"127.0.0.1:{port}", "--web",
+                                f"127.0.0.1:{web}", "--host-key", f"{d}/hk", "--db", "none",
+                                "--quiet"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        try:
+            for _ in range(100):
+                try:
+                    socket.create_connection(("127.0.0.1", web), timeout=1).close()
+                    break
+                except OSError:
+                    time.sleep(0.1)
+            print(json.dumps(asyncio.run(measure(args, web))))
+        finally:
+            srv.terminate()
+            srv.wait()
+
+
+main()
