@@ -112,19 +112,19 @@ def main():
             for g, shot in zip(SETTINGS, shots):
                 check(a.halfcast, g, shot, tmp)
             labelled(shots, [f"--glyphs {g}" for g in SETTINGS], 2).save(
-                os.path.join(a.out, "glyphs-80x24.png"), optimize=True)
+                os.path.join(a.out, "glyphs-80x24.webp"), lossless=True, method=6)
             # The middle of the view, 3x, half-blocks beside octants: the bricks' mortar.
             box = (300, 120, 500, 240)
             zooms = [shots[i].crop(box).resize((600, 360), Image.NEAREST) for i in (0, 3)]
             labelled(zooms, ["half, 3x", "octant, 3x"], 2).save(
-                os.path.join(a.out, "glyphs-zoom.png"), optimize=True)
+                os.path.join(a.out, "glyphs-zoom.webp"), lossless=True, method=6)
             card = grab(a.display, a.vte, ["sh", "-c", f"printf '{CLEAR}'; {a.halfcast} glyphs"
                                            " --colors truecolor; sleep 60"], (90, 26), 3, env)
-            card.save(os.path.join(a.out, "glyphs-card.png"), optimize=True)
+            card.save(os.path.join(a.out, "glyphs-card.webp"), lossless=True, method=6)
             plays = [grab(a.display, a.vte, [a.halfcast, "play", "--glyphs", g, "--seed", "1",
                                              "--no-mouse"], (80, 24), 4, env) for g in SETTINGS]
             labelled(plays, [f"halfcast play --glyphs {g}" for g in SETTINGS], 2).save(
-                os.path.join(a.out, "play-80x24.png"), optimize=True)
+                os.path.join(a.out, "play-80x24.webp"), lossless=True, method=6)
     finally:
         xvfb.terminate()
         xvfb.wait()
