@@ -130,13 +130,15 @@ impl World {
         }
     }
 
-    /// Waits until the world has nobody playing, its rounds stopped ending and none waits to
-    /// be written; its round count then.
+    /// Waits until the world has nobody playing (so no round can end), its rounds stopped
+    /// ending and none waits to be written; its round count then.
     fn settled(&mut self) -> usize {
         let mut last = usize::MAX;
         self.until("the rounds to settle and be written", |w| {
+            let m = get(w.metrics, "/metrics").1;
+            let nobody = series(&m, r#"halfcast_sessions{state="playing"}"#) == 0.0;
             let now = w.rounds();
-            let still = now == last && w.pending() == 0.0;
+            let still = nobody && now == last && w.pending() == 0.0;
             last = now;
             still && {
                 // Two looks a while apart: a round may be ending right now.
