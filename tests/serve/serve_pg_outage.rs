@@ -266,6 +266,11 @@ async fn rounds_survive_a_database_outage_a_start_without_it_and_a_kill_9_exactl
     again.until("the queue written", |w| w.pending() == 0.0);
     let total = (ra + rb + queued) as i64;
     assert_eq!(stored(&pg), (total, total));
+    eprintln!(
+        "outage: world a {ra} rounds ({} from the database's stop on), world b {rb} (started \
+         while it was down); {queued} queued by a when it was killed; {total} stored, once each",
+        ra - at_stop
+    );
     assert_eq!(queued_files(&dir_a.join("halfcast-queue")), 0);
 }
 
