@@ -109,3 +109,32 @@ async fn each_event_is_one_json_object_with_its_fields() {
     // server hangs up if the client has not already).
     assert!(d["error"].is_null() || d["error"].is_string(), "{d}");
 }
+
+#[test]
+fn a_world_that_cannot_start_says_why_in_its_json_log() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    // Its SSH port is taken.
+    let taken = std::net::TcpListener::bind("127.0.0.1:0").expect("a port");
+    let port = taken.local_addr().unwrap().port();
+    let (mut srv, log) = crate::serve_process::spawn(
+        port,
+        &dir.path().join("hk"),
+        &["--log-format", "json", "--db", "none"],
+        &[],
+    );
+    let status = srv.0.wait().expect("it exits");
+    assert_eq!(status.code(), Some(2));
+    let lines: Vec<String> = log.iter().collect();
+    // Every line is JSON, the last says why, with the cause.
+    let events: Vec<serde_json::Value> = lines
+        .iter()
+        .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("{e}: {l}")))
+        .collect();
+    let last = events.last().expect("a line");
+    assert_eq!(last["event"], "start_failed", "{lines:#?}");
+    let text = last["text"].as_str().unwrap();
+    assert!(
+        text.contains(&format!("cannot listen on 127.0.0.1:{port}")) && text.contains("in use"),
+        "{text}"
+    );
+}

@@ -130,13 +130,15 @@ impl World {
         }
     }
 
-    /// Waits until the world has nobody playing, its rounds stopped ending and none waits to
-    /// be written; its round count then.
+    /// Waits until the world has nobody playing (so no round can end), its rounds stopped
+    /// ending and none waits to be written; its round count then.
     fn settled(&mut self) -> usize {
         let mut last = usize::MAX;
         self.until("the rounds to settle and be written", |w| {
+            let m = get(w.metrics, "/metrics").1;
+            let nobody = series(&m, r#"halfcast_sessions{state="playing"}"#) == 0.0;
             let now = w.rounds();
-            let still = now == last && w.pending() == 0.0;
+            let still = nobody && now == last && w.pending() == 0.0;
             last = now;
             still && {
                 // Two looks a while apart: a round may be ending right now.
@@ -264,6 +266,11 @@ async fn rounds_survive_a_database_outage_a_start_without_it_and_a_kill_9_exactl
     again.until("the queue written", |w| w.pending() == 0.0);
     let total = (ra + rb + queued) as i64;
     assert_eq!(stored(&pg), (total, total));
+    eprintln!(
+        "outage: world a {ra} rounds ({} from the database's stop on), world b {rb} (started \
+         while it was down); {queued} queued by a when it was killed; {total} stored, once each",
+        ra - at_stop
+    );
     assert_eq!(queued_files(&dir_a.join("halfcast-queue")), 0);
 }
 

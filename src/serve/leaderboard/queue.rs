@@ -74,8 +74,11 @@ impl DiskQueue {
             let path = entry.map_err(failed)?.path();
             let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("");
             if name.starts_with('.') && name.ends_with(".tmp") {
-                // Half written when the world died: its round was never handed on.
-                let _ = fs::remove_file(&path);
+                // Half written when a world died: its round was never handed on. (A recent one
+                // may be another world's, sharing the directory, being written now.)
+                if older_than(&path, STALE_TMP) {
+                    let _ = fs::remove_file(&path);
+                }
             } else if name.ends_with(SUFFIX) {
                 match read_round(&path) {
                     Ok(r) => rounds.push((r, path)),
@@ -145,6 +148,18 @@ impl DiskQueue {
     }
 }
 
+/// A temporary file older than this was left by a world that died while writing it.
+const STALE_TMP: std::time::Duration = std::time::Duration::from_secs(60);
+
+/// Whether `path` was last changed more than `age` ago.
+fn older_than(path: &Path, age: std::time::Duration) -> bool {
+    fs::metadata(path)
+        .and_then(|m| m.modified())
+        .ok()
+        .and_then(|t| t.elapsed().ok())
+        .is_some_and(|e| e > age)
+}
+
 /// Creates `dir` (and its parents) with mode 0700 where it is new.
 fn create_private_dir(dir: &Path) -> io::Result<()> {
     let mut b = fs::DirBuilder::new();
@@ -156,13 +171,17 @@ fn create_private_dir(dir: &Path) -> io::Result<()> {
     }
     b.create(dir)?;
     // Writable: a queue that cannot take a round would only say so at the first outage.
-    let probe = dir.join(".probe.tmp");
+    // Named for this process: two worlds sharing the directory may start at once.
+    let probe = dir.join(format!(".probe-{}.tmp", std::process::id()));
     OpenOptions::new()
         .write(true)
         .create(true)
         .truncate(true)
         .open(&probe)?;
-    fs::remove_file(&probe)
+    match fs::remove_file(&probe) {
+        Err(e) if e.kind() != io::ErrorKind::NotFound => Err(e),
+        _ => Ok(()),
+    }
 }
 
 fn stored(r: &RoundRecord) -> Stored {
@@ -245,13 +264,20 @@ mod tests {
         assert!(found.is_empty());
         let late = q.save(&round("b-2", 20)).unwrap();
         q.save(&round("a-1", 10)).unwrap();
-        std::fs::write(qdir.join(".c-3.tmp"), b"{half").unwrap();
+        let half = std::fs::File::create(qdir.join(".c-3.tmp")).unwrap();
+        let long_ago = std::time::SystemTime::now() - 2 * STALE_TMP;
+        half.set_modified(long_ago).unwrap();
+        std::fs::write(qdir.join(".e-5.tmp"), b"{being written").unwrap();
         std::fs::write(qdir.join("d-4.round.json"), b"{not json").unwrap();
         let (_, (found, notes)) = DiskQueue::open(&qdir).unwrap();
         let uids: Vec<&str> = found.iter().map(|(r, _)| r.uid.as_str()).collect();
         assert_eq!(uids, ["a-1", "b-2"]);
         assert_eq!(found[0].0, round("a-1", 10));
         assert!(!qdir.join(".c-3.tmp").exists(), "half-written files go");
+        assert!(
+            qdir.join(".e-5.tmp").exists(),
+            "one being written now stays"
+        );
         assert!(
             qdir.join("d-4.round.bad").exists() && notes.len() == 1,
             "{notes:?}"
