@@ -17,7 +17,6 @@
 //! - [`ops`]: metrics, `/healthz`, drain, process figures, the log.
 
 pub(crate) mod config;
-pub(crate) mod drain_wait;
 pub mod leaderboard;
 pub mod limits;
 pub mod ops;

@@ -1,7 +1,7 @@
 //! Where the world's round stands, as a draining world needs to know it: nobody is playing,
 //! a round is being played, or its results show (since when). The world task publishes it, and
 //! a draining world holds the results instead of starting another round
-//! ([`super::drain_wait`]).
+//! ([`super::ops::drain_wait`]).
 
 use std::time::Instant;
 

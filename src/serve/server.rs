@@ -135,7 +135,7 @@ impl RunningServer {
     /// closes (connections already waiting in its queue are still taken in), no new round
     /// starts, and this waits until nobody is logging in or playing, or until the round ends
     /// (then [`super::ops::drain::AFTER_LAST_ROUND`] more, so its results are seen; at once-ish when
-    /// they already show), or until `patience` has passed ([`super::drain_wait`]). Sessions go on
+    /// they already show), or until `patience` has passed ([`super::ops::drain_wait`]). Sessions go on
     /// meanwhile, their players told the world restarts soon;
     /// [`RunningServer::shutdown_restarting`] then ends them.
     pub async fn drain(&self, patience: Duration) {
@@ -158,7 +158,7 @@ impl RunningServer {
                 logging_in > 0 || arriving,
             )
         };
-        super::drain_wait::until_round_over(self.phase.0.clone(), &present, deadline).await;
+        super::ops::drain_wait::until_round_over(self.phase.0.clone(), &present, deadline).await;
     }
 
     /// [`RunningServer::shutdown`], telling every player "this world restarts: reconnect to

@@ -4,6 +4,7 @@
 
 use std::path::Path;
 
+pub use super::open_error::OpenError;
 use super::pg_config::PgTarget;
 use super::pg_store::{self, PgStore};
 use super::store::Store;
@@ -28,25 +29,6 @@ pub fn postgres_url(db: &Path) -> Option<&str> {
 #[must_use]
 pub fn shown(db: &Path) -> String {
     postgres_url(db).map_or_else(|| db.display().to_string(), pg_store::shown)
-}
-
-/// Why a leaderboard could not be opened.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub enum OpenError {
-    /// It cannot be reached now (PostgreSQL down or unreachable): a world starts anyway,
-    /// queues its rounds, and tries again.
-    Away(String),
-    /// It answered and must not be used (newer schema, another program's, damaged, a bad
-    /// password file): a start-up error.
-    Refused(String),
-}
-
-impl std::fmt::Display for OpenError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            Self::Away(m) | Self::Refused(m) => f.write_str(m),
-        }
-    }
 }
 
 impl Database {

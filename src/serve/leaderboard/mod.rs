@@ -16,9 +16,11 @@
 pub mod backlog;
 pub mod backup;
 pub mod database;
+pub mod open_error;
 pub mod outage;
 pub mod pg_config;
 pub mod pg_store;
+pub mod pg_text;
 pub mod queue;
 pub mod round_id;
 pub mod store;

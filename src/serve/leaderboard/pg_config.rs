@@ -11,7 +11,7 @@ use std::time::Duration;
 
 use postgres::Config;
 
-use super::pg_store::{causes, shown};
+use super::pg_text::{causes, shown};
 
 /// How long connecting may take before it is an error, unless the URL or
 /// `PGCONNECT_TIMEOUT` says otherwise.

@@ -10,8 +10,9 @@
 
 use postgres::{Client, Config, NoTls, Row};
 
-use super::database::OpenError;
+use super::open_error::OpenError;
 use super::pg_config::PgTarget;
+pub use super::pg_text::{causes, shown};
 use super::store::SCHEMA_VERSION;
 use super::{bounded_name, Entry, MapBoard, RoundRecord};
 
@@ -50,23 +51,6 @@ pub fn is_url(db: &str) -> bool {
     db.starts_with("postgres://") || db.starts_with("postgresql://")
 }
 
-/// `url` without its password, for logs and errors.
-#[must_use]
-pub fn shown(url: &str) -> String {
-    // The query string may carry a password too: it is not shown at all.
-    let url = url.split_once('?').map_or(url, |(u, _)| u);
-    let Some((scheme, rest)) = url.split_once("://") else {
-        return url.to_owned();
-    };
-    match rest.rsplit_once('@') {
-        Some((user, host)) => {
-            let user = user.split_once(':').map_or(user, |(u, _)| u);
-            format!("{scheme}://{user}@{host}")
-        }
-        None => url.to_owned(),
-    }
-}
-
 /// A connection to a PostgreSQL leaderboard at the current schema.
 pub struct PgStore {
     config: Config,
@@ -83,23 +67,6 @@ impl std::fmt::Debug for PgStore {
 /// What a failed start says, naming the database (without its password).
 fn failed(url: &str, what: &str, e: impl std::fmt::Display) -> String {
     format!("leaderboard {url}: {what}: {e}")
-}
-
-/// An error with its causes ("error connecting to server: Connection refused (os error 111)"):
-/// the client's own message alone rarely says what went wrong.
-#[must_use]
-pub fn causes(e: &(dyn std::error::Error + 'static)) -> String {
-    let mut out = e.to_string();
-    let mut next = e.source();
-    while let Some(cause) = next {
-        let c = cause.to_string();
-        if !out.ends_with(&c) {
-            out.push_str(": ");
-            out.push_str(&c);
-        }
-        next = cause.source();
-    }
-    out
 }
 
 impl PgStore {

@@ -6,6 +6,7 @@
 //! printed at exit).
 
 pub(crate) mod drain;
+pub(crate) mod drain_wait;
 pub mod health;
 pub(crate) mod lifecycle;
 pub mod log;

@@ -7,8 +7,8 @@
 use tokio::sync::watch;
 use tokio::time::Instant;
 
-use super::ops::drain::AFTER_LAST_ROUND;
-use super::round_phase::RoundPhase;
+use super::drain::AFTER_LAST_ROUND;
+use crate::serve::round_phase::RoundPhase;
 
 /// Who is still there, as the drain asks it: (anyone at all, anyone still logging in).
 pub type Presence<'a> = &'a (dyn Fn() -> (bool, bool) + Sync);
