@@ -16,7 +16,7 @@ Needs haproxy, ssh (OpenSSH) and a built halfcast. Every player comes from 127.0
 worlds' per-address limits are raised (--max-per-ip, --max-startups-per-ip); behind a real
 balancer each player has an address of their own.
 
-    python3 scripts/fleet_restart.py --halfcast target/release/halfcast --worlds 3
+    python3 docs/deploy/fleet_restart.py --halfcast target/release/halfcast --worlds 3
 """
 
 import argparse
