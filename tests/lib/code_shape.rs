@@ -97,6 +97,19 @@ fn functions_and_files_in_the_kept_rooms_stay_short() {
             .iter()
             .any(|room| what.starts_with(&format!("src/{room}/")))
     };
+    if let (Some(f), Some(file)) = (
+        fns.iter().find(|(_, w)| in_rooms(w)),
+        files.iter().find(|(_, w)| in_rooms(w)),
+    ) {
+        println!(
+            "in src/{{{}}}: longest function {} lines ({}), largest file {} lines ({})",
+            KEPT_SMALL.join(","),
+            f.0,
+            f.1,
+            file.0,
+            file.1
+        );
+    }
     let long: Vec<_> = fns
         .iter()
         .filter(|(l, w)| *l > MAX_FN_LINES && in_rooms(w))
