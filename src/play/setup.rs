@@ -46,7 +46,7 @@ pub struct Setup {
 
 /// What a transport feeds a session while it runs.
 pub struct Feeds<I> {
-    /// The client's input ([`InputSource`]).
+    /// The client's input ([`InputSource`](super::input::InputSource)).
     pub input: I,
     /// The client's latest size in columns and rows.
     pub size: watch::Receiver<(u32, u32)>,

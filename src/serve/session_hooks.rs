@@ -1,5 +1,6 @@
 //! The server's side of a play session, for every transport: its frame metrics, its log line when
-//! the world renames a player, and the leaderboard it shows.
+//! the world renames a player, the leaderboard it shows, the world's draining as a note, and the
+//! counts and last log line when it ends.
 
 use std::net::SocketAddr;
 use std::sync::Arc;
@@ -9,10 +10,14 @@ use tokio::sync::watch;
 
 use super::leaderboard::writer::Leaderboard;
 use super::leaderboard::{board_key, shown_name, Boards, TOP};
+use super::ops::drain::{DRAINING_NOTICE, RESTARTING};
 use super::ops::log::Log;
-use super::ops::metrics::FrameMetrics;
+use super::ops::metrics::{self, FrameMetrics, Reason};
+use super::ops::stats::ServeStats;
 use crate::game::multi::players::{PlayerId, Snapshot};
 use crate::play::hooks::Hooks;
+use crate::play::link_text::link_summary;
+use crate::play::session::{End, Tally};
 use crate::ui::results::Board;
 
 /// What a session needs of the lasting leaderboard.
@@ -95,6 +100,69 @@ impl Hooks for ServerHooks {
         let (line, rx) = self.boards.as_ref()?;
         leaders(line, &rx.borrow(), snap, me)
     }
+}
+
+/// A session of `transport` ("ssh", "web") begins: the live-session gauges count it.
+pub fn session_started(spectator: bool, transport: &'static str) {
+    metrics::session(spectator, true);
+    metrics::transport_session(transport, true);
+}
+
+/// A session of `transport` ended with `end`: the gauges and totals take it off and add its
+/// figures, and its last log line says how it went.
+pub fn session_ended(
+    (stats, log): (&ServeStats, Log),
+    (id, peer): (u64, SocketAddr),
+    (spectator, transport): (bool, &'static str),
+    end: End,
+    tally: &Tally,
+) {
+    metrics::session(spectator, false);
+    metrics::transport_session(transport, false);
+    if end == End::Stalled {
+        metrics::refused(Reason::Stall);
+    }
+    ServeStats::add(&stats.frames_sent, tally.frames);
+    ServeStats::add(&stats.bytes_sent, tally.bytes);
+    ServeStats::add(&stats.frames_dropped, tally.dropped);
+    // SSH's is the line operators know; another transport says which it is.
+    let over = if transport == "ssh" {
+        String::new()
+    } else {
+        format!(" over {transport}")
+    };
+    log.session(
+        id,
+        peer,
+        format_args!(
+            "session ended ({end:?}){over}: {} frames, {} bytes, {} frame ticks skipped{}",
+            tally.frames,
+            tally.bytes,
+            tally.dropped,
+            link_summary(&tally.link),
+        ),
+    );
+}
+
+/// The world's draining, as a note for a session's player: told at once, not only when it
+/// closes.
+pub fn draining_notes(
+    mut farewell: watch::Receiver<&'static str>,
+) -> watch::Receiver<Option<String>> {
+    let (tx, rx) = watch::channel(None);
+    tokio::spawn(async move {
+        loop {
+            tokio::select! {
+                // Err: the server is gone; its shutdown signal ends the session.
+                changed = farewell.changed() => if changed.is_err() { return },
+                () = tx.closed() => return,
+            }
+            if *farewell.borrow_and_update() == RESTARTING {
+                let _ = tx.send(Some(DRAINING_NOTICE.to_owned()));
+            }
+        }
+    });
+    rx
 }
 
 /// The leaderboard a session shows for the map of `snap` (the finished round's map while the

@@ -14,16 +14,16 @@ use super::ask_colour::{ask_colour, SSH_QUERY_PATIENCE};
 use super::sink::SshSink;
 use crate::encode::ColourChoice;
 use crate::game::multi::players::PlayerId;
-use crate::play::link_text::link_summary;
-use crate::play::session::{self, End, Feeds, Setup, Tally};
+use crate::play::session::{self, End, Feeds, Setup};
 use crate::play::world_port::WorldHandle;
 use crate::render::glyphs::Glyphs;
-use crate::serve::ops::drain::{self, DRAINING_NOTICE, RESTARTING};
+use crate::serve::ops::drain::{self};
 use crate::serve::ops::lifecycle::Lifeline;
 use crate::serve::ops::log::Log;
-use crate::serve::ops::metrics::{self, Reason};
 use crate::serve::ops::stats::ServeStats;
-use crate::serve::session_hooks::{BoardLine, ServerHooks};
+use crate::serve::session_hooks::{
+    draining_notes, session_ended, session_started, BoardLine, ServerHooks,
+};
 use crate::ui::keys::InputMode;
 use crate::ui::octant_support::{octant_dropper, TermEnv};
 use crate::world::World;
@@ -84,8 +84,7 @@ pub struct SessionInputs {
 
 /// Runs one SSH client's session until it ends, then says goodbye and logs it.
 pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
-    metrics::session(p.spectator, true);
-    metrics::transport_session("ssh", true);
+    session_started(p.spectator, "ssh");
     let mut colour = level_for_term(&p.term, p.colorterm.as_deref());
     let mut early = Vec::new();
     // Before the first frame: a TERM guess is checked with the client's terminal itself, on the
@@ -137,26 +136,14 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
     if !matches!(end, End::ClientGone | End::Stalled) {
         goodbye(&p, end).await;
     }
-    ended(&p, end, &tally);
+    session_ended(
+        (&p.stats, p.log),
+        (p.id, p.peer),
+        (p.spectator, "ssh"),
+        end,
+        &tally,
+    );
     end
-}
-
-/// The world's draining, as a note for the player: told at once, not only when it closes.
-fn draining_notes(mut farewell: watch::Receiver<&'static str>) -> watch::Receiver<Option<String>> {
-    let (tx, rx) = watch::channel(None);
-    tokio::spawn(async move {
-        loop {
-            tokio::select! {
-                // Err: the server is gone; its shutdown signal ends the session.
-                changed = farewell.changed() => if changed.is_err() { return },
-                () = tx.closed() => return,
-            }
-            if *farewell.borrow_and_update() == RESTARTING {
-                let _ = tx.send(Some(DRAINING_NOTICE.to_owned()));
-            }
-        }
-    });
-    rx
 }
 
 /// The terminal put back as it was, a last line, and the channel closed; best effort, as the
@@ -177,29 +164,6 @@ async fn goodbye(p: &SessionParams, end: End) {
         let _ = h.close(p.channel).await;
     })
     .await;
-}
-
-/// The session's counts and its log line.
-fn ended(p: &SessionParams, end: End, tally: &Tally) {
-    metrics::session(p.spectator, false);
-    metrics::transport_session("ssh", false);
-    if end == End::Stalled {
-        metrics::refused(Reason::Stall);
-    }
-    ServeStats::add(&p.stats.frames_sent, tally.frames);
-    ServeStats::add(&p.stats.bytes_sent, tally.bytes);
-    ServeStats::add(&p.stats.frames_dropped, tally.dropped);
-    p.log.session(
-        p.id,
-        p.peer,
-        format_args!(
-            "session ended ({end:?}): {} frames, {} bytes, {} frame ticks skipped{}",
-            tally.frames,
-            tally.bytes,
-            tally.dropped,
-            link_summary(&tally.link),
-        ),
-    );
 }
 
 /// The colour level for a client's `TERM` (and `COLORTERM`, when its client sends it as an env

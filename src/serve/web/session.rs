@@ -23,13 +23,10 @@ use super::sink::{WebSink, Writer};
 use crate::encode::{ColorLevel, ColourChoice, ColourReason};
 use crate::play::acks::Echoes;
 use crate::play::input::Input;
-use crate::play::link_text::link_summary;
-use crate::play::session::{self, End, Feeds, Setup, Tally};
+use crate::play::session::{self, End, Feeds, Setup};
 use crate::serve::limits::Playing;
-use crate::serve::ops::drain::{DRAINING_NOTICE, RESTARTING};
-use crate::serve::ops::metrics::{self, Reason};
 use crate::serve::ops::stats::ServeStats;
-use crate::serve::session_hooks::ServerHooks;
+use crate::serve::session_hooks::{draining_notes, session_ended, session_started, ServerHooks};
 use crate::ui::keys::InputMode;
 
 type Reader = SplitStream<WebSocketStream<TcpStream>>;
@@ -78,8 +75,7 @@ pub async fn run(ws: WebSocketStream<TcpStream>, edge: Arc<WebEdge>, p: WebPlaye
             close(&page.writer, why.0, why.1).await;
         }
     });
-    metrics::session(p.spectator, true);
-    metrics::transport_session("web", true);
+    session_started(p.spectator, "web");
     ServeStats::add(&edge.stats.sessions_live, 1);
     edge.log.login_web(id, peer, &p.name, p.spectator);
     let setup = setup(&edge, &p);
@@ -94,7 +90,13 @@ pub async fn run(ws: WebSocketStream<TcpStream>, edge: Arc<WebEdge>, p: WebPlaye
     reading.abort();
     let bye = farewell(end, *edge.farewell.borrow());
     close(&writer, CloseCode::Normal, &bye).await;
-    ended(&edge, &p, end, &tally);
+    session_ended(
+        (&edge.stats, edge.log),
+        (p.id, p.peer),
+        (p.spectator, "web"),
+        end,
+        &tally,
+    );
     edge.stats
         .sessions_live
         .fetch_sub(1, std::sync::atomic::Ordering::Relaxed);
@@ -150,46 +152,6 @@ pub async fn close(writer: &Mutex<Writer>, code: CloseCode, reason: &str) {
         let _ = w.send(Message::Close(Some(frame))).await;
     })
     .await;
-}
-
-/// The world's draining, as a note for the player: told at once, not only when it closes.
-fn draining_notes(mut farewell: watch::Receiver<&'static str>) -> watch::Receiver<Option<String>> {
-    let (tx, rx) = watch::channel(None);
-    tokio::spawn(async move {
-        loop {
-            tokio::select! {
-                changed = farewell.changed() => if changed.is_err() { return },
-                () = tx.closed() => return,
-            }
-            if *farewell.borrow_and_update() == RESTARTING {
-                let _ = tx.send(Some(DRAINING_NOTICE.to_owned()));
-            }
-        }
-    });
-    rx
-}
-
-/// The session's counts and its log line.
-fn ended(edge: &WebEdge, p: &WebPlayer, end: End, tally: &Tally) {
-    metrics::session(p.spectator, false);
-    metrics::transport_session("web", false);
-    if end == End::Stalled {
-        metrics::refused(Reason::Stall);
-    }
-    ServeStats::add(&edge.stats.frames_sent, tally.frames);
-    ServeStats::add(&edge.stats.bytes_sent, tally.bytes);
-    ServeStats::add(&edge.stats.frames_dropped, tally.dropped);
-    edge.log.session(
-        p.id,
-        p.peer,
-        format_args!(
-            "session ended ({end:?}) over web: {} frames, {} bytes, {} frame ticks skipped{}",
-            tally.frames,
-            tally.bytes,
-            tally.dropped,
-            link_summary(&tally.link),
-        ),
-    );
 }
 
 /// Where the page's messages go.
