@@ -27,9 +27,9 @@ use super::pacing::{LinkFigures, LinkPacer, Step};
 use super::player::Player;
 pub use super::setup::{End, Feeds, Setup, Tally};
 use super::sink::FrameSink;
-use super::world_port::WorldMsg;
+use super::world_port::{WorldHandle, WorldMsg};
 use crate::encode::{ColourChoice, ColourReason};
-use crate::game::multi::players::Snapshot;
+use crate::game::multi::players::{PlayerId, Snapshot};
 use crate::ui::frame_grid::FrameGrid;
 
 /// How long an unfinished escape sequence may wait before a lone ESC counts as the Esc key.
@@ -45,9 +45,32 @@ pub fn now() -> Instant {
     tokio::time::Instant::now().into_std()
 }
 
+/// Proof that a session's player is in the world ([`join`]): a session runs only with one.
+#[derive(Debug)]
+pub struct Joined {
+    _in_world: (),
+}
+
+/// Puts the player in the world (a spectator only watches): the first thing a transport does
+/// once it admits a player, before anything else it asks its client (a terminal's colour query),
+/// so the world counts them from then on (a draining world waits for the round of everyone
+/// admitted, not only of those whose first frame was drawn).
+pub async fn join(world: &WorldHandle, id: PlayerId, name: &str, spectator: bool) -> Joined {
+    if !spectator {
+        let msg = WorldMsg::Join {
+            id,
+            name: name.to_owned(),
+        };
+        world.send(msg).await;
+    }
+    Joined { _in_world: () }
+}
+
 /// Runs a session until the client quits or leaves, stops reading, the idle timeout, or server
-/// shutdown; says which, with the session's figures. The transport says goodbye afterwards.
+/// shutdown; says which, with the session's figures. The player left the world when it returns;
+/// the transport says goodbye afterwards.
 pub async fn run<I: InputSource, S: FrameSink, H: Hooks>(
+    _joined: Joined,
     setup: Setup,
     mut feeds: Feeds<I>,
     sink: S,
@@ -55,13 +78,6 @@ pub async fn run<I: InputSource, S: FrameSink, H: Hooks>(
 ) -> (End, Tally) {
     let size = *feeds.size.borrow();
     let mut lp = Loop::new(&setup, size, sink, hooks);
-    if !setup.spectator {
-        let join = WorldMsg::Join {
-            id: setup.id,
-            name: setup.name.clone(),
-        };
-        setup.world.send(join).await;
-    }
     let early = Input::Bytes(setup.early.clone());
     let mut early_end = lp.p.take(early, &Snapshot::default(), now());
     let period = lp.grid.period();

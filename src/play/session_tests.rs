@@ -201,12 +201,18 @@ fn start(rate: f64, rtt: Duration, level: ColorLevel) -> Run {
     };
     let link = Arc::new(Mutex::new(Link::new(rate, rtt)));
     let steps = Steps::default();
-    let done = tokio::spawn(session::run(
-        setup,
-        feeds,
-        FakeSink(Arc::clone(&link)),
-        steps.clone(),
-    ));
+    let (sink_link, steps_hooks) = (Arc::clone(&link), steps.clone());
+    let done = tokio::spawn(async move {
+        let joined = session::join(&setup.world, setup.id, &setup.name, setup.spectator).await;
+        session::run(
+            joined,
+            setup,
+            feeds,
+            FakeSink(Arc::clone(&sink_link)),
+            steps_hooks,
+        )
+        .await
+    });
     Run {
         input,
         link,

@@ -85,6 +85,7 @@ pub struct SessionInputs {
 /// Runs one SSH client's session until it ends, then says goodbye and logs it.
 pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
     session_started(p.spectator, "ssh");
+    let joined = session::join(&p.world, p.id, &p.name, p.spectator).await;
     let mut colour = level_for_term(&p.term, p.colorterm.as_deref());
     let mut early = Vec::new();
     // Before the first frame: a TERM guess is checked with the client's terminal itself, on the
@@ -131,7 +132,7 @@ pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
     };
     let sink = SshSink::new(p.handle.clone(), p.channel, Arc::clone(&p.life), p.echo);
     let hooks = ServerHooks::new(p.id, p.peer, p.log, p.boards.clone());
-    let (end, tally) = session::run(setup, feeds, sink, hooks).await;
+    let (end, tally) = session::run(joined, setup, feeds, sink, hooks).await;
     p.life.set_link(tally.link);
     if !matches!(end, End::ClientGone | End::Stalled) {
         goodbye(&p, end).await;

@@ -76,6 +76,7 @@ pub async fn run(ws: WebSocketStream<TcpStream>, edge: Arc<WebEdge>, p: WebPlaye
         }
     });
     session_started(p.spectator, "web");
+    let joined = session::join(&edge.world, p.id, &p.name, p.spectator).await;
     ServeStats::add(&edge.stats.sessions_live, 1);
     edge.log.login_web(id, peer, &p.name, p.spectator);
     let setup = setup(&edge, &p);
@@ -86,7 +87,7 @@ pub async fn run(ws: WebSocketStream<TcpStream>, edge: Arc<WebEdge>, p: WebPlaye
         announce: draining_notes(edge.farewell.clone()),
     };
     let hooks = ServerHooks::new(id, peer, edge.log, edge.boards.clone());
-    let (end, tally) = session::run(setup, feeds, sink, hooks).await;
+    let (end, tally) = session::run(joined, setup, feeds, sink, hooks).await;
     reading.abort();
     let bye = farewell(end, *edge.farewell.borrow());
     close(&writer, CloseCode::Normal, &bye).await;
