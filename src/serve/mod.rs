@@ -11,7 +11,8 @@
 //! - [`world_task`]: the fixed-tick task owning [`crate::game::multi::players::Players`] (one
 //!   `game::GameState` per player, moved by `game::step_shared`, and the doors they share);
 //!   sessions send it the `game::Input` of their keys and read its snapshots.
-//! - [`session_hooks`]: a session's metrics, log line and leaderboard, for any edge.
+//! - [`shared`]: what every edge's connections share with the server; [`session_hooks`]: a
+//!   session's metrics, log line and leaderboard, for any edge.
 //! - [`served_map`]: a map of the rotation and its content hash; [`leaderboard`]: finished
 //!   rounds in SQLite or PostgreSQL, written by a thread of its own.
 //! - [`ops`]: metrics, `/healthz`, drain, process figures, the log.
@@ -25,6 +26,7 @@ pub(crate) mod round_phase;
 pub(crate) mod served_map;
 pub mod server;
 pub(crate) mod session_hooks;
+pub(crate) mod shared;
 pub mod ssh;
 pub mod web;
 pub(crate) mod world_task;

@@ -25,8 +25,7 @@ use super::ops::stats::{ServeStats, StatsSnapshot};
 use super::round_phase::RoundPhase;
 use super::served_map::ServedMap;
 use super::session_hooks::BoardLine;
-use super::ssh::auth::Backoff;
-use super::ssh::handler::Shared;
+use super::shared::Shared;
 use super::ssh::hostkey;
 pub use super::ssh::listener::refusal_bytes;
 use super::ssh::listener::{accept_loop, russh_config};
@@ -240,7 +239,6 @@ pub async fn start_maps(
         shutdown: shutdown_rx.clone(),
         farewell: farewell_rx,
         limiter: limiter.clone(),
-        backoff: Backoff::default(),
         boards: leaderboard.clone().map(|board| BoardLine {
             board,
             hashes: Arc::new(hashes),
@@ -366,7 +364,7 @@ fn start_world(
 /// Starts the browser listener when `--web` asks for one, sharing the SSH edge's world, limits,
 /// log and leaderboard; it closes when `stop` does.
 async fn start_web(
-    shared: &Shared,
+    shared: &Arc<Shared>,
     ready: &Arc<Readiness>,
     next_id: &Arc<AtomicU64>,
     stop: watch::Receiver<bool>,
@@ -376,16 +374,7 @@ async fn start_web(
     };
     let edge = super::web::edge::WebEdge {
         options,
-        config: shared.config.clone(),
-        world: shared.world.clone(),
-        world_data: Arc::clone(&shared.world_data),
-        avatar_sheet: shared.avatar_sheet,
-        stats: Arc::clone(&shared.stats),
-        log: shared.log,
-        shutdown: shared.shutdown.clone(),
-        farewell: shared.farewell.clone(),
-        limiter: shared.limiter.clone(),
-        boards: shared.boards.clone(),
+        shared: Arc::clone(shared),
         ready: Arc::clone(ready),
         next_id: Arc::clone(next_id),
     };

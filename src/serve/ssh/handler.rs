@@ -13,15 +13,12 @@ use tokio::sync::{mpsc, watch};
 use super::auth::Backoff;
 use super::session::{self, SessionInputs, SessionParams};
 use crate::play::session::End;
-use crate::play::world_port::WorldHandle;
-use crate::serve::config::{ServeConfig, DEFAULT_SIZE};
-use crate::serve::limits::{Limiter, Pending, Playing, Refusal};
+use crate::serve::config::DEFAULT_SIZE;
+use crate::serve::limits::{Pending, Playing, Refusal};
 use crate::serve::ops::lifecycle::Lifeline;
-use crate::serve::ops::log::Log;
 use crate::serve::ops::metrics::{self, Reason};
 use crate::serve::ops::stats::ServeStats;
-use crate::serve::session_hooks::BoardLine;
-use crate::world::World;
+use crate::serve::shared::Shared;
 
 /// The user name that watches instead of playing (`ssh -p 2222 watch@host`).
 pub const SPECTATOR_USER: &str = "watch";
@@ -29,26 +26,6 @@ pub const SPECTATOR_USER: &str = "watch";
 const INPUT_QUEUE: usize = 64;
 /// Longest player name shown to others.
 const MAX_NAME: usize = 16;
-
-/// What every connection shares.
-pub struct Shared {
-    pub config: ServeConfig,
-    pub world: WorldHandle,
-    /// The served world, with the avatar sheet at `avatar_sheet`.
-    pub world_data: Arc<World>,
-    pub avatar_sheet: usize,
-    pub stats: Arc<ServeStats>,
-    pub log: Log,
-    pub shutdown: watch::Receiver<bool>,
-    /// What sessions are told when they end with the server (see [`crate::serve::ops::drain`]).
-    pub farewell: watch::Receiver<&'static str>,
-    /// Who is logging in and who plays, against the caps.
-    pub limiter: Limiter,
-    /// Failed password logins per source address.
-    pub backoff: Backoff,
-    /// The lasting leaderboard, when the server keeps one.
-    pub boards: Option<BoardLine>,
-}
 
 /// How long a connection whose game ended may linger before it is closed (the client normally
 /// closes it first, on the channel's close).
@@ -59,6 +36,8 @@ pub struct ConnHandler {
     id: u64,
     peer: SocketAddr,
     shared: Arc<Shared>,
+    /// Failed password logins per source address, for every connection of the SSH port.
+    backoff: Arc<Backoff>,
     user: String,
     channel: Option<ChannelId>,
     term: String,
@@ -82,7 +61,7 @@ impl ConnHandler {
     pub fn new(
         id: u64,
         peer: SocketAddr,
-        shared: Arc<Shared>,
+        (shared, backoff): (Arc<Shared>, Arc<Backoff>),
         pending: Pending,
         life: Arc<Lifeline>,
     ) -> Self {
@@ -91,6 +70,7 @@ impl ConnHandler {
             id,
             peer,
             shared,
+            backoff,
             user: String::new(),
             channel: None,
             term: String::new(),
@@ -125,7 +105,7 @@ impl ConnHandler {
     /// A wrong password: waits the source address's growing delay, then rejects.
     async fn reject_guess(&self) -> Auth {
         metrics::refused(Reason::Auth);
-        let wait = self.shared.backoff.failed(self.peer.ip(), Instant::now());
+        let wait = self.backoff.failed(self.peer.ip(), Instant::now());
         self.shared.log.session(
             self.id,
             self.peer,
@@ -192,7 +172,7 @@ impl russh::server::Handler for ConnHandler {
 
     async fn auth_password(&mut self, user: &str, password: &str) -> Result<Auth, Self::Error> {
         if self.shared.config.auth.allows_password(password) {
-            self.shared.backoff.succeeded(self.peer.ip());
+            self.backoff.succeeded(self.peer.ip());
             Ok(self.accept_user(user))
         } else {
             Ok(self.reject_guess().await)

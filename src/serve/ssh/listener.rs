@@ -20,13 +20,15 @@ use russh::{compression, Preferred};
 use tokio::net::TcpListener;
 use tokio::sync::watch;
 
-use super::handler::{ConnHandler, Shared};
+use super::auth::Backoff;
+use super::handler::ConnHandler;
 use crate::serve::config::ServeConfig;
 use crate::serve::limits::Refusal;
 use crate::serve::ops::lifecycle::Lifeline;
 use crate::serve::ops::metrics::Reason;
 use crate::serve::ops::stats::ServeStats;
 use crate::serve::proxy_header::{read_header, Inbound, Source, HEADER_WAIT};
+use crate::serve::shared::Shared;
 
 /// Compression offered to clients, most preferred first: the delayed `zlib@openssh.com`
 /// (what OpenSSH's `ssh -C` asks for), plain `zlib`, or none.
@@ -72,6 +74,8 @@ const MAX_HEADER_WAITS: u64 = 256;
 struct Door {
     ssh: Arc<Config>,
     shared: Arc<Shared>,
+    /// Failed password logins per source address.
+    backoff: Arc<Backoff>,
     /// Session numbers, shared with the browser listener.
     next_id: Arc<AtomicU64>,
     lingering: Arc<AtomicU64>,
@@ -90,6 +94,7 @@ pub(crate) async fn accept_loop(
     let door = Arc::new(Door {
         ssh,
         shared,
+        backoff: Arc::default(),
         next_id,
         lingering: Arc::new(AtomicU64::new(0)),
         header_waits,
@@ -194,6 +199,7 @@ fn admit(
     let id = door.next_id.fetch_add(1, Ordering::Relaxed);
     let ssh = Arc::clone(&door.ssh);
     let shared = Arc::clone(shared);
+    let backoff = Arc::clone(&door.backoff);
     let tcp = socket.local_addr().ok().zip(socket.peer_addr().ok());
     let stream = inbound(socket);
     tokio::spawn(async move {
@@ -202,7 +208,13 @@ fn admit(
         if let Some((local, remote)) = tcp {
             life.set_tcp(local, remote);
         }
-        let handler = ConnHandler::new(id, peer, Arc::clone(&shared), pending, Arc::clone(&life));
+        let handler = ConnHandler::new(
+            id,
+            peer,
+            (Arc::clone(&shared), backoff),
+            pending,
+            Arc::clone(&life),
+        );
         let deadline = accepted + shared.config.login_grace;
         let result = serve_connection(
             ssh,

@@ -33,7 +33,8 @@ pub async fn start(
         .await
         .map_err(|e| format!("cannot serve the web page on {addr}: {e}"))?;
     let bound = listener.local_addr().map_err(|e| e.to_string())?;
-    edge.log
+    edge.shared
+        .log
         .server(format_args!("players in a browser: http://{bound}/"));
     Ok((
         bound,
@@ -49,7 +50,7 @@ async fn accept_loop(listener: TcpListener, edge: Arc<WebEdge>, mut stop: watch:
             r = listener.accept() => match r {
                 Ok(x) => x,
                 Err(e) => {
-                    edge.log.server(format_args!("web accept failed: {e}"));
+                    edge.shared.log.server(format_args!("web accept failed: {e}"));
                     tokio::time::sleep(Duration::from_millis(100)).await;
                     continue;
                 }

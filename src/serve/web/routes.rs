@@ -123,13 +123,13 @@ async fn upgrade(mut socket: TcpStream, req: Request, peer: SocketAddr, edge: Ar
     let origin = req.header("origin");
     if !super::origin::allowed(origin, req.header("host"), &edge.options.origins) {
         metrics::refused(metrics::Reason::Origin);
-        edge.log.refusal(
+        edge.shared.log.refusal(
             None,
             peer,
             metrics::Reason::Origin.label(),
             format_args!("a page from {:?} may not play here", origin.unwrap_or("")),
         );
-        ServeStats::add(&edge.stats.refused, 1);
+        ServeStats::add(&edge.shared.stats.refused, 1);
         return reply(
             socket,
             403,
@@ -156,25 +156,31 @@ async fn upgrade(mut socket: TcpStream, req: Request, peer: SocketAddr, edge: Ar
 
 /// Admits the page's player within the limits and runs the session, or closes saying why not.
 async fn play(ws: WebSocketStream<TcpStream>, req: &Request, peer: SocketAddr, edge: Arc<WebEdge>) {
-    let place = edge.limiter.admit(peer.ip()).and_then(|p| p.promote());
+    let place = edge
+        .shared
+        .limiter
+        .admit(peer.ip())
+        .and_then(|p| p.promote());
     let place = match place {
         Ok(place) => place,
         Err(why) => {
-            ServeStats::add(&edge.stats.refused, 1);
+            ServeStats::add(&edge.shared.stats.refused, 1);
             metrics::refused(why.reason());
-            edge.log.refusal(None, peer, why.reason().label(), why);
+            edge.shared
+                .log
+                .refusal(None, peer, why.reason().label(), why);
             let (writer, _reader) = futures_util::StreamExt::split(ws);
             let text = why.to_string();
             session::close(&Mutex::new(writer), CloseCode::Again, &text).await;
             return;
         }
     };
-    ServeStats::add(&edge.stats.connections, 1);
+    ServeStats::add(&edge.shared.stats.connections, 1);
     metrics::connected();
     let id = edge
         .next_id
         .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    edge.log.connect(id, peer);
+    edge.shared.log.connect(id, peer);
     let q = Query::read(&req.query);
     let player = WebPlayer {
         id,

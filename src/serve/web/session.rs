@@ -67,7 +67,7 @@ pub async fn run(ws: WebSocketStream<TcpStream>, edge: Arc<WebEdge>, p: WebPlaye
         echoes: sink.echoes(),
         writer: Arc::clone(&writer),
     };
-    let log = edge.log;
+    let log = edge.shared.log;
     let (id, peer) = (p.id, p.peer);
     let reading = tokio::spawn(async move {
         if let Err(why) = page.read(reader).await {
@@ -76,29 +76,30 @@ pub async fn run(ws: WebSocketStream<TcpStream>, edge: Arc<WebEdge>, p: WebPlaye
         }
     });
     session_started(p.spectator, "web");
-    let joined = session::join(&edge.world, p.id, &p.name, p.spectator).await;
-    ServeStats::add(&edge.stats.sessions_live, 1);
-    edge.log.login_web(id, peer, &p.name, p.spectator);
+    let joined = session::join(&edge.shared.world, p.id, &p.name, p.spectator).await;
+    ServeStats::add(&edge.shared.stats.sessions_live, 1);
+    edge.shared.log.login_web(id, peer, &p.name, p.spectator);
     let setup = setup(&edge, &p);
     let feeds = Feeds {
         input: input_rx,
         size: size_rx,
-        shutdown: edge.shutdown.clone(),
-        announce: draining_notes(edge.farewell.clone()),
+        shutdown: edge.shared.shutdown.clone(),
+        announce: draining_notes(edge.shared.farewell.clone()),
     };
-    let hooks = ServerHooks::new(id, peer, edge.log, edge.boards.clone());
+    let hooks = ServerHooks::new(id, peer, edge.shared.log, edge.shared.boards.clone());
     let (end, tally) = session::run(joined, setup, feeds, sink, hooks).await;
     reading.abort();
-    let bye = farewell(end, *edge.farewell.borrow());
+    let bye = farewell(end, *edge.shared.farewell.borrow());
     close(&writer, CloseCode::Normal, &bye).await;
     session_ended(
-        (&edge.stats, edge.log),
+        (&edge.shared.stats, edge.shared.log),
         (p.id, p.peer),
         (p.spectator, "web"),
         end,
         &tally,
     );
-    edge.stats
+    edge.shared
+        .stats
         .sessions_live
         .fetch_sub(1, std::sync::atomic::Ordering::Relaxed);
     drop(p.place);
@@ -107,7 +108,7 @@ pub async fn run(ws: WebSocketStream<TcpStream>, edge: Arc<WebEdge>, p: WebPlaye
 /// A browser's session start: true colour (the page draws every colour), key releases as they
 /// happen, the server's frame rate and timeouts.
 fn setup(edge: &WebEdge, p: &WebPlayer) -> Setup {
-    let c = &edge.config;
+    let c = &edge.shared.config;
     Setup {
         id: p.id,
         name: p.name.clone(),
@@ -121,9 +122,9 @@ fn setup(edge: &WebEdge, p: &WebPlayer) -> Setup {
         force_octants: "",
         input_mode: InputMode::Released,
         early: Vec::new(),
-        world: edge.world.clone(),
-        world_data: Arc::clone(&edge.world_data),
-        avatar_sheet: edge.avatar_sheet,
+        world: edge.shared.world.clone(),
+        world_data: Arc::clone(&edge.shared.world_data),
+        avatar_sheet: edge.shared.avatar_sheet,
         fps: c.fps,
         idle_timeout: c.idle_timeout,
         stall_timeout: c.stall_timeout,
