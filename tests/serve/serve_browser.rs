@@ -36,21 +36,7 @@ fn browser_ready() -> bool {
 /// The default map with nothing that moves by itself (creatures, animated sprites, items): only
 /// the player's keys change the view, so "the view stopped" can be seen.
 fn still_world() -> World {
-    let text: String = halfcast::world::DEFAULT_MAP
-        .lines()
-        .filter(|l| {
-            !["ITEM ", "DOORLOCK ", "EXIT ", "CREATURE "]
-                .iter()
-                .any(|w| l.starts_with(w))
-                && !l.contains("frames=")
-        })
-        .map(|l| format!("{l}\n"))
-        .collect();
-    let map = halfcast::map::parse_map(halfcast::world::DEFAULT_MAP_NAME, text.as_bytes())
-        .expect("the default map parses");
-    World::load(map, &halfcast::world::TextureSource::Embedded, true)
-        .expect("embedded textures")
-        .0
+    crate::serve_support::default_world_keeping(|l| !l.contains("frames="))
 }
 
 fn script() -> PathBuf {

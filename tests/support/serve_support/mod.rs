@@ -45,12 +45,18 @@ pub async fn server_with(
 
 /// The embedded default map without its game lines (`ITEM`, `DOORLOCK`, `EXIT`, `CREATURE`).
 pub fn plain_default_world() -> World {
+    default_world_keeping(|_| true)
+}
+
+/// The embedded default map without its game lines, and without the other lines `keep` refuses.
+pub fn default_world_keeping(keep: impl Fn(&str) -> bool) -> World {
     let text: String = halfcast::world::DEFAULT_MAP
         .lines()
         .filter(|l| {
             !["ITEM ", "DOORLOCK ", "EXIT ", "CREATURE "]
                 .iter()
                 .any(|w| l.starts_with(w))
+                && keep(l)
         })
         .map(|l| format!("{l}\n"))
         .collect();
