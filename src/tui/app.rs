@@ -186,7 +186,7 @@ pub fn run_loop(
         let (panes, view) = app.lay_out(size, &ui, now);
         app.save_figure(&ui, view, now);
         let input = app.controls.take_input(now);
-        app.record(&input, &ui, (size.width, size.height), options.fps);
+        app.record(&input, ui, (size.width, size.height), options.fps);
         app.advance(&input, view, dt);
 
         // 3. Render the view and draw the panes; 4. encode and write the frame once.
@@ -362,7 +362,7 @@ impl App {
     }
 
     /// Adds this frame's input to the recording while it is open.
-    fn record(&mut self, input: &Input, ui: &[UiCommand], size: (u16, u16), fps: u32) {
+    fn record(&mut self, input: &Input, ui: Vec<UiCommand>, size: (u16, u16), fps: u32) {
         if self.results.is_some() {
             // A recording is one level: it ends at the exit.
             self.recording_open = false;
@@ -378,7 +378,7 @@ impl App {
             };
             rec.frames.push(FrameInput {
                 input: input.clone(),
-                ui: ui.to_vec(),
+                ui,
                 resize,
             });
             // An hour at most, so every recording replays within the default `--max-frames`
