@@ -152,6 +152,24 @@ async fn a_resize_redraws_at_the_new_size() {
     srv.shutdown().await;
 }
 
+/// A page asking for more than an SSH pty may claim is drawn at the same bounds, and told so.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_page_gets_no_more_than_an_ssh_client_and_is_told_so() {
+    let (srv, _dir, addr) = web_server(|_| {}).await;
+    let mut page = play(addr, "greedy").await;
+    assert!(page.until(|s| status_has(s, "quit")).await);
+    let (cols, rows) = halfcast::play::size::clamp_size(u32::MAX, u32::MAX);
+    page.screen.set_size(rows, cols);
+    page.send(r#"{"size":[100000,100000]}"#).await;
+    let told = format!("clamped to {cols}x{rows}");
+    assert!(
+        page.until(|s| header_has(s, &told)).await,
+        "{:?}",
+        row_text(page.screen.screen(), 0)
+    );
+    srv.shutdown().await;
+}
+
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn bad_messages_close_with_a_reason_and_the_server_goes_on() {
     let (srv, _dir, addr) = web_server(|_| {}).await;

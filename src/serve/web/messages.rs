@@ -8,9 +8,6 @@ use serde::Deserialize;
 
 use crate::ui::key_bytes::{Key, KeyEvent, KeyKind};
 
-/// The most columns or rows a page may ask for.
-pub const MAX_CELLS: u32 = 1000;
-
 /// One message from the page.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum PageMessage {
@@ -41,7 +38,9 @@ pub fn parse(text: &str) -> Result<PageMessage, &'static str> {
     match (w.ack, w.size, w.key, w.down) {
         (Some(n), None, None, None) => Ok(PageMessage::Ack(n)),
         (None, Some((c, r)), None, None) => {
-            if (1..=MAX_CELLS).contains(&c) && (1..=MAX_CELLS).contains(&r) {
+            // Any size goes, as over SSH: the session draws at most what
+            // [`crate::play::size`] allows and its header says it clamped.
+            if c >= 1 && r >= 1 {
                 Ok(PageMessage::Size(c, r))
             } else {
                 Err("window size out of range")

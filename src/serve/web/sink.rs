@@ -1,6 +1,7 @@
 //! A play session's frames over a WebSocket: each frame one binary message of the same bytes an
-//! SSH player's terminal gets; their arrival known from the page's acknowledgements
-//! ([`super::acked`]), which also gate the next frame ([`crate::play::acks`]).
+//! SSH player's terminal gets, compressed while the link needs it ([`super::deflate`]); their
+//! arrival known from the page's acknowledgements ([`super::acked`]), which also gate the next
+//! frame ([`crate::play::acks`]). Pacing and colour levels see the bytes on the wire.
 
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -13,6 +14,7 @@ use tokio_tungstenite::tungstenite::Message;
 use tokio_tungstenite::WebSocketStream;
 
 use super::acked::AckBook;
+use super::deflate::{self, Policy};
 use crate::play::acks::{EchoGate, Echoes};
 use crate::play::link::LinkSample;
 use crate::play::sink::{FrameSink, Gone};
@@ -26,6 +28,7 @@ pub struct WebSink {
     book: AckBook,
     gate: EchoGate,
     written: u64,
+    deflate: Policy,
 }
 
 impl WebSink {
@@ -37,6 +40,7 @@ impl WebSink {
             book,
             gate: EchoGate::new(),
             written: 0,
+            deflate: Policy::new(crate::play::session::now()),
         }
     }
 
@@ -49,8 +53,13 @@ impl WebSink {
 
 impl FrameSink for WebSink {
     async fn send(&mut self, frame: Vec<u8>) -> Result<(), Gone> {
-        let len = frame.len() as u64;
         let now = crate::play::session::now();
+        let frame = if self.deflate.compress(now) {
+            deflate::compressed(&frame)
+        } else {
+            frame
+        };
+        let len = frame.len() as u64;
         let (n, _) = self.gate.sent(now);
         self.book.sent(n, len, now);
         let mut w = self.writer.lock().await;
@@ -70,7 +79,9 @@ impl FrameSink for WebSink {
     }
 
     fn answered(&mut self, period: Duration, now: Instant) -> bool {
-        self.gate.clear(period, now)
+        let open = self.gate.clear(period, now);
+        self.deflate.gate(open, now);
+        open
     }
 
     fn acked_rtt(&self) -> Option<Duration> {

@@ -88,11 +88,12 @@ impl WebClient {
             match msg {
                 Message::Binary(b) => {
                     self.frames += 1;
-                    self.screen.process(&b);
+                    let frame = frame_bytes(&b);
+                    self.screen.process(&frame);
                     if self.acking {
                         self.send(&format!("{{\"ack\":{}}}", self.frames)).await;
                     }
-                    return Ok(Some(b.to_vec()));
+                    return Ok(Some(frame));
                 }
                 Message::Close(c) => {
                     return Err(Closed {
@@ -151,5 +152,20 @@ impl WebClient {
     pub async fn key(&mut self, key: &str, down: bool) {
         self.send(&format!("{{\"key\":\"{key}\",\"down\":{down}}}"))
             .await;
+    }
+}
+
+/// A frame message's bytes as the page reads them: a message starting 0x00 is the raw DEFLATE
+/// of the frame after that byte, any other the frame itself.
+#[must_use]
+pub fn frame_bytes(message: &[u8]) -> Vec<u8> {
+    match message.split_first() {
+        Some((0, deflated)) => {
+            let mut out = Vec::new();
+            std::io::Read::read_to_end(&mut flate2::read::DeflateDecoder::new(deflated), &mut out)
+                .expect("a compressed frame inflates");
+            out
+        }
+        _ => message.to_vec(),
     }
 }
