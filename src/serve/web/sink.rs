@@ -17,7 +17,7 @@ use super::acked::AckBook;
 use super::deflate::{self, Policy};
 use crate::play::acks::{EchoGate, Echoes};
 use crate::play::link::LinkSample;
-use crate::play::sink::{FrameSink, Gone};
+use crate::play::sink::{FrameSink, Gone, Note};
 
 /// The WebSocket's sending half, shared by the session's frames and the reader's close.
 pub type Writer = SplitSink<WebSocketStream<TcpStream>, Message>;
@@ -29,18 +29,21 @@ pub struct WebSink {
     gate: EchoGate,
     written: u64,
     deflate: Policy,
+    /// The served maps' names, in the rotation's order, for a ray's `map`.
+    maps: Arc<[String]>,
 }
 
 impl WebSink {
     /// A sink writing to `writer`, its acknowledgements recorded in `book`.
     #[must_use]
-    pub fn new(writer: Arc<Mutex<Writer>>, book: AckBook) -> Self {
+    pub fn new(writer: Arc<Mutex<Writer>>, book: AckBook, maps: Arc<[String]>) -> Self {
         Self {
             writer,
             book,
             gate: EchoGate::new(),
             written: 0,
             deflate: Policy::new(crate::play::session::now()),
+            maps,
         }
     }
 
@@ -91,4 +94,34 @@ impl FrameSink for WebSink {
     fn measures(&self) -> bool {
         true
     }
+
+    async fn note(&mut self, note: Note) -> Result<(), Gone> {
+        let text = note_json(&note, &self.maps);
+        let mut w = self.writer.lock().await;
+        w.send(Message::Text(text.into())).await.map_err(|_| Gone)
+    }
+}
+
+/// A note as the page reads it: one JSON object whose single key names it (`view`, `ray`). A
+/// ray names its map only where the server has several.
+fn note_json(note: &Note, maps: &[String]) -> String {
+    let value = match note {
+        Note::View { x, y, cols, rows } => {
+            serde_json::json!({ "view": { "x": x, "y": y, "cols": cols, "rows": rows } })
+        }
+        Note::Ray(r) => {
+            let mut ray = serde_json::json!({
+                "pos": [r.pos.0, r.pos.1],
+                "angle": r.angle,
+                "column": r.column,
+                "size": [r.size.0, r.size.1],
+                "fov": r.fov,
+            });
+            if let (true, Some(name)) = (maps.len() > 1, maps.get(r.map)) {
+                ray["map"] = name.as_str().into();
+            }
+            serde_json::json!({ "ray": ray })
+        }
+    };
+    value.to_string()
 }
