@@ -22,4 +22,4 @@ pub(crate) mod routes;
 pub(crate) mod session;
 pub(crate) mod sink;
 
-pub use options::WebOptions;
+pub use options::{Compress, WebOptions};
