@@ -229,11 +229,13 @@ pub async fn start_maps(
         ))
     });
     let stats = Arc::new(ServeStats::default());
+    let maps = worlds.clone();
     let (handle, phase, rounds) = start_world(&config, worlds, &hashes, leaderboard.clone(), log);
     let shared = Arc::new(Shared {
         world: handle,
         world_data: Arc::new(world),
         avatar_sheet,
+        maps,
         stats: Arc::clone(&stats),
         log,
         shutdown: shutdown_rx.clone(),

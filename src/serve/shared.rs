@@ -20,6 +20,9 @@ pub struct Shared {
     /// The served world, with the avatar sheet at `avatar_sheet`.
     pub world_data: Arc<World>,
     pub avatar_sheet: usize,
+    /// Every served map, in rotation order: the ray debugger's `/trace.*?map=NAME` finds its
+    /// world here (by `Map::name`; the first when no map is named).
+    pub maps: Vec<Arc<World>>,
     pub stats: Arc<ServeStats>,
     pub log: Log,
     pub shutdown: watch::Receiver<bool>,

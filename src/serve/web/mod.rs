@@ -5,7 +5,8 @@
 //! `/healthz`, the upgrade), [`origin`] refuses other sites' pages, [`forwarded`] reads a trusted
 //! proxy's client address, [`messages`] reads what the page sends, [`acked`] turns the page's
 //! acknowledgements into link figures, [`sink`] is the session's frame sink, [`session`] runs it,
-//! and [`page`] holds the page's own HTML, CSS and JavaScript.
+//! [`page`] holds the page's own HTML, CSS and JavaScript, and [`trace_route`] answers the ray
+//! debugger's `/trace.json`, `/trace.svg` and `/trace.png`.
 
 pub(crate) mod acked;
 pub(crate) mod edge;
@@ -19,5 +20,6 @@ pub(crate) mod request;
 pub(crate) mod routes;
 pub(crate) mod session;
 pub(crate) mod sink;
+pub(crate) mod trace_route;
 
 pub use options::WebOptions;
