@@ -103,9 +103,6 @@ impl Rng {
     fn below(&mut self, n: u64) -> u64 {
         self.next() % n
     }
-    fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
 }
 
 /// A pose on `map` drawn from `rng` that `trace` accepts (open cell, room for the eye).
@@ -121,10 +118,10 @@ fn random_ray(rng: &mut Rng, map: &'static str) -> Ray {
             map,
             // Two decimals, as a person would type them.
             pos: (
-                i as f64 + (5.0 + (rng.unit() * 90.0).round()) / 100.0,
-                j as f64 + (5.0 + (rng.unit() * 90.0).round()) / 100.0,
+                (i * 100 + 5 + rng.below(90) as i64) as f64 / 100.0,
+                (j * 100 + 5 + rng.below(90) as i64) as f64 / 100.0,
             ),
-            angle: (rng.unit() * 3600.0).round() / 10.0,
+            angle: rng.below(3600) as f64 / 10.0,
             column: rng.below(u64::from(cols)) as usize,
             size: (cols, 10 + rng.below(50) as u16),
             fov: (rng.below(3) == 0).then(|| 40.0 + rng.below(80) as f64),
@@ -134,7 +131,8 @@ fn random_ray(rng: &mut Rng, map: &'static str) -> Ray {
         q.angle = Some(ray.angle);
         q.size = ray.size;
         q.fov = ray.fov.unwrap_or(q.fov);
-        if q.trace(&world).is_ok() {
+        // Long enough to step through.
+        if q.trace(&world).is_ok_and(|t| t.cast.trace.steps.len() >= 4) {
             return ray;
         }
     }
@@ -156,6 +154,8 @@ fn rays(seed: u64) -> Vec<Ray> {
         // The stairs of docs/learning-dda.md: faces narrow the window.
         ray(MAPS[1], (1.5, 9.5), 90.0, 40, (80, 24), None),
         ray(MAPS[2], (2.5, 2.5), 10.0, 70, (120, 40), Some(90.0)),
+        // West from the start to the door at (11,5): perp to its panel.
+        ray(MAPS[0], (15.5, 5.5), 180.0, 40, (80, 24), None),
     ];
     let mut rng = Rng(seed | 1);
     for map in MAPS {
@@ -428,15 +428,37 @@ fn check_page(ray: &Ray, page: &Value, data: &Value, trace: &TraceFacts) {
         text.contains(&hit),
         "{ctx}: the page does not say {hit}:\n{text}"
     );
+    // perp's last number, and on a grid-line hit trace's whole equation.
+    let perp_value = perp_eq.rsplit(" = ").next().unwrap();
+    let perp_line = text
+        .lines()
+        .find(|l| l.trim_start().starts_with("perp ="))
+        .unwrap_or("");
     assert!(
-        text.contains(perp_eq),
-        "{ctx}: the page does not say {perp_eq}:\n{text}"
+        perp_line.ends_with(&format!(" = {perp_value}")),
+        "{ctx}: {perp_line:?} is not perp {perp_value}"
     );
+    if perp_eq.starts_with("perp = sideDist") {
+        assert!(
+            text.contains(perp_eq),
+            "{ctx}: the page does not say {perp_eq}:\n{text}"
+        );
+    }
     let wall_x = notes.rsplit("wall_x ").next().unwrap();
     assert!(
         text.contains("wall_x") && text.contains(wall_x),
         "{ctx}: wall_x {wall_x}"
     );
+    // On a heights map, each face's narrowing of the window, and where it closed.
+    if let Some(h) = data["heights"].as_object() {
+        for f in h["faces"].as_array().unwrap() {
+            let w = |k: &str| format!("{}..{}", f[k][0], f[k][1]);
+            let says = format!("window {} → {}", w("before"), w("after"));
+            assert!(text.contains(&says), "{ctx}: no {says:?} in\n{text}");
+        }
+        let closed = format!("window closed ({},{})", h["closed"][0], h["closed"][1]);
+        assert!(text.contains(&closed), "{ctx}: no {closed:?}");
+    }
     // The figure: the same crossings at the same places, the same hit cell and perp label.
     let fig = &page["figure"];
     let crossings = fig["crossings"].as_array().unwrap();
