@@ -396,8 +396,14 @@ fn chromium_shows_the_ray_trace_draws_and_steps_through_it() {
         "ray_check.py failed:\n{stdout}\n{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let pages: Vec<Value> = serde_json::from_str(stdout.lines().last().unwrap()).unwrap();
-    for (ray, page) in rays.iter().zip(&pages) {
+    let figures: Value = serde_json::from_str(stdout.lines().last().unwrap()).unwrap();
+    let refused = figures["refused"].as_str().unwrap();
+    assert_eq!(
+        refused, "position 0.5,0.5 is inside a wall (cell (0,0)): a ray must start in open space",
+        "the page shows trace's message for a ray in a wall"
+    );
+    let pages = figures["rays"].as_array().unwrap();
+    for (ray, page) in rays.iter().zip(pages) {
         let (_, json) = get(web, &format!("/trace.json?{}", ray.address()));
         let data: Value = serde_json::from_slice(&json).unwrap();
         let svg = String::from_utf8(ray.trace(&[])).unwrap();

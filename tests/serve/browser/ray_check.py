@@ -3,7 +3,8 @@ tests/serve/serve_ray_debugger.rs: opens each ray's address in a fresh browser c
 cookies, no storage: as a link sent to someone else), reads what the page shows (the
 derivation's text, the figure's crossings, hit cell and perp), steps to the start, forward and
 back with keys and buttons, hovers a crossing, previews another column, and writes screenshots
-when asked. Prints one JSON object per ray on its last line (a list).
+when asked. Also opens a ray `trace` refuses. Prints one JSON object on its last line: {"rays": [one per
+ray], "refused": the page's message}.
 
 usage: ray_check.py BASE_URL CASES_JSON OUTDIR
 CASES_JSON: [{"name": ..., "address": "pos=..&angle=..", "preview": C, "shots": [[w, h], ...]}]
@@ -109,8 +110,14 @@ async def main(base, cases_path, out):
     async with async_playwright() as p:
         browser = await p.chromium.launch(executable_path="/usr/bin/chromium", args=ARGS)
         results = [await one(browser, base, c, out) for c in cases]
+        # A ray trace would refuse: the page says trace's message.
+        page = await browser.new_page()
+        await page.goto(f"{base}/ray?pos=0.5,0.5&angle=0&column=1&size=80x24")
+        await page.wait_for_function("() => document.querySelector('.ray-error').textContent !== ''")
+        refused = await page.inner_text(".ray-error")
+        await page.close()
         await browser.close()
-    print(json.dumps(results))
+    print(json.dumps({"rays": results, "refused": refused}))
 
 
 if __name__ == "__main__":

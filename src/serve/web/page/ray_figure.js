@@ -143,7 +143,7 @@ function camera(g, t, at) {
   // The plane through the eye, where perp is measured from.
   const pu = unit(t.plane);
   const reach = Math.abs(t.camera_x * t.perp.value) * Math.hypot(t.plane[0], t.plane[1]) + 1.5;
-  line(g, at(add(t.pos, pu, -reach)), at(add(t.pos, pu, reach)), C.plane, 1, '5 4');
+  line(g, at(add(t.pos, pu, -reach)), at(add(t.pos, pu, reach)), C.plane, 1, '5 4').setAttribute('clip-path', 'url(#ray-grid)');
   const pos = t.pos;
   line(g, at(add(add(pos, t.dir), t.plane, -1)), at(add(add(pos, t.dir), t.plane)), C.plane, 3);
   const pe = at(add(add(pos, t.dir), t.plane));
@@ -168,11 +168,17 @@ export function drawFigure(svg, t, k, onHover = () => {}) {
   svg.setAttribute('width', w);
   svg.setAttribute('height', h);
   el(svg, 'rect', { width: w, height: h, fill: C.paper });
+  const clip = el(el(svg, 'clipPath', { id: 'ray-grid' }), 'rect', {});
+  const [gx, gy] = at([t.grid.x0, t.grid.y0]);
+  Object.entries({ x: gx, y: gy, width: t.grid.width * cell, height: t.grid.height * cell })
+    .forEach(([k2, v]) => clip.setAttribute(k2, v));
   const n = t.steps.length;
   cells(svg, t, k, at, cell);
   gridLines(svg, t, at, cell);
   const [fa, fb] = hitFace(t);
-  line(svg, at(fa), at(fb), C.perp, 4).setAttribute('class', 'hit-face');
+  const face = line(svg, at(fa), at(fb), C.perp, 4);
+  face.setAttribute('class', 'hit-face');
+  if (k < n) face.setAttribute('opacity', 0.3);
   const hit = t.hit.point;
   // The ray: faint to the hit, solid as far as the part shown.
   line(svg, at(t.pos), at(hit), C.ray, 2).setAttribute('opacity', k > n ? 1 : 0.3);
