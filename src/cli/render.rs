@@ -11,8 +11,9 @@ use halfcast::{Framebuffer, Glyphs, Scene};
 
 use super::options::{MapArgs, PoseArgs, WorldArgs};
 use super::{camera_for, detect_level, load_world, parse_level, write_output, Failure};
-
+/// `COLSxROWS`, 1×1 to the largest frame `diff` reads (shared with the web's ray addresses).
 pub(crate) use halfcast::trace_query::values::parse_size;
+
 #[derive(Args, Debug)]
 pub(crate) struct RenderArgs {
     #[command(flatten)]

@@ -1,7 +1,8 @@
-//! The answer to one request: the page and its two assets, `/healthz` (the same answer as the
-//! metrics listener's, so a balancer in front of the browser port checks the world it sends
-//! players to), and the WebSocket upgrade at `/ws`, checked for its `Origin`, then admitted
-//! within the server's limits and played.
+//! The answer to one request: the page and its two assets, the ray debugger's page (`/ray`)
+//! and its trace routes (`/trace.json`, `.svg`, `.png`: [`super::trace_route`]), `/healthz`
+//! (the same answer as the metrics listener's, so a balancer in front of the browser port checks
+//! the world it sends players to), and the WebSocket upgrade at `/ws`, checked for its `Origin`,
+//! then admitted within the server's limits and played.
 
 use std::net::SocketAddr;
 use std::sync::Arc;
