@@ -16,6 +16,9 @@ use crate::render::height_column::{Band, HeightColumn};
 use crate::render::raster::{heading, texture_x, wall_span};
 use crate::world::World;
 
+/// A number as the figure and the ray pane print it; the page's `ray_text.js` prints the same.
+pub use crate::render::derivation::num;
+
 /// Everything the page's ray panel draws and writes.
 #[derive(Debug, Serialize)]
 pub struct TraceData {

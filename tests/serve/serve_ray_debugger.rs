@@ -402,6 +402,13 @@ fn chromium_shows_the_ray_trace_draws_and_steps_through_it() {
         refused, "position 0.5,0.5 is inside a wall (cell (0,0)): a ray must start in open space",
         "the page shows trace's message for a ray in a wall"
     );
+    // ray_text.js's num() prints as render::derivation::num does.
+    let numbers: Vec<String> = [
+        0.125, 0.375, 0.625, -0.125, 2.5, 1e30, 5e29, -0.001, 2.876, 1234567.0,
+    ]
+    .map(halfcast::trace_query::data::num)
+    .into();
+    assert_eq!(figures["numbers"], serde_json::json!(numbers));
     let pages = figures["rays"].as_array().unwrap();
     for (ray, page) in rays.iter().zip(pages) {
         let (_, json) = get(web, &format!("/trace.json?{}", ray.address()));
@@ -515,6 +522,16 @@ fn check_page(ray: &Ray, page: &Value, data: &Value, trace: &TraceFacts) {
             + data["grid"]["y0"].as_i64().unwrap(),
     );
     assert_eq!(page_hit, trace.hit, "{ctx}: the figure's hit cell");
+    // The export links are trace's routes for the same ray.
+    let address = data["address"].as_str().unwrap();
+    assert_eq!(
+        page["export"],
+        serde_json::json!([
+            format!("/trace.svg?{address}"),
+            format!("/trace.png?{address}")
+        ]),
+        "{ctx}"
+    );
     // The address the page ends on is the ray's own.
     let url = page["url"].as_str().unwrap();
     assert!(

@@ -115,9 +115,14 @@ async def main(base, cases_path, out):
         await page.goto(f"{base}/ray?pos=0.5,0.5&angle=0&column=1&size=80x24")
         await page.wait_for_function("() => document.querySelector('.ray-error').textContent !== ''")
         refused = await page.inner_text(".ray-error")
+        # The page's numbers as Rust prints them, ties and huge values included.
+        numbers = await page.evaluate("""async () => {
+          const m = await import('/js/ray_text.js');
+          return [0.125, 0.375, 0.625, -0.125, 2.5, 1e30, 5e29, -0.001, 2.876, 1234567].map((v) => m.num(v));
+        }""")
         await page.close()
         await browser.close()
-    print(json.dumps({"rays": results, "refused": refused}))
+    print(json.dumps({"rays": results, "refused": refused, "numbers": numbers}))
 
 
 if __name__ == "__main__":

@@ -142,6 +142,7 @@ export function mountRayPanel(container, { query, onClose = () => {}, onShow = (
   }
 
   function close() {
+    if (!ui.root.isConnected) return;
     document.removeEventListener('keydown', onKey, true);
     ui.root.remove();
     onClose();
@@ -175,6 +176,7 @@ export function mountRayPanel(container, { query, onClose = () => {}, onShow = (
       if (c === null || c === state.data.column) {
         if (state.preview === null) return;
         state.seq++;
+        ui.error.textContent = '';
         state.shown = state.data;
         state.preview = null;
         state.k = state.data.steps.length + 1;
