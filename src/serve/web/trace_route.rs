@@ -88,12 +88,12 @@ fn traced(form: Form, query: &str, maps: &[Arc<World>]) -> Answer {
         Form::Json => {
             // The map is named in the link only when there is a choice of maps.
             let map = (maps.len() > 1).then_some(world.map.name.as_str());
-            let link = address_of(
-                &address.query,
-                ray.camera.pos,
-                ray.camera.heading_deg(),
-                map,
-            );
+            // The values as asked (the camera's own would print 3.7 as 3.7000000000000006);
+            // the map's start where the address left them out.
+            let q = &address.query;
+            let pos = q.pos.unwrap_or(ray.camera.pos);
+            let angle = q.angle.unwrap_or_else(|| ray.camera.heading_deg());
+            let link = address_of(q, pos, angle, map);
             ok(
                 "application/json",
                 ray.data(world, link).to_json().into_bytes(),
@@ -138,6 +138,13 @@ mod tests {
         assert_eq!((json.status, json.kind), (200, "application/json"));
         let text = String::from_utf8(json.body).unwrap();
         assert!(text.contains("\"address\":\"pos=15.5,5.5&angle=90&column=20&size=40x12\""));
+        let odd = traced(
+            Form::Json,
+            "pos=15.5,5.5&angle=3.7&column=1&size=40x12",
+            &maps(),
+        );
+        let odd = String::from_utf8(odd.body).unwrap();
+        assert!(odd.contains("&angle=3.7&"), "{odd}");
         let svg = traced(Form::Svg, q, &maps());
         assert!(svg.body.starts_with(b"<svg") || svg.body.starts_with(b"<?xml"));
         assert!(traced(Form::Png, q, &maps()).body.starts_with(b"\x89PNG"));

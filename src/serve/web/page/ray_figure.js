@@ -1,9 +1,10 @@
 // The ray panel's figure, drawn by the page from /trace.json as SVG: the cells around the ray
-// (walls, doors, the cells visited, the hit cell), the camera with dir and the plane, the ray,
-// every x- and y-crossing numbered with its sideDist, the hit face and perp. The region and the
-// cell size follow `halfcast trace`'s figure (output/figure/frame.rs), so the two drawings of
-// one ray place everything alike. Part `k` of the stepping (0 the setup, 1..n a step, n+1 the
-// hit) is highlighted: later crossings and cells are faint.
+// (walls, doors, the cells visited, the hit cell; on maps with heights each cell's
+// floor..ceiling), the camera with dir and the plane, the ray, every x- and y-crossing numbered
+// with its sideDist, the hit face and perp. The region and the cell size follow `halfcast
+// trace`'s figure (output/figure/frame.rs), so the two drawings of one ray place everything
+// alike. Part `k` of the stepping (0 the setup, 1..n a step, n+1 the hit) is highlighted:
+// later crossings and cells are faint.
 
 import { num } from './ray_text.js';
 
@@ -57,6 +58,12 @@ function cells(g, t, k, at, cell) {
         const r = el(g, 'rect', { x, y, width: cell, height: cell, fill });
         if (isHit) r.setAttribute('class', 'hit-cell');
         if (step !== undefined) r.dataset.cell = `${c[0]},${c[1]}`;
+      }
+      // On a map with heights, each open cell's floor..ceiling where it is not 0..1.
+      const span = t.grid.spans && t.grid.spans[j][i];
+      if (span && (span[0] !== 0 || span[1] !== 1)) {
+        el(g, 'text', { x: x + cell - 3, y: y + cell - 4, 'text-anchor': 'end', fill: '#6a6e7a', class: 'tiny' },
+          `${+span[0].toFixed(2)}..${+span[1].toFixed(2)}`);
       }
       if (what === 'D') {
         el(g, 'rect', { x: x + cell * 0.2, y: y + cell * 0.2, width: cell * 0.6, height: cell * 0.6,
