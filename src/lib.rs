@@ -179,6 +179,9 @@ pub mod present;
 pub mod serve;
 #[doc(hidden)]
 pub mod texture;
+// One column's ray as `halfcast trace` and the browser's `/trace.*` ask for it.
+#[doc(hidden)]
+pub mod trace_query;
 #[doc(hidden)]
 #[allow(missing_docs)]
 #[cfg(feature = "tui")]

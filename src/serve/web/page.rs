@@ -14,6 +14,27 @@ use crate::render::glyphs::Glyphs;
 pub const HTML: &str = include_str!("page/index.html");
 /// Its style sheet.
 pub const CSS: &str = include_str!("page/halfcast.css");
+/// The ray debugger's own page (`/ray?pos=…`): the ray panel without playing.
+pub const RAY_HTML: &str = include_str!("page/ray.html");
+/// The ray panel's style sheet.
+pub const RAY_CSS: &str = include_str!("page/ray.css");
+
+/// The ray panel's modules, served at `/js/<name>.js`.
+const RAY_MODULES: [(&str, &str); 3] = [
+    ("/js/ray.js", include_str!("page/ray.js")),
+    ("/js/ray_figure.js", include_str!("page/ray_figure.js")),
+    ("/js/ray_text.js", include_str!("page/ray_text.js")),
+];
+
+/// The ray panel's module at `path` (empty for a path that is none of them).
+#[must_use]
+pub fn ray_module(path: &str) -> &'static str {
+    RAY_MODULES
+        .iter()
+        .find(|(p, _)| *p == path)
+        .map_or("", |(_, js)| js)
+}
+
 /// Its script, before the tables.
 const JS: &str = include_str!("page/halfcast.js");
 

@@ -1,7 +1,8 @@
-//! The answer to one request: the page and its two assets, `/healthz` (the same answer as the
-//! metrics listener's, so a balancer in front of the browser port checks the world it sends
-//! players to), and the WebSocket upgrade at `/ws`, checked for its `Origin`, then admitted
-//! within the server's limits and played.
+//! The answer to one request: the page and its two assets, the ray debugger's page (`/ray`)
+//! and its trace routes (`/trace.json`, `.svg`, `.png`: [`super::trace_route`]), `/healthz`
+//! (the same answer as the metrics listener's, so a balancer in front of the browser port checks
+//! the world it sends players to), and the WebSocket upgrade at `/ws`, checked for its `Origin`,
+//! then admitted within the server's limits and played.
 
 use std::net::SocketAddr;
 use std::sync::Arc;
@@ -43,6 +44,7 @@ pub async fn answer(socket: TcpStream, req: Request, peer: SocketAddr, edge: Arc
     }
     let text = "text/plain";
     let health;
+    let traced;
     let (status, kind, body): (u16, &str, &[u8]) = match req.path.as_str() {
         "/" => (200, "text/html; charset=utf-8", page::HTML.as_bytes()),
         "/halfcast.css" => (200, "text/css", page::CSS.as_bytes()),
@@ -56,6 +58,18 @@ pub async fn answer(socket: TcpStream, req: Request, peer: SocketAddr, edge: Arc
             (h.status(), text, health.as_bytes())
         }
         "/ws" => return upgrade(socket, req, peer, edge).await,
+        // The ray debugger: its page, its modules, and the trace's data and figure.
+        "/ray" => (200, "text/html; charset=utf-8", page::RAY_HTML.as_bytes()),
+        "/ray.css" => (200, "text/css", page::RAY_CSS.as_bytes()),
+        "/js/ray.js" | "/js/ray_figure.js" | "/js/ray_text.js" => (
+            200,
+            "text/javascript",
+            page::ray_module(&req.path).as_bytes(),
+        ),
+        "/trace.json" | "/trace.svg" | "/trace.png" => {
+            traced = super::trace_route::answer(&req.path, &req.query, &edge).await;
+            (traced.status, traced.kind, traced.body.as_slice())
+        }
         _ => (404, text, b"not found\n"),
     };
     if req.method == "HEAD" {
