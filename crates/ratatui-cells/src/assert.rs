@@ -1,7 +1,7 @@
 //! One-line equality assertions between two frames, failing at the caller's line with the cell
 //! diff.
 
-use crate::diff::{diff, diff_looks, DiffReport};
+use crate::compare::{diff, diff_looks, DiffReport};
 use crate::frame::TermFrame;
 
 /// Asserts two frames are the same in every part of every cell (glyph, colours as named, the
