@@ -14,6 +14,10 @@ use super::backend_display::{from_backend_display, is_backend_display};
 use super::buffer_debug::{from_buffer_debug, BUFFER_DEBUG_HEADER};
 use super::cells_text::{from_cells_text, HEADER};
 
+/// How a ratatui `TestBackend`'s `Debug` form starts, and the field holding its buffer.
+const BACKEND_DEBUG_HEADER: &str = "TestBackend {";
+const BACKEND_BUFFER_FIELD: &str = "buffer: Buffer {";
+
 /// What kind of frame text was read.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[non_exhaustive]
@@ -22,7 +26,7 @@ pub enum FrameFormat {
     Ansi,
     /// The cells text (glyph grid and style runs).
     Cells,
-    /// A ratatui `Buffer`'s `Debug` form.
+    /// A ratatui `Buffer`'s `Debug` form, alone or inside a `TestBackend`'s.
     BufferDebug,
     /// A ratatui `TestBackend`'s `Display` form (glyphs only), read inside an insta snapshot.
     BackendDisplay,
@@ -111,6 +115,14 @@ fn frame_text(text: &str) -> Option<Result<(TermFrame, FrameFormat), Error>> {
     }
     if text.starts_with(BUFFER_DEBUG_HEADER) {
         return Some(from_buffer_debug(text).map(|f| (f, FrameFormat::BufferDebug)));
+    }
+    // `insta::assert_debug_snapshot!(terminal.backend())`: the buffer's `Debug` inside.
+    if let Some(at) = text
+        .strip_prefix(BACKEND_DEBUG_HEADER)
+        .and_then(|rest| rest.find(BACKEND_BUFFER_FIELD))
+    {
+        let buffer = &text[BACKEND_DEBUG_HEADER.len() + at + "buffer: ".len()..];
+        return Some(from_buffer_debug(buffer).map(|f| (f, FrameFormat::BufferDebug)));
     }
     None
 }

@@ -203,11 +203,16 @@ fn a_changed_screen_fails_at_the_tests_line_with_the_cell_diff_first() {
 
 #[test]
 fn debug_and_display_snapshots_migrate_in_one_run() {
+    // A `Buffer`'s `Debug`, a `TestBackend`'s `Debug` (the buffer inside it), its `Display`.
     let terminal = screen(false);
     let header = "---\nsource: tests/ui.rs\nexpression: terminal.backend()\n---\n";
     let forms = [
         (
             format!("{:#?}", terminal.backend().buffer()),
+            "stored as a ratatui Buffer's Debug form, showing the same cells",
+        ),
+        (
+            format!("{:#?}", terminal.backend()),
             "stored as a ratatui Buffer's Debug form, showing the same cells",
         ),
         (
