@@ -277,14 +277,16 @@ impl<'a> DebugPane<'a> {
                 starts.extend((0..row.len()).map(|k| k == 0));
                 lines.extend(row);
                 if i == 0 && setup_rows == Some(r + 1) {
-                    focus_end = Some(lines.len());
+                    // One line further: the part's own last line shows, the next one gives way
+                    // to the note of what is below.
+                    focus_end = Some(lines.len() + 1);
                 }
             }
             if self.scroll > 0 && i == focus && focus_end.is_none() {
                 focus_end = Some(lines.len());
             }
         }
-        let focus_end = focus_end.unwrap_or(lines.len());
+        let focus_end = focus_end.unwrap_or(lines.len()).min(lines.len());
         // Cut at the top, the pane still says which ray it follows.
         let d = &self.derivation;
         let pinned = self.wrap(
@@ -447,6 +449,42 @@ mod tests {
         let pane = DebugPane::new(RevealedTrace::partial(&t, 3), &w, &cam, (40, 12)).ascii(true);
         for l in pane_text(pane, 28, 11) {
             assert!(l.is_ascii(), "{l:?}");
+        }
+    }
+
+    #[test]
+    fn scrolled_into_the_setup_a_short_pane_shows_every_line_of_the_setup() {
+        let w = World::default_world();
+        for angle in [0.0, 33.0, 62.0, 181.0, 270.0] {
+            let cam = Camera::from_angle(Vec2::new(15.3, 5.6), angle, 66.0);
+            let t = trace_column(&w.map, &cam, 39, 50);
+            let pane = DebugPane::new(RevealedTrace::full(&t), &w, &cam, (50, 23));
+            let top = t.steps.len() + 1;
+            for (width, rows) in [(28, 9), (28, 11), (28, 14), (40, 9)] {
+                let setup: Vec<String> = pane_text(pane.clone(), width, 400)
+                    .into_iter()
+                    .take_while(|l| !l.starts_with("  1 "))
+                    .collect();
+                assert!(setup[0].starts_with("cameraX"), "{setup:#?}");
+                // Every stop ↑ reaches: each step back to the setup's end, then each part of
+                // the setup back to cameraX.
+                let mut seen = Vec::new();
+                for back in 0..top {
+                    seen.extend(pane_text(pane.clone().scroll(back), width, rows));
+                }
+                for parts in 0..SETUP_PARTS {
+                    let at = pane.clone().scroll(top).scroll_into_setup(parts);
+                    seen.extend(pane_text(at, width, rows));
+                }
+                for line in &setup {
+                    assert!(
+                        seen.contains(line),
+                        "{line:?} never shows at {width}x{rows}, angle {angle}"
+                    );
+                }
+                let last = pane.clone().scroll(top).scroll_into_setup(SETUP_PARTS - 1);
+                assert_eq!(pane_text(last, width, rows)[0], setup[0]);
+            }
         }
     }
 
