@@ -106,160 +106,238 @@ impl Presenter {
     ) -> &[u8] {
         let mut next = std::mem::take(screen);
         let area = next.area;
-        let level = self.level();
+        let wire = Wire::at(self.level());
         let view_area = view_area.intersection(area);
-        let usable = view_area.area() > 0 && view.cell_cols() == usize::from(view_area.width);
-        if !usable {
-            // No view this frame: the cell diff writes over where it was, so the next view is
-            // sent whole.
-            self.encoder.invalidate();
-        }
-        self.chosen.clear();
-        // The view's cells at a finer setting, chosen once here when anything needs them: the
-        // truecolor encoder, or a view area holding more than VIEW_CELL (a view drawn by the
-        // caller, to tell from what is drawn over it, or overlays, which may send the view
-        // through the cell diff). Where the palette mixes, the encoder works from the pixels.
-        if usable
-            && view.glyphs() != Glyphs::Half
-            && (level == ColorLevel::TrueColor
-                || view_area.positions().any(|p| !is_view_cell(&next[p])))
-        {
-            glyph_cells(view, &mut self.chosen);
-        }
-        let (over, skipped) = if usable {
-            covering(&next, view, &self.chosen, view_area)
-        } else {
-            (Vec::new(), false)
-        };
-        let few = over.len() <= usize::from(view_area.width) * FEW_ROWS;
-        let overlaid = !few;
+        let path = self.view_path(&next, view, view_area);
+        let overlaid = matches!(path, ViewPath::CellDiff);
         if overlaid != self.overlaid {
             // The terminal holds the other path's drawing: start both afresh.
             self.previous = None;
             self.overlaid = overlaid;
         }
-        if !overlaid && !skipped {
+        match path {
+            ViewPath::CellDiff => self.view_as_cells(&mut next, view, view_area, wire),
+            ViewPath::Encoder { skipped: true, .. } => {}
             // The encoder draws the view: the cell diff skips all of it (a row at a time).
-            for y in view_area.top()..view_area.bottom() {
-                for c in &mut next.content[row_cells(area, view_area, y)] {
-                    c.set_diff_option(CellDiffOption::Skip);
-                }
-            }
-        } else if overlaid {
-            for y in view_area.top()..view_area.bottom() {
-                for x in view_area.left()..view_area.right() {
-                    let (cx, cy) = (usize::from(x - view_area.x), usize::from(y - view_area.y));
-                    let Some(c) = next.cell_mut((x, y)) else {
-                        continue;
-                    };
-                    // Through the cell diff: the view's own cells as `HalfBlockView` draws them, and
-                    // what was drawn over them (which may have kept their skip mark) sent too.
-                    if is_view_cell(c) {
-                        *c = Cell::EMPTY;
-                        if usable && cy < view.cell_rows() {
-                            let (ch, fg, bg) = view_look(view, &self.chosen, (cx, cy));
-                            c.set_char(ch).set_fg(fg).set_bg(bg);
-                        }
-                    } else {
-                        c.set_diff_option(CellDiffOption::None);
-                    }
-                    if level == ColorLevel::Mono
-                        && c.symbol() == UPPER_HALF
-                        && cy < view.cell_rows()
-                    {
-                        let (top, bottom) = view.cell(cx, cy);
-                        c.set_char(crate::encode::quantize::mono_char(top, bottom));
-                    }
-                }
-            }
+            _ => skip_view(&mut next, view_area),
         }
-        if level == ColorLevel::Mono {
-            plain_ascii(&mut next);
-        }
+        wire.plain(&mut next);
         self.out.clear();
-        if level != ColorLevel::Mono {
-            self.out.extend_from_slice(SYNC_BEGIN);
+        wire.begin(&mut self.out);
+        let previous = self.previous_or_cleared(area, wire);
+        let diff = cell_diff(&previous, &next);
+        if !diff.is_empty() {
+            self.cells.forget_cursor();
+            self.cells.draw(&mut self.out, diff.into_iter());
         }
-        let previous = match self.previous.take() {
+        self.over = match path {
+            ViewPath::Encoder { over, .. } => {
+                // The cells over the view are on the terminal as they are now when they were
+                // drawn last frame too and nothing has been written over them since.
+                let over_kept = over == self.over
+                    && over.iter().all(|&(x, y)| previous[(x, y)] == next[(x, y)]);
+                self.encode_view(view, view_area, &next, &over, over_kept);
+                over
+            }
+            _ => Vec::new(),
+        };
+        *screen = previous;
+        wire.end(&mut self.out);
+        self.previous = Some(next);
+        &self.out
+    }
+
+    /// Which way this frame's view goes, the cells chosen for it at a finer glyph setting.
+    fn view_path(&mut self, next: &Buffer, view: &Framebuffer, view_area: Rect) -> ViewPath {
+        self.chosen.clear();
+        let usable = view_area.area() > 0 && view.cell_cols() == usize::from(view_area.width);
+        if !usable {
+            // No view this frame: the cell diff writes over where it was, so the next view is
+            // sent whole.
+            self.encoder.invalidate();
+            return ViewPath::Absent;
+        }
+        // The view's cells at a finer setting, chosen once here when anything needs them: the
+        // truecolor encoder, or a view area holding more than VIEW_CELL (a view drawn by the
+        // caller, to tell from what is drawn over it, or overlays, which may send the view
+        // through the cell diff). Where the palette mixes, the encoder works from the pixels.
+        if view.glyphs() != Glyphs::Half
+            && (self.level() == ColorLevel::TrueColor
+                || view_area.positions().any(|p| !is_view_cell(&next[p])))
+        {
+            glyph_cells(view, &mut self.chosen);
+        }
+        let (over, skipped) = covering(next, view, &self.chosen, view_area);
+        if over.len() <= usize::from(view_area.width) * FEW_ROWS {
+            ViewPath::Encoder { over, skipped }
+        } else {
+            ViewPath::CellDiff
+        }
+    }
+
+    /// The view area sent through the cell diff: the view's own cells as `HalfBlockView` draws
+    /// them, and what was drawn over them (which may have kept their skip mark) sent too.
+    fn view_as_cells(&self, next: &mut Buffer, view: &Framebuffer, view_area: Rect, wire: Wire) {
+        for y in view_area.top()..view_area.bottom() {
+            for x in view_area.left()..view_area.right() {
+                let (cx, cy) = (usize::from(x - view_area.x), usize::from(y - view_area.y));
+                let Some(c) = next.cell_mut((x, y)) else {
+                    continue;
+                };
+                if is_view_cell(c) {
+                    *c = Cell::EMPTY;
+                    if cy < view.cell_rows() {
+                        let (ch, fg, bg) = view_look(view, &self.chosen, (cx, cy));
+                        c.set_char(ch).set_fg(fg).set_bg(bg);
+                    }
+                } else {
+                    c.set_diff_option(CellDiffOption::None);
+                }
+                if wire.mono && c.symbol() == UPPER_HALF && cy < view.cell_rows() {
+                    let (top, bottom) = view.cell(cx, cy);
+                    c.set_char(crate::encode::quantize::mono_char(top, bottom));
+                }
+            }
+        }
+    }
+
+    /// The screen the terminal shows, to diff against: last frame's, or after a clear (which is
+    /// sent) a blank one.
+    fn previous_or_cleared(&mut self, area: Rect, wire: Wire) -> Buffer {
+        match self.previous.take() {
             Some(p) if p.area == area => p,
             _ => {
-                // Mono output carries no SGR at all (its colours are always the defaults).
-                if level != ColorLevel::Mono {
-                    self.out.extend_from_slice(b"\x1b[m");
-                }
-                self.out.extend_from_slice(b"\x1b[2J");
+                wire.clear(&mut self.out);
                 self.encoder.invalidate();
                 let mut blank = Buffer::empty(area);
                 // Cells that differ from a cleared screen are all that must be drawn.
                 blank.reset();
                 blank
             }
-        };
-        {
-            let diff = cell_diff(&previous, &next);
-            if !diff.is_empty() {
-                self.cells.forget_cursor();
-                self.cells.draw(&mut self.out, diff.into_iter());
-            }
         }
-        // The cells over the view are on the terminal as they are now when they were drawn last
-        // frame too and nothing has been written over them since.
-        let over_kept =
-            over == self.over && over.iter().all(|&(x, y)| previous[(x, y)] == next[(x, y)]);
-        *screen = previous;
-        if usable && !overlaid {
-            let shown = if over.is_empty() {
-                view
-            } else {
-                // The covered cells in their own colours: what the encoder believes the
-                // terminal shows there (they are written over it right after).
-                self.painted.clone_from(view);
-                for &(x, y) in &over {
-                    // Its colours: `next` differs from the screen drawn only in diff options and,
-                    // at mono, symbols and modifiers.
-                    let c = &next[(x, y)];
-                    let (cx, cy) = (usize::from(x - view_area.x), usize::from(y - view_area.y));
-                    let top = ratatui_rgb(c.fg).unwrap_or(Rgb::new(0, 0, 0));
-                    let bottom = ratatui_rgb(c.bg).unwrap_or(Rgb::new(0, 0, 0));
-                    // The cell's upper pixels in its fg, lower in its bg (at any sub-grid).
-                    let (w, h) = view.glyphs().cell_size();
-                    for dy in 0..h {
-                        let c = if 2 * dy < h { top } else { bottom };
-                        for dx in 0..w {
-                            self.painted.set(cx * w + dx, cy * h + dy, c);
-                        }
+    }
+
+    /// The encoder's bytes for the view, then the `over` cells drawn over it (a banner) when the
+    /// encoder wrote or they are not on the terminal as they are (`over_kept`).
+    fn encode_view(
+        &mut self,
+        view: &Framebuffer,
+        view_area: Rect,
+        next: &Buffer,
+        over: &[(u16, u16)],
+        over_kept: bool,
+    ) {
+        let shown = if over.is_empty() {
+            view
+        } else {
+            // The covered cells in their own colours: what the encoder believes the terminal
+            // shows there (they are written over it right after).
+            self.painted.clone_from(view);
+            for &(x, y) in over {
+                // Its colours: `next` differs from the screen drawn only in diff options and,
+                // at mono, symbols and modifiers.
+                let c = &next[(x, y)];
+                let (cx, cy) = (usize::from(x - view_area.x), usize::from(y - view_area.y));
+                let top = ratatui_rgb(c.fg).unwrap_or(Rgb::new(0, 0, 0));
+                let bottom = ratatui_rgb(c.bg).unwrap_or(Rgb::new(0, 0, 0));
+                // The cell's upper pixels in its fg, lower in its bg (at any sub-grid).
+                let (w, h) = view.glyphs().cell_size();
+                for dy in 0..h {
+                    let c = if 2 * dy < h { top } else { bottom };
+                    for dx in 0..w {
+                        self.painted.set(cx * w + dx, cy * h + dy, c);
                     }
                 }
-                &self.painted
-            };
-            let bytes = if over.is_empty() && !self.chosen.is_empty() {
-                self.encoder
-                    .encode_chosen(view, &self.chosen, view_area.x, view_area.y)
-            } else {
-                self.encoder.encode(shown, view_area.x, view_area.y)
-            };
-            let encoded = !bytes.is_empty();
-            self.out.extend_from_slice(bytes);
-            if !over.is_empty() && (encoded || !over_kept) {
-                // After the encoder's bytes, which end with the default colours (the cell
-                // writer's plain pen) but leave the cursor anywhere.
-                self.cells.forget_cursor();
-                self.cells.draw(
-                    &mut self.out,
-                    over.iter().map(|&(x, y)| (x, y, &next[(x, y)])),
-                );
             }
-        }
-        if level != ColorLevel::Mono {
-            self.out.extend_from_slice(SYNC_END);
-        }
-        self.over = if usable && !overlaid {
-            over
-        } else {
-            Vec::new()
+            &self.painted
         };
-        self.previous = Some(next);
-        &self.out
+        let bytes = if over.is_empty() && !self.chosen.is_empty() {
+            self.encoder
+                .encode_chosen(view, &self.chosen, view_area.x, view_area.y)
+        } else {
+            self.encoder.encode(shown, view_area.x, view_area.y)
+        };
+        let encoded = !bytes.is_empty();
+        self.out.extend_from_slice(bytes);
+        if !over.is_empty() && (encoded || !over_kept) {
+            // After the encoder's bytes, which end with the default colours (the cell writer's
+            // plain pen) but leave the cursor anywhere.
+            self.cells.forget_cursor();
+            self.cells.draw(
+                &mut self.out,
+                over.iter().map(|&(x, y)| (x, y, &next[(x, y)])),
+            );
+        }
+    }
+}
+
+/// Which way a frame's view reaches the terminal.
+enum ViewPath {
+    /// No view this frame (no area, or a view of another width).
+    Absent,
+    /// The encoder sends the view; the few cells drawn `over` it (a banner, or none) follow its
+    /// bytes. `skipped`: every cell of the view area is already skipped by the cell diff.
+    Encoder {
+        over: Vec<(u16, u16)>,
+        skipped: bool,
+    },
+    /// An overlay covers more than a few rows of it: the view goes through the cell diff, around
+    /// the overlay.
+    CellDiff,
+}
+
+/// What the colour level changes in a frame's bytes besides its colours: mono sends plain
+/// ASCII and no escape it does not need (no synchronized update, no colour reset).
+#[derive(Clone, Copy)]
+struct Wire {
+    mono: bool,
+}
+
+impl Wire {
+    fn at(level: ColorLevel) -> Self {
+        Self {
+            mono: level == ColorLevel::Mono,
+        }
+    }
+
+    /// Starts the frame's synchronized update.
+    fn begin(self, out: &mut Vec<u8>) {
+        if !self.mono {
+            out.extend_from_slice(SYNC_BEGIN);
+        }
+    }
+
+    /// Ends the frame's synchronized update.
+    fn end(self, out: &mut Vec<u8>) {
+        if !self.mono {
+            out.extend_from_slice(SYNC_END);
+        }
+    }
+
+    /// Clears the screen (mono output carries no SGR at all: its colours are always the
+    /// defaults).
+    fn clear(self, out: &mut Vec<u8>) {
+        if !self.mono {
+            out.extend_from_slice(b"\x1b[m");
+        }
+        out.extend_from_slice(b"\x1b[2J");
+    }
+
+    /// The screen's cells as this level shows them.
+    fn plain(self, buf: &mut Buffer) {
+        if self.mono {
+            plain_ascii(buf);
+        }
+    }
+}
+
+/// Marks the view area skipped by the cell diff (the encoder draws it), a row at a time.
+fn skip_view(next: &mut Buffer, view_area: Rect) {
+    let area = next.area;
+    for y in view_area.top()..view_area.bottom() {
+        for c in &mut next.content[row_cells(area, view_area, y)] {
+            c.set_diff_option(CellDiffOption::Skip);
+        }
     }
 }
 

@@ -144,19 +144,7 @@ impl RowPlanner {
         if skippable[..w].iter().all(|&s| s) {
             return &self.spans;
         }
-        let mut x0 = 0;
-        for x in 1..=w {
-            if x == w || cells[x] != cells[x0] || skippable[x] != skippable[x0] {
-                self.spans.push(Span {
-                    x: x0 as u16,
-                    len: (x - x0) as u16,
-                    choice: Choice::Skip,
-                });
-                x0 = x;
-            }
-        }
-        let level = start.level;
-        let entry = |x: u16| move_cost(start.cursor, start.origin_col + x, start.row);
+        self.runs(&cells[..w], &skippable[..w]);
         let steps = self.spans.len();
         if self.nodes.len() < steps + 1 {
             self.nodes.resize(steps + 1, [BLANK; BEAM]);
@@ -168,107 +156,18 @@ impl RowPlanner {
             ..BLANK
         };
         self.counts[0] = 1;
-        for (step, span) in self.spans.iter().enumerate() {
-            let (x, end) = (span.x, span.x + span.len);
-            let n = u32::from(span.len);
-            let cell = cells[usize::from(x)];
-            let (t, b) = (cell[0], cell[1]);
-            let skip_ok = skippable[usize::from(x)];
+        for step in 0..steps {
+            let span = self.spans[step];
+            let x = usize::from(span.x);
+            let (cell, skip_ok) = (cells[x], skippable[x]);
             let (done, next) = self.nodes.split_at_mut(step + 1);
             let prev = &done[step][..usize::from(self.counts[step])];
             let top = &mut next[0];
-            let mut kept = 0;
-            // Each colour's SGR alone (`ESC[`, the parameter, `m`), as fg and as bg.
-            let (ft, bt) = sgr::alone_lens(level, t);
-            let mv = |p: &Node| {
-                if p.cursor == x {
-                    0
-                } else if p.cursor == NOWHERE {
-                    entry(x)
-                } else {
-                    // Same row, moving right: `ESC[nC` (the emitted move is never longer).
-                    forward_cost(x - p.cursor)
-                }
+            self.counts[step + 1] = if cell[0] != cell[1] && !skip_ok && beam >= 2 {
+                two_states(prev, top, start, span, cell)
+            } else {
+                beam_states(prev, &mut top[..beam], start, span, cell, skip_ok)
             };
-            if t != b && !skip_ok && beam >= 2 {
-                // The common case, exactly: the run ends in one of two states (drawn `▀` or `▄`),
-                // each reached best from one of the previous states.
-                let (fb, bb) = sgr::alone_lens(level, b);
-                let mut upper = Node {
-                    fg: t,
-                    bg: b,
-                    cost: u32::MAX,
-                    cursor: end,
-                    choice: Choice::Upper,
-                    ..BLANK
-                };
-                let mut lower = Node {
-                    fg: b,
-                    bg: t,
-                    choice: Choice::Lower,
-                    ..upper
-                };
-                for (i, p) in prev.iter().enumerate() {
-                    let base = p.cost + mv(p) + 3 * n;
-                    let (u, l) = (
-                        base + change(p, t, b, ft, bb),
-                        base + change(p, b, t, fb, bt),
-                    );
-                    if u < upper.cost {
-                        (upper.cost, upper.prev) = (u, i as u8);
-                    }
-                    if l < lower.cost {
-                        (lower.cost, lower.prev) = (l, i as u8);
-                    }
-                }
-                (upper.key, lower.key) = (upper.cost, lower.cost);
-                if lower.cost < upper.cost {
-                    (top[0], top[1]) = (lower, upper);
-                } else {
-                    (top[0], top[1]) = (upper, lower);
-                }
-                self.counts[step + 1] = 2;
-                continue;
-            }
-            for (i, p) in prev.iter().enumerate() {
-                let base = p.cost + mv(p);
-                let node = |fg, bg, cost, choice| Node {
-                    fg,
-                    bg,
-                    cost,
-                    key: cost,
-                    cursor: end,
-                    prev: i as u8,
-                    choice,
-                };
-                if t == b {
-                    let space = base + u32::from(t != p.bg) * bt + n;
-                    let full = base + u32::from(t != p.fg) * ft + 3 * n;
-                    kept = keep(&mut top[..beam], kept, node(p.fg, t, space, Choice::Space));
-                    kept = keep(&mut top[..beam], kept, node(t, p.bg, full, Choice::Full));
-                } else {
-                    let (fb, bb) = sgr::alone_lens(level, b);
-                    let upper = base + change(p, t, b, ft, bb) + 3 * n;
-                    let lower = base + change(p, b, t, fb, bt) + 3 * n;
-                    kept = keep(&mut top[..beam], kept, node(t, b, upper, Choice::Upper));
-                    kept = keep(&mut top[..beam], kept, node(b, t, lower, Choice::Lower));
-                }
-                if skip_ok {
-                    let pending = if p.cursor == NOWHERE {
-                        entry(end)
-                    } else {
-                        LAG_PENALTY
-                    };
-                    let skip = Node {
-                        key: p.cost + pending,
-                        prev: i as u8,
-                        choice: Choice::Skip,
-                        ..*p
-                    };
-                    kept = keep(&mut top[..beam], kept, skip);
-                }
-            }
-            self.counts[step + 1] = kept as u8;
         }
         // Best final state: no pending move matters at the row's end.
         let last = &self.nodes[steps][..usize::from(self.counts[steps])];
@@ -280,6 +179,147 @@ impl RowPlanner {
         }
         &self.spans
     }
+
+    /// Cuts the row into runs of identical cells (same colours, same skippability), each
+    /// skipped until planned.
+    #[inline(always)]
+    fn runs(&mut self, cells: &[[Code; 2]], skippable: &[bool]) {
+        let w = cells.len();
+        let mut x0 = 0;
+        for x in 1..=w {
+            if x == w || cells[x] != cells[x0] || skippable[x] != skippable[x0] {
+                self.spans.push(Span {
+                    x: x0 as u16,
+                    len: (x - x0) as u16,
+                    choice: Choice::Skip,
+                });
+                x0 = x;
+            }
+        }
+    }
+}
+
+/// Bytes of the cursor move from where `p` left it to view column `x` (none when it is there).
+#[inline(always)]
+fn move_from(p: &Node, x: u16, start: &RowStart) -> u32 {
+    if p.cursor == x {
+        0
+    } else if p.cursor == NOWHERE {
+        move_cost(start.cursor, start.origin_col + x, start.row)
+    } else {
+        // Same row, moving right: `ESC[nC` (the emitted move is never longer).
+        forward_cost(x - p.cursor)
+    }
+}
+
+/// The common case, exactly: a run of two colours the terminal does not show yet ends in one
+/// of two states (drawn `▀` or `▄`), each reached best from one of the `prev` states. Writes
+/// them to `top`, cheaper first, and returns their count.
+#[inline(always)]
+fn two_states(
+    prev: &[Node],
+    top: &mut [Node; BEAM],
+    start: &RowStart,
+    span: Span,
+    cell: [Code; 2],
+) -> u8 {
+    let (t, b) = (cell[0], cell[1]);
+    let n = u32::from(span.len);
+    // Each colour's SGR alone (`ESC[`, the parameter, `m`), as fg and as bg.
+    let (ft, bt) = sgr::alone_lens(start.level, t);
+    let (fb, bb) = sgr::alone_lens(start.level, b);
+    let mut upper = Node {
+        fg: t,
+        bg: b,
+        cost: u32::MAX,
+        cursor: span.x + span.len,
+        choice: Choice::Upper,
+        ..BLANK
+    };
+    let mut lower = Node {
+        fg: b,
+        bg: t,
+        choice: Choice::Lower,
+        ..upper
+    };
+    for (i, p) in prev.iter().enumerate() {
+        let base = p.cost + move_from(p, span.x, start) + 3 * n;
+        let (u, l) = (
+            base + change(p, t, b, ft, bb),
+            base + change(p, b, t, fb, bt),
+        );
+        if u < upper.cost {
+            (upper.cost, upper.prev) = (u, i as u8);
+        }
+        if l < lower.cost {
+            (lower.cost, lower.prev) = (l, i as u8);
+        }
+    }
+    (upper.key, lower.key) = (upper.cost, lower.cost);
+    if lower.cost < upper.cost {
+        (top[0], top[1]) = (lower, upper);
+    } else {
+        (top[0], top[1]) = (upper, lower);
+    }
+    2
+}
+
+/// Any other run: every way to send it from each of the `prev` states (a space or a full
+/// block for one colour, `▀` or `▄` for two, or skipping it when the terminal shows it
+/// already), the best kept in `top` (the beam); returns how many were kept.
+#[inline(always)]
+fn beam_states(
+    prev: &[Node],
+    top: &mut [Node],
+    start: &RowStart,
+    span: Span,
+    cell: [Code; 2],
+    skip_ok: bool,
+) -> u8 {
+    let (t, b) = (cell[0], cell[1]);
+    let (x, end) = (span.x, span.x + span.len);
+    let n = u32::from(span.len);
+    let (ft, bt) = sgr::alone_lens(start.level, t);
+    let mut kept = 0;
+    for (i, p) in prev.iter().enumerate() {
+        let base = p.cost + move_from(p, x, start);
+        let node = |fg, bg, cost, choice| Node {
+            fg,
+            bg,
+            cost,
+            key: cost,
+            cursor: end,
+            prev: i as u8,
+            choice,
+        };
+        if t == b {
+            let space = base + u32::from(t != p.bg) * bt + n;
+            let full = base + u32::from(t != p.fg) * ft + 3 * n;
+            kept = keep(top, kept, node(p.fg, t, space, Choice::Space));
+            kept = keep(top, kept, node(t, p.bg, full, Choice::Full));
+        } else {
+            let (fb, bb) = sgr::alone_lens(start.level, b);
+            let upper = base + change(p, t, b, ft, bb) + 3 * n;
+            let lower = base + change(p, b, t, fb, bt) + 3 * n;
+            kept = keep(top, kept, node(t, b, upper, Choice::Upper));
+            kept = keep(top, kept, node(b, t, lower, Choice::Lower));
+        }
+        if skip_ok {
+            let pending = if p.cursor == NOWHERE {
+                move_cost(start.cursor, start.origin_col + end, start.row)
+            } else {
+                LAG_PENALTY
+            };
+            let skip = Node {
+                key: p.cost + pending,
+                prev: i as u8,
+                choice: Choice::Skip,
+                ..*p
+            };
+            kept = keep(top, kept, skip);
+        }
+    }
+    kept as u8
 }
 
 /// Writes one planned run of a row (not a skipped one): the move to it, the colour change, the

@@ -1,6 +1,7 @@
 //! The ray debugger's state: paused or not, which column is traced, how far its DDA is shown.
 
 use crate::render::cast::DdaTrace;
+use crate::render::derivation::SETUP_PARTS;
 
 /// How much of the debugged ray's traversal is revealed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -23,6 +24,9 @@ pub struct Debugger {
     pub cursor: Cursor,
     /// How many steps the ray pane is scrolled back from the newest (0 = it follows).
     pub scroll: usize,
+    /// Once scrolled back to the setup, how many of its parts further back (0 = its end, up to
+    /// `SETUP_PARTS - 1` = `cameraX`): a setup taller than the pane is read a part at a time.
+    pub into_setup: usize,
 }
 
 impl Debugger {
@@ -51,6 +55,7 @@ impl Debugger {
             column: if self.paused { None } else { self.column },
             cursor: Cursor::AtHit,
             scroll: 0,
+            into_setup: 0,
         };
     }
 
@@ -62,16 +67,25 @@ impl Debugger {
         let now = self.column_in(width) as i64;
         let max = width as i64 - 1;
         self.column = Some((now + i64::from(by)).clamp(0, max) as usize);
-        self.scroll = 0;
+        self.follow();
     }
 
     /// Scrolls the ray pane `by` steps back (negative: forward again), within what is shown of
-    /// a trace of `total_steps` steps (the setup, each step shown, and the hit once reached).
+    /// a trace of `total_steps` steps (the setup, each step shown, and the hit once reached);
+    /// past the setup's end, on into the setup a part at a time, to `cameraX`.
     pub fn scroll_by(&mut self, by: i32, total_steps: usize) {
         let (shown, hit) = self.revealed_count(total_steps);
         let max = shown + usize::from(hit);
-        let now = self.scroll as i64 + i64::from(by);
-        self.scroll = now.clamp(0, max as i64) as usize;
+        let back = (self.scroll + self.into_setup) as i64 + i64::from(by);
+        let back = back.clamp(0, (max + SETUP_PARTS - 1) as i64) as usize;
+        self.scroll = back.min(max);
+        self.into_setup = back - self.scroll;
+    }
+
+    /// The ray pane follows the newest step again.
+    pub fn follow(&mut self) {
+        self.scroll = 0;
+        self.into_setup = 0;
     }
 
     fn revealed_count(&self, all: usize) -> (usize, bool) {
@@ -84,7 +98,7 @@ impl Debugger {
 
     /// Reveals one more step; from the hit it starts over at the start cell.
     pub fn step(&mut self, total_steps: usize) {
-        self.scroll = 0;
+        self.follow();
         self.cursor = match self.cursor {
             Cursor::AtHit => Cursor::Steps(0),
             Cursor::Steps(n) if n + 1 >= total_steps => Cursor::AtHit,

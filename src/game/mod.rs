@@ -265,7 +265,7 @@ fn advance(state: &mut GameState, input: &Input, dt: f64, owns_world: bool, bodi
             }
             Command::RunToHit if d.paused => {
                 d.cursor = Cursor::AtHit;
-                d.scroll = 0;
+                d.follow();
             }
             Command::ScrollPane(by) if d.paused => {
                 let total = state.debug_trace().map_or(0, |t| t.steps.len());

@@ -14,6 +14,7 @@
 
 use std::collections::BTreeMap;
 
+use super::words::words;
 use super::{Cell, MapErrorKind, TextureRef};
 use crate::vec2::Vec2;
 
@@ -177,21 +178,6 @@ pub(super) struct GameLines {
     pub(super) creatures: Vec<CreatureDef>,
 }
 
-/// The words of `rest` with their 1-based columns.
-fn words(rest: &str, rest_col: usize) -> Vec<(String, usize)> {
-    let mut out = Vec::new();
-    let mut cur: Option<(String, usize)> = None;
-    for (col, c) in (rest_col..).zip(rest.chars()) {
-        if c == ' ' || c == '\t' {
-            out.extend(cur.take());
-        } else {
-            cur.get_or_insert_with(|| (String::new(), col)).0.push(c);
-        }
-    }
-    out.extend(cur);
-    out
-}
-
 /// Whether `name` may name a key: letters, digits, `-` and `_` (it is shown in messages).
 fn valid_key_name(name: &str) -> bool {
     !name.is_empty()
@@ -199,6 +185,128 @@ fn valid_key_name(name: &str) -> bool {
         && name
             .chars()
             .all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_')
+}
+
+/// One game line being read: its kind and where it is, to word its errors.
+struct LineAt {
+    kind: GameLine,
+    line: usize,
+    word_col: usize,
+}
+
+impl LineAt {
+    /// The line's `BadValue` error at `col`.
+    fn bad(&self, col: usize, why: String) -> LineError {
+        let id = self.kind.id().to_owned();
+        ((self.line, col), MapErrorKind::BadValue { id, why })
+    }
+
+    /// The error that shows how the line is written.
+    fn usage(&self) -> LineError {
+        self.bad(self.word_col, format!("write '{}'", self.kind.usage()))
+    }
+
+    /// `s` as a finite number, or the error naming `what` at `col`.
+    fn number(&self, what: &str, s: &str, col: usize) -> Result<f64, LineError> {
+        s.parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| self.bad(col, format!("{what} needs a number, got '{s}'")))
+    }
+
+    /// `v` as a number above 0 and at most `max` (`unit` follows the limit in the error).
+    fn above_zero(
+        &self,
+        what: &str,
+        v: &str,
+        col: usize,
+        max: f64,
+        unit: &str,
+    ) -> Result<f64, LineError> {
+        let s = self.number(what, v, col)?;
+        if s > 0.0 && s <= max {
+            Ok(s)
+        } else {
+            let why = format!("{what} must be above 0 and at most {max}{unit}, got '{v}'");
+            Err(self.bad(col, why))
+        }
+    }
+}
+
+/// The `key=value` options of an `ITEM` or `CREATURE` line, each kind reading only its own
+/// (`scale` is both's), with the defaults for what the line leaves out.
+struct ThingOptions {
+    is_item: bool,
+    points: Option<i64>,
+    key: Option<String>,
+    speed: f64,
+    behaviour: Behaviour,
+    scale: f64,
+    frames: u16,
+}
+
+impl ThingOptions {
+    fn new(is_item: bool) -> Self {
+        Self {
+            is_item,
+            points: None,
+            key: None,
+            speed: DEFAULT_CREATURE_SPEED,
+            behaviour: Behaviour::default(),
+            scale: if is_item { 0.5 } else { 0.7 },
+            frames: 4,
+        }
+    }
+
+    /// Reads the option `word` at `col`, refusing one the line's kind has not.
+    fn read(&mut self, at: &LineAt, word: &str, col: usize) -> Result<(), LineError> {
+        let unknown = || at.bad(col, format!("unknown option '{word}'"));
+        let Some((k, v)) = word.split_once('=') else {
+            return Err(unknown());
+        };
+        match (k, self.is_item) {
+            ("points", true) => {
+                let n = v
+                    .parse::<i64>()
+                    .ok()
+                    .filter(|n| (0..=MAX_ITEM_POINTS).contains(n));
+                let why = format!("points must be a whole number 0-{MAX_ITEM_POINTS}, got '{v}'");
+                self.points = Some(n.ok_or_else(|| at.bad(col, why))?);
+            }
+            ("key", true) => {
+                if !valid_key_name(v) {
+                    return Err(at.bad(col, key_name_rule(v)));
+                }
+                self.key = Some(v.to_owned());
+            }
+            ("scale", _) => self.scale = at.above_zero("scale", v, col, 4.0, "")?,
+            ("speed", false) => {
+                let unit = " (cells per second)";
+                self.speed = at.above_zero("speed", v, col, MAX_CREATURE_SPEED, unit)?;
+            }
+            ("behaviour" | "behavior", false) => {
+                self.behaviour = match v {
+                    "wander" => Behaviour::Wander,
+                    "patrol" => Behaviour::Patrol,
+                    "chase" => Behaviour::Chase,
+                    _ => {
+                        let why = format!("behaviour must be wander, patrol or chase, got '{v}'");
+                        return Err(at.bad(col, why));
+                    }
+                };
+            }
+            ("frames", false) => {
+                self.frames = v.parse::<u16>().ok().filter(|&n| n >= 1).ok_or_else(|| {
+                    at.bad(
+                        col,
+                        format!("frames must be a whole number 1-65535, got '{v}'"),
+                    )
+                })?;
+            }
+            _ => return Err(unknown()),
+        }
+        Ok(())
+    }
 }
 
 impl GameLines {
@@ -211,194 +319,120 @@ impl GameLines {
         word_col: usize,
         rest_col: usize,
     ) -> Result<(), LineError> {
-        let id = kind.id();
-        let bad = |col: usize, why: String| {
-            (
-                (line, col),
-                MapErrorKind::BadValue {
-                    id: id.to_owned(),
-                    why,
-                },
-            )
+        let at = LineAt {
+            kind,
+            line,
+            word_col,
         };
-        let at = (line, word_col);
         let words = words(rest, rest_col);
-        let usage = || bad(word_col, format!("write '{}'", kind.usage()));
         let Some((pos_word, pos_col)) = words.first() else {
-            return Err(usage());
-        };
-        let number = |what: &str, s: &str, col: usize| {
-            s.parse::<f64>()
-                .ok()
-                .filter(|v| v.is_finite())
-                .ok_or_else(|| bad(col, format!("{what} needs a number, got '{s}'")))
+            return Err(at.usage());
         };
         let (xs, ys) = pos_word
             .split_once(',')
-            .ok_or_else(|| bad(*pos_col, format!("position must be x,y, got '{pos_word}'")))?;
-        let pos = Vec2::new(number("x", xs, *pos_col)?, number("y", ys, *pos_col)?);
-        let too_many =
-            |what: &'static str, limit: usize| (at, MapErrorKind::TooMany { what, limit });
+            .ok_or_else(|| at.bad(*pos_col, format!("position must be x,y, got '{pos_word}'")))?;
+        let pos = Vec2::new(at.number("x", xs, *pos_col)?, at.number("y", ys, *pos_col)?);
+        let place = (line, word_col);
         match kind {
             GameLine::Exit => {
                 if words.len() != 1 {
-                    return Err(usage());
+                    return Err(at.usage());
                 }
                 let cell = (pos.x.floor() as i64, pos.y.floor() as i64);
-                self.exits.push(ExitDef { cell, at });
+                self.exits.push(ExitDef { cell, at: place });
+                Ok(())
             }
-            GameLine::DoorLock => {
-                let [_, (name, name_col)] = &words[..] else {
-                    return Err(usage());
-                };
-                if pos.x.fract() != 0.0 || pos.y.fract() != 0.0 {
-                    return Err(bad(
-                        *pos_col,
-                        format!("the door's cell must be whole numbers x,y, got '{pos_word}'"),
-                    ));
-                }
-                if !valid_key_name(name) {
-                    return Err(bad(*name_col, key_name_rule(name)));
-                }
-                let cell = (pos.x as i64, pos.y as i64);
-                if let Some(first) = self.locks.iter().find(|l| l.cell == cell) {
-                    return Err((
-                        at,
-                        MapErrorKind::LockedTwice {
-                            cell: format!("{},{}", cell.0, cell.1),
-                            first_line: first.at.0,
-                        },
-                    ));
-                }
-                self.locks.push(DoorLock {
-                    cell,
-                    key: name.clone(),
-                    at,
-                });
+            GameLine::DoorLock => self.lock(&at, pos, &words),
+            GameLine::Item | GameLine::Creature => self.thing(&at, pos, &words),
+        }
+    }
+
+    /// A `DOORLOCK` line at `pos`: a whole cell, a key name, one lock per door.
+    fn lock(&mut self, at: &LineAt, pos: Vec2, words: &[(String, usize)]) -> Result<(), LineError> {
+        let [(pos_word, pos_col), (name, name_col)] = words else {
+            return Err(at.usage());
+        };
+        if pos.x.fract() != 0.0 || pos.y.fract() != 0.0 {
+            return Err(at.bad(
+                *pos_col,
+                format!("the door's cell must be whole numbers x,y, got '{pos_word}'"),
+            ));
+        }
+        if !valid_key_name(name) {
+            return Err(at.bad(*name_col, key_name_rule(name)));
+        }
+        let place = (at.line, at.word_col);
+        let cell = (pos.x as i64, pos.y as i64);
+        if let Some(first) = self.locks.iter().find(|l| l.cell == cell) {
+            return Err((
+                place,
+                MapErrorKind::LockedTwice {
+                    cell: format!("{},{}", cell.0, cell.1),
+                    first_line: first.at.0,
+                },
+            ));
+        }
+        self.locks.push(DoorLock {
+            cell,
+            key: name.clone(),
+            at: place,
+        });
+        Ok(())
+    }
+
+    /// An `ITEM` or `CREATURE` line at `pos`: a texture, then its options.
+    fn thing(
+        &mut self,
+        at: &LineAt,
+        pos: Vec2,
+        words: &[(String, usize)],
+    ) -> Result<(), LineError> {
+        let Some((path, path_col)) = words.get(1) else {
+            return Err(at.usage());
+        };
+        let texture = TextureRef {
+            path: path.clone(),
+            line: at.line,
+            col: *path_col,
+        };
+        let is_item = at.kind == GameLine::Item;
+        let mut o = ThingOptions::new(is_item);
+        for (word, col) in &words[2..] {
+            o.read(at, word, *col)?;
+        }
+        let place = (at.line, at.word_col);
+        let too_many =
+            |what: &'static str, limit: usize| (place, MapErrorKind::TooMany { what, limit });
+        if is_item {
+            if self.items.len() >= MAX_ITEMS {
+                return Err(too_many("ITEM lines", MAX_ITEMS));
             }
-            GameLine::Item | GameLine::Creature => {
-                let Some((path, path_col)) = words.get(1) else {
-                    return Err(usage());
-                };
-                let texture = TextureRef {
-                    path: path.clone(),
-                    line,
-                    col: *path_col,
-                };
-                let mut points = None;
-                let mut key = None;
-                let mut speed = DEFAULT_CREATURE_SPEED;
-                let mut behaviour = Behaviour::default();
-                let is_item = kind == GameLine::Item;
-                let mut scale = if is_item { 0.5 } else { 0.7 };
-                let mut frames = 4;
-                for (word, col) in &words[2..] {
-                    let col = *col;
-                    let Some((k, v)) = word.split_once('=') else {
-                        return Err(bad(col, format!("unknown option '{word}'")));
-                    };
-                    match (k, is_item) {
-                        ("points", true) => {
-                            let n = v
-                                .parse::<i64>()
-                                .ok()
-                                .filter(|n| (0..=MAX_ITEM_POINTS).contains(n));
-                            points = Some(n.ok_or_else(|| {
-                                bad(
-                                    col,
-                                    format!(
-                                        "points must be a whole number 0-{MAX_ITEM_POINTS}, got '{v}'"
-                                    ),
-                                )
-                            })?);
-                        }
-                        ("key", true) => {
-                            if !valid_key_name(v) {
-                                return Err(bad(col, key_name_rule(v)));
-                            }
-                            key = Some(v.to_owned());
-                        }
-                        ("scale", _) => {
-                            let s = number("scale", v, col)?;
-                            if !(s > 0.0 && s <= 4.0) {
-                                return Err(bad(
-                                    col,
-                                    format!("scale must be above 0 and at most 4, got '{v}'"),
-                                ));
-                            }
-                            scale = s;
-                        }
-                        ("speed", false) => {
-                            let s = number("speed", v, col)?;
-                            if !(s > 0.0 && s <= MAX_CREATURE_SPEED) {
-                                return Err(bad(
-                                    col,
-                                    format!(
-                                        "speed must be above 0 and at most {MAX_CREATURE_SPEED} (cells per second), got '{v}'"
-                                    ),
-                                ));
-                            }
-                            speed = s;
-                        }
-                        ("behaviour" | "behavior", false) => {
-                            behaviour = match v {
-                                "wander" => Behaviour::Wander,
-                                "patrol" => Behaviour::Patrol,
-                                "chase" => Behaviour::Chase,
-                                _ => {
-                                    return Err(bad(
-                                        col,
-                                        format!(
-                                            "behaviour must be wander, patrol or chase, got '{v}'"
-                                        ),
-                                    ))
-                                }
-                            };
-                        }
-                        ("frames", false) => {
-                            frames =
-                                v.parse::<u16>().ok().filter(|&n| n >= 1).ok_or_else(|| {
-                                    bad(
-                                        col,
-                                        format!("frames must be a whole number 1-65535, got '{v}'"),
-                                    )
-                                })?;
-                        }
-                        _ => return Err(bad(col, format!("unknown option '{word}'"))),
-                    }
-                }
-                if is_item {
-                    if self.items.len() >= MAX_ITEMS {
-                        return Err(too_many("ITEM lines", MAX_ITEMS));
-                    }
-                    let points = points.unwrap_or(if key.is_some() {
-                        0
-                    } else {
-                        DEFAULT_TREASURE_POINTS
-                    });
-                    self.items.push(ItemDef {
-                        pos,
-                        texture,
-                        points,
-                        key,
-                        scale,
-                        at,
-                    });
-                } else {
-                    if self.creatures.len() >= MAX_CREATURES {
-                        return Err(too_many("CREATURE lines", MAX_CREATURES));
-                    }
-                    self.creatures.push(CreatureDef {
-                        pos,
-                        texture,
-                        speed,
-                        behaviour,
-                        scale,
-                        frames,
-                        at,
-                    });
-                }
+            let treasure = if o.key.is_some() {
+                0
+            } else {
+                DEFAULT_TREASURE_POINTS
+            };
+            self.items.push(ItemDef {
+                pos,
+                texture,
+                points: o.points.unwrap_or(treasure),
+                key: o.key,
+                scale: o.scale,
+                at: place,
+            });
+        } else {
+            if self.creatures.len() >= MAX_CREATURES {
+                return Err(too_many("CREATURE lines", MAX_CREATURES));
             }
+            self.creatures.push(CreatureDef {
+                pos,
+                texture,
+                speed: o.speed,
+                behaviour: o.behaviour,
+                scale: o.scale,
+                frames: o.frames,
+                at: place,
+            });
         }
         Ok(())
     }

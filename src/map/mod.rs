@@ -3,10 +3,13 @@
 mod error;
 mod fog;
 mod game_objects;
+mod grid;
+mod header;
 mod lamp;
 mod parse;
 mod read;
 mod sprite;
+mod words;
 
 pub use error::{MapError, MapErrorKind};
 pub use fog::Fog;
@@ -14,8 +17,9 @@ pub use game_objects::{
     Behaviour, CreatureDef, DoorLock, ExitDef, ItemDef, DEFAULT_CREATURE_SPEED,
     DEFAULT_TREASURE_POINTS, MAX_CREATURES, MAX_CREATURE_SPEED, MAX_ITEMS, MAX_ITEM_POINTS,
 };
+pub use header::{MAX_LIGHTS, MAX_SPRITES};
 pub use lamp::{LightDef, MAX_LIGHT_RADIUS};
-pub use parse::{parse_map, MAX_CELLS, MAX_LIGHTS, MAX_LIT_CELLS, MAX_SPRITES};
+pub use parse::{parse_map, MAX_CELLS, MAX_LIT_CELLS};
 pub use read::{read_map_file, MAX_MAP_BYTES};
 pub use sprite::{Blend, ColourKey, SpriteDef, DEFAULT_SOLID_RADIUS};
 

@@ -1,44 +1,15 @@
 //! The `.cub` reader: header identifiers, then a closed grid with one player.
 
-use std::collections::HashMap;
-
-use super::game_objects::{GameLine, GameLines};
-use super::lamp::parse_light;
-use super::sprite::parse_sprite;
-use super::{
-    Cell, DoorPlane, LightDef, Map, MapError, MapErrorKind, Span, SpriteDef, Start, Surface,
-    TextureRef, Zone,
-};
+use super::grid::{Grid, GridError, GridRules};
+use super::header::{is_blank_char, too_many_sprites, Header, MAX_SPRITES};
+use super::{Map, MapError, MapErrorKind, Surface, TextureRef};
 use crate::color::Rgb;
-use crate::map::Fog;
-use crate::vec2::Vec2;
 
 /// More cells than this is refused instead of allocating without bound.
 pub const MAX_CELLS: usize = 1 << 24;
 
-/// Most `LIGHT` lines: each is baked over up to 128×128 samples, one ray cast per sample, so
-/// the count multiplies load time (10 000 lights took over a minute).
-pub const MAX_LIGHTS: usize = 256;
-
 /// Largest map (in cells) that may have lights: the light map holds 16 samples per cell.
 pub const MAX_LIT_CELLS: usize = 1 << 20;
-
-/// Most sprites, `SPRITE` lines and legacy `2` cells together: every frame sorts and draws them.
-pub const MAX_SPRITES: usize = 4096;
-
-/// Header keys that must appear, in the order a missing one is reported.
-const REQUIRED: [(&str, &str); 6] = [
-    ("NO", "north wall texture"),
-    ("SO", "south wall texture"),
-    ("WE", "west wall texture"),
-    ("EA", "east wall texture"),
-    ("F", "floor colour"),
-    ("C", "ceiling colour"),
-];
-
-fn is_blank_char(c: char) -> bool {
-    c == ' ' || c == '\t'
-}
 
 /// Whether a header-section line is the first line of the grid: it starts with a digit after
 /// any blanks (a closed map's first row holds only walls and void, so "WE" or "N" never is).
@@ -112,547 +83,43 @@ pub fn parse_map(file: &str, bytes: &[u8]) -> Result<Map, MapError> {
     build(file, header, &grid)
 }
 
-/// The header identifiers seen so far, each with the line that gave it.
-#[derive(Default)]
-struct Header {
-    seen: HashMap<String, usize>,
-    faces: [Option<TextureRef>; 4],
-    wall_types: [Option<TextureRef>; 10],
-    floor: Option<Surface>,
-    ceiling: Option<Surface>,
-    floor_texture: Option<TextureRef>,
-    ceiling_texture: Option<TextureRef>,
-    zones: Vec<Zone>,
-    sprite_texture: Option<TextureRef>,
-    resolution: Option<(u32, u32)>,
-    sprite_defs: Vec<SpriteDef>,
-    lights: Vec<LightDef>,
-    door_texture: Option<TextureRef>,
-    fog: Option<Fog>,
-    shade: Option<f64>,
-    game: GameLines,
-}
-
-type LineError = ((usize, usize), MapErrorKind);
-
-impl Header {
-    fn has(&self, id: &str) -> bool {
-        self.seen.contains_key(id)
-    }
-
-    fn check_complete(&self) -> Result<(), MapErrorKind> {
-        for (id, what) in REQUIRED {
-            let satisfied =
-                self.has(id) || (id == "F" && self.has("FT")) || (id == "C" && self.has("CT"));
-            if !satisfied {
-                return Err(MapErrorKind::Missing(id, what));
-            }
-        }
-        Ok(())
-    }
-
-    fn line(&mut self, line_no: usize, line: &str) -> Result<(), LineError> {
-        let start = line.find(|c: char| !is_blank_char(c)).unwrap_or(0);
-        let word_col = line[..start].chars().count() + 1;
-        let rest_at = line[start..]
-            .find(is_blank_char)
-            .map_or(line.len(), |p| start + p);
-        let word = &line[start..rest_at];
-        let rest = &line[rest_at..];
-        let rest_col = line[..rest_at].chars().count() + 1;
-        let at = (line_no, word_col);
-        let kind = classify(word).ok_or_else(|| {
-            let mut chars = word.chars();
-            match (chars.next(), chars.next()) {
-                (Some(c @ ('F' | 'C')), Some(d)) if d.is_ascii_digit() || d == ',' => {
-                    (at, MapErrorKind::NoSpaceAfter(c.to_string()))
-                }
-                _ => (at, MapErrorKind::UnknownIdentifier(word.to_owned())),
-            }
-        })?;
-        if let Ident::Game(line) = kind {
-            return self.game.line(line, rest, line_no, word_col, rest_col);
-        }
-        if let Ident::Light = kind {
-            if self.lights.len() >= MAX_LIGHTS {
-                let what = "LIGHT lines";
-                return Err((
-                    at,
-                    MapErrorKind::TooMany {
-                        what,
-                        limit: MAX_LIGHTS,
-                    },
-                ));
-            }
-            let def = parse_light(rest, at).map_err(|k| (at, k))?;
-            self.lights.push(def);
-            return Ok(());
-        }
-        if let Ident::SpriteEntry = kind {
-            if self.sprite_defs.len() >= MAX_SPRITES {
-                return Err((at, too_many_sprites()));
-            }
-            let def = parse_sprite(rest, line_no, word_col, rest_col).map_err(|k| (at, k))?;
-            self.sprite_defs.push(def);
-            return Ok(());
-        }
-        if let Some(&first_line) = self.seen.get(word) {
-            return Err((
-                at,
-                MapErrorKind::Duplicate {
-                    id: word.to_owned(),
-                    first_line,
-                },
-            ));
-        }
-        self.seen.insert(word.to_owned(), line_no);
-        match kind {
-            Ident::Face(i) => self.faces[i] = Some(one_path(word, rest, line_no, rest_col, at)?),
-            Ident::WallType(d) => {
-                self.wall_types[d] = Some(one_path(word, rest, line_no, rest_col, at)?)
-            }
-            Ident::Sprite => {
-                self.sprite_texture = Some(one_path(word, rest, line_no, rest_col, at)?)
-            }
-            Ident::FloorTexture => {
-                self.floor_texture = Some(one_path(word, rest, line_no, rest_col, at)?)
-            }
-            Ident::CeilingTexture => {
-                self.ceiling_texture = Some(one_path(word, rest, line_no, rest_col, at)?);
-            }
-            Ident::Floor | Ident::Ceiling => {
-                if rest.trim_matches(is_blank_char).is_empty() {
-                    return Err((at, MapErrorKind::NoSpaceAfter(word.to_owned())));
-                }
-                let c = Surface::Colour(colour(word, rest).map_err(|k| (at, k))?);
-                if matches!(kind, Ident::Floor) {
-                    self.floor = Some(c);
-                } else {
-                    self.ceiling = Some(c);
-                }
-            }
-            Ident::Zone { part, zone } => {
-                if self.zones.len() <= zone {
-                    self.zones.resize(zone + 1, Zone::default());
-                }
-                if let ZonePart::Heights = part {
-                    let span = heights(word, rest, line_no, rest_col, at)?;
-                    self.zones[zone].heights = Some(span);
-                    return Ok(());
-                }
-                let value = rest.trim_matches(is_blank_char);
-                let surface = if value.contains(',') {
-                    Surface::Colour(colour(word, rest).map_err(|k| (at, k))?)
-                } else {
-                    Surface::Texture(one_path(word, rest, line_no, rest_col, at)?)
-                };
-                let z = &mut self.zones[zone];
-                match part {
-                    ZonePart::Floor => z.floor = Some(surface),
-                    ZonePart::Ceiling => z.ceiling = Some(surface),
-                    ZonePart::Wall => z.wall = Some(surface),
-                    ZonePart::Heights => unreachable!("returned above"),
-                }
-            }
-            Ident::DoorTexture => {
-                self.door_texture = Some(one_path(word, rest, line_no, rest_col, at)?);
-            }
-            Ident::Fog => self.fog = Some(fog(rest).map_err(|k| (at, k))?),
-            Ident::Shade => {
-                let v = rest.trim_matches(is_blank_char);
-                let k = v.parse::<f64>().ok().filter(|k| k.is_finite() && *k >= 0.0);
-                let why = format!("expected a falloff number >= 0, got '{v}'");
-                self.shade = Some(k.ok_or((
-                    at,
-                    MapErrorKind::BadValue {
-                        id: "SHADE".to_owned(),
-                        why,
-                    },
-                ))?);
-            }
-            Ident::SpriteEntry | Ident::Light | Ident::Game(_) => {
-                unreachable!("handled before the duplicate check")
-            }
-            Ident::Resolution => {
-                let nums: Vec<u32> = rest
-                    .split_whitespace()
-                    .filter_map(|w| w.parse().ok())
-                    .collect();
-                if let [w, h] = nums[..] {
-                    self.resolution = Some((w, h));
-                }
-            }
-        }
-        Ok(())
-    }
-}
-
-/// What a header identifier sets.
-#[derive(Clone, Copy)]
-enum Ident {
-    Face(usize),
-    WallType(usize),
-    Sprite,
-    Floor,
-    Ceiling,
-    FloorTexture,
-    CeilingTexture,
-    Zone { part: ZonePart, zone: usize },
-    Resolution,
-    SpriteEntry,
-    DoorTexture,
-    Fog,
-    Shade,
-    Light,
-    Game(GameLine),
-}
-
-/// Which line of a zone letter: `Fz`, `Cz`, `Hz` or `Wz`.
-#[derive(Clone, Copy)]
-enum ZonePart {
-    Floor,
-    Ceiling,
-    Heights,
-    Wall,
-}
-
-fn classify(word: &str) -> Option<Ident> {
-    Some(match word {
-        "NO" => Ident::Face(0),
-        "SO" => Ident::Face(1),
-        "WE" => Ident::Face(2),
-        "EA" => Ident::Face(3),
-        "S" => Ident::Sprite,
-        "F" => Ident::Floor,
-        "C" => Ident::Ceiling,
-        "FT" => Ident::FloorTexture,
-        "CT" => Ident::CeilingTexture,
-        "R" => Ident::Resolution,
-        "SPRITE" => Ident::SpriteEntry,
-        "TD" => Ident::DoorTexture,
-        "FOG" => Ident::Fog,
-        "SHADE" => Ident::Shade,
-        "LIGHT" => Ident::Light,
-        _ if GameLine::classify(word).is_some() => Ident::Game(GameLine::classify(word)?),
-        _ => {
-            let b = word.as_bytes();
-            match b {
-                [b'T', d @ b'1'..=b'9'] => Ident::WallType(usize::from(d - b'0')),
-                [p @ (b'F' | b'C' | b'H' | b'W'), z @ b'a'..=b'z'] => Ident::Zone {
-                    part: match p {
-                        b'F' => ZonePart::Floor,
-                        b'C' => ZonePart::Ceiling,
-                        b'H' => ZonePart::Heights,
-                        _ => ZonePart::Wall,
-                    },
-                    zone: usize::from(z - b'a'),
-                },
-                _ => return None,
-            }
-        }
-    })
-}
-
-fn one_path(
-    id: &str,
-    rest: &str,
-    line: usize,
-    rest_col: usize,
-    at: (usize, usize),
-) -> Result<TextureRef, LineError> {
-    let mut words = rest.split(is_blank_char).filter(|w| !w.is_empty());
-    match (words.next(), words.next()) {
-        (Some(path), None) => {
-            let lead = rest.chars().take_while(|&c| is_blank_char(c)).count();
-            Ok(TextureRef {
-                path: path.to_owned(),
-                line,
-                col: rest_col + lead,
-            })
-        }
-        _ => Err((at, MapErrorKind::NeedsOnePath(id.to_owned()))),
-    }
-}
-
-/// Parses `r,g,b` (integers 0–255; blanks around numbers tolerated).
-fn colour(id: &str, rest: &str) -> Result<Rgb, MapErrorKind> {
-    let bad = || MapErrorKind::BadColour {
-        id: id.to_owned(),
-        got: rest.trim_matches(is_blank_char).to_owned(),
-    };
-    let parts: Vec<&str> = rest
-        .split(',')
-        .map(|p| p.trim_matches(is_blank_char))
-        .collect();
-    let [r, g, b] = parts[..] else {
-        return Err(bad());
-    };
-    let channel = |s: &str| -> Option<u8> {
-        if s.is_empty() || s.len() > 3 || !s.bytes().all(|c| c.is_ascii_digit()) {
-            return None;
-        }
-        s.parse::<u16>().ok().and_then(|v| u8::try_from(v).ok())
-    };
-    match (channel(r), channel(g), channel(b)) {
-        (Some(r), Some(g), Some(b)) => Ok(Rgb::new(r, g, b)),
-        _ => Err(bad()),
-    }
-}
-
-/// Parses `FLOOR CEIL` of an `Hz` line: two numbers with MIN_FLOOR <= FLOOR < CEIL <= MAX_CEIL;
-/// a bad one is reported at its own column.
-fn heights(
-    id: &str,
-    rest: &str,
-    line: usize,
-    rest_col: usize,
-    at: (usize, usize),
-) -> Result<Span, LineError> {
-    let bad = |col: usize, why: String| {
-        (
-            (line, col),
-            MapErrorKind::BadValue {
-                id: id.to_owned(),
-                why,
-            },
-        )
-    };
-    // Each word with its 1-based column.
-    let mut words = Vec::new();
-    let mut current: Option<(usize, String)> = None;
-    for (col, c) in (rest_col..).zip(rest.chars()) {
-        if is_blank_char(c) {
-            words.extend(current.take());
-        } else {
-            current
-                .get_or_insert_with(|| (col, String::new()))
-                .1
-                .push(c);
-        }
-    }
-    words.extend(current);
-    let [(fcol, f), (ccol, c)] = &words[..] else {
-        let got = rest.trim_matches(is_blank_char);
-        return Err(bad(
-            if words.len() > 2 { words[2].0 } else { at.1 },
-            format!("expected 'FLOOR CEIL' (two heights in wall units), got '{got}'"),
-        ));
-    };
-    let number = |col: usize, w: &str, what: &str| -> Result<f64, LineError> {
-        w.parse::<f64>()
-            .ok()
-            .filter(|v| v.is_finite())
-            .ok_or_else(|| bad(col, format!("{what} height '{w}' is not a number")))
-    };
-    let floor = number(*fcol, f, "floor")?;
-    let ceil = number(*ccol, c, "ceiling")?;
-    if floor < Span::MIN_FLOOR {
-        return Err(bad(
-            *fcol,
-            format!("floor height {f} is below {}", Span::MIN_FLOOR),
-        ));
-    }
-    if ceil > Span::MAX_CEIL {
-        return Err(bad(
-            *ccol,
-            format!("ceiling height {c} is above {}", Span::MAX_CEIL),
-        ));
-    }
-    if floor >= ceil {
-        return Err(bad(
-            *ccol,
-            format!("ceiling height {c} must be above the floor height {f}"),
-        ));
-    }
-    Ok(Span { floor, ceil })
-}
-
-/// Parses `r,g,b density` (density a number >= 0, fraction left per cell is e^-density).
-fn fog(rest: &str) -> Result<Fog, MapErrorKind> {
-    let v = rest.trim_matches(is_blank_char);
-    let bad = || MapErrorKind::BadValue {
-        id: "FOG".to_owned(),
-        why: format!("expected 'r,g,b density', got '{v}'"),
-    };
-    let (rgb, density) = v.rsplit_once(is_blank_char).ok_or_else(bad)?;
-    let colour = colour("FOG", rgb)?;
-    let density = density
-        .parse::<f64>()
-        .ok()
-        .filter(|d| d.is_finite() && *d >= 0.0)
-        .ok_or_else(bad)?;
-    Ok(Fog { colour, density })
-}
-
-fn too_many_sprites() -> MapErrorKind {
-    MapErrorKind::TooMany {
-        what: "sprites (SPRITE lines and '2' cells)",
-        limit: MAX_SPRITES,
-    }
-}
-
 /// Turns the grid lines into cells, then checks players and closure.
-fn build(file: &str, h: Header, grid: &[(usize, &str)]) -> Result<Map, MapError> {
-    let err = |at: Option<(usize, usize)>, kind| MapError {
+fn build(file: &str, h: Header, lines: &[(usize, &str)]) -> Result<Map, MapError> {
+    let err = |(at, kind): GridError| MapError {
         file: file.to_owned(),
         at,
         kind,
     };
-    let width = grid
-        .iter()
-        .map(|(_, l)| l.chars().count())
-        .max()
-        .unwrap_or(0);
-    let height = grid.len();
-    if width.saturating_mul(height) > MAX_CELLS {
-        return Err(err(
-            Some((grid[0].0, 1)),
-            MapErrorKind::TooLarge(width * height, MAX_CELLS),
-        ));
+    let mut grid = Grid::sized(lines);
+    let cells = grid.width.saturating_mul(grid.height);
+    if cells > MAX_CELLS {
+        let kind = MapErrorKind::TooLarge(grid.width * grid.height, MAX_CELLS);
+        return Err(err((Some((lines[0].0, 1)), kind)));
     }
     if let Some(first) = h.lights.first() {
-        if width * height > MAX_LIT_CELLS {
+        if cells > MAX_LIT_CELLS {
             let kind = MapErrorKind::TooLargeToLight {
-                cells: width * height,
+                cells,
                 limit: MAX_LIT_CELLS,
             };
-            return Err(err(Some(first.at), kind));
+            return Err(err((Some(first.at), kind)));
         }
     }
-    let sprite_is_wall = h.wall_types[2].is_some();
-    let mut cells = vec![Cell::Void; width * height];
-    let mut start: Option<(Start, usize, usize)> = None;
-    let mut sprites = Vec::new();
-    for (j, &(line_no, line)) in grid.iter().enumerate() {
-        for (i, ch) in line.chars().enumerate() {
-            let at = Some((line_no, i + 1));
-            cells[j * width + i] = match ch {
-                ' ' => Cell::Void,
-                '0' => Cell::Floor { zone: 0 },
-                '2' if !sprite_is_wall => {
-                    if sprites.len() + h.sprite_defs.len() >= MAX_SPRITES {
-                        return Err(err(at, too_many_sprites()));
-                    }
-                    sprites.push(Vec2::new(i as f64 + 0.5, j as f64 + 0.5));
-                    Cell::Floor { zone: 0 }
-                }
-                '1'..='9' => Cell::Wall(ch as u8 - b'0'),
-                // The plane is fixed below, once the neighbours are known.
-                'D' => Cell::Door(DoorPlane::X),
-                'N' | 'S' | 'E' | 'W' => {
-                    if let Some((_, l, c)) = start {
-                        return Err(err(
-                            at,
-                            MapErrorKind::SecondPlayer {
-                                first_line: l,
-                                first_col: c,
-                            },
-                        ));
-                    }
-                    start = Some((
-                        Start {
-                            cell: (i, j),
-                            facing: ch,
-                        },
-                        line_no,
-                        i + 1,
-                    ));
-                    Cell::Floor { zone: 0 }
-                }
-                'a'..='z' => {
-                    let z = usize::from(ch as u8 - b'a');
-                    if h.zones.get(z).is_none_or(|zone| {
-                        zone.floor.is_none()
-                            && zone.ceiling.is_none()
-                            && zone.heights.is_none()
-                            && zone.wall.is_none()
-                    }) {
-                        return Err(err(at, MapErrorKind::UndefinedZone(ch)));
-                    }
-                    Cell::Floor { zone: z as u8 + 1 }
-                }
-                _ => return Err(err(at, MapErrorKind::BadMapChar(ch))),
-            };
-        }
-    }
-    let Some((start, _, _)) = start else {
-        return Err(err(None, MapErrorKind::NoPlayer));
-    };
-    let at = |i: i64, j: i64| -> Cell {
-        if i < 0 || j < 0 || i as usize >= width || j as usize >= height {
-            Cell::Void
-        } else {
-            cells[j as usize * width + i as usize]
-        }
-    };
-    for (j, &(line_no, line)) in grid.iter().enumerate() {
-        for (i, ch) in line.chars().enumerate() {
-            if !matches!(cells[j * width + i], Cell::Floor { .. } | Cell::Door(_)) {
-                continue;
-            }
-            let (x, y) = (i as i64, j as i64);
-            let open = [(x - 1, y), (x + 1, y), (x, y - 1), (x, y + 1)]
-                .iter()
-                .any(|&(a, b)| at(a, b) == Cell::Void);
-            if open {
-                let what = match ch {
-                    'N' | 'S' | 'E' | 'W' => "player",
-                    '2' => "sprite",
-                    'D' => "door",
-                    'a'..='z' => "zone floor",
-                    _ => "floor",
-                };
-                let kind = MapErrorKind::NotClosed {
-                    what,
-                    line: line_no,
-                    col: i + 1,
-                };
-                return Err(err(Some((line_no, i + 1)), kind));
-            }
-        }
-    }
-    let mut planes = Vec::new();
-    for (j, &(line_no, line)) in grid.iter().enumerate() {
-        for (i, ch) in line.chars().enumerate() {
-            if ch != 'D' {
-                continue;
-            }
-            let (x, y) = (i as i64, j as i64);
-            let wall = |a: i64, b: i64| matches!(at(a, b), Cell::Wall(_));
-            let plane = if wall(x - 1, y) && wall(x + 1, y) {
-                DoorPlane::Y
-            } else if wall(x, y - 1) && wall(x, y + 1) {
-                DoorPlane::X
-            } else {
-                let kind = MapErrorKind::DoorNotFramed {
-                    line: line_no,
-                    col: i + 1,
-                };
-                return Err(err(Some((line_no, i + 1)), kind));
-            };
-            planes.push((j * width + i, plane));
-        }
-    }
-    for def in &h.sprite_defs {
-        let (x, y) = (def.pos.x.floor() as i64, def.pos.y.floor() as i64);
-        if !matches!(at(x, y), Cell::Floor { .. }) {
-            let kind = MapErrorKind::SpriteOffFloor(format!("{},{}", def.pos.x, def.pos.y));
-            return Err(err(Some(def.at), kind));
-        }
-    }
-    for def in &h.lights {
-        let (x, y) = (def.pos.x.floor() as i64, def.pos.y.floor() as i64);
-        if !matches!(at(x, y), Cell::Floor { .. } | Cell::Door(_)) {
-            let kind = MapErrorKind::LightOffFloor(format!("{},{}", def.pos.x, def.pos.y));
-            return Err(err(Some(def.at), kind));
-        }
-    }
+    let placed = grid
+        .read(&GridRules {
+            sprite_is_wall: h.wall_types[2].is_some(),
+            sprites_left: MAX_SPRITES.saturating_sub(h.sprite_defs.len()),
+            zones: &h.zones,
+            too_many_sprites: too_many_sprites(),
+        })
+        .map_err(err)?;
+    grid.check_closed().map_err(err)?;
+    let planes = grid.door_planes().map_err(err)?;
+    grid.check_placed(&h.sprite_defs, &h.lights).map_err(err)?;
     h.game
-        .check(at)
-        .map_err(|(place, kind)| err(Some(place), kind))?;
-    for (k, plane) in planes {
-        cells[k] = Cell::Door(plane);
-    }
+        .check(|i, j| grid.at(i, j))
+        .map_err(|(place, kind)| err((Some(place), kind)))?;
+    grid.set_doors(planes);
     let surface = |tex: Option<TextureRef>, colour: Option<Surface>| {
         tex.map(Surface::Texture)
             .or(colour)
@@ -665,17 +132,17 @@ fn build(file: &str, h: Header, grid: &[(usize, &str)]) -> Result<Map, MapError>
     Ok(Map {
         file: file.to_owned(),
         name,
-        width,
-        height,
-        cells,
-        start,
+        width: grid.width,
+        height: grid.height,
+        cells: grid.cells,
+        start: placed.start,
         faces: [no, so, we, ea].map(|f| f.expect("checked by check_complete")),
         wall_types: h.wall_types,
         floor: surface(h.floor_texture, h.floor),
         ceiling: surface(h.ceiling_texture, h.ceiling),
         zones: h.zones,
         sprite_texture: h.sprite_texture,
-        sprites,
+        sprites: placed.sprites,
         resolution: h.resolution,
         sprite_defs: h.sprite_defs,
         lights: h.lights,
@@ -691,7 +158,9 @@ fn build(file: &str, h: Header, grid: &[(usize, &str)]) -> Result<Map, MapError>
 
 #[cfg(test)]
 mod tests {
+    use super::super::{Cell, Span, Start};
     use super::*;
+    use crate::vec2::Vec2;
 
     const HEADER: &str =
         "NO ./n.png\nSO ./s.png\nWE ./w.png\nEA ./e.png\nF 220,100,0\nC 225,30,0\n";

@@ -5,6 +5,7 @@
 //!        [views=1|8] [facing=DEG] [frames=N] [fps=F] [key=r,g,b|none]
 //! ```
 
+use super::words::words;
 use super::{MapErrorKind, TextureRef};
 use crate::color::Rgb;
 use crate::vec2::Vec2;
@@ -121,24 +122,7 @@ pub(super) fn parse_sprite(
     word_col: usize,
     rest_col: usize,
 ) -> Result<SpriteDef, MapErrorKind> {
-    let mut words = Vec::new();
-    let mut cur = String::new();
-    let mut cur_col = rest_col;
-    for (col, c) in (rest_col..).zip(rest.chars()) {
-        if c == ' ' || c == '\t' {
-            if !cur.is_empty() {
-                words.push((std::mem::take(&mut cur), cur_col));
-            }
-        } else {
-            if cur.is_empty() {
-                cur_col = col;
-            }
-            cur.push(c);
-        }
-    }
-    if !cur.is_empty() {
-        words.push((cur, cur_col));
-    }
+    let words = words(rest, rest_col);
     let [(pos, _), (path, path_col), options @ ..] = &words[..] else {
         return Err(bad("write 'SPRITE x,y texture [options]'"));
     };
@@ -156,94 +140,114 @@ pub(super) fn parse_sprite(
     );
     def.solid = None;
     def.at = (line, word_col);
-    let mut hang = false;
-    let mut offset_given = false;
+    let mut height = Height::default();
     for (word, _) in options {
         let (key, value) = match word.split_once('=') {
             Some((k, v)) => (k, Some(v)),
             None => (word.as_str(), None),
         };
-        let need = || value.ok_or_else(|| bad(format!("{key} needs a value ({key}=...)")));
-        match key {
-            "scale" => {
-                let v = need()?;
-                def.scale = match v.split_once(',') {
-                    Some((w, h)) => (positive("scale", w)?, positive("scale", h)?),
-                    None => {
-                        let s = positive("scale", v)?;
-                        (s, s)
-                    }
-                };
-            }
-            "offset" => {
-                def.offset = number("offset", need()?)?;
-                offset_given = true;
-            }
-            "hang" if value.is_none() => hang = true,
-            "solid" => {
-                def.solid = Some(match value {
-                    Some(v) => positive("solid", v)?,
-                    None => DEFAULT_SOLID_RADIUS,
-                });
-            }
-            "blend" => {
-                def.blend = match need()? {
-                    "normal" => Blend::Normal,
-                    "average" => Blend::Average,
-                    "additive" => Blend::Additive,
-                    other => {
-                        return Err(bad(format!(
-                            "blend must be normal, average or additive, got '{other}'"
-                        )))
-                    }
-                };
-            }
-            "views" => {
-                def.views = match need()? {
-                    "1" => 1,
-                    "8" => 8,
-                    other => return Err(bad(format!("views must be 1 or 8, got '{other}'"))),
-                };
-            }
-            "facing" => def.facing_deg = number("facing", need()?)?,
-            "frames" => {
-                let v = need()?;
-                def.frames = v.parse::<u16>().ok().filter(|&n| n >= 1).ok_or_else(|| {
-                    bad(format!("frames must be a whole number 1-65535, got '{v}'"))
-                })?;
-            }
-            "fps" => {
-                let v = need()?;
-                let f = number("fps", v)?;
-                if f < 0.0 {
-                    return Err(bad(format!("fps must not be negative, got '{v}'")));
-                }
-                def.fps = f;
-            }
-            "key" => {
-                def.key = match need()? {
-                    "none" => ColourKey::None,
-                    v => {
-                        let parts: Vec<Option<u8>> =
-                            v.split(',').map(|p| p.trim().parse::<u8>().ok()).collect();
-                        match parts[..] {
-                            [Some(r), Some(g), Some(b)] => ColourKey::Colour(Rgb::new(r, g, b)),
-                            _ => return Err(bad(format!("key must be r,g,b or none, got '{v}'"))),
-                        }
-                    }
-                };
-            }
-            _ => return Err(bad(format!("unknown option '{word}'"))),
-        }
+        option(&mut def, &mut height, word, key, value)?;
     }
-    if hang {
-        if offset_given {
+    if height.hang {
+        if height.offset_given {
             return Err(bad("give either offset=... or hang, not both"));
         }
         def.offset = 1.0 - def.scale.1;
         def.hang = true;
     }
     Ok(def)
+}
+
+/// Where the line puts the sprite's foot: `offset=` and `hang` exclude each other, and `hang`
+/// needs the height `scale=` gives, wherever it is written.
+#[derive(Default)]
+struct Height {
+    hang: bool,
+    offset_given: bool,
+}
+
+/// Reads one option `word` (`key`, with its `value` after `=` if any) into `def`.
+fn option(
+    def: &mut SpriteDef,
+    height: &mut Height,
+    word: &str,
+    key: &str,
+    value: Option<&str>,
+) -> Result<(), MapErrorKind> {
+    let need = || value.ok_or_else(|| bad(format!("{key} needs a value ({key}=...)")));
+    match key {
+        "scale" => {
+            let v = need()?;
+            def.scale = match v.split_once(',') {
+                Some((w, h)) => (positive("scale", w)?, positive("scale", h)?),
+                None => {
+                    let s = positive("scale", v)?;
+                    (s, s)
+                }
+            };
+        }
+        "offset" => {
+            def.offset = number("offset", need()?)?;
+            height.offset_given = true;
+        }
+        "hang" if value.is_none() => height.hang = true,
+        "solid" => {
+            def.solid = Some(match value {
+                Some(v) => positive("solid", v)?,
+                None => DEFAULT_SOLID_RADIUS,
+            });
+        }
+        "blend" => {
+            def.blend = match need()? {
+                "normal" => Blend::Normal,
+                "average" => Blend::Average,
+                "additive" => Blend::Additive,
+                other => {
+                    return Err(bad(format!(
+                        "blend must be normal, average or additive, got '{other}'"
+                    )))
+                }
+            };
+        }
+        "views" => {
+            def.views = match need()? {
+                "1" => 1,
+                "8" => 8,
+                other => return Err(bad(format!("views must be 1 or 8, got '{other}'"))),
+            };
+        }
+        "facing" => def.facing_deg = number("facing", need()?)?,
+        "frames" => {
+            let v = need()?;
+            def.frames =
+                v.parse::<u16>().ok().filter(|&n| n >= 1).ok_or_else(|| {
+                    bad(format!("frames must be a whole number 1-65535, got '{v}'"))
+                })?;
+        }
+        "fps" => {
+            let v = need()?;
+            let f = number("fps", v)?;
+            if f < 0.0 {
+                return Err(bad(format!("fps must not be negative, got '{v}'")));
+            }
+            def.fps = f;
+        }
+        "key" => def.key = colour_key(need()?)?,
+        _ => return Err(bad(format!("unknown option '{word}'"))),
+    }
+    Ok(())
+}
+
+/// The `key=` option: `none`, or the `r,g,b` colour that is transparent.
+fn colour_key(v: &str) -> Result<ColourKey, MapErrorKind> {
+    if v == "none" {
+        return Ok(ColourKey::None);
+    }
+    let parts: Vec<Option<u8>> = v.split(',').map(|p| p.trim().parse::<u8>().ok()).collect();
+    match parts[..] {
+        [Some(r), Some(g), Some(b)] => Ok(ColourKey::Colour(Rgb::new(r, g, b))),
+        _ => Err(bad(format!("key must be r,g,b or none, got '{v}'"))),
+    }
 }
 
 #[cfg(test)]

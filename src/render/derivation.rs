@@ -53,6 +53,11 @@ pub enum PerpFrom {
     },
 }
 
+/// The parts of a derivation's setup as a reader goes through them: `cameraX`; `rayDir`;
+/// `deltaDist` with the start cell; X's `step` and first `sideDist`; Y's. The ray pane scrolls
+/// into the setup a part at a time.
+pub const SETUP_PARTS: usize = 5;
+
 /// Every number of one column's derivation, in the order Lode's tutorial meets them.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Derivation {

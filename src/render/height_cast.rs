@@ -189,6 +189,60 @@ impl Window {
             self.bottom = a;
         }
     }
+    /// The door in the cell the ray is in, hit at `hit` after entering at `t_in`: the cell's
+    /// ceiling and floor up to the door, then the door's panel on every row still open.
+    #[inline]
+    fn door(&mut self, flat: FlatSpan, span: Span, hit: &ColumnHit, proj: &Projection, t_in: f64) {
+        let t = hit.perp_dist;
+        self.flats(
+            FlatSpan {
+                dist: (t_in, t),
+                ..flat
+            },
+            span,
+            proj.row_at(span.ceil, t),
+            proj.row_at(span.floor, t),
+        );
+        let face = FaceSpan {
+            cell: hit.cell,
+            what: hit.what,
+            side: hit.side,
+            perp_dist: t,
+            wall_x: hit.wall_x,
+            kind: FaceKind::Wall,
+            z: (span.floor, span.ceil),
+            rows: (0, 0),
+        };
+        let (top, bottom) = (self.top, self.bottom);
+        self.face(face, top, bottom);
+    }
+
+    /// Crossing from a cell of `span` into one of `next`: the lintel where the ceiling comes
+    /// down, from the window's top, and the step where the floor goes up, to its bottom.
+    #[inline]
+    fn crossing(&mut self, face: FaceSpan, span: Span, next: Span, proj: &Projection) {
+        let t = face.perp_dist;
+        let top = self.top;
+        self.face(
+            FaceSpan {
+                kind: FaceKind::Lintel,
+                z: (next.ceil, span.ceil),
+                ..face
+            },
+            top,
+            proj.row_at(next.ceil, t),
+        );
+        let bottom = self.bottom;
+        self.face(
+            FaceSpan {
+                kind: FaceKind::Step,
+                z: (span.floor, next.floor),
+                ..face
+            },
+            proj.row_at(next.floor, t),
+            bottom,
+        );
+    }
 }
 
 /// Where a ray crossing at distance `t` meets its face, along the face in [0, 1).
@@ -242,28 +296,8 @@ pub fn cast_column(
         };
         if let Cell::Door(plane) = what {
             if let Some(hit) = door_hit(doors, plane, cell, pos, ray, t_in, t_exit) {
+                win.door(flat, span, &hit, proj, t_in);
                 let t = hit.perp_dist;
-                win.flats(
-                    FlatSpan {
-                        dist: (t_in, t),
-                        ..flat
-                    },
-                    span,
-                    proj.row_at(span.ceil, t),
-                    proj.row_at(span.floor, t),
-                );
-                let face = FaceSpan {
-                    cell,
-                    what,
-                    side: hit.side,
-                    perp_dist: t,
-                    wall_x: hit.wall_x,
-                    kind: FaceKind::Wall,
-                    z: (span.floor, span.ceil),
-                    rows: (0, 0),
-                };
-                let (top, bottom) = (win.top, win.bottom);
-                win.face(face, top, bottom);
                 return finish(hit, win, cell, t);
             }
         }
@@ -308,26 +342,7 @@ pub fn cast_column(
             win.face(face, top, bottom);
             return finish(hit, win, cell, t);
         };
-        let top = win.top;
-        win.face(
-            FaceSpan {
-                kind: FaceKind::Lintel,
-                z: (next_span.ceil, span.ceil),
-                ..face
-            },
-            top,
-            proj.row_at(next_span.ceil, t),
-        );
-        let bottom = win.bottom;
-        win.face(
-            FaceSpan {
-                kind: FaceKind::Step,
-                z: (span.floor, next_span.floor),
-                ..face
-            },
-            proj.row_at(next_span.floor, t),
-            bottom,
-        );
+        win.crossing(face, span, next_span, proj);
         if win.is_closed() {
             return finish(hit, win, cell, t);
         }

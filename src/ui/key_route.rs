@@ -1,6 +1,6 @@
 //! What a session does with a key: the keys only a server has (switching whom a spectator
-//! follows), and everything else — the colour key too — handed to the local TUI's own
-//! `tui::keys::Controls` as the crossterm event a local terminal would have produced.
+//! follows), and everything else — the colour key too — handed to `ui::keys::Controls`, the keys
+//! of a local terminal, as the crossterm event a local terminal would have produced.
 
 use crossterm::event::{
     Event, KeyCode, KeyEvent as CtKeyEvent, KeyEventKind, KeyEventState, KeyModifiers,

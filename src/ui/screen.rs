@@ -341,6 +341,7 @@ fn draw_debug(
         let mono = screen.stats.level.map(|c| c.level) == Some(ColorLevel::Mono);
         let mut pane = DebugPane::new(t, &s.world, &s.camera, cells)
             .scroll(s.debugger.scroll)
+            .scroll_into_setup(s.debugger.into_setup)
             .ascii(mono);
         if let Some(col) = screen.cast.heights.get(t.trace.column) {
             pane = pane.heights(col);

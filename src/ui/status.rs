@@ -53,80 +53,11 @@ pub fn status_line(
     width: u16,
 ) -> Line<'static> {
     let cam = &state.camera;
-    let mut segs = Vec::new();
-    if state.debugger.paused {
-        let shown = match (state.debugger.cursor, steps) {
-            (Cursor::Steps(n), Some(all)) if n < all => format!("{n}/{all}"),
-            (_, Some(all)) => format!("{all}/{all} hit"),
-            (_, None) => "-".to_owned(),
-        };
-        segs.push(seg(
-            9,
-            vec![
-                Span::styled(" PAUSED ", PAUSED),
-                l(" col "),
-                v(state.debug_column().to_string()),
-                l("  step "),
-                v(shown),
-            ],
-        ));
-        let mut hints = Vec::new();
-        for (k, what) in [
-            ("←→[]", " column  "),
-            ("n", " step  "),
-            ("⏎", " hit  "),
-            ("space", " resume"),
-        ] {
-            hints.push(Span::styled(k, HINT_KEY));
-            hints.push(l(what));
-        }
-        segs.push(seg(7, hints));
-        segs.push(seg(
-            4,
-            vec![Span::styled("↑↓", HINT_KEY), l(" scroll the ray pane")],
-        ));
+    let mut segs = if state.debugger.paused {
+        paused_segments(state, steps)
     } else {
-        segs.extend(hud(state));
-        segs.push(seg(8, vec![v(format!(" {:>3.0}", stats.fps)), l(" fps")]));
-        segs.push(seg(
-            3,
-            vec![
-                l("render "),
-                v(format!("{:.1}", stats.render_ms)),
-                l(" ms  draw "),
-                v(format!("{:.1}", stats.draw_ms)),
-                l(" ms"),
-            ],
-        ));
-        if stats.bytes_per_frame > 0.0 {
-            let out = vec![
-                v(format!("{:.1}", stats.bytes_per_frame / 1000.0)),
-                l(" kB/f "),
-                v(format!("{:.0}", stats.kbit_s)),
-                l(" kbit/s"),
-            ];
-            segs.push(seg(4, out));
-        }
-        // The colour level and how it was decided (`256 (TERM)`; O cycles it): kept at 80
-        // columns, since a player who sees grey should learn why at a glance.
-        if let Some(choice) = stats.level {
-            segs.push(seg(
-                7,
-                vec![
-                    v(choice.level.name().to_owned()),
-                    l(format!(" ({})", choice.reason.label())),
-                ],
-            ));
-        }
-        // The block characters when not the default half-blocks (U cycles them), so a player
-        // who switched knows which: kept at 80 columns, before the position.
-        if stats.glyphs != crate::render::glyphs::Glyphs::Half {
-            segs.push(seg(
-                7,
-                vec![v(stats.glyphs.name().to_owned()), l(" blocks")],
-            ));
-        }
-    }
+        running_segments(state, stats)
+    };
     segs.push(seg(
         6,
         vec![l("pos "), v(format!("{:.2},{:.2}", cam.pos.x, cam.pos.y))],
@@ -166,6 +97,87 @@ pub fn status_line(
         spans.extend(s.spans);
     }
     Line::from(spans).style(BAR)
+}
+
+/// While paused: the debugged column and step, the debugger's keys and the pane's scroll keys.
+fn paused_segments(state: &GameState, steps: Option<usize>) -> Vec<Segment> {
+    let mut segs = Vec::new();
+    let shown = match (state.debugger.cursor, steps) {
+        (Cursor::Steps(n), Some(all)) if n < all => format!("{n}/{all}"),
+        (_, Some(all)) => format!("{all}/{all} hit"),
+        (_, None) => "-".to_owned(),
+    };
+    segs.push(seg(
+        9,
+        vec![
+            Span::styled(" PAUSED ", PAUSED),
+            l(" col "),
+            v(state.debug_column().to_string()),
+            l("  step "),
+            v(shown),
+        ],
+    ));
+    let mut hints = Vec::new();
+    for (k, what) in [
+        ("←→[]", " column  "),
+        ("n", " step  "),
+        ("⏎", " hit  "),
+        ("space", " resume"),
+    ] {
+        hints.push(Span::styled(k, HINT_KEY));
+        hints.push(l(what));
+    }
+    segs.push(seg(7, hints));
+    segs.push(seg(
+        4,
+        vec![Span::styled("↑↓", HINT_KEY), l(" scroll the ray pane")],
+    ));
+    segs
+}
+
+/// While running: the game's figures, then the speed figures, the colour level and the blocks.
+fn running_segments(state: &GameState, stats: &FrameStats) -> Vec<Segment> {
+    let mut segs = hud(state);
+    segs.push(seg(8, vec![v(format!(" {:>3.0}", stats.fps)), l(" fps")]));
+    segs.push(seg(
+        3,
+        vec![
+            l("render "),
+            v(format!("{:.1}", stats.render_ms)),
+            l(" ms  draw "),
+            v(format!("{:.1}", stats.draw_ms)),
+            l(" ms"),
+        ],
+    ));
+    if stats.bytes_per_frame > 0.0 {
+        let out = vec![
+            v(format!("{:.1}", stats.bytes_per_frame / 1000.0)),
+            l(" kB/f "),
+            v(format!("{:.0}", stats.kbit_s)),
+            l(" kbit/s"),
+        ];
+        segs.push(seg(4, out));
+    }
+    // The colour level and how it was decided (`256 (TERM)`; O cycles it): kept at 80
+    // columns, since a player who sees grey should learn why at a glance.
+    if let Some(choice) = stats.level {
+        segs.push(seg(
+            7,
+            vec![
+                v(choice.level.name().to_owned()),
+                l(format!(" ({})", choice.reason.label())),
+            ],
+        ));
+    }
+    // The block characters when not the default half-blocks (U cycles them), so a player
+    // who switched knows which: kept at 80 columns, before the position.
+    if stats.glyphs != crate::render::glyphs::Glyphs::Half {
+        segs.push(seg(
+            7,
+            vec![v(stats.glyphs.name().to_owned()), l(" blocks")],
+        ));
+    }
+    segs
 }
 
 /// The game's figures (on maps with something to find), as one segment kept before the speed

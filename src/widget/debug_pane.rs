@@ -7,167 +7,37 @@
 //!
 //! While stepping, earlier steps fold to one line each and the current one is written out; a
 //! pane too short for everything shows the newest lines and says how many are above, and the
-//! scroll position (in steps, kept by the debugger) writes out an earlier step instead.
+//! scroll position (in steps, kept by the debugger) writes out an earlier step instead; scrolled
+//! back past the first step, the pane ends at an earlier part of the setup, up to `cameraX`.
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
-use ratatui::style::{Color, Modifier, Style};
-use ratatui::text::{Line, Span};
+use ratatui::text::Line;
 use ratatui::widgets::Widget;
 
+mod heights;
+mod items;
 mod kept;
+mod row;
+mod window;
 
 pub use kept::KeptLines;
 
 use super::revealed::RevealedTrace;
 use crate::camera::Camera;
-use crate::map::Cell;
-use crate::render::cast::Side;
-use crate::render::derivation::{compared, num, Choice, Derivation, PerpFrom};
-use crate::render::height_cast::{Band, FaceSpan, HeightColumn};
-use crate::render::raster::{heading, texture_x, wall_span};
+use crate::render::derivation::{num, Derivation, SETUP_PARTS};
+use crate::render::height_cast::HeightColumn;
+use crate::render::raster::{heading, wall_span};
 use crate::world::World;
-
-const LABEL: Style = Style::new().fg(Color::Rgb(128, 132, 146));
-const VALUE: Style = Style::new().fg(Color::Rgb(226, 226, 232));
-const NAME: Style = Style::new().fg(Color::Rgb(110, 200, 230));
-const SIDE_X: Color = Color::Rgb(255, 176, 96);
-const SIDE_Y: Color = Color::Rgb(126, 192, 255);
-const CURRENT_BG: Color = Color::Rgb(64, 60, 22);
-const HIT: Style = Style::new()
-    .fg(Color::Rgb(255, 96, 96))
-    .add_modifier(Modifier::BOLD);
-
-fn side_style(side: Side) -> Style {
-    Style::new().fg(match side {
-        Side::X => SIDE_X,
-        Side::Y => SIDE_Y,
-    })
-}
-
-fn axis(side: Side) -> &'static str {
-    match side {
-        Side::X => "X",
-        Side::Y => "Y",
-    }
-}
-
-fn cell_text(c: (i64, i64)) -> String {
-    format!("({},{})", c.0, c.1)
-}
-
-fn pair(v: crate::vec2::Vec2) -> String {
-    format!("({},{})", num(v.x), num(v.y))
-}
-
-fn signed(s: i64) -> &'static str {
-    if s < 0 {
-        "−1"
-    } else {
-        "+1"
-    }
-}
-
-/// A height in wall units, short: `1`, `0.25`, `-0.5` (at most 2 decimals).
-fn fmt_height(z: f64) -> String {
-    let s = format!("{z:.2}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" {
-        "0".to_owned()
-    } else {
-        s.to_owned()
-    }
-}
-
-/// Panes at least this wide get the roomier forms (`step y` in folded steps).
-const WIDE: usize = 40;
-
-/// One logical line of the derivation: chunks it may wrap between (a chunk never splits).
-#[derive(Debug, Clone, Default)]
-struct Row {
-    chunks: Vec<Vec<Span<'static>>>,
-    /// Drawn on the highlight background (the current step).
-    current: bool,
-}
-
-impl Row {
-    fn new() -> Self {
-        Self::default()
-    }
-
-    /// Starts a new chunk (a place the line may wrap) with one span.
-    fn chunk(mut self, text: impl Into<String>, style: Style) -> Self {
-        self.chunks.push(vec![Span::styled(text.into(), style)]);
-        self
-    }
-
-    /// Adds a span to the current chunk.
-    fn and(mut self, text: impl Into<String>, style: Style) -> Self {
-        let span = Span::styled(text.into(), style);
-        match self.chunks.last_mut() {
-            Some(c) => c.push(span),
-            None => self.chunks.push(vec![span]),
-        }
-        self
-    }
-}
+use heights::Heights;
+use items::SETUP_PART_ROWS;
+use row::{Row, NAME, VALUE};
+use window::window;
 
 /// The derivation's parts, in order: the setup, one item per step, the hit.
 #[derive(Debug, Clone)]
 struct Item {
     rows: Vec<Row>,
-}
-
-/// The vertical faces the column drew, each with the open window of rows before and after it.
-#[derive(Debug, Clone, PartialEq)]
-struct FaceWindow {
-    face: FaceSpan,
-    before: (usize, usize),
-    after: (usize, usize),
-}
-
-/// The traced column's draw list on an `Hz` map, as the pane prints it.
-#[derive(Debug, Clone, PartialEq)]
-struct Heights {
-    faces: Vec<FaceWindow>,
-    closed: ((i64, i64), f64),
-    /// The closing face's height span (its line is that tall), if a face closed the window.
-    closing_dz: Option<f64>,
-}
-
-impl Heights {
-    fn new(col: &HeightColumn, rows: usize) -> Self {
-        let (mut top, mut bottom) = (
-            0,
-            rows.max(col.bands.iter().map(|b| b.rows().1).max().unwrap_or(0)),
-        );
-        let mut faces = Vec::new();
-        for b in &col.bands {
-            let before = (top, bottom);
-            let (a, z) = b.rows();
-            if a <= top {
-                top = z.max(top);
-            } else {
-                bottom = a.min(bottom);
-            }
-            if let Band::Face(f) = b {
-                faces.push(FaceWindow {
-                    face: *f,
-                    before,
-                    after: (top, bottom),
-                });
-            }
-        }
-        let closing_dz = col.bands.iter().rev().find_map(|b| match b {
-            Band::Face(f) if f.cell == col.closed.cell => Some(f.z.1 - f.z.0),
-            _ => None,
-        });
-        Self {
-            faces,
-            closed: (col.closed.cell, col.closed.perp_dist),
-            closing_dz,
-        }
-    }
 }
 
 /// The debugged ray's derivation as text; the current step is highlighted.
@@ -183,6 +53,8 @@ pub struct DebugPane<'a> {
     view_rows: usize,
     /// Steps scrolled back from the newest (0 = follow the current step).
     scroll: usize,
+    /// Parts of the setup scrolled back from its end, once scrolled back to it.
+    into_setup: usize,
     ascii: bool,
     /// Columns the pane has (set when it is drawn): lines wrap to it.
     width: usize,
@@ -210,6 +82,7 @@ impl<'a> DebugPane<'a> {
             heights: None,
             view_rows: view_cells.1 * 2,
             scroll: 0,
+            into_setup: 0,
             ascii: false,
             width: usize::MAX,
         }
@@ -233,6 +106,14 @@ impl<'a> DebugPane<'a> {
     #[must_use]
     pub fn scroll(mut self, steps: usize) -> Self {
         self.scroll = steps;
+        self
+    }
+
+    /// Scrolled back to the setup, ends the pane `parts` of the setup's parts before its end
+    /// instead (at most to `cameraX`): a setup taller than the pane is read a part at a time.
+    #[must_use]
+    pub fn scroll_into_setup(mut self, parts: usize) -> Self {
+        self.into_setup = parts.min(SETUP_PARTS - 1);
         self
     }
 
@@ -328,303 +209,6 @@ impl<'a> DebugPane<'a> {
             .collect()
     }
 
-    fn setup_rows(&self) -> Vec<Row> {
-        let d = &self.derivation;
-        let mut rows = vec![
-            Row::new()
-                .chunk("cameraX", NAME)
-                .and(" = 2x/w − 1", LABEL)
-                .chunk(format!(" = 2·{}/{} − 1", d.column, d.width), LABEL)
-                .chunk(" = ", LABEL)
-                .and(num(d.camera_x), VALUE),
-            Row::new()
-                .chunk("rayDir", NAME)
-                .and(" = dir + plane·cameraX", LABEL),
-            Row::new()
-                .chunk(format!("  = {}", pair(d.dir)), VALUE)
-                .chunk(format!(" + {}·{}", pair(d.plane), num(d.camera_x)), VALUE),
-            Row::new().chunk(format!("  = {}", pair(d.ray_dir)), VALUE),
-            Row::new()
-                .chunk("deltaDist", NAME)
-                .and(" = |1/rayDir|", LABEL)
-                .chunk(" = ", LABEL)
-                .and(
-                    format!("({}, {})", num(d.delta_dist.0), num(d.delta_dist.1)),
-                    VALUE,
-                ),
-            Row::new()
-                .chunk("pos ", LABEL)
-                .and(pair(d.pos), VALUE)
-                .chunk(" in map", LABEL)
-                .and(cell_text(d.start_cell), VALUE),
-        ];
-        for (side, step, gap, delta, sd, dir) in [
-            (
-                Side::X,
-                d.step.0,
-                d.gap.0,
-                d.delta_dist.0,
-                d.initial_side_dist.0,
-                d.ray_dir.x,
-            ),
-            (
-                Side::Y,
-                d.step.1,
-                d.gap.1,
-                d.delta_dist.1,
-                d.initial_side_dist.1,
-                d.ray_dir.y,
-            ),
-        ] {
-            let a = axis(side);
-            let why = if dir < 0.0 { "< 0" } else { "≥ 0" };
-            let formula = if step < 0 {
-                format!("(pos{a}−map{a})")
-            } else {
-                format!("(map{a}+1−pos{a})")
-            };
-            rows.push(
-                Row::new()
-                    .chunk(format!("step{a}"), side_style(side))
-                    .and(format!(" = {}", signed(step)), VALUE)
-                    .chunk(format!(" (rayDir{a} {why})"), LABEL),
-            );
-            rows.push(
-                Row::new()
-                    .chunk(format!("sideDist{a}"), side_style(side))
-                    .and(" =", LABEL)
-                    .chunk(format!(" {formula}·deltaDist{a}"), LABEL)
-                    .chunk(format!(" = {}·{}", num(gap), num(delta)), VALUE)
-                    .chunk(" = ", LABEL)
-                    .and(num(sd), VALUE),
-            );
-        }
-        rows
-    }
-
-    fn step_rows(&self, c: &Choice, expanded: bool, current: bool) -> Vec<Row> {
-        let d = &self.derivation;
-        let a = axis(c.side);
-        let chosen = side_style(c.side);
-        let new_value = match c.side {
-            Side::X => c.after.0,
-            Side::Y => c.after.1,
-        };
-        let mut rows = Vec::new();
-        if expanded {
-            let (x, sign, y) = compared(c.before.0, c.before.1);
-            let step = format!("step {}", a.to_lowercase());
-            rows.push(
-                Row::new()
-                    .chunk(format!("{:>3} ", c.index), VALUE)
-                    .and("sideDistX ", side_style(Side::X))
-                    .and(x, VALUE)
-                    .and(format!(" {sign} "), VALUE)
-                    .chunk("sideDistY ", side_style(Side::Y))
-                    .and(y, VALUE)
-                    .chunk(" → ", LABEL)
-                    .and(step, chosen.add_modifier(Modifier::BOLD)),
-            );
-            let delta = match c.side {
-                Side::X => d.delta_dist.0,
-                Side::Y => d.delta_dist.1,
-            };
-            // Lode's `sideDistY += deltaDistY`, with the numbers.
-            rows.push(
-                Row::new()
-                    .chunk("    map", LABEL)
-                    .and(cell_text(c.cell), VALUE)
-                    .chunk(format!("  sideDist{a}"), chosen)
-                    .and(format!(" += {} → ", num(delta)), VALUE)
-                    .and(num(new_value), VALUE),
-            );
-        } else {
-            // One line: the step's number, the cell entered, the sideDist that grew.
-            let compact = self.width < WIDE;
-            let step = if compact {
-                String::new()
-            } else {
-                format!("step {} ", a.to_lowercase())
-            };
-            rows.push(
-                Row::new()
-                    .chunk(format!("{:>3} ", c.index), VALUE)
-                    .and(step, chosen)
-                    .and("→ ", LABEL)
-                    .and(cell_text(c.cell), VALUE)
-                    .and(format!(" sideDist{a} "), chosen)
-                    .and(num(new_value), VALUE),
-            );
-        }
-        if let Some(h) = &self.heights {
-            for f in h.faces.iter().filter(|f| f.face.cell == c.cell) {
-                let face = &f.face;
-                rows.push(
-                    Row::new()
-                        .chunk(
-                            format!("    {}", face.kind.as_str()),
-                            Style::new().fg(SIDE_X),
-                        )
-                        .and(
-                            format!(" z {}..{}", fmt_height(face.z.0), fmt_height(face.z.1)),
-                            VALUE,
-                        )
-                        .chunk(format!(" rows {}..{}", face.rows.0, face.rows.1), LABEL)
-                        .chunk(
-                            format!(
-                                " window {}..{} → {}..{}",
-                                f.before.0, f.before.1, f.after.0, f.after.1
-                            ),
-                            VALUE,
-                        ),
-                );
-            }
-        }
-        for r in &mut rows {
-            r.current = current;
-        }
-        rows
-    }
-
-    fn hit_rows(&self) -> Vec<Row> {
-        let d = &self.derivation;
-        if !self.ray.hit_reached {
-            return vec![Row::new().chunk("hit ", LABEL).and(
-                format!("not yet (step {} of {})", self.ray.shown, d.choices.len()),
-                VALUE,
-            )];
-        }
-        let what = match d.hit_what {
-            Cell::Wall(n) => format!("wall {n}"),
-            Cell::Void => "void".to_owned(),
-            Cell::Floor { .. } => "floor".to_owned(),
-            Cell::Door(_) => "door".to_owned(),
-        };
-        let mut rows = vec![Row::new()
-            .chunk("hit ", LABEL)
-            .and(cell_text(d.hit_cell), HIT)
-            .and(format!(" {what}"), VALUE)
-            .chunk(", side ", LABEL)
-            .and(d.hit_side.as_str(), side_style(d.hit_side))];
-        let a = axis(d.hit_side);
-        // A narrow pane keeps perp's derivation and gives the rest as plain results, so the
-        // last steps stay in view above the hit.
-        let compact = self.width < WIDE;
-        rows.push(match d.perp_from {
-            PerpFrom::GridLine {
-                side_dist,
-                delta_dist,
-                ..
-            } => Row::new()
-                .chunk("perp", NAME)
-                .and(" =", LABEL)
-                .chunk(
-                    if compact {
-                        format!(" sideDist{a}−deltaDist{a}")
-                    } else {
-                        format!(" sideDist{a} − deltaDist{a}")
-                    },
-                    LABEL,
-                )
-                .chunk(
-                    format!(" = {} − {}", num(side_dist), num(delta_dist)),
-                    VALUE,
-                )
-                .chunk(" = ", LABEL)
-                .and(num(d.perp), VALUE),
-            PerpFrom::DoorPanel { line, .. } => {
-                let (p, r) = match d.hit_side {
-                    Side::X => (d.pos.x, d.ray_dir.x),
-                    Side::Y => (d.pos.y, d.ray_dir.y),
-                };
-                Row::new()
-                    .chunk("perp", NAME)
-                    .and(" =", LABEL)
-                    .chunk(format!(" (map{a}+0.5−pos{a})/rayDir{a}"), LABEL)
-                    .chunk(format!(" = ({} − {})/{}", num(line), num(p), num(r)), VALUE)
-                    .chunk(" = ", LABEL)
-                    .and(num(d.perp), VALUE)
-            }
-        });
-        if compact {
-            rows.push(
-                Row::new()
-                    .chunk("line ", NAME)
-                    .and(num(self.line_height), VALUE)
-                    .and(" px", LABEL)
-                    .chunk("  wall_x ", NAME)
-                    .and(num(d.wall_x), VALUE),
-            );
-            rows.push(self.texture_row());
-            rows.extend(self.closed_row());
-            return rows;
-        }
-        let line = match self.heights.as_ref().map(|h| h.closing_dz) {
-            None => Row::new()
-                .chunk("line", NAME)
-                .and(" = focal/perp", LABEL)
-                .chunk(format!(" = {}/{}", num(self.focal), num(d.perp)), VALUE),
-            Some(Some(dz)) => Row::new()
-                .chunk("line", NAME)
-                .and(" = Δz·focal/perp", LABEL)
-                .chunk(
-                    format!(" = {}·{}/{}", fmt_height(dz), num(self.focal), num(d.perp)),
-                    VALUE,
-                ),
-            Some(None) => Row::new()
-                .chunk("line", NAME)
-                .and(" none (floors closed it)", LABEL),
-        };
-        rows.push(
-            line.chunk(" = ", LABEL)
-                .and(num(self.line_height), VALUE)
-                .and(" px", LABEL),
-        );
-        // wall_x runs along the face: the other axis from the one the ray crossed.
-        let (posn, rayn, p, r) = match d.hit_side {
-            Side::X => ("posY", "rayDirY", d.pos.y, d.ray_dir.y),
-            Side::Y => ("posX", "rayDirX", d.pos.x, d.ray_dir.x),
-        };
-        rows.push(if matches!(d.hit_what, Cell::Door(_)) {
-            Row::new()
-                .chunk("wall_x", NAME)
-                .and(" (along the open panel) = ", LABEL)
-                .and(num(d.wall_x), VALUE)
-        } else {
-            Row::new()
-                .chunk("wall_x", NAME)
-                .and(format!(" = {posn} + perp·{rayn}"), LABEL)
-                .chunk(format!(" = {} + {}·{}", num(p), num(d.perp), num(r)), VALUE)
-                .chunk(format!(" = {}", num(d.wall_along)), VALUE)
-                .chunk(" → ", LABEL)
-                .and(num(d.wall_x), VALUE)
-        });
-        rows.push(self.texture_row());
-        rows.extend(self.closed_row());
-        rows
-    }
-
-    /// Which texture column the hit samples, of how many.
-    fn texture_row(&self) -> Row {
-        Row::new()
-            .chunk("texture x ", LABEL)
-            .and(
-                texture_x(&self.ray.trace.hit, self.tex_width).to_string(),
-                VALUE,
-            )
-            .and(format!(" of {}", self.tex_width), LABEL)
-    }
-
-    /// On maps with heights: where the column's window of rows closed.
-    fn closed_row(&self) -> Option<Row> {
-        self.heights.as_ref().map(|h| {
-            Row::new()
-                .chunk("window closed ", LABEL)
-                .and(cell_text(h.closed.0), HIT)
-                .chunk(format!(" at {}", num(h.closed.1)), VALUE)
-        })
-    }
-
     /// The pane's lines for `width` columns and `rows` rows: the derivation wrapped to the width,
     /// shortened to fit (earlier steps folded, then the top cut) with the focus — the current
     /// step, or the hit — at the bottom, moved back by the scroll.
@@ -665,6 +249,11 @@ impl<'a> DebugPane<'a> {
         self.windowed(wrapped, focus, width, rows)
     }
 
+    /// One row wrapped to the pane's `width`.
+    fn wrap(&self, row: Row, width: usize) -> Vec<Line<'static>> {
+        row::wrap(row, width, self.ascii)
+    }
+
     /// The wrapped items laid out as the pane's `rows` rows: their lines in order, cut to the
     /// window that ends at the focus item (moved back by the scroll), `rayDir` pinned on top.
     fn windowed(
@@ -677,16 +266,27 @@ impl<'a> DebugPane<'a> {
         let mut lines = Vec::new();
         let mut starts = Vec::new();
         let mut focus_end = None;
+        // Scrolled into the setup (item 0): the focus ends with one of its parts.
+        let setup_rows = (focus == 0 && self.into_setup > 0).then(|| {
+            SETUP_PART_ROWS[..SETUP_PARTS - self.into_setup]
+                .iter()
+                .sum::<usize>()
+        });
         for (i, item) in wrapped.into_iter().enumerate() {
-            for row in item {
+            for (r, row) in item.into_iter().enumerate() {
                 starts.extend((0..row.len()).map(|k| k == 0));
                 lines.extend(row);
+                if i == 0 && setup_rows == Some(r + 1) {
+                    // One line further: the part's own last line shows, the next one gives way
+                    // to the note of what is below.
+                    focus_end = Some(lines.len() + 1);
+                }
             }
-            if self.scroll > 0 && i == focus {
+            if self.scroll > 0 && i == focus && focus_end.is_none() {
                 focus_end = Some(lines.len());
             }
         }
-        let focus_end = focus_end.unwrap_or(lines.len());
+        let focus_end = focus_end.unwrap_or(lines.len()).min(lines.len());
         // Cut at the top, the pane still says which ray it follows.
         let d = &self.derivation;
         let pinned = self.wrap(
@@ -698,115 +298,6 @@ impl<'a> DebugPane<'a> {
         );
         window(lines, &starts, &pinned, rows, focus_end, self.ascii)
     }
-
-    /// One row wrapped to `width`: chunks fill a line, the rest continue indented by two.
-    fn wrap(&self, row: Row, width: usize) -> Vec<Line<'static>> {
-        let current = row.current;
-        let fix = |s: Span<'static>| -> Span<'static> {
-            if self.ascii {
-                Span::styled(to_ascii(&s.content), s.style)
-            } else {
-                s
-            }
-        };
-        let bg = |s: Span<'static>| {
-            if current {
-                let st = s.style.bg(CURRENT_BG).add_modifier(Modifier::BOLD);
-                s.style(st)
-            } else {
-                s
-            }
-        };
-        let mut out: Vec<Vec<Span<'static>>> = vec![Vec::new()];
-        let mut used = 0;
-        for chunk in row.chunks {
-            let spans: Vec<Span<'static>> = chunk.into_iter().map(fix).collect();
-            let w: usize = spans.iter().map(|s| s.content.chars().count()).sum();
-            if used > 0 && used + w > width {
-                // Continue on a new line, indented, without the chunk's leading spaces.
-                let mut first = true;
-                let mut line = vec![Span::styled("  ", VALUE)];
-                used = 2;
-                for s in spans {
-                    let s = if first {
-                        first = false;
-                        let t = s.content.trim_start().to_owned();
-                        Span::styled(t, s.style)
-                    } else {
-                        s
-                    };
-                    used += s.content.chars().count();
-                    line.push(s);
-                }
-                out.push(line);
-            } else {
-                used += w;
-                out.last_mut().expect("one line at least").extend(spans);
-            }
-        }
-        out.into_iter()
-            .map(|spans| Line::from(spans.into_iter().map(bg).collect::<Vec<_>>()))
-            .collect()
-    }
-}
-
-/// Mono terminals get plain ASCII.
-fn to_ascii(s: &str) -> String {
-    s.replace('−', "-")
-        .replace('·', "*")
-        .replace('→', "->")
-        .replace('≥', ">=")
-        .replace('Δ', "d")
-        .replace('↑', "^")
-        .replace('↓', "v")
-}
-
-/// The `rows` lines ending at `focus_end` (or later, if they fit): the first says how many are
-/// above when some are cut, the last how many below.
-fn window(
-    lines: Vec<Line<'static>>,
-    starts: &[bool],
-    pinned: &[Line<'static>],
-    rows: usize,
-    focus_end: usize,
-    ascii: bool,
-) -> Vec<Line<'static>> {
-    let total = lines.len();
-    if total <= rows || rows == 0 {
-        return lines.into_iter().take(rows).collect();
-    }
-    let end = focus_end.max(rows).min(total);
-    let mut start = end - rows;
-    let (up, down, keys) = if ascii {
-        ("^", "v", "w/s")
-    } else {
-        ("↑", "↓", "↑↓")
-    };
-    let keep = rows > pinned.len() + 4;
-    if start > 0 {
-        // The note (and the ray, when there is room) take the first rows; what follows starts
-        // at the start of a line of the derivation, not half-way through one.
-        start += 1 + if keep { pinned.len() } else { 0 };
-        while start < end && !starts[start] {
-            start += 1;
-        }
-    }
-    let mut out: Vec<Line<'static>> = Vec::new();
-    if start > 0 {
-        out.push(Line::styled(
-            format!("{up} {start} more above ({keys} scroll)"),
-            LABEL,
-        ));
-        if keep {
-            out.extend(pinned.iter().cloned());
-        }
-    }
-    out.extend(lines.into_iter().take(end).skip(start));
-    if end < total && rows > 1 {
-        let last = out.len() - 1;
-        out[last] = Line::styled(format!("{down} {} more below", total - end + 1), LABEL);
-    }
-    out
 }
 
 impl Widget for DebugPane<'_> {
@@ -961,6 +452,42 @@ mod tests {
         }
     }
 
+    #[test]
+    fn scrolled_into_the_setup_a_short_pane_shows_every_line_of_the_setup() {
+        let w = World::default_world();
+        for angle in [0.0, 33.0, 62.0, 181.0, 270.0] {
+            let cam = Camera::from_angle(Vec2::new(15.3, 5.6), angle, 66.0);
+            let t = trace_column(&w.map, &cam, 39, 50);
+            let pane = DebugPane::new(RevealedTrace::full(&t), &w, &cam, (50, 23));
+            let top = t.steps.len() + 1;
+            for (width, rows) in [(28, 9), (28, 11), (28, 14), (40, 9)] {
+                let setup: Vec<String> = pane_text(pane.clone(), width, 400)
+                    .into_iter()
+                    .take_while(|l| !l.starts_with("  1 "))
+                    .collect();
+                assert!(setup[0].starts_with("cameraX"), "{setup:#?}");
+                // Every stop ↑ reaches: each step back to the setup's end, then each part of
+                // the setup back to cameraX.
+                let mut seen = Vec::new();
+                for back in 0..top {
+                    seen.extend(pane_text(pane.clone().scroll(back), width, rows));
+                }
+                for parts in 0..SETUP_PARTS {
+                    let at = pane.clone().scroll(top).scroll_into_setup(parts);
+                    seen.extend(pane_text(at, width, rows));
+                }
+                for line in &setup {
+                    assert!(
+                        seen.contains(line),
+                        "{line:?} never shows at {width}x{rows}, angle {angle}"
+                    );
+                }
+                let last = pane.clone().scroll(top).scroll_into_setup(SETUP_PARTS - 1);
+                assert_eq!(pane_text(last, width, rows)[0], setup[0]);
+            }
+        }
+    }
+
     /// A corridor east: a quarter step up at x = 3, a lintel down to 0.7 at x = 5, a wall at 8.
     fn heights_world() -> World {
         let text = "NO textures/bricks.png\nSO textures/bricks.png\nWE textures/stone.png\n\
@@ -1008,14 +535,6 @@ mod tests {
             !early.contains("0..0.25") && !early.contains("closed"),
             "{early}"
         );
-    }
-
-    #[test]
-    fn heights_are_printed_short() {
-        assert_eq!(fmt_height(0.25), "0.25");
-        assert_eq!(fmt_height(1.0), "1");
-        assert_eq!(fmt_height(-0.5), "-0.5");
-        assert_eq!(fmt_height(-0.0001), "0");
     }
 
     /// The pane's lines as [`DebugPane::lines`] picked them before it skipped folded steps the

@@ -48,6 +48,7 @@ mod play_pty;
 mod play_stalled;
 mod play_tmux;
 mod properties;
+mod ray_pane_pty;
 mod readme_screenshot;
 mod render_json;
 mod replay;

@@ -103,7 +103,7 @@ fn raw_string(s: &str) -> Option<usize> {
 }
 
 /// Whether what follows a `#[cfg(test)]` is a module (a unit-test block), not a single item.
-fn test_module_follows(rest: &str) -> bool {
+pub(crate) fn test_module_follows(rest: &str) -> bool {
     let rest = rest.trim_start();
     rest.starts_with("mod ") || rest.starts_with("pub mod ") || rest.starts_with("pub(crate) mod ")
 }

@@ -1,15 +1,17 @@
-//! The shape rules of the rooms that grew the most (`src/serve/`, `src/play/`, `src/tui/`): no
-//! function over 120 lines, no file over 700 lines (tests included), and nowhere in `src/` two
-//! files that use each other. `cargo test --test lib code_shape -- --nocapture` prints the
-//! longest functions and largest files of all of `src/`.
+//! The shape rules of the whole tree (`src/` and every `crates/*/src`): no function over 120
+//! lines, no file over 700 lines (its `#[cfg(test)]` modules aside), and within each crate no two
+//! files that use each other, directly or round a longer circle. `cargo test --test lib
+//! code_shape -- --nocapture` prints the longest functions, the largest files and the circles.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
-use super::architecture::{code_only, ident, root, rust_files, skip_braced, stripped};
+use super::architecture::{
+    code_only, ident, root, rust_files, skip_braced, stripped, test_module_follows,
+};
 
-/// The rooms the limits hold in.
-const KEPT_SMALL: [&str; 3] = ["serve", "play", "tui"];
+/// The rooms that grew the most: their files stay under the file limit with their tests too.
+const KEPT_SMALL: [&str; 3] = ["src/serve/", "src/play/", "src/tui/"];
 const MAX_FN_LINES: usize = 120;
 const MAX_FILE_LINES: usize = 700;
 
@@ -53,9 +55,24 @@ fn functions(code: &str) -> Vec<(String, usize)> {
     found
 }
 
-fn src_files() -> Vec<PathBuf> {
+/// The source folders the rules hold in: `src/` and each crate's `src/`.
+fn source_roots() -> Vec<PathBuf> {
+    let mut roots = vec![root().join("src")];
+    let mut crates: Vec<PathBuf> = std::fs::read_dir(root().join("crates"))
+        .into_iter()
+        .flatten()
+        .map(|e| e.unwrap().path().join("src"))
+        .filter(|p| p.is_dir())
+        .collect();
+    crates.sort();
+    roots.extend(crates);
+    roots
+}
+
+/// The Rust files under `dir`, sorted.
+fn files_under(dir: &Path) -> Vec<PathBuf> {
     let mut files = Vec::new();
-    rust_files(&root().join("src"), &mut files);
+    rust_files(dir, &mut files);
     files.sort();
     files
 }
@@ -64,68 +81,71 @@ fn rel(file: &Path) -> String {
     file.strip_prefix(root()).unwrap().display().to_string()
 }
 
-fn kept_small(file: &Path) -> bool {
-    let r = rel(file);
-    KEPT_SMALL
-        .iter()
-        .any(|room| r.starts_with(&format!("src/{room}/")))
+/// The lines of `src` outside its `#[cfg(test)]` modules.
+fn lines_without_tests(src: &str) -> usize {
+    let code = stripped(src, false);
+    let mut test_lines = 0;
+    let mut at = 0;
+    while let Some(off) = code[at..].find("#[cfg(test)]") {
+        let i = at + off;
+        at = i + "#[cfg(test)]".len();
+        if test_module_follows(&code[at..]) {
+            let end = skip_braced(&code, at);
+            test_lines += code[i..end].matches('\n').count() + 1;
+            at = end;
+        }
+    }
+    src.lines().count().saturating_sub(test_lines)
 }
 
 #[test]
-fn functions_and_files_in_the_kept_rooms_stay_short() {
+fn every_function_and_file_in_the_tree_stays_short() {
     let mut fns = Vec::new();
     let mut files = Vec::new();
-    for file in src_files() {
-        let src = std::fs::read_to_string(&file).unwrap();
-        files.push((src.lines().count(), rel(&file)));
-        for (name, lines) in functions(&stripped(&src, false)) {
-            fns.push((lines, format!("{} {name}", rel(&file))));
+    let mut kept_with_tests = Vec::new();
+    for dir in source_roots() {
+        for file in files_under(&dir) {
+            let src = std::fs::read_to_string(&file).unwrap();
+            files.push((lines_without_tests(&src), rel(&file)));
+            if KEPT_SMALL.iter().any(|room| rel(&file).starts_with(room)) {
+                kept_with_tests.push((src.lines().count(), rel(&file)));
+            }
+            for (name, lines) in functions(&stripped(&src, false)) {
+                fns.push((lines, format!("{} {name}", rel(&file))));
+            }
         }
     }
+    assert!(files.len() > 100, "the files were not read");
     fns.sort_by(|a, b| b.cmp(a));
     files.sort_by(|a, b| b.cmp(a));
-    println!("longest functions in src/:");
+    println!("longest functions in src/ and crates/*/src:");
     for (lines, what) in fns.iter().take(8) {
         println!("  {lines:>4}  {what}");
     }
-    println!("largest files in src/:");
+    println!("largest files in src/ and crates/*/src (test modules aside):");
     for (lines, what) in files.iter().take(8) {
         println!("  {lines:>5}  {what}");
     }
-    let in_rooms = |what: &str| {
-        KEPT_SMALL
-            .iter()
-            .any(|room| what.starts_with(&format!("src/{room}/")))
-    };
-    if let (Some(f), Some(file)) = (
-        fns.iter().find(|(_, w)| in_rooms(w)),
-        files.iter().find(|(_, w)| in_rooms(w)),
-    ) {
-        println!(
-            "in src/{{{}}}: longest function {} lines ({}), largest file {} lines ({})",
-            KEPT_SMALL.join(","),
-            f.0,
-            f.1,
-            file.0,
-            file.1
-        );
-    }
-    let long: Vec<_> = fns
-        .iter()
-        .filter(|(l, w)| *l > MAX_FN_LINES && in_rooms(w))
-        .collect();
+    let long: Vec<_> = fns.iter().filter(|(l, _)| *l > MAX_FN_LINES).collect();
+    let big: Vec<_> = files.iter().filter(|(l, _)| *l > MAX_FILE_LINES).collect();
+    println!(
+        "over the limits: {} functions over {MAX_FN_LINES} lines, {} files over {MAX_FILE_LINES}",
+        long.len(),
+        big.len()
+    );
     assert!(
         long.is_empty(),
         "functions over {MAX_FN_LINES} lines: {long:?}"
     );
-    let big: Vec<_> = files
-        .iter()
-        .filter(|(l, w)| *l > MAX_FILE_LINES && in_rooms(w))
-        .collect();
     assert!(big.is_empty(), "files over {MAX_FILE_LINES} lines: {big:?}");
+    assert!(!kept_with_tests.is_empty(), "no kept room found");
+    let big: Vec<_> = kept_with_tests
+        .iter()
+        .filter(|(l, _)| *l > MAX_FILE_LINES)
+        .collect();
     assert!(
-        src_files().iter().any(|f| kept_small(f)),
-        "no kept room found"
+        big.is_empty(),
+        "files over {MAX_FILE_LINES} lines with their tests: {big:?}"
     );
 }
 
@@ -209,19 +229,21 @@ fn super_dir(file: &Path) -> PathBuf {
     }
 }
 
-/// File → the files it uses, front doors (`lib.rs`, `main.rs`, `mod.rs`) left out: they list
-/// and re-export their children by design.
-fn file_graph() -> BTreeMap<PathBuf, BTreeSet<PathBuf>> {
-    let src = root().join("src");
+/// File → the files it uses within the crate whose source folder is `src`, front doors
+/// (`lib.rs`, `main.rs`, `mod.rs`) left out: they list and re-export their children by design.
+fn file_graph(src: &Path) -> BTreeMap<PathBuf, BTreeSet<PathBuf>> {
     let front_door = |f: &Path| {
         f.file_name()
             .is_some_and(|n| n == "mod.rs" || n == "lib.rs" || n == "main.rs")
     };
     let mut graph = BTreeMap::new();
-    for file in src_files().into_iter().filter(|f| !front_door(f)) {
+    for file in files_under(src).into_iter().filter(|f| !front_door(f)) {
         let code = code_only(&std::fs::read_to_string(&file).unwrap());
         let mut uses = BTreeSet::new();
-        for (dir, start) in [(src.clone(), "crate::"), (super_dir(&file), "super::")] {
+        for (dir, start) in [
+            (src.to_path_buf(), "crate::"),
+            (super_dir(&file), "super::"),
+        ] {
             for p in paths(&code, start) {
                 if let Some(target) = resolve(&dir, &p) {
                     if target != file && !front_door(&target) {
@@ -235,12 +257,10 @@ fn file_graph() -> BTreeMap<PathBuf, BTreeSet<PathBuf>> {
     graph
 }
 
-#[test]
-fn no_two_files_in_src_use_each_other() {
-    let graph = file_graph();
-    assert!(graph.len() > 100, "the files were not read");
+/// The files of `graph` that reach themselves through the files they use.
+fn on_circles(graph: &BTreeMap<PathBuf, BTreeSet<PathBuf>>) -> Vec<String> {
     let mut circles = Vec::new();
-    for (file, uses) in &graph {
+    for (file, uses) in graph {
         // Every file reached from `file`: a circle when `file` is among them.
         let mut seen = BTreeSet::new();
         let mut todo: Vec<&PathBuf> = uses.iter().collect();
@@ -252,6 +272,23 @@ fn no_two_files_in_src_use_each_other() {
         if seen.contains(file) {
             circles.push(rel(file));
         }
+    }
+    circles
+}
+
+#[test]
+fn no_two_files_in_a_crate_use_each_other() {
+    let mut circles = Vec::new();
+    let mut read = 0;
+    for src in source_roots() {
+        let graph = file_graph(&src);
+        read += graph.len();
+        circles.extend(on_circles(&graph));
+    }
+    assert!(read > 100, "the files were not read");
+    println!("files on a circle of uses: {}", circles.len());
+    for file in &circles {
+        println!("  {file}");
     }
     assert!(circles.is_empty(), "files on a circle of uses: {circles:?}");
 }

@@ -15,8 +15,20 @@ use crate::vec2::Vec2;
 
 /// Draws the top view into `out` within `frame`.
 pub fn draw(out: &mut Drawing, map: &Map, d: &Derivation, frame: &Frame) {
+    cells(out, map, d, frame);
+    grid_lines(out, frame);
+    // The face the ray hit, thick.
+    let face = hit_face(d);
+    out.line(frame.at(face.0), frame.at(face.1), Stroke::solid(PERP, 4.0));
+    ray_and_perp(out, d, frame);
+    // The crossings, numbered and labelled, clear of the camera drawn over them.
+    super::crossings::draw(out, d, frame, &super::crossings::camera_marks(d, frame));
+    camera(out, d, frame);
+}
+
+/// The cells in the frame: walls filled, visited ones shaded, the hit cell marked, doors outlined.
+fn cells(out: &mut Drawing, map: &Map, d: &Derivation, frame: &Frame) {
     let cell_px = frame.cell;
-    // Cells: walls filled, visited ones shaded, the hit cell marked.
     let visited: Vec<(i64, i64)> = std::iter::once(d.start_cell)
         .chain(d.choices.iter().map(|c| c.cell))
         .collect();
@@ -40,7 +52,11 @@ pub fn draw(out: &mut Drawing, map: &Map, d: &Derivation, frame: &Frame) {
             }
         }
     }
-    // Grid lines and their numbers (a cell's number is at its left or top edge).
+}
+
+/// The grid lines and their numbers (a cell's number is at its left or top edge).
+fn grid_lines(out: &mut Drawing, frame: &Frame) {
+    let cell_px = frame.cell;
     let (w, h) = frame.size();
     for i in frame.min.0..=frame.max.0 {
         let (x, y) = frame.at(Vec2::new(i as f64, frame.min.1 as f64));
@@ -68,10 +84,12 @@ pub fn draw(out: &mut Drawing, map: &Map, d: &Derivation, frame: &Frame) {
             );
         }
     }
-    // The face the ray hit, thick.
-    let hit = d.point_at(d.perp);
+}
+
+/// The face the ray hit, as a segment: the door's panel, or the grid line it crossed last.
+fn hit_face(d: &Derivation) -> (Vec2, Vec2) {
     let (hc, hs) = (d.hit_cell, d.hit_side);
-    let face = match d.perp_from {
+    match d.perp_from {
         crate::render::derivation::PerpFrom::DoorPanel { line, .. } => match hs {
             Side::X => (
                 Vec2::new(line, hc.1 as f64),
@@ -90,8 +108,12 @@ pub fn draw(out: &mut Drawing, map: &Map, d: &Derivation, frame: &Frame) {
                 Side::Y => (Vec2::new(hc.0 as f64, gy), Vec2::new(hc.0 as f64 + 1.0, gy)),
             }
         }
-    };
-    out.line(frame.at(face.0), frame.at(face.1), Stroke::solid(PERP, 4.0));
+    }
+}
+
+/// The ray from the eye through its point on the plane to the hit, and `perp` with its label.
+fn ray_and_perp(out: &mut Drawing, d: &Derivation, frame: &Frame) {
+    let hit = d.point_at(d.perp);
     let along = d.plane * (d.camera_x * d.perp);
     let foot = d.pos + along;
     // The ray, from the eye through its point on the plane to the hit.
@@ -116,10 +138,11 @@ pub fn draw(out: &mut Drawing, map: &Map, d: &Derivation, frame: &Frame) {
             data: vec![("perp", d.perp.to_string())],
         },
     );
-    // The crossings, numbered and labelled, clear of the camera drawn over them.
-    super::crossings::draw(out, d, frame, &super::crossings::camera_marks(d, frame));
-    // The camera on top: the plane through the eye (where perp is measured from), dir and the
-    // plane.
+}
+
+/// The camera, drawn on top: the plane through the eye (where perp is measured from), `dir`
+/// and the plane.
+fn camera(out: &mut Drawing, d: &Derivation, frame: &Frame) {
     let pu = unit(d.plane);
     let reach = (d.plane * (d.camera_x * d.perp)).length() + 1.5;
     if let Some((a, b)) = frame.clip(d.pos - pu * reach, d.pos + pu * reach) {

@@ -38,6 +38,7 @@ struct Written {
     heights: Option<Heights>,
     view_rows: usize,
     scroll: usize,
+    into_setup: usize,
     ascii: bool,
     width: usize,
     rows: usize,
@@ -56,6 +57,7 @@ impl Written {
             heights,
             view_rows,
             scroll,
+            into_setup,
             ascii,
             width,
         } = pane;
@@ -70,6 +72,7 @@ impl Written {
             heights: heights.clone(),
             view_rows: *view_rows,
             scroll: *scroll,
+            into_setup: *into_setup,
             ascii: *ascii,
             width: *width,
             rows,
@@ -88,6 +91,7 @@ impl Written {
             heights,
             view_rows,
             scroll,
+            into_setup,
             ascii,
             width,
         } = pane;
@@ -96,6 +100,7 @@ impl Written {
             && self.hit_reached == ray.hit_reached
             && self.width == *width
             && self.scroll == *scroll
+            && self.into_setup == *into_setup
             && self.ascii == *ascii
             && self.view_rows == *view_rows
             && self.tex_width == *tex_width
