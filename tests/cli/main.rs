@@ -11,6 +11,7 @@ mod oracle;
 #[path = "../support/pty_support/mod.rs"]
 mod pty_support;
 #[path = "../support/tmux/mod.rs"]
+mod texture_fallback;
 mod tmux;
 #[path = "../support/world_common/mod.rs"]
 #[allow(dead_code)] // each test binary uses its own part of the shared world helpers
