@@ -3,6 +3,7 @@
 //! support code and the link are paid once.
 
 #[path = "../support/capture/mod.rs"]
+mod ansi_levels;
 mod capture;
 #[path = "../support/common/mod.rs"]
 mod common;
