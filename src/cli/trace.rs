@@ -4,11 +4,11 @@
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use halfcast::map::Cell;
 use halfcast::output::figure::ColumnCast;
 use halfcast::world::door::DoorState;
 
 use super::options::{parse_eye, parse_pitch, parse_unit, MapArgs, PoseArgs};
+use super::pose_check::{check_pos, PoseUse};
 use super::render::parse_size;
 use super::{camera_for, load_world, write_output, Failure};
 
@@ -19,7 +19,7 @@ pub(crate) struct TraceArgs {
     #[command(flatten)]
     pub(crate) pose: PoseArgs,
     /// View size in terminal cells, COLSxROWS (the column's ray depends on COLS; heights on ROWS).
-    #[arg(long, default_value = "120x40", value_parser = parse_size)]
+    #[arg(long, default_value = "120x40", allow_hyphen_values = true, value_parser = parse_size)]
     pub(crate) size: (u16, u16),
     /// The screen column whose ray is drawn, 0 (left) to COLS−1.
     #[arg(long)]
@@ -78,22 +78,8 @@ pub(crate) fn trace(args: &TraceArgs) -> Result<(), Failure> {
             cols - 1
         )));
     }
+    check_pos(map, camera.pos, PoseUse::View)?;
     let (i, j) = (camera.pos.x.floor() as i64, camera.pos.y.floor() as i64);
-    match map.cell(i, j) {
-        Cell::Floor { .. } | Cell::Door(_) => {}
-        Cell::Void => {
-            return Err(Failure::input(format!(
-                "position {},{} is outside the map (cell ({i},{j}))",
-                camera.pos.x, camera.pos.y
-            )))
-        }
-        Cell::Wall(_) => {
-            return Err(Failure::input(format!(
-                "position {},{} is inside a wall (cell ({i},{j})): a ray must start in open space",
-                camera.pos.x, camera.pos.y
-            )))
-        }
-    }
     if map.has_heights() {
         halfcast::game::pose::still_eye(map, camera.pos, args.z).map_err(Failure::input)?;
     }

@@ -3,7 +3,6 @@
 //! support code and the link are paid once.
 
 #[path = "../support/capture/mod.rs"]
-mod ansi_levels;
 mod capture;
 #[path = "../support/common/mod.rs"]
 mod common;
@@ -12,15 +11,16 @@ mod oracle;
 #[path = "../support/pty_support/mod.rs"]
 mod pty_support;
 #[path = "../support/tmux/mod.rs"]
-mod texture_fallback;
 mod tmux;
 #[path = "../support/world_common/mod.rs"]
 #[allow(dead_code)] // each test binary uses its own part of the shared world helpers
 mod world_common;
 
+mod ansi_levels;
 mod ansi_round_trip;
 mod cli_colors;
 mod cli_default_play;
+mod cli_errors;
 mod colour;
 mod colour_fidelity;
 mod config_cli;
@@ -56,6 +56,7 @@ mod replay;
 mod replay_pty;
 mod replay_sizes_pty;
 mod screen_sizes;
+mod texture_fallback;
 mod trace_figure;
 mod widgets;
 mod world_cli;
