@@ -2,7 +2,7 @@
 //! that shows them, and a byte-lean terminal encoder any ratatui app can use.
 //!
 //! The pipeline, one module per stage: [`map`] → [`Camera`] → [`cast`](render::cast) (pure DDA) →
-//! [`raster`](render::raster) into a [`Framebuffer`] → [`encode`] (bytes for a terminal), [`widget`]
+//! rasterizing into a [`Framebuffer`] → [`encode`] (bytes for a terminal), [`widget`]
 //! (ratatui) or the headless forms (`Scene::to_png`, `to_ansi`, `to_cells_text`).
 //!
 //! # Features
@@ -131,8 +131,6 @@
 //! # let _ = last;
 //! ```
 #![warn(missing_docs)]
-// Some docs name private constants and modules for readers of `--document-private-items`.
-#![allow(rustdoc::private_intra_doc_links)]
 
 // The library's API: the engine and what a user pins, embeds or replays with (the root
 // re-exports below name the types most users need).

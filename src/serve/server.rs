@@ -1,6 +1,6 @@
 //! The server: its worlds, leaderboard, metrics and listeners started from the operator's
 //! settings ([`start_maps`]), drained and stopped ([`RunningServer`]), run until a signal
-//! ([`run_until_signal`]). The SSH edge's accept loop is [`super::ssh::listener`].
+//! ([`run_until_signal`]). The SSH edge's accept loop is `super::ssh::listener`.
 
 use std::io;
 use std::net::SocketAddr;
