@@ -37,7 +37,7 @@ pub(crate) struct RenderArgs {
     /// Enlarge the PNG N times, each pixel an N×N block (1 to 16): `--scale 4` makes the default
     /// 120x40 view 480×320 pixels. Without it the PNG is the framebuffer itself, as `diff` and
     /// golden images read it.
-    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u16).range(1..=16))]
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true, value_parser = clap::value_parser!(u16).range(1..=16))]
     pub(crate) scale: u16,
     /// Colour level for `--format ansi` (default: detected from COLORTERM, TERM, NO_COLOR).
     #[arg(long, value_parser = parse_level)]

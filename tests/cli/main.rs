@@ -3,6 +3,7 @@
 //! support code and the link are paid once.
 
 #[path = "../support/capture/mod.rs"]
+mod bench_bytes_only;
 mod capture;
 #[path = "../support/common/mod.rs"]
 mod common;
@@ -11,6 +12,7 @@ mod oracle;
 #[path = "../support/pty_support/mod.rs"]
 mod pty_support;
 #[path = "../support/tmux/mod.rs"]
+mod render_scale;
 mod tmux;
 #[path = "../support/world_common/mod.rs"]
 #[allow(dead_code)] // each test binary uses its own part of the shared world helpers
