@@ -3,7 +3,6 @@
 //! support code and the link are paid once.
 
 #[path = "../support/capture/mod.rs"]
-mod bench_bytes_only;
 mod capture;
 #[path = "../support/common/mod.rs"]
 mod common;
@@ -12,7 +11,6 @@ mod oracle;
 #[path = "../support/pty_support/mod.rs"]
 mod pty_support;
 #[path = "../support/tmux/mod.rs"]
-mod render_scale;
 mod tmux;
 #[path = "../support/world_common/mod.rs"]
 #[allow(dead_code)] // each test binary uses its own part of the shared world helpers
@@ -20,6 +18,7 @@ mod world_common;
 
 mod ansi_levels;
 mod ansi_round_trip;
+mod bench_bytes_only;
 mod cli_colors;
 mod cli_default_play;
 mod cli_errors;
@@ -31,7 +30,9 @@ mod diff;
 mod docs_bench;
 mod docs_commands;
 mod docs_dda;
+mod docs_outputs_ignored;
 mod encode_with_ratatui;
+mod feature_tables;
 mod flat_unchanged;
 mod fuzz_stable;
 mod game_play_pty;
@@ -46,6 +47,7 @@ mod heights_reference;
 mod heights_replay;
 mod input_limits;
 mod map_errors;
+mod package_links;
 mod play_colour_detect;
 mod play_keys_pty;
 mod play_pty;
@@ -54,6 +56,7 @@ mod play_tmux;
 mod properties;
 mod readme_screenshot;
 mod render_json;
+mod render_scale;
 mod replay;
 mod replay_pty;
 mod replay_sizes_pty;
