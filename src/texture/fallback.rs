@@ -40,8 +40,6 @@ impl ImageKind {
 pub struct Fallback<'s> {
     /// The built-in's stem (`stone`, `barrel`).
     pub stem: &'s str,
-    /// The file's own stem, as written (`Stone` for `walls/Stone.png`).
-    file_stem: String,
     /// Whether the file's name chose it (else its slot did).
     pub by_name: bool,
     kind: ImageKind,
@@ -55,22 +53,20 @@ impl<'s> Fallback<'s> {
         let file_stem = Path::new(path)
             .file_stem()
             .and_then(|s| s.to_str())
-            .unwrap_or_default()
-            .to_owned();
+            .unwrap_or_default();
         let named = kind
             .builtin_names()
-            .find(|name| name.eq_ignore_ascii_case(&file_stem));
+            .find(|name| name.eq_ignore_ascii_case(file_stem));
         Self {
             stem: named.unwrap_or(slot),
-            file_stem,
             by_name: named.is_some(),
             kind,
         }
     }
 
     /// The end of the warning after the reason the file failed: `using the built-in 'stone'
-    /// texture, which has its name`, or, by slot, `no built-in texture is named 'north'; using
-    /// the built-in 'bricks' texture`.
+    /// texture, which has its name`, or, by slot, `using the built-in 'bricks' texture` (the
+    /// words the slot's stand-in always had).
     #[must_use]
     pub fn says(&self) -> String {
         let kind = self.kind.word();
@@ -80,10 +76,7 @@ impl<'s> Fallback<'s> {
                 self.stem
             )
         } else {
-            format!(
-                "no built-in {kind} is named '{}'; using the built-in '{}' {kind}",
-                self.file_stem, self.stem
-            )
+            format!("using the built-in '{}' {kind}", self.stem)
         }
     }
 }
@@ -112,10 +105,7 @@ mod tests {
     fn other_names_and_other_kinds_fall_back_by_slot() {
         let f = Fallback::for_file("./north.png", ImageKind::Texture, "wood");
         assert_eq!((f.stem, f.by_name), ("wood", false));
-        assert_eq!(
-            f.says(),
-            "no built-in texture is named 'north'; using the built-in 'wood' texture"
-        );
+        assert_eq!(f.says(), "using the built-in 'wood' texture");
         // A sprite's name does not pick a wall texture, nor a texture's a sprite.
         let f = Fallback::for_file("treasure.png", ImageKind::Texture, "metal");
         assert_eq!((f.stem, f.by_name), ("metal", false));
