@@ -8,12 +8,18 @@ use clap::error::ErrorKind;
 
 use super::Failure;
 
-/// With no command, the map argument must name a file: one that does not exist is a mistyped
-/// command as likely as a mistyped map, so the message offers both (exit 2).
+/// With no command, the map argument must name a file: a bare word (no folder, no extension)
+/// that names none is a mistyped command as likely as a mistyped map, so the message offers both
+/// (exit 2).
 pub(crate) fn not_a_command(cli: &clap::Command, map: Option<&Path>) -> Result<(), Failure> {
     let Some(word) = map else {
         return Ok(());
     };
+    // A path or a file name (`maps/x.cub`, `x.cub`) is meant as a map: reading it says why not.
+    let as_text = word.to_string_lossy();
+    if as_text.contains(['/', '.', std::path::MAIN_SEPARATOR]) {
+        return Ok(());
+    }
     match std::fs::symlink_metadata(word) {
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
         // It exists (or cannot be looked at): reading it says what is wrong with it.

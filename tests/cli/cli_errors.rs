@@ -32,7 +32,6 @@ fn a_word_that_is_neither_a_command_nor_a_file_lists_the_commands() {
         ("rendr", " (did you mean render?)"),
         ("serv", " (did you mean serve?)"),
         ("glpyhs", " (did you mean glyphs?)"),
-        ("maps/no-such-level.cub", ""),
     ] {
         refused(
             &[word],
@@ -52,11 +51,24 @@ fn a_word_that_is_neither_a_command_nor_a_file_lists_the_commands() {
             ),
         );
     }
-    // Named as a map (`play WORD`), it is a map that cannot be read, as before.
-    let out = halfcast(&["play", "frobnicate"]);
-    assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr)
-        .starts_with("error: frobnicate: cannot read the file: "));
+    // Named as a map (`play WORD`), or written as a file (a folder or an extension), it is a
+    // map that cannot be read, as before.
+    for args in [
+        &["play", "frobnicate"][..],
+        &["no-such-level.cub"],
+        &["maps/no-such-level"],
+        &["maps/no-such-level.cub", "--fps", "30"],
+    ] {
+        let out = halfcast(args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        let word = args[usize::from(args[0] == "play")];
+        assert!(
+            stderr.starts_with(&format!("error: {word}: cannot read the file: ")),
+            "{args:?}: {stderr}"
+        );
+        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    }
 }
 
 #[test]
