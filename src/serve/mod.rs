@@ -27,7 +27,7 @@ pub(crate) mod served_map;
 pub mod server;
 pub(crate) mod session_hooks;
 pub(crate) mod shared;
-// Their module docs still link private items (31 links); they are being reshaped now, and the
+// Their module docs still link private items (17 links); they are being reshaped now, and the
 // whole `serve` module is hidden from the published docs, so no link of theirs shows as dead.
 // Remove the allows once their docs name those items in code spans.
 #[allow(rustdoc::private_intra_doc_links)]
