@@ -2,23 +2,30 @@
 //! that shows them, and a byte-lean terminal encoder any ratatui app can use.
 //!
 //! The pipeline, one module per stage: [`map`] → [`Camera`] → [`cast`](render::cast) (pure DDA) →
-//! [`raster`](render::raster) into a [`Framebuffer`] → [`encode`] (bytes for a terminal), [`widget`]
-//! (ratatui) or the headless forms (`Scene::to_png`, `to_ansi`, `to_cells_text`).
+//! rasterizing into a [`Framebuffer`] → [`encode`] (bytes for a terminal), [`widget`] (ratatui) or
+//! the headless forms ([`Scene::to_png`], [`Scene::to_ansi_level`], [`Scene::to_cells_text`]).
 //!
 //! # Features
 //!
 //! | feature | what it adds | pulls in |
 //! |---|---|---|
-//! | *(none)* | engine, widgets, encoder, [`LeanBackend`], [`snapshot`], [`termframe`], [`replay`] files | ratatui (no backend), ratatui-cells, image, serde |
+//! | *(none)* | engine, widgets, encoder, [`LeanBackend`], [`snapshot`], [`termframe`], [`replay`] files | ratatui (no backend), ratatui-cells, image, serde, serde_json, flate2, thiserror, unicode-width, wide, safe_arch (x86-64), libc (unix) |
 //! | `crossterm` | ratatui's crossterm backend; [`LeanBackend`] asks the terminal its size | crossterm |
 //! | `scrolling-regions` | [`LeanBackend`]'s scrolling-region methods (when ratatui's feature of that name is on) | — |
 //! | `vt100` | `termframe::from_screen` (cells from a `vt100` model of your own); re-exports `halfcast::vt100` | vt100 |
-//! | `tui` | the interactive terminal (`halfcast play`) | crossterm, signal-hook, toml |
-//! | `serve` | the SSH server (`halfcast serve`) | russh, tokio |
-//! | `cli` (default, with all above) | the `halfcast` binary | clap |
+//! | `ui` | the game screen the terminal, the SSH server and replays share | — (what `crossterm` pulls in) |
+//! | `tui` | the interactive terminal (`halfcast play`) | signal-hook, toml (and what `ui` pulls in) |
+//! | `serve` | the SSH server (`halfcast serve`), players in a browser, the leaderboard, metrics | russh, tokio, getrandom, rusqlite, postgres, metrics, metrics-exporter-prometheus, ppp, tokio-tungstenite, httparse, futures-util, mimalloc; on Linux netlink-packet-sock-diag, netlink-packet-core, netlink-sys (and what `ui` pulls in) |
+//! | `cli` (default, with `tui` and `serve`) | the `halfcast` binary | clap (and what `tui`, `serve` and `vt100` pull in) |
 //!
-//! A library user writes `halfcast = { version = "0.1", default-features = false }` (plus
-//! `features = ["crossterm"]` to run a stock ratatui terminal).
+//! Each row names the crates the feature itself adds, the same as docs/library.md's table (a test
+//! checks both against `Cargo.toml`).
+//!
+//! Neither halfcast nor ratatui-cells is on crates.io yet: a library user depends on a clone of the
+//! repository, `halfcast = { path = "../halfcast", default-features = false }`, or on its git
+//! address, `halfcast = { git = "URL", default-features = false }` (plus
+//! `features = ["crossterm"]` to run a stock ratatui terminal). Once published, the line will be
+//! `halfcast = { version = "0.1", default-features = false }`.
 //!
 //! # Render a frame
 //!
@@ -26,7 +33,7 @@
 //! every form a test or tool needs:
 //!
 //! ```
-//! use halfcast::{Camera, Scene, World};
+//! use halfcast::{Camera, ColorLevel, Scene, World};
 //!
 //! let world = World::default_world();
 //! let start = world.map.start;
@@ -34,9 +41,12 @@
 //! let fb = scene.render(80, 24); // Framebuffer: 80 × 48 pixels (two per cell)
 //! let png = scene.to_png(80, 24).unwrap(); // PNG file contents
 //! let ansi = scene.to_ansi(80, 24); // the bytes a truecolor terminal receives
+//! // … or one at 256 colours (also Ansi16, Mono): what `render --format ansi --colors 256` writes
+//! let ansi256 = scene.to_ansi_level(80, 24, ColorLevel::Ansi256);
 //! let text = scene.to_cells_text(80, 24); // colour-aware text for insta snapshots
 //! assert_eq!(fb, halfcast::Framebuffer::from_image_bytes(&png).unwrap());
 //! assert!(ansi.contains('▀') && text.starts_with("ratatui-cells v1 80x24"));
+//! assert!(ansi256.contains("\x1b[38;5;"));
 //! ```
 //!
 //! # Embed the view in a ratatui app
@@ -131,8 +141,6 @@
 //! # let _ = last;
 //! ```
 #![warn(missing_docs)]
-// Some docs name private constants and modules for readers of `--document-private-items`.
-#![allow(rustdoc::private_intra_doc_links)]
 
 // The library's API: the engine and what a user pins, embeds or replays with (the root
 // re-exports below name the types most users need).

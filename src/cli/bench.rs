@@ -28,8 +28,9 @@ pub(crate) struct BenchArgs {
     #[arg(long, value_name = "N")]
     pub(crate) delta: Option<u8>,
     /// Bytes only: encode each frame once, without the timing re-runs and the colour figures
-    /// (fast even in a debug build, so the docs' byte figures can be checked by a test).
-    #[arg(long)]
+    /// (fast even in a debug build, so the docs' byte figures can be checked by a test); the
+    /// table then has no timing columns.
+    #[arg(long, conflicts_with = "glyphs")]
     pub(crate) bytes_only: bool,
     /// Row-planner beam width (1 = greedy), for comparing planner settings.
     #[arg(long, hide = true)]
@@ -41,7 +42,7 @@ pub(crate) struct BenchArgs {
 }
 
 pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
-    use super::bench_run::{run_default, run_frames, table, BenchPlan};
+    use super::bench_run::{bytes_table, run_default, run_frames, table, BenchPlan};
     if args.glyphs {
         use super::bench_glyphs::{glyph_table, run_glyphs};
         let level = args.colors.unwrap_or(ColorLevel::TrueColor);
@@ -79,6 +80,8 @@ pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
         let mut s = serde_json::to_string(&report).map_err(Failure::io)?;
         s.push('\n');
         s
+    } else if args.bytes_only {
+        bytes_table(&report)
     } else {
         table(&report)
     };

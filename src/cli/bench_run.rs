@@ -479,6 +479,55 @@ pub fn table(report: &Report) -> String {
     s
 }
 
+/// The report of a `--bytes-only` run: bytes alone, with no timing columns (it times nothing
+/// twice, so its one-pass times are not figures to print) and no colour figures (none measured).
+#[must_use]
+pub fn bytes_table(report: &Report) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "{:<6} {:>7} {:>9} {:>6} | {:>9} {:>9} {:>8} | {:>9} {:>9} | {:>7} {:>7}",
+        "scene",
+        "size",
+        "colors",
+        "frames",
+        "B/frame",
+        "first",
+        "zlib B/f",
+        "rat B/f",
+        "rat first",
+        "vs rat",
+        "vs rtc"
+    );
+    for r in &report.runs {
+        let same = if r.ratatui.bytes_per_frame > 0.0 {
+            100.0 * r.halfcast.bytes_per_frame / r.ratatui.bytes_per_frame
+        } else {
+            0.0
+        };
+        let _ = writeln!(
+            s,
+            "{:<6} {:>7} {:>9} {:>6} | {:>9.0} {:>9} {:>8.0} | {:>9.0} {:>9} | {:>6.1}% {:>6.1}%",
+            r.scene,
+            format!("{}x{}", r.cols, r.rows),
+            r.colors,
+            r.frames,
+            r.halfcast.bytes_per_frame,
+            r.halfcast.first_frame_bytes,
+            r.halfcast.zlib_bytes_per_frame,
+            r.ratatui.bytes_per_frame,
+            r.ratatui.first_frame_bytes,
+            same,
+            100.0 * r.ratio_vs_ratatui_truecolor,
+        );
+    }
+    s.push_str(
+        "Bytes only. B/frame, zlib: mean over frames after the first; vs rat: halfcast / stock \
+         ratatui at the same level; vs rtc: halfcast / stock ratatui truecolor\n",
+    );
+    s
+}
+
 /// A colour figure for the table with `digits` decimals (`-` when not measured).
 fn figure(v: Option<f64>, digits: usize) -> String {
     v.map_or_else(|| "-".to_string(), |v| format!("{v:.digits$}"))

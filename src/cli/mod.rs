@@ -9,6 +9,7 @@ mod glyphs;
 mod options;
 mod output_file;
 mod play;
+mod pose_check;
 mod render;
 mod replay;
 mod replay_frames;
@@ -16,6 +17,7 @@ mod replay_limits;
 mod scores;
 mod serve;
 mod trace;
+mod unknown_word;
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -155,7 +157,8 @@ pub fn run() -> ExitCode {
     let matches = Cli::command()
         .after_help(keys.clone())
         .mut_subcommand("play", |c| c.after_help(keys.clone()))
-        .get_matches();
+        .try_get_matches()
+        .unwrap_or_else(|e| unknown_word::exit_on_parse_error(&e));
     let cli = match Cli::from_arg_matches(&matches) {
         Ok(c) => c,
         Err(e) => e.exit(),
@@ -171,7 +174,8 @@ pub fn run() -> ExitCode {
         Some(Command::Bench(args)) => bench::bench(&args),
         Some(Command::Serve(args)) => serve::serve(*args),
         Some(Command::Scores(args)) => scores::scores(&args),
-        None => play::play(&cli.play, None),
+        None => unknown_word::not_a_command(&Cli::command(), cli.play.map.map.as_deref())
+            .and_then(|()| play::play(&cli.play, None)),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -12,6 +12,7 @@ use halfcast::tui::{self, Ending, LoopOptions, PlayOptions, Setup, Stage, Termin
 use halfcast::ui::layout::Toggles;
 
 use super::options::{MapArgs, PoseArgs};
+use super::pose_check::{check_pos, PoseUse};
 use super::{camera_for, detect_colours, load_world, parse_level, write_output, Failure};
 
 #[derive(Args, Debug)]
@@ -199,12 +200,7 @@ fn stages(args: &PlayArgs) -> Result<Vec<Stage>, Failure> {
             let start = world.map.start;
             Camera::from_angle(start.pos(), start.angle_deg(), args.pose.fov)
         };
-        if !world.map.is_walkable(camera.pos) {
-            return Err(Failure::input(format!(
-                "--pos {},{} is not on a floor cell of {}",
-                camera.pos.x, camera.pos.y, world.map.name
-            )));
-        }
+        check_pos(&world.map, camera.pos, PoseUse::Player)?;
         halfcast::game::pose::player_start(&world.map, camera.pos, "--pos")
             .map_err(Failure::input)?;
         out.push(Stage {

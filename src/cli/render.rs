@@ -10,6 +10,7 @@ use halfcast::world::door::DoorState;
 use halfcast::{Framebuffer, Glyphs, Scene};
 
 use super::options::{MapArgs, PoseArgs, WorldArgs};
+use super::pose_check::{check_pos, PoseUse};
 use super::{camera_for, detect_level, load_world, parse_level, write_output, Failure};
 /// `COLSxROWS`, 1×1 to the largest frame `diff` reads (shared with the web's ray addresses).
 pub(crate) use halfcast::trace_query::values::parse_size;
@@ -21,7 +22,7 @@ pub(crate) struct RenderArgs {
     #[command(flatten)]
     pub(crate) pose: PoseArgs,
     /// View size in terminal cells, COLSxROWS (the PNG is COLS × 2·ROWS pixels).
-    #[arg(long, default_value = "120x40", value_parser = parse_size)]
+    #[arg(long, default_value = "120x40", allow_hyphen_values = true, value_parser = parse_size)]
     pub(crate) size: (u16, u16),
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Png)]
@@ -29,6 +30,11 @@ pub(crate) struct RenderArgs {
     /// Write here instead of standard output.
     #[arg(short, long)]
     pub(crate) output: Option<PathBuf>,
+    /// Enlarge the PNG N times, each pixel an N×N block (1 to 16): `--scale 4` makes the default
+    /// 120x40 view 480×320 pixels. Without it the PNG is the framebuffer itself, as `diff` and
+    /// golden images read it.
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true, value_parser = clap::value_parser!(u16).range(1..=16))]
+    pub(crate) scale: u16,
     /// Colour level for `--format ansi` (default: detected from COLORTERM, TERM, NO_COLOR).
     #[arg(long, value_parser = parse_level)]
     pub(crate) colors: Option<ColorLevel>,
@@ -58,9 +64,42 @@ pub(crate) fn parse_glyphs(s: &str) -> Result<Glyphs, String> {
     s.parse()
 }
 
+/// Most pixels a side of an enlarged PNG (`--scale`).
+const MAX_SCALED_SIDE: usize = 16_384;
+
+/// `fb` with every pixel an `n`×`n` block (`--scale n`).
+fn enlarged(fb: &Framebuffer, n: u16) -> Result<Framebuffer, Failure> {
+    let n = usize::from(n);
+    if n == 1 {
+        return Ok(fb.clone());
+    }
+    let (w, h) = (fb.width() * n, fb.height() * n);
+    if w.max(h) > MAX_SCALED_SIDE {
+        return Err(Failure::input(format!(
+            "--scale {n} would make a {w}x{h}-pixel PNG; at most {MAX_SCALED_SIDE} pixels a side"
+        )));
+    }
+    let mut big = Framebuffer::new(w, h);
+    for y in 0..h {
+        for x in 0..w {
+            big.set(x, y, fb.get(x / n, y / n));
+        }
+    }
+    Ok(big)
+}
+
 pub(crate) fn render(args: &RenderArgs) -> Result<(), Failure> {
+    if args.scale != 1 && args.format != Format::Png {
+        return Err(Failure::input(format!(
+            "--scale enlarges a PNG; --format {} has no pixels to enlarge",
+            args.format
+                .to_possible_value()
+                .map_or_else(String::new, |v| v.get_name().to_owned())
+        )));
+    }
     let world = load_world(&args.map)?;
     let camera = camera_for(&world, &args.pose);
+    check_pos(&world.map, camera.pos, PoseUse::View)?;
     if world.map.has_heights() {
         // Flat maps keep accepting every --z they always did (up to 0.95).
         halfcast::game::pose::still_eye(&world.map, camera.pos, args.world.z)
@@ -99,9 +138,12 @@ pub(crate) fn render(args: &RenderArgs) -> Result<(), Failure> {
     let frame = scene.render_frame(&mut fb, Some(traced));
     let cast = frame.cast;
     let bytes = match args.format {
-        Format::Png => halfcast::output::glyph_picture::shown_picture(&fb)
-            .to_png()
-            .map_err(Failure::io)?,
+        Format::Png => enlarged(
+            &halfcast::output::glyph_picture::shown_picture(&fb),
+            args.scale,
+        )?
+        .to_png()
+        .map_err(Failure::io)?,
         Format::Ansi => {
             let opts = EncodeOptions::new(args.colors.unwrap_or_else(detect_level));
             full_frame(&fb, &opts)

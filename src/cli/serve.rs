@@ -328,5 +328,20 @@ fn start_and_run(args: ServeArgs) -> Result<(), Failure> {
     } else if getrandom::fill(&mut seed).is_ok() {
         config.seed = u64::from_ne_bytes(seed);
     }
-    run_until_signal(config, maps).map_err(Failure::input)
+    run_until_signal(config, maps).map_err(start_failure)
+}
+
+/// A failed start as README's exit codes say it: a port that cannot be bound (in use, or not
+/// ours to take) is an I/O failure (1); the rest (a host key, the leaderboard) bad input (2).
+fn start_failure(message: String) -> Failure {
+    const BIND: [&str; 3] = [
+        "cannot listen on ",
+        "cannot serve the web page on ",
+        "cannot serve metrics on ",
+    ];
+    if BIND.iter().any(|p| message.starts_with(p)) {
+        Failure::io(message)
+    } else {
+        Failure::input(message)
+    }
 }

@@ -18,7 +18,7 @@ pub(crate) struct TraceArgs {
     #[command(flatten)]
     pub(crate) pose: PoseArgs,
     /// View size in terminal cells, COLSxROWS (the column's ray depends on COLS; heights on ROWS).
-    #[arg(long, default_value = "120x40", value_parser = parse_size)]
+    #[arg(long, default_value = "120x40", allow_hyphen_values = true, value_parser = parse_size)]
     pub(crate) size: (u16, u16),
     /// The screen column whose ray is drawn, 0 (left) to COLS−1.
     #[arg(long)]

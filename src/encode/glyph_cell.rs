@@ -3,14 +3,14 @@
 //!
 //! Colours are mixed in linear light: a group's colour is the mean light of its pixels, and the
 //! split is judged there too, by squared distances with each channel weighted for how much it
-//! counts ([`lane_split::WEIGHT`]). Quadrants and sextants try every split (7 and 31); octants
+//! counts (`lane_split::WEIGHT`). Quadrants and sextants try every split (7 and 31); octants
 //! run one round of a 2-means: split the pixels at the light halfway between the darkest and the
 //! brightest, then move each pixel to the nearer of the two groups' means. Cells of one or two
 //! distinct colours are exact without any of that.
 //!
 //! This runs for every cell of every frame, so everything runs from tables built once (sRGB ↔
 //! linear light), with no cube roots or powers per pixel, and a frame's cells of three or more
-//! colours are split eight at a time, one per vector lane ([`super::lane_split`]).
+//! colours are split eight at a time, one per vector lane (`super::lane_split`).
 
 use super::lane_split::{self, Pixels, Split, SplitSums, LANES};
 use crate::color::{channel_to_linear, lab_dist2, oklab, Linear, Rgb};
@@ -115,7 +115,7 @@ pub fn choose_n<const N: usize>(pixels: &[Rgb]) -> GlyphCell {
 }
 
 /// Every cell of `cells` (each `N` pixels, row-major) in order, as [`choose_n`] would choose
-/// it, appended to `out`; cells of three or more colours are split [`LANES`] at a time.
+/// it, appended to `out`; cells of three or more colours are split `LANES` at a time.
 pub fn choose_all<const N: usize>(cells: impl Iterator<Item = [Rgb; N]>, out: &mut Vec<GlyphCell>) {
     let t = tables();
     let mut px: Pixels<N> = lane_split::pixels();

@@ -60,7 +60,7 @@ impl CodedCell {
 impl CodedCell {
     /// The cell that shows `pixels` at a level that mixes (256 and 16 colours) by the rules
     /// half-blocks follow (`docs/colour.md`): a pixel whose surface wrote a dither phase
-    /// (`phases`, [`NEUTRAL_PHASE`] where none did) takes its colour's mix at that phase, so the
+    /// (`phases`, `NEUTRAL_PHASE` where none did) takes its colour's mix at that phase, so the
     /// pattern moves with the wall; any other pixel its colour's none/half/all mix at its place
     /// in the cell's pattern ([`cell_thresholds`]), so floors stay calm. A cell can show two
     /// codes: where its pixels ask for more, the two most asked for stay and every other pixel
@@ -209,7 +209,7 @@ pub fn cell_pixels(fb: &Framebuffer, cx: usize, cy: usize, out: &mut [Rgb; MAX_P
 
 /// Every cell of `fb`, chosen ([`choose`]), row-major. A frame drawn by the view widget and
 /// then sent by the presenter is chosen once by each; the presenter hands its own choice to
-/// the encoder ([`crate::encode::Encoder::encode_chosen`]) rather than choosing again.
+/// the encoder (`crate::encode::Encoder::encode_chosen`) rather than choosing again.
 pub fn glyph_cells(fb: &Framebuffer, cells: &mut Vec<GlyphCell>) {
     match fb.glyphs().cell_size() {
         (2, 2) => cells_of::<2, 4>(fb, cells),
@@ -430,7 +430,7 @@ fn within(shown: CodedCell, want: CodedCell, full: u8, n: u8, palette: &Palette)
 }
 
 /// A whole glyph frame as printable lines (`render --format ansi`): every cell in the form
-/// [`GlyphFrames`] would pick, each row ending with a colour reset and a newline.
+/// `GlyphFrames` would pick, each row ending with a colour reset and a newline.
 #[must_use]
 pub fn full_lines(fb: &Framebuffer, palette: &Palette) -> Vec<u8> {
     let glyphs = fb.glyphs();

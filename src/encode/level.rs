@@ -67,7 +67,7 @@ impl ColorLevel {
     /// Guesses the level from `COLORTERM`, `TERM` and `NO_COLOR` (passed in so it is testable).
     ///
     /// `NO_COLOR` (non-empty) wins; `COLORTERM=truecolor|24bit`, a `*-direct` TERM or a terminal
-    /// known to draw 24-bit colour whatever its `TERM` ([`TRUECOLOR_TERMS`]) gives 24-bit; a
+    /// known to draw 24-bit colour whatever its `TERM` (`TRUECOLOR_TERMS`) gives 24-bit; a
     /// `*256color*` TERM or a plain `xterm` gives 256; `dumb` gives mono; anything else gives 16.
     #[must_use]
     pub fn detect(colorterm: Option<&str>, term: Option<&str>, no_color: Option<&str>) -> Self {

@@ -1,11 +1,11 @@
 //! Byte-lean terminal output (pure: framebuffers in, bytes out; no terminal I/O here).
 //!
-//! - [`level`]: the colour ladder (truecolor → 256 → 16 → mono) and its detection.
-//! - [`palette`]: pixel → colour code, from shared tables: the nearest entry, or [`mixing`]'s
+//! - `level`: the colour ladder (truecolor → 256 → 16 → mono) and its detection.
+//! - [`palette`]: pixel → colour code, from shared tables: the nearest entry, or `mixing`'s
 //!   per-pixel mixes thresholded by the surfaces' dither phases.
-//! - [`encoder`]: the live frame encoder (diff against what the terminal shows, minimal SGR and moves,
-//!   synchronized output); [`inline`]: a whole frame as printable lines for `render --format ansi`.
-//! - [`pacer`]: fitting the frame rate to a bandwidth cap.
+//! - `encoder`: the live frame encoder (diff against what the terminal shows, minimal SGR and moves,
+//!   synchronized output); `inline`: a whole frame as printable lines for `render --format ansi`.
+//! - `pacer`: fitting the frame rate to a bandwidth cap.
 
 pub(crate) mod cell_diff;
 pub(crate) mod cells;

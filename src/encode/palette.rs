@@ -1,5 +1,5 @@
 //! Colour codes per level: exact 24-bit, or xterm-256 / ANSI-16 entries from shared lookup tables:
-//! the nearest entry for single colours, mixes ([`super::mixing`]) for pictures.
+//! the nearest entry for single colours, mixes (`super::mixing`) for pictures.
 
 use std::sync::{Arc, OnceLock};
 
@@ -144,7 +144,7 @@ impl Palette {
 
     /// The `[top, bottom]` codes of a cell showing pixels `top` over `bottom` whose upper pixel
     /// has dither phase `phase` (written by the surface it shows, or
-    /// [`NEUTRAL_PHASE`](crate::render::framebuffer::NEUTRAL_PHASE) where none did).
+    /// `NEUTRAL_PHASE` where none did).
     ///
     /// The answer depends on the pixels and the phase only, never on the cell's position; at
     /// truecolor (and mono) each pixel gets [`Palette::code`].

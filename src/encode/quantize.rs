@@ -15,7 +15,7 @@ pub fn mono_char(top: crate::Rgb, bottom: crate::Rgb) -> char {
 /// Fills `cells` (row-major, `width × cell_rows`) with what each cell should show.
 ///
 /// Colour levels give `[top code, bottom code]`; mono gives `[char, 0]`. At 256 and 16 colours
-/// each pixel shows its colour's mix ([`super::mixing`]) thresholded by the dither phase its
+/// each pixel shows its colour's mix (`super::mixing`) thresholded by the dither phase its
 /// surface wrote (a cell reads its upper pixel's), so patterns lie on the surfaces; cells no
 /// surface wrote a phase for (floors, ceilings, frames from elsewhere) mix within the cell only.
 pub fn quantize(palette: &Palette, fb: &Framebuffer, cells: &mut Vec<[Code; 2]>) {

@@ -78,7 +78,7 @@ pub enum Event {
     Caught {
         /// Index of the player.
         player: usize,
-        /// Points it cost (less than [`CATCH_POINTS`] when the score was lower).
+        /// Points it cost (less than `CATCH_POINTS` when the score was lower).
         lost: i64,
     },
     /// The player's shot tagged a creature.

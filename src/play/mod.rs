@@ -5,8 +5,8 @@
 //!
 //! - [`session`]: the loop, given a [`setup`] (when to draw, idle and stall rules, the frame-rate cap),
 //!   giving back an [`end`];
-//!   [`player`]: what one client has on screen (keys, whom it watches, what a frame is drawn
-//!   from); [`header_text`] and [`header_fit`]: the header row; [`screen`] and [`avatars`]: the
+//!   `player`: what one client has on screen (keys, whom it watches, what a frame is drawn
+//!   from); `header_text` and `header_fit`: the header row; `screen` and `avatars`: the
 //!   panes with the other players in them.
 //! - [`pacing`]: when the next frame may go and the colour level's steps, from [`link`] figures
 //!   and the client's acknowledgements ([`acks`]); [`link_text`]: those figures for people.

@@ -3,7 +3,7 @@
 //!
 //! Keys go through the local game's key map into the same `game::Input` the local game steps
 //! with; the world task applies it. Frames are the game's panes under a header
-//! ([`super::screen`]).
+//! (`super::screen`).
 //!
 //! Output follows the link ([`super::pacing`]): a frame is drawn only once the last one has
 //! nearly arrived (what the sink knows of its link, and the client's own acknowledgements), from

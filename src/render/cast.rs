@@ -31,7 +31,7 @@ pub struct DdaTrace {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Cast {
     /// One hit per column: on maps with `Hz` heights, where the column's window of open rows
-    /// closed (see [`crate::render::height_cast`]).
+    /// closed (see `crate::render::height_cast`).
     pub columns: Vec<ColumnHit>,
     /// The step-by-step traversal of the traced column, when one was asked for.
     pub trace: Option<DdaTrace>,

@@ -209,14 +209,14 @@ impl Framebuffer {
         self.phases.as_deref()
     }
 
-    /// One pixel row of phases, created (all [`NEUTRAL_PHASE`]) on first use: what renderers write.
+    /// One pixel row of phases, created (all `NEUTRAL_PHASE`) on first use: what renderers write.
     pub fn phase_row_mut(&mut self, y: usize) -> &mut [u8] {
         let n = self.width * self.height;
         let phases = self.phases.get_or_insert_with(|| vec![NEUTRAL_PHASE; n]);
         &mut phases[y * self.width..(y + 1) * self.width]
     }
 
-    /// The whole plane of phases, row-major, created (all [`NEUTRAL_PHASE`]) on first use: for
+    /// The whole plane of phases, row-major, created (all `NEUTRAL_PHASE`) on first use: for
     /// renderers that write down a column.
     pub fn phases_mut(&mut self) -> &mut [u8] {
         let n = self.width * self.height;

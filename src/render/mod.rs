@@ -1,7 +1,7 @@
 //! The pipeline's middle, in order: `cast` (rays through the grid; `height_cast` on `Hz` maps),
 //! then `raster` (walls, floors, ceilings; `height_raster` on `Hz` maps) and `billboard`
 //! (sprites) into the [`Framebuffer`], lit by `light`/`lightmap` and seen through a `view`.
-//! A [`scene::Scene`] holds one frame's input; [`frame`] turns it into pixels.
+//! A [`scene::Scene`] holds one frame's input; `frame` turns it into pixels.
 
 pub(crate) mod billboard;
 pub mod cast;

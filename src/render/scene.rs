@@ -100,10 +100,8 @@ impl<'a> Scene<'a> {
         self
     }
 
-    /// Every sprite of the frame: the world's, then this frame's ([`SpriteOutcome`] indices
+    /// Every sprite of the frame: the world's, then this frame's (`SpriteOutcome` indices
     /// count through both in this order).
-    ///
-    /// [`SpriteOutcome`]: crate::render::billboard::SpriteOutcome
     pub fn all_sprites(&self) -> impl Iterator<Item = &'a Sprite> {
         self.world.sprites.iter().chain(self.sprites)
     }

@@ -8,14 +8,14 @@
 //!   the session itself is transport-free, in [`crate::play`].
 //! - [`web`]: the browser edge (the page, its WebSocket, the page's acks as a frame sink); it
 //!   and [`ssh`] never use each other.
-//! - [`server`]: the process: worlds, listeners, leaderboard, metrics, drain; [`config`]:
+//! - [`server`]: the process: worlds, listeners, leaderboard, metrics, drain; `config`:
 //!   operator settings; [`limits`]: admission (logging-in and playing connections counted
-//!   apart); [`proxy_header`]: PROXY protocol headers from a load balancer.
-//! - [`world_task`]: the fixed-tick task owning [`crate::game::multi::players::Players`] (one
+//!   apart); `proxy_header`: PROXY protocol headers from a load balancer.
+//! - `world_task`: the fixed-tick task owning [`crate::game::multi::players::Players`] (one
 //!   `game::GameState` per player, moved by `game::step_shared`, and the doors they share);
 //!   sessions send it the `game::Input` of their keys and read its snapshots.
-//! - [`shared`]: what every edge's connections share with the server.
-//! - [`served_map`]: a map of the rotation and its content hash; [`leaderboard`]: finished
+//! - `shared`: what every edge's connections share with the server.
+//! - `served_map`: a map of the rotation and its content hash; [`leaderboard`]: finished
 //!   rounds in SQLite or PostgreSQL, written by a thread of its own.
 //! - [`ops`]: metrics, `/healthz`, drain, process figures, the log.
 
@@ -29,7 +29,12 @@ pub(crate) mod round_phase;
 pub(crate) mod served_map;
 pub mod server;
 pub(crate) mod shared;
+// Their module docs still link private items (17 links); they are being reshaped now, and the
+// whole `serve` module is hidden from the published docs, so no link of theirs shows as dead.
+// Remove the allows once their docs name those items in code spans.
+#[allow(rustdoc::private_intra_doc_links)]
 pub mod ssh;
+#[allow(rustdoc::private_intra_doc_links)]
 pub mod web;
 pub(crate) mod world_task;
 

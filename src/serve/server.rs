@@ -1,6 +1,6 @@
 //! The server: its worlds, leaderboard, metrics and listeners started from the operator's
 //! settings ([`start_maps`]), drained and stopped ([`RunningServer`]), run until a signal
-//! ([`run_until_signal`]). The SSH edge's accept loop is [`super::ssh::listener`].
+//! ([`run_until_signal`]). The SSH edge's accept loop is `super::ssh::listener`.
 
 use std::io;
 use std::net::SocketAddr;
@@ -194,7 +194,7 @@ pub async fn start_maps(
         log.server(n);
     }
     // First: the leaderboard's backlog found at start shows in the metrics.
-    let metrics = bind_metrics(config.metrics, log).await?;
+    let metrics = bind_metrics(config.metrics).await?;
     let mode = config.mode.name();
     let leaderboard = open_leaderboard(&config, &maps, log)?;
     let listener = TcpListener::bind(config.listen)
@@ -221,6 +221,9 @@ pub async fn start_maps(
     let (stop_accepting, stop_accepting_rx) = watch::channel(false);
     let (farewell, farewell_rx) = watch::channel(SHUTTING_DOWN);
     let ready = Arc::new(Readiness::new(limiter.clone()));
+    let metrics_addr = metrics
+        .as_ref()
+        .and_then(|(_, http)| http.local_addr().ok());
     let metrics_http = metrics.map(|(handle, http)| {
         tokio::spawn(super::ops::metrics_http::serve(
             http,
@@ -249,8 +252,14 @@ pub async fn start_maps(
         config,
         next_id: AtomicU64::new(1),
     });
-    log.server(format_args!("listening on {addr}"));
     let web = start_web(&shared, &ready, stop_accepting.subscribe()).await?;
+    // Every port is bound: only now is any announced (one in use fails the start, unannounced).
+    log.server(format_args!("listening on {addr}"));
+    if let Some(m) = metrics_addr {
+        log.server(format_args!(
+            "metrics on http://{m}/metrics, health on http://{m}/healthz"
+        ));
+    }
     let (closed_tx, closed) = watch::channel(false);
     let header_waits = Arc::new(AtomicU64::new(0));
     let accept = tokio::spawn(accept_loop(
@@ -279,20 +288,13 @@ pub async fn start_maps(
 }
 
 /// The Prometheus recorder installed, and `/metrics` and `/healthz` bound, when asked for.
-async fn bind_metrics(
-    addr: Option<SocketAddr>,
-    log: Log,
-) -> Result<Option<MetricsListener>, String> {
+async fn bind_metrics(addr: Option<SocketAddr>) -> Result<Option<MetricsListener>, String> {
     Ok(match addr {
         Some(addr) => {
             let handle = super::ops::metrics::install()?;
             let http = TcpListener::bind(addr)
                 .await
                 .map_err(|e| format!("cannot serve metrics on {addr}: {e}"))?;
-            let bound = http.local_addr().map_err(|e| e.to_string())?;
-            log.server(format_args!(
-                "metrics on http://{bound}/metrics, health on http://{bound}/healthz"
-            ));
             Some((handle, http))
         }
         None => None,

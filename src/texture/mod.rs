@@ -2,6 +2,7 @@
 
 pub(crate) mod builtin;
 pub mod decode;
+pub mod fallback;
 pub mod generate;
 pub(crate) mod key_tint;
 pub(crate) mod pickup_art;

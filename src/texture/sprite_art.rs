@@ -1,5 +1,5 @@
 //! Procedural sprite sheets: a barrel, a pillar, a hanging lamp, a potted plant and an 8-view
-//! walking creature (the game's pickups are in [`super::pickup_art`]), drawn with simple shapes and shaded as if round. Deterministic, like
+//! walking creature (the game's pickups are in `super::pickup_art`), drawn with simple shapes and shaded as if round. Deterministic, like
 //! [`super::generate`].
 
 use super::generate::{fbm, tint, white};

@@ -5,10 +5,11 @@
 
 pub mod address;
 pub mod data;
+pub mod pose;
 pub mod values;
 
 use crate::camera::Camera;
-use crate::map::{Cell, Map};
+use crate::map::Map;
 use crate::output::figure::{ColumnCast, TraceFigure};
 use crate::render::view::{View, STANDING_EYE};
 use crate::vec2::Vec2;
@@ -83,7 +84,7 @@ impl TraceQuery {
             ));
         }
         let (i, j) = (camera.pos.x.floor() as i64, camera.pos.y.floor() as i64);
-        check_start(map, camera.pos, (i, j))?;
+        pose::check_pos(map, camera.pos, pose::PoseUse::View)?;
         if map.has_heights() {
             crate::game::pose::still_eye(map, camera.pos, self.z)?;
         }
@@ -98,21 +99,6 @@ impl TraceQuery {
             cast,
             size: (cols, rows),
         })
-    }
-}
-
-/// Whether a ray may start at `pos` (in cell `(i, j)`): in a floor or door cell.
-fn check_start(map: &Map, pos: Vec2, (i, j): (i64, i64)) -> Result<(), String> {
-    match map.cell(i, j) {
-        Cell::Floor { .. } | Cell::Door(_) => Ok(()),
-        Cell::Void => Err(format!(
-            "position {},{} is outside the map (cell ({i},{j}))",
-            pos.x, pos.y
-        )),
-        Cell::Wall(_) => Err(format!(
-            "position {},{} is inside a wall (cell ({i},{j})): a ray must start in open space",
-            pos.x, pos.y
-        )),
     }
 }
 
@@ -167,9 +153,10 @@ mod tests {
         );
         q.column = 40;
         q.pos = Some(Vec2::new(0.5, 0.5));
-        assert_eq!(
-            q.trace(&w).unwrap_err(),
-            "position 0.5,0.5 is inside a wall (cell (0,0)): a ray must start in open space"
+        let wall = q.trace(&w).unwrap_err();
+        assert!(
+            wall.starts_with("--pos 0.5,0.5 is inside a wall, cell (0,0) of default.cub ("),
+            "{wall}"
         );
         q.pos = Some(Vec2::new(-3.0, 2.0));
         assert!(q.trace(&w).unwrap_err().contains("is outside the map"));

@@ -58,22 +58,22 @@ pub fn parse_fov(s: &str) -> Result<f64, String> {
 /// # Errors
 /// Not two whole numbers split by `x`, or out of range.
 pub fn parse_size(s: &str) -> Result<(u16, u16), String> {
-    let (c, r) = s
-        .split_once(['x', 'X'])
-        .ok_or_else(|| format!("'{s}' is not COLSxROWS"))?;
-    let num = |t: &str| {
-        t.trim()
-            .parse::<u16>()
-            .map_err(|_| format!("'{s}' is not COLSxROWS"))
-    };
-    let (c, r) = (num(c)?, num(r)?);
-    if c == 0 || r == 0 || c > MAX_VIEW.0 || r > MAX_VIEW.1 {
-        return Err(format!(
+    let not_a_size = || format!("'{s}' is not COLSxROWS (two whole numbers, such as 80x24)");
+    let (c, r) = s.split_once(['x', 'X']).ok_or_else(not_a_size)?;
+    let (c, r) = (c.trim(), r.trim());
+    let whole = |t: &str| !t.is_empty() && t.bytes().all(|b| b.is_ascii_digit());
+    if !whole(c) || !whole(r) {
+        return Err(not_a_size());
+    }
+    // A size too large, however many digits, says the range rather than that it is no size.
+    let within = |t: &str, most: u16| t.parse::<u16>().ok().filter(|v| (1..=most).contains(v));
+    match (within(c, MAX_VIEW.0), within(r, MAX_VIEW.1)) {
+        (Some(c), Some(r)) => Ok((c, r)),
+        _ => Err(format!(
             "size {c}x{r} is out of range (1x1 to {}x{})",
             MAX_VIEW.0, MAX_VIEW.1
-        ));
+        )),
     }
-    Ok((c, r))
 }
 
 #[cfg(test)]
@@ -94,6 +94,9 @@ mod tests {
             parse_size("0x24").unwrap_err().split(' ').next(),
             Some("size")
         );
-        assert_eq!(parse_size("80").unwrap_err(), "'80' is not COLSxROWS");
+        assert_eq!(
+            parse_size("80").unwrap_err(),
+            "'80' is not COLSxROWS (two whole numbers, such as 80x24)"
+        );
     }
 }

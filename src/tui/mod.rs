@@ -4,7 +4,7 @@
 //!
 //! The loop keeps its stages apart: `ui::keys` turns events into a game `Input`, `game::step`
 //! advances the state, `ui::render` paints the 3D view into a framebuffer, and `ui::screen` lays
-//! every pane into a ratatui buffer. Only [`terminal`] and [`app`] touch the real terminal.
+//! every pane into a ratatui buffer. Only `terminal` and `app` touch the real terminal.
 
 pub(crate) mod app;
 pub mod config;

@@ -76,7 +76,7 @@ pub fn draw_with_keys(screen: &Screen, panes: &Panes, area: Rect, buf: &mut Buff
 }
 
 /// [`draw_with_keys`] for a frame the presenter (`crate::present`) sends: the view's cells are
-/// left as [`VIEW_CELL`] (anything drawn over them stays on top), and the presenter puts the
+/// left as `VIEW_CELL` (anything drawn over them stays on top), and the presenter puts the
 /// view there from the framebuffer.
 pub fn draw_for_presenter(
     screen: &Screen,

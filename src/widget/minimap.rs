@@ -266,7 +266,7 @@ impl<'a> Minimap<'a> {
 
     /// Draws plain ASCII characters instead of coloured half-blocks (for `--colors mono`):
     /// `#` wall, `.` floor, `+` shut door, `/` open door, `o` sprite, `E` exit, things by their
-    /// glyph, `@` player, `*` the ray, `X` the cell it reached; raised and sunk floors by [`level_glyph`].
+    /// glyph, `@` player, `*` the ray, `X` the cell it reached; raised and sunk floors by `level_glyph`.
     #[must_use]
     pub fn ascii(mut self, on: bool) -> Self {
         self.ascii = on;

@@ -13,6 +13,7 @@ use crate::map::{ColourKey, Map, SpriteDef, Surface, TextureRef};
 use crate::texture::decode::{
     check_size, image_dimensions, MAX_IMAGE_FILE_BYTES, MAX_TEXTURE_SIDE,
 };
+use crate::texture::fallback::{Fallback, ImageKind};
 use crate::texture::key_tint::{key_colour, tinted};
 use crate::texture::sheet::SpriteSheet;
 use crate::texture::{builtin, Texture};
@@ -208,8 +209,9 @@ impl<'a> Loader<'a> {
         match outcome {
             Ok(i) => Ok(i),
             Err(reason) => {
-                self.fall_back(r, reason, fallback, "sprite")?;
-                Ok(self.builtin_sheet(fallback))
+                let fallback = Fallback::for_file(&r.path, ImageKind::Sprite, fallback);
+                self.fall_back(r, reason, &fallback)?;
+                Ok(self.builtin_sheet(fallback.stem))
             }
         }
     }
@@ -228,8 +230,9 @@ impl<'a> Loader<'a> {
         match outcome {
             Ok(i) => Ok(i),
             Err(reason) => {
-                self.fall_back(r, reason, fallback, "texture")?;
-                Ok(self.builtin(fallback))
+                let fallback = Fallback::for_file(&r.path, ImageKind::Texture, fallback);
+                self.fall_back(r, reason, &fallback)?;
+                Ok(self.builtin(fallback.stem))
             }
         }
     }
@@ -249,13 +252,12 @@ impl<'a> Loader<'a> {
     }
 
     /// A file that could not be read: the error under `strict`, else one warning per path (the
-    /// caller then uses the built-in `fallback` `kind`).
+    /// caller then uses the built-in `fallback`, named by the file or chosen by its slot).
     fn fall_back(
         &mut self,
         r: &TextureRef,
         reason: String,
-        fallback: &str,
-        kind: &str,
+        fallback: &Fallback,
     ) -> Result<(), TextureError> {
         let err = TextureError {
             file: self.map_file.to_owned(),
@@ -268,9 +270,8 @@ impl<'a> Loader<'a> {
             return Err(err);
         }
         if self.warned.insert(r.path.clone()) {
-            self.warnings.push(format!(
-                "warning: {err}; using the built-in '{fallback}' {kind}"
-            ));
+            self.warnings
+                .push(format!("warning: {err}; {}", fallback.says()));
         }
         Ok(())
     }

@@ -106,7 +106,7 @@ pub struct World {
     faces: Vec<Option<Paint>>,
     /// Texture index of door panels.
     door_tex: usize,
-    /// Decoded sprite sheets (with alpha), indexed by [`Sprite::sheet`].
+    /// Decoded sprite sheets (with alpha), indexed by `Sprite::sheet`.
     pub sheets: Vec<SpriteSheet>,
     /// Every sprite: the legacy `2` cells first, then the `SPRITE` lines.
     pub sprites: Vec<Sprite>,

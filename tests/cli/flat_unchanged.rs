@@ -8,7 +8,10 @@
 //! time for per-pixel mixes (issue 20), a fourth when those mixes began charging two hues side
 //! by side (issue 20, shipped tables), and a fifth when the mixes of pixels no surface wrote a
 //! pattern for (floors, ceilings) began charging each pixel's own colour error (issue 20: no
-//! orange stripes on warm floors); the PNG, truecolor and JSON lines are still those of c716e55.
+//! orange stripes on warm floors); the PNG, truecolor and JSON lines are still those of c716e55,
+//! but for `default-fog-down`: its pose was inside a wall block (cell 20,4), which `render`
+//! refuses since issue 56, so it moved to the open cell north of it and its four lines were
+//! pinned from that issue's build.
 
 use crate::common;
 
@@ -44,7 +47,7 @@ const CASES: &[(&str, &[&str])] = &[
         "default-fog-down",
         &[
             "--pos",
-            "20.5,4.5",
+            "20.5,3.5",
             "--angle",
             "-60",
             "--fog",

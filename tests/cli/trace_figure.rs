@@ -375,11 +375,13 @@ fn bad_input_is_refused_with_exit_2_and_a_clear_message() {
         ),
         (
             &["trace", "--column", "3", "--pos", "0.5,0.5"],
-            "error: position 0.5,0.5 is inside a wall (cell (0,0)): a ray must start in open space\n",
+            "error: --pos 0.5,0.5 is inside a wall, cell (0,0) of default.cub (29x22 cells, x 0 \
+             to 29 and y 0 to 22): start in an open cell\n",
         ),
         (
             &["trace", "--column", "3", "--pos", "-4,2"],
-            "error: position -4,2 is outside the map (cell (-4,2))\n",
+            "error: --pos -4,2 is outside the map: default.cub is 29x22 cells, x 0 to 29 and y 0 \
+             to 22\n",
         ),
     ];
     for (args, want) in cases {

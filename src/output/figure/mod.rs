@@ -1,7 +1,7 @@
 //! Figures of one column's DDA traversal (`halfcast trace`, the game's figure key): a small
 //! drawing model ([`drawing`]) built once from the trace by [`plan`] (and [`side_view`] on maps
 //! with heights), written as SVG ([`svg`]) or painted for a PNG ([`raster`], with the project's
-//! own bitmap [`font`]). The numbers come from [`Derivation`], the same trace the JSON prints.
+//! own bitmap [`font`]). The numbers come from `Derivation`, the same trace the JSON prints.
 
 mod crossings;
 pub mod drawing;

@@ -7,7 +7,7 @@
 //! step takes the write lock first (`BEGIN IMMEDIATE`), and a migration re-reads the version
 //! under that lock, so two worlds starting at once migrate the file once.
 //!
-//! The schema's version is SQLite's `user_version`; [`MIGRATIONS`] holds the steps from an
+//! The schema's version is SQLite's `user_version`; `MIGRATIONS` holds the steps from an
 //! empty file, one per version. A file of a newer version is refused (a newer halfcast wrote
 //! it), and so is one SQLite cannot read (corrupt, not a database) or cannot lock: those are
 //! start-up errors, and the file is not written to.
