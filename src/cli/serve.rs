@@ -55,10 +55,15 @@ pub(crate) struct ServeArgs {
     /// repeatable. The page served by --web itself always may.
     #[arg(long, value_name = "ORIGIN", requires = "web")]
     pub(crate) web_origin: Vec<String>,
-    /// A reverse proxy in front of --web whose X-Forwarded-For / Forwarded header names the
+    /// A reverse proxy in front of --web whose header (--web-forwarded-header) names the
     /// player's address; repeatable.
     #[arg(long, value_name = "IP", requires = "web")]
     pub(crate) web_trusted_proxy: Vec<std::net::IpAddr>,
+    /// The header the trusted proxy writes the player's address in; only its last entry (the
+    /// one the proxy added) counts, and the other header is ignored.
+    #[arg(long, value_name = "HEADER", default_value = "x-forwarded-for",
+          value_parser = parse_forwarded_header, requires = "web_trusted_proxy")]
+    pub(crate) web_forwarded_header: halfcast::serve::web::ForwardedHeader,
     /// Every connection starts with a PROXY protocol v1 or v2 header (behind HAProxy or
     /// another balancer); its address is the one limits, logs and metrics use.
     #[arg(long)]
@@ -135,6 +140,10 @@ fn parse_mode(s: &str) -> Result<halfcast::game::multi::round::Mode, String> {
 }
 
 fn parse_log_format(s: &str) -> Result<LogFormat, String> {
+    s.parse()
+}
+
+fn parse_forwarded_header(s: &str) -> Result<halfcast::serve::web::ForwardedHeader, String> {
     s.parse()
 }
 
@@ -293,6 +302,7 @@ fn start_and_run(args: ServeArgs) -> Result<(), Failure> {
         listen,
         origins: args.web_origin.clone(),
         trusted_proxies: args.web_trusted_proxy.clone(),
+        forwarded_header: args.web_forwarded_header,
     });
     config.log_format = args.log_format;
     config.shuffle = args.shuffle;

@@ -20,4 +20,5 @@ pub(crate) mod routes;
 pub(crate) mod session;
 pub(crate) mod sink;
 
+pub use forwarded::ForwardedHeader;
 pub use options::WebOptions;

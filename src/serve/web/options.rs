@@ -1,4 +1,5 @@
-//! What an operator sets for the browser edge (`--web`, `--web-origin`, `--web-trusted-proxy`).
+//! What an operator sets for the browser edge (`--web`, `--web-origin`, `--web-trusted-proxy`,
+//! `--web-forwarded-header`).
 
 use std::net::{IpAddr, SocketAddr};
 
@@ -10,8 +11,10 @@ pub struct WebOptions {
     /// Origins (`https://example.org`) whose pages may open the WebSocket besides the page this
     /// server serves itself.
     pub origins: Vec<String>,
-    /// Reverse proxies whose `X-Forwarded-For`/`Forwarded` headers name the player's address.
+    /// Reverse proxies whose `forwarded_header` names the player's address.
     pub trusted_proxies: Vec<IpAddr>,
+    /// The one header the trusted proxies write (`--web-forwarded-header`).
+    pub forwarded_header: super::forwarded::ForwardedHeader,
 }
 
 impl WebOptions {
@@ -22,6 +25,7 @@ impl WebOptions {
             listen,
             origins: Vec::new(),
             trusted_proxies: Vec::new(),
+            forwarded_header: super::forwarded::ForwardedHeader::default(),
         }
     }
 }
