@@ -155,7 +155,8 @@ pub fn run() -> ExitCode {
     let matches = Cli::command()
         .after_help(keys.clone())
         .mut_subcommand("play", |c| c.after_help(keys.clone()))
-        .get_matches();
+        .try_get_matches()
+        .unwrap_or_else(|e| serve::flag_error(&e));
     let cli = match Cli::from_arg_matches(&matches) {
         Ok(c) => c,
         Err(e) => e.exit(),
