@@ -50,4 +50,5 @@ mod serve_slow_link;
 mod serve_stall;
 mod serve_start_checks;
 mod serve_web;
+mod serve_web_caddy;
 mod serve_web_haproxy;

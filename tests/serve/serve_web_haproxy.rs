@@ -147,7 +147,12 @@ fn haproxy_on(cfg: &str, front: u16, dir: &std::path::Path) -> Guard {
 
 /// A page's WebSocket from `from` through the proxy at `front` that also sends addresses of
 /// its own choosing, in both headers a proxy may use.
-async fn forging_page_from(from: &str, front: u16, name: &str, forged: &str) -> WebClient {
+pub(crate) async fn forging_page_from(
+    from: &str,
+    front: u16,
+    name: &str,
+    forged: &str,
+) -> WebClient {
     let socket = tokio::net::TcpSocket::new_v4().unwrap();
     socket.bind(format!("{from}:0").parse().unwrap()).unwrap();
     let tcp = socket
