@@ -1,6 +1,7 @@
 //! A database that refuses is a mistake, one that does not answer an outage: against a
 //! PostgreSQL server of the test's own (`pg_cluster`), a wrong password, an unknown role, a
-//! missing database or TLS the server does not offer stop `halfcast serve` at once with the
+//! missing database, TLS the server does not offer or a port where another program (SSH)
+//! answers stop `halfcast serve` at once with the
 //! server's own words (one line, JSON under `--log-format json`) and a non-zero exit, while a
 //! stopped server lets the world start and queue. `--db-start-on-error` starts on a refusal too;
 //! the connected gauge and the error counters say what the database is doing from the first
@@ -45,6 +46,23 @@ fn refused_start(dir: &Path, args: &[&str]) -> (Option<i32>, Vec<String>, Durati
     (status.code(), log.iter().collect(), took)
 }
 
+/// A port on which something greets as an SSH server does (and reads what it is sent, then
+/// hangs up), as long as the test runs.
+fn ssh_like_port() -> u16 {
+    use std::io::{Read, Write};
+    let l = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let port = l.local_addr().unwrap().port();
+    std::thread::spawn(move || {
+        for s in l.incoming() {
+            let Ok(mut s) = s else { continue };
+            let _ = s.write_all(b"SSH-2.0-OpenSSH_9.2p1 Debian-2+deb12u3\r\n");
+            let _ = s.set_read_timeout(Some(Duration::from_millis(500)));
+            let _ = s.read(&mut [0u8; 256]);
+        }
+    });
+    port
+}
+
 #[test]
 fn a_misconfigured_database_stops_the_start_with_its_cause() {
     let Some(pg) = OwnCluster::start("a misconfigured database") else {
@@ -55,6 +73,7 @@ fn a_misconfigured_database_stops_the_start_with_its_cause() {
     let right = password_file(dir.path(), "right", PASSWORD);
     let (wrong, right) = (wrong.to_str().unwrap(), right.to_str().unwrap());
     let at = format!("127.0.0.1:{}", pg.port);
+    let ssh = ssh_like_port();
     let cases = [
         (
             "a wrong password",
@@ -79,6 +98,12 @@ fn a_misconfigured_database_stops_the_start_with_its_cause() {
             format!("{}?sslmode=require", pg.url()),
             right,
             "server does not support TLS",
+        ),
+        (
+            "a port where SSH answers",
+            format!("postgres://{USER}@127.0.0.1:{ssh}/postgres"),
+            right,
+            "does not speak PostgreSQL (it answered \"SSH-2.0-",
         ),
     ];
     for (what, url, file, cause) in cases {

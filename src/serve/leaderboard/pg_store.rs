@@ -109,9 +109,15 @@ impl PgStore {
     }
 
     fn connect(target: &PgTarget) -> Result<Self, OpenError> {
-        let client = target.config.connect(NoTls).map_err(|e| {
-            super::pg_answer::classify(&e, |c| failed(&target.shown, "cannot connect", c))
+        let cannot = |c: String| failed(&target.shown, "cannot connect", c);
+        super::pg_answer::speaks_postgres(&target.config).map_err(|e| match e {
+            OpenError::Away(c) => OpenError::Away(cannot(c)),
+            OpenError::Refused(c) => OpenError::Refused(cannot(c)),
         })?;
+        let client = target
+            .config
+            .connect(NoTls)
+            .map_err(|e| super::pg_answer::classify(&e, cannot))?;
         Ok(Self {
             config: target.config.clone(),
             url: target.shown.clone(),
