@@ -181,6 +181,7 @@ pub(crate) async fn forging_page_from(
         screen: vt100::Parser::new(24, 80, 0),
         frames: 0,
         acking: true,
+        notes: Vec::new(),
     }
 }
 
