@@ -7,14 +7,18 @@ snippet (docs/deploy/haproxy-halfcast.cfg: its ports moved, a server line per wo
 socket in `global` as Debian's haproxy.cfg has); P OpenSSH players who stay, and who reconnect
 after the wait their farewell names when their world restarts; a new OpenSSH login every 200 ms
 that plays a moment and leaves. Then each world is restarted in turn as the documented upgrade
-loop does it: SIGTERM, wait until the process has exited (the drain), start it again, wait until
-HAProxy's runtime API (`show servers state`) has it up, then the next. Prints the logins that
-failed of how many (and why), each world's drain seconds and how long HAProxy took to take it
-back, and the players' reconnects.
+loop does it: SIGTERM, wait until HAProxy's runtime API (`show servers state`) has it down (so
+no drain, however short, is over before HAProxy stopped sending it players), wait until the
+process has exited (the drain), start it again, wait until HAProxy has it up, then the next.
+Prints the logins that failed of how many (and why), each world's drain seconds, how long
+HAProxy took to take it out and back, and the players' reconnects.
 
-Needs haproxy, ssh (OpenSSH) and a built halfcast. Every player comes from 127.0.0.1, so the
-worlds' per-address limits are raised (--max-per-ip, --max-startups-per-ip); behind a real
-balancer each player has an address of their own.
+Needs python3, haproxy, ssh (OpenSSH) and a built halfcast (the shell loop in docs/serving.md
+needs socat instead of this script's own socket code). Runs from any working directory; the
+worlds, HAProxy and the players' ssh processes it started are stopped when it ends, fails, or
+gets Ctrl-C or SIGTERM. Every player comes from 127.0.0.1, so the worlds' per-address limits are
+raised (--max-per-ip, --max-startups-per-ip); behind a real balancer each player has an address
+of their own.
 
     python3 docs/deploy/fleet_restart.py --halfcast target/release/halfcast --worlds 3
 """
@@ -34,7 +38,55 @@ import termios
 import threading
 import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+# The repository: this file is docs/deploy/fleet_restart.py.
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+# Every process this script started, stopped on the way out (see `cleanup`).
+STARTED = set()
+STARTED_LOCK = threading.Lock()
+
+
+def started(proc):
+    """Remembers `proc` for `cleanup`; returns it."""
+    with STARTED_LOCK:
+        STARTED.add(proc)
+    return proc
+
+
+def finished(proc):
+    """Kills `proc` (if it still runs), reaps it and forgets it."""
+    if proc.poll() is None:
+        proc.kill()
+    proc.wait()
+    with STARTED_LOCK:
+        STARTED.discard(proc)
+
+
+def forget(proc):
+    """`proc` has ended by itself: nothing to stop."""
+    with STARTED_LOCK:
+        STARTED.discard(proc)
+
+
+def cleanup():
+    """Stops whatever this script started and is still running: SIGTERM, then SIGKILL."""
+    with STARTED_LOCK:
+        procs = list(STARTED)
+    for p in procs:
+        if p.poll() is None:
+            p.terminate()
+    deadline = time.time() + 5
+    for p in procs:
+        try:
+            p.wait(max(0.1, deadline - time.time()))
+        except subprocess.TimeoutExpired:
+            p.kill()
+            p.wait()
+
+
+def on_signal(signum, _frame):
+    """Ctrl-C or SIGTERM: leave through `cleanup`."""
+    sys.exit(128 + signum)
 
 
 def free_port():
@@ -62,7 +114,8 @@ class World:
                "--round-minutes", str(self.args.round_minutes),
                "--max-sessions", str(self.args.max_sessions),
                "--max-per-ip", "200", "--max-startups-per-ip", "60"]
-        self.proc = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=log, stderr=log)
+        self.proc = started(subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=log,
+                                             stderr=log))
         deadline = time.time() + 30
         while time.time() < deadline:
             try:
@@ -110,11 +163,11 @@ def ssh(front, user):
     fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", 24, 80, 0, 0))
     env = dict(os.environ, TERM="xterm-256color")
     env.pop("COLORTERM", None)
-    p = subprocess.Popen(
+    p = started(subprocess.Popen(
         ["ssh", "-tt", "-F", "/dev/null", "-p", str(front), "-o", "StrictHostKeyChecking=no",
          "-o", "UserKnownHostsFile=/dev/null", "-o", "BatchMode=yes", "-o", "LogLevel=ERROR",
          "-o", "ConnectTimeout=20", f"{user}@127.0.0.1"],
-        stdin=slave, stdout=slave, stderr=slave, env=env, start_new_session=True)
+        stdin=slave, stdout=slave, stderr=slave, env=env, start_new_session=True))
     os.close(slave)
     return p, master
 
@@ -150,8 +203,7 @@ def login(front, user, patience):
                 return None
         return "not playing after %.0f s: %s" % (patience, tail(seen))
     finally:
-        p.kill()
-        p.wait()
+        finished(p)
         os.close(master)
 
 
@@ -183,8 +235,7 @@ class Player(threading.Thread):
                 if not played and got >= PLAYING_BYTES:
                     played, self.playing = True, True
                     self.sessions += 1
-            p.kill()
-            p.wait()
+            finished(p)
             os.close(master)
             self.playing = False
             if self.stop.is_set():
@@ -200,6 +251,15 @@ class Player(threading.Thread):
 
 
 def main():
+    signal.signal(signal.SIGINT, on_signal)
+    signal.signal(signal.SIGTERM, on_signal)
+    try:
+        run()
+    finally:
+        cleanup()
+
+
+def run():
     ap = argparse.ArgumentParser()
     ap.add_argument("--halfcast", default=os.path.join(ROOT, "target/release/halfcast"))
     ap.add_argument("--worlds", type=int, default=2)
@@ -218,8 +278,8 @@ def main():
     front, sock = free_port(), os.path.join(dir, "admin.sock")
     cfg = os.path.join(dir, "haproxy.cfg")
     open(cfg, "w").write(haproxy_config(worlds, front, sock))
-    hap = subprocess.Popen(["haproxy", "-db", "-f", cfg], stdout=subprocess.DEVNULL,
-                           stderr=open(os.path.join(dir, "haproxy.log"), "w"))
+    hap = started(subprocess.Popen(["haproxy", "-db", "-f", cfg], stdout=subprocess.DEVNULL,
+                                   stderr=open(os.path.join(dir, "haproxy.log"), "w")))
     names = {f"world{w.n}" for w in worlds}
     while servers_up(sock) != names:
         time.sleep(0.2)
@@ -259,16 +319,23 @@ def main():
     for w in worlds:
         sent = time.time()
         w.proc.send_signal(signal.SIGTERM)
+        # HAProxy must have taken the world out before it counts as restarted: a drain shorter
+        # than its checks (fall 2, inter 2s) would otherwise be over before HAProxy noticed,
+        # and "up" afterwards would say nothing.
+        while f"world{w.n}" in servers_up(sock):
+            time.sleep(0.1)
+        out = time.time() - sent
         w.proc.wait()
+        forget(w.proc)
         drained = time.time() - sent
         w.start()
-        started = time.time()
+        began = time.time()
         while f"world{w.n}" not in servers_up(sock):
             time.sleep(0.1)
-        back = time.time() - started
+        back = time.time() - began
         report.append((w.n, drained, back))
-        print(f"world {w.n}: drained in {drained:.1f} s, HAProxy had it back {back:.1f} s "
-              "after it started", flush=True)
+        print(f"world {w.n}: HAProxy had it out {out:.1f} s after SIGTERM, drained in "
+              f"{drained:.1f} s, HAProxy had it back {back:.1f} s after it started", flush=True)
     time.sleep(args.settle)
     probing.set()
     probe_loop.join()
@@ -289,11 +356,6 @@ def main():
           f"{sum(p.sessions for p in players)} sessions, {sum(p.failures for p in players)} "
           "reconnects that did not get to play")
     print("drains: " + ", ".join(f"world {n} {d:.1f} s" for n, d, _ in report))
-    hap.terminate()
-    for w in worlds:
-        w.proc.terminate()
-    for w in worlds:
-        w.proc.wait()
 
 
 if __name__ == "__main__":

@@ -158,7 +158,7 @@ pub fn run() -> ExitCode {
         .after_help(keys.clone())
         .mut_subcommand("play", |c| c.after_help(keys.clone()))
         .try_get_matches()
-        .unwrap_or_else(|e| unknown_word::exit_on_parse_error(&e));
+        .unwrap_or_else(|e| serve::flag_error(&e));
     let cli = match Cli::from_arg_matches(&matches) {
         Ok(c) => c,
         Err(e) => e.exit(),

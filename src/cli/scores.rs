@@ -5,7 +5,7 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use halfcast::serve::leaderboard::database::{postgres_url, Database};
+use halfcast::serve::leaderboard::database::{postgres_url, Access, Database};
 use halfcast::serve::leaderboard::store::SCHEMA_VERSION;
 use halfcast::serve::leaderboard::{content_hash, escaped, shown_name, Entry, DEFAULT_FILE, TOP};
 use serde::Serialize;
@@ -17,6 +17,13 @@ pub(crate) struct ScoresArgs {
     /// The leaderboard `halfcast serve` writes: its SQLite file, or a postgres:// URL.
     #[arg(long, default_value = DEFAULT_FILE, value_name = "FILE|URL")]
     pub(crate) db: PathBuf,
+    /// The PostgreSQL password on this file's first line (as `serve --db-password-file`);
+    /// refused when its group or others may read it.
+    #[arg(long, value_name = "FILE")]
+    pub(crate) db_password_file: Option<PathBuf>,
+    /// Use a PostgreSQL password file (--db-password-file, ~/.pgpass) that others may read.
+    #[arg(long)]
+    pub(crate) db_insecure_password_file: bool,
     /// Only this map (its content decides: an edited map has a board of its own).
     #[arg(long, value_name = "MAP")]
     pub(crate) map: Option<PathBuf>,
@@ -78,10 +85,15 @@ pub(crate) fn scores(args: &ScoresArgs) -> Result<(), Failure> {
         // shell, whose history holds the URL anyway.
         eprintln!(
             "halfcast scores: warning: the password in --db is readable by every local user \
-             while this runs; PGPASSWORD or ~/.pgpass (PGPASSFILE) keep it out of the process list"
+             while this runs; --db-password-file, PGPASSWORD or ~/.pgpass (PGPASSFILE) keep it \
+             out of the process list"
         );
     }
-    let mut store = Database::open_read(&args.db).map_err(Failure::input)?;
+    let access = Access {
+        password_file: args.db_password_file.clone(),
+        insecure_password_file: args.db_insecure_password_file,
+    };
+    let mut store = Database::open_read(&args.db, &access).map_err(Failure::input)?;
     let only = match &args.map {
         Some(p) => {
             let bytes = halfcast::map::read_map_file(p).map_err(Failure::input)?;

@@ -37,9 +37,18 @@ pub(crate) struct ServeArgs {
     /// hosts (its password from --db-password-file, PGPASSWORD or ~/.pgpass: never the URL).
     #[arg(long, value_name = "FILE|URL")]
     pub(crate) db: Option<PathBuf>,
-    /// The PostgreSQL password on this file's first line (systemd: LoadCredential=).
+    /// The PostgreSQL password on this file's first line (systemd: LoadCredential=); refused
+    /// when its group or others may read it.
     #[arg(long, value_name = "FILE")]
     pub(crate) db_password_file: Option<PathBuf>,
+    /// Use a PostgreSQL password file (--db-password-file, ~/.pgpass) that others may read.
+    #[arg(long)]
+    pub(crate) db_insecure_password_file: bool,
+    /// Start even when the database refuses (a wrong password, no such role or database, not
+    /// PostgreSQL): rounds queue until it is fixed. By default only a database that does not
+    /// answer (down, unreachable) lets the world start.
+    #[arg(long)]
+    pub(crate) db_start_on_error: bool,
     /// Where rounds wait, on disk, while the leaderboard is away (default: halfcast-queue
     /// beside the host key); a world started with the same directory writes them.
     #[arg(long, value_name = "DIR")]
@@ -55,13 +64,18 @@ pub(crate) struct ServeArgs {
     /// repeatable. The page served by --web itself always may.
     #[arg(long, value_name = "ORIGIN", requires = "web")]
     pub(crate) web_origin: Vec<String>,
-    /// A reverse proxy in front of --web whose X-Forwarded-For / Forwarded header names the
+    /// A reverse proxy in front of --web whose header (--web-forwarded-header) names the
     /// player's address; repeatable.
     #[arg(long, value_name = "IP", requires = "web")]
     pub(crate) web_trusted_proxy: Vec<std::net::IpAddr>,
     /// Compress the page's frames: auto (while its link holds them back), always, or never.
     #[arg(long, value_enum, default_value = "auto", requires = "web")]
     pub(crate) web_compress: halfcast::serve::web::Compress,
+    /// The header the trusted proxy writes the player's address in; only its last entry (the
+    /// one the proxy added) counts, and the other header is ignored.
+    #[arg(long, value_name = "HEADER", default_value = "x-forwarded-for",
+          value_parser = parse_forwarded_header, requires = "web_trusted_proxy")]
+    pub(crate) web_forwarded_header: halfcast::serve::web::ForwardedHeader,
     /// Every connection starts with a PROXY protocol v1 or v2 header (behind HAProxy or
     /// another balancer); its address is the one limits, logs and metrics use.
     #[arg(long)]
@@ -141,6 +155,10 @@ fn parse_log_format(s: &str) -> Result<LogFormat, String> {
     s.parse()
 }
 
+fn parse_forwarded_header(s: &str) -> Result<halfcast::serve::web::ForwardedHeader, String> {
+    s.parse()
+}
+
 /// Minutes, more than 0 and at most a day (fractions allowed: 0.5 is thirty seconds).
 fn parse_minutes(s: &str) -> Result<f64, String> {
     let v = super::options::parse_finite(s)?;
@@ -175,7 +193,11 @@ pub(crate) fn parse_metrics_addr(s: &str) -> Result<SocketAddr, String> {
 }
 
 /// Every map, read and checked before the server listens; all the errors at once.
-fn load_maps(paths: &[PathBuf], strict: bool) -> Result<Vec<ServedMap>, Failure> {
+fn load_maps(
+    paths: &[PathBuf],
+    strict: bool,
+    format: LogFormat,
+) -> Result<Vec<ServedMap>, Failure> {
     if paths.is_empty() {
         return Ok(vec![ServedMap::embedded()]);
     }
@@ -185,7 +207,7 @@ fn load_maps(paths: &[PathBuf], strict: bool) -> Result<Vec<ServedMap>, Failure>
         match ServedMap::from_file(p, strict) {
             Ok((m, warnings)) => {
                 for w in warnings {
-                    eprintln!("{w}");
+                    warn(format, &w);
                 }
                 maps.push(m);
             }
@@ -196,6 +218,16 @@ fn load_maps(paths: &[PathBuf], strict: bool) -> Result<Vec<ServedMap>, Failure>
         Ok(maps)
     } else {
         Err(Failure::input(errors.join("\nerror: ")))
+    }
+}
+
+/// A warning before the server starts: as written under the text log, one JSON `message`
+/// line under the JSON log.
+fn warn(format: LogFormat, text: &str) {
+    match format {
+        LogFormat::Text => eprintln!("{text}"),
+        LogFormat::Json => halfcast::serve::log::Log::with_format(false, format)
+            .server(text.strip_prefix("halfcast serve: ").unwrap_or(text)),
     }
 }
 
@@ -238,9 +270,12 @@ fn auth_mode(args: &ServeArgs) -> Result<halfcast::serve::auth::AuthMode, Failur
         if p.is_empty() {
             return Err(Failure::input("--password must not be empty"));
         }
-        eprintln!(
-            "halfcast serve: warning: --password is visible to every local user in the process \
-             list; use --password-file or {PASSWORD_ENV}"
+        warn(
+            args.log_format,
+            &format!(
+                "halfcast serve: warning: --password is visible to every local user in the \
+                 process list; use --password-file or {PASSWORD_ENV}"
+            ),
         );
         Some(p.clone())
     } else if let Some(path) = &args.password_file {
@@ -256,6 +291,38 @@ fn auth_mode(args: &ServeArgs) -> Result<halfcast::serve::auth::AuthMode, Failur
         (None, Some(path)) => AuthMode::from_authorized_keys(path).map_err(Failure::input),
         (None, None) => Ok(AuthMode::None),
     }
+}
+
+/// Ends the process on a command-line error, as clap does, except that `halfcast serve …
+/// --log-format json` gets it as one JSON `start_failed` line (a log shipper reads no other).
+pub(crate) fn flag_error(e: &clap::Error) -> ! {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if !e.use_stderr() || !json_log_asked(&args) {
+        super::unknown_word::exit_on_parse_error(e)
+    }
+    let text = e.render().to_string();
+    let text = text
+        .trim_end()
+        .strip_prefix("error: ")
+        .unwrap_or(text.trim_end());
+    halfcast::serve::log::Log::with_format(false, LogFormat::Json).failed_to_start(text);
+    std::process::exit(e.exit_code())
+}
+
+/// Whether `args` (the command line after the program's name) run `serve` with
+/// `--log-format json`.
+fn json_log_asked(args: &[String]) -> bool {
+    let Some(at) = args.iter().position(|a| !a.starts_with('-')) else {
+        return false;
+    };
+    if args[at] != "serve" {
+        return false;
+    }
+    let rest = &args[at + 1..];
+    rest.iter().enumerate().any(|(i, a)| {
+        a == "--log-format=json"
+            || a == "--log-format" && rest.get(i + 1).is_some_and(|v| v == "json")
+    })
 }
 
 /// `halfcast serve`; under `--log-format json` a failure to start is written as a JSON event
@@ -283,12 +350,14 @@ fn start_and_run(args: ServeArgs) -> Result<(), Failure> {
         .parse()
         .map_err(|e| Failure::input(format!("--max-startups {e}")))?;
     let auth = auth_mode(&args)?;
-    let maps = load_maps(&args.maps, args.strict)?;
+    let maps = load_maps(&args.maps, args.strict, args.log_format)?;
     let db = db_path(args.db.as_deref(), &args.host_key);
     no_password_in_url(db.as_deref())?;
     let mut config = ServeConfig::local(args.listen, args.host_key);
     config.db = db;
     config.db_password_file = args.db_password_file;
+    config.db_insecure_password_file = args.db_insecure_password_file;
+    config.db_start_on_error = args.db_start_on_error;
     config.queue_dir = args.queue_dir;
     config.metrics = args.metrics;
     config.proxy_protocol = args.proxy_protocol;
@@ -297,6 +366,7 @@ fn start_and_run(args: ServeArgs) -> Result<(), Failure> {
         origins: args.web_origin.clone(),
         trusted_proxies: args.web_trusted_proxy.clone(),
         compress: args.web_compress,
+        forwarded_header: args.web_forwarded_header,
     });
     config.log_format = args.log_format;
     config.shuffle = args.shuffle;
@@ -343,5 +413,24 @@ fn start_failure(message: String) -> Failure {
         Failure::io(message)
     } else {
         Failure::input(message)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn asked(line: &str) -> bool {
+        let args: Vec<String> = line.split(' ').map(str::to_owned).collect();
+        json_log_asked(&args)
+    }
+
+    #[test]
+    fn a_json_log_is_seen_on_the_serve_command_line() {
+        assert!(asked("serve --max-sessions 0 --log-format json"));
+        assert!(asked("serve --log-format=json --bogus"));
+        assert!(!asked("serve --log-format text --max-sessions 0"));
+        assert!(!asked("render --log-format json"));
+        assert!(!asked("--log-format json serve"));
     }
 }

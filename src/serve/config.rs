@@ -68,6 +68,12 @@ pub struct ServeConfig {
     /// A file whose first line is the PostgreSQL password (`--db-password-file`); else libpq's
     /// conventions (`PGPASSWORD`, `~/.pgpass`, …) apply.
     pub db_password_file: Option<PathBuf>,
+    /// Use a PostgreSQL password file (`--db-password-file`, `~/.pgpass`) that others may read
+    /// (`--db-insecure-password-file`; refused by default).
+    pub db_insecure_password_file: bool,
+    /// Start, and queue rounds, even when the database refuses at start (a wrong password, no
+    /// such database: `--db-start-on-error`); by default only an outage is ridden out.
+    pub db_start_on_error: bool,
     /// Where rounds wait while the leaderboard is away (`--queue-dir`; `None`: beside the host
     /// key).
     pub queue_dir: Option<PathBuf>,
@@ -113,6 +119,8 @@ impl ServeConfig {
             shuffle: false,
             db: None,
             db_password_file: None,
+            db_insecure_password_file: false,
+            db_start_on_error: false,
             queue_dir: None,
             metrics: None,
             proxy_protocol: false,

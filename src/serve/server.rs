@@ -317,10 +317,14 @@ fn open_leaderboard(
                 .collect();
             let target = super::leaderboard::writer::Target {
                 db: path.clone(),
-                password_file: config.db_password_file.clone(),
+                access: super::leaderboard::database::Access {
+                    password_file: config.db_password_file.clone(),
+                    insecure_password_file: config.db_insecure_password_file,
+                },
                 queue_dir: config.queue_dir.clone().unwrap_or_else(|| {
                     super::leaderboard::writer::default_queue_dir(&config.host_key)
                 }),
+                start_on_error: config.db_start_on_error,
             };
             // On a thread outside the runtime: PostgreSQL's blocking client runs a runtime of
             // its own (start-up only; the writer thread has it from then on).
@@ -407,10 +411,10 @@ fn round_recorder(
                     "reached_exit": p.reached_exit })
             })
             .collect();
+        let uid = ids.next_id();
         log.round_end(
-            name,
-            hash,
-            mode,
+            &uid,
+            (name, hash, mode),
             super::leaderboard::rounded_seconds(end.seconds),
             serde_json::Value::from(players),
         );
@@ -419,7 +423,7 @@ fn round_recorder(
                 .duration_since(UNIX_EPOCH)
                 .map_or(0, |d| d.as_secs() as i64);
             lb.record(RoundRecord {
-                uid: ids.next_id(),
+                uid,
                 map_hash: hash.clone(),
                 map_name: name.clone(),
                 mode: mode.to_owned(),

@@ -18,7 +18,7 @@ use serve_support::{header_has, Client, PATIENCE};
 
 /// How a world gets the database's password (never on its command line).
 #[derive(Clone, Copy)]
-enum Password {
+pub(crate) enum Password {
     /// `--db-password-file`.
     File,
     /// `PGPASSWORD`.
@@ -26,12 +26,12 @@ enum Password {
 }
 
 /// One `halfcast serve` process on the test's database, and what it has logged.
-struct World {
-    guard: Guard,
+pub(crate) struct World {
+    pub(crate) guard: Guard,
     port: u16,
-    metrics: u16,
+    pub(crate) metrics: u16,
     log: Receiver<String>,
-    lines: Vec<String>,
+    pub(crate) lines: Vec<String>,
 }
 
 /// Flags every world of this test has: quick rounds, the database, metrics.
@@ -58,7 +58,7 @@ fn world_args(pg: &OwnCluster, metrics: u16, password: Password) -> Vec<String> 
 impl World {
     /// Starts a world with its host key (and so, unless `extra` says otherwise, its queue) in
     /// `dir`, and waits until it listens.
-    fn start(pg: &OwnCluster, dir: &Path, password: Password, extra: &[&str]) -> Self {
+    pub(crate) fn start(pg: &OwnCluster, dir: &Path, password: Password, extra: &[&str]) -> Self {
         let (port, metrics) = (free_port(), free_port());
         let mut args = world_args(pg, metrics, password);
         args.extend(extra.iter().map(|s| (*s).to_owned()));
@@ -84,27 +84,27 @@ impl World {
     }
 
     /// Takes in the lines logged so far.
-    fn pump(&mut self) {
+    pub(crate) fn pump(&mut self) {
         self.lines.extend(self.log.try_iter());
     }
 
     /// Whether a line so far contains `text`.
-    fn said(&self, text: &str) -> bool {
+    pub(crate) fn said(&self, text: &str) -> bool {
         self.lines.iter().any(|l| l.contains(text))
     }
 
     /// Lines so far containing `text`.
-    fn count(&self, text: &str) -> usize {
+    pub(crate) fn count(&self, text: &str) -> usize {
         self.lines.iter().filter(|l| l.contains(text)).count()
     }
 
     /// Rounds ended so far (text or JSON log).
-    fn rounds(&self) -> usize {
+    pub(crate) fn rounds(&self) -> usize {
         self.count("round over on") + self.count(r#""event":"round_end""#)
     }
 
     /// `halfcast_leaderboard_pending_rounds` now.
-    fn pending(&self) -> f64 {
+    pub(crate) fn pending(&self) -> f64 {
         series(
             &get(self.metrics, "/metrics").1,
             "halfcast_leaderboard_pending_rounds",
@@ -112,7 +112,7 @@ impl World {
     }
 
     /// Waits (pumping the log) until `done`, or fails naming `what` and the log.
-    fn until(&mut self, what: &str, mut done: impl FnMut(&Self) -> bool) {
+    pub(crate) fn until(&mut self, what: &str, mut done: impl FnMut(&Self) -> bool) {
         let deadline = Instant::now() + PATIENCE;
         loop {
             if let Ok(line) = self.log.recv_timeout(Duration::from_millis(20)) {
@@ -132,7 +132,7 @@ impl World {
 
     /// Waits until the world has nobody playing (so no round can end), its rounds stopped
     /// ending and none waits to be written; its round count then.
-    fn settled(&mut self) -> usize {
+    pub(crate) fn settled(&mut self) -> usize {
         let mut last = usize::MAX;
         self.until("the rounds to settle and be written", |w| {
             let m = get(w.metrics, "/metrics").1;
@@ -160,14 +160,14 @@ fn stored(pg: &OwnCluster) -> (i64, i64) {
 }
 
 /// A player in `w` until dropped; waits until they see the game.
-async fn player(w: &World, name: &str) -> Client {
+pub(crate) async fn player(w: &World, name: &str) -> Client {
     let mut c = Client::connect(w.addr(), name, 80, 24, "xterm-256color").await;
     assert!(c.until(|s| header_has(s, &format!("you are {name}"))).await);
     c
 }
 
 /// Plays on `c` until `w` has logged `n` rounds more than `from`.
-async fn play_rounds(w: &mut World, c: &mut Client, from: usize, n: usize) {
+pub(crate) async fn play_rounds(w: &mut World, c: &mut Client, from: usize, n: usize) {
     let deadline = Instant::now() + PATIENCE;
     loop {
         w.pump();

@@ -107,3 +107,210 @@ async fn pages_play_through_haproxy_limited_by_their_own_addresses() {
     );
     srv.shutdown().await;
 }
+
+/// The shipped web snippet (docs/deploy/haproxy-halfcast-web.cfg) with its TLS binds moved to
+/// `bind` lines of the test's and its world at `web`, after a `global` of the test's own.
+fn shipped_config(binds: &str, web: u16) -> String {
+    use crate::serve_haproxy::{deploy, moved};
+    let snippet = deploy("haproxy-halfcast-web.cfg");
+    let snippet = moved(
+        &snippet,
+        "    bind :443 ssl crt /etc/haproxy/certs/game.pem\n    bind :::443 v6only ssl crt /etc/haproxy/certs/game.pem\n",
+        binds,
+    );
+    let snippet = moved(
+        &snippet,
+        "server web1 127.0.0.1:8081",
+        &format!("server web1 127.0.0.1:{web}"),
+    );
+    format!("global\n    maxconn 1024\n\n{snippet}")
+}
+
+/// HAProxy on `cfg`, once it listens on `front`.
+fn haproxy_on(cfg: &str, front: u16, dir: &std::path::Path) -> Guard {
+    let path = dir.join("haproxy-shipped.cfg");
+    std::fs::write(&path, cfg).unwrap();
+    let child = Command::new("haproxy")
+        .args(["-db", "-f"])
+        .arg(&path)
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("haproxy starts");
+    let deadline = Instant::now() + PATIENCE;
+    while std::net::TcpStream::connect(("127.0.0.1", front)).is_err() {
+        assert!(Instant::now() < deadline, "haproxy never listened");
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    Guard(child)
+}
+
+/// A page's WebSocket from `from` through the proxy at `front` that also sends addresses of
+/// its own choosing, in both headers a proxy may use.
+pub(crate) async fn forging_page_from(
+    from: &str,
+    front: u16,
+    name: &str,
+    forged: &str,
+) -> WebClient {
+    let socket = tokio::net::TcpSocket::new_v4().unwrap();
+    socket.bind(format!("{from}:0").parse().unwrap()).unwrap();
+    let tcp = socket
+        .connect(format!("127.0.0.1:{front}").parse().unwrap())
+        .await
+        .expect("the proxy answers");
+    let mut req = format!("ws://127.0.0.1:{front}/ws?name={name}&cols=80&rows=24")
+        .into_client_request()
+        .unwrap();
+    let h = req.headers_mut();
+    h.insert(
+        "Origin",
+        format!("http://127.0.0.1:{front}").parse().unwrap(),
+    );
+    h.insert("Forwarded", format!("for={forged}").parse().unwrap());
+    h.append(
+        "X-Forwarded-For",
+        format!("{forged}, 198.51.100.9").parse().unwrap(),
+    );
+    let (ws, _) = tokio_tungstenite::client_async(req, tcp)
+        .await
+        .expect("upgraded through the proxy");
+    WebClient {
+        ws,
+        screen: vt100::Parser::new(24, 80, 0),
+        frames: 0,
+        acking: true,
+        notes: Vec::new(),
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_shipped_web_snippet_gives_the_real_client_whatever_headers_it_sends() {
+    if !installed("haproxy", "-v") {
+        eprintln!("SKIPPED: HAProxy is not installed (apt-get install haproxy)");
+        return;
+    }
+    if !many_loopback_addresses() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let web = crate::serve_process::free_port();
+    let w = web.to_string();
+    let (_world, _ssh, log) = crate::serve_process::spawn_server(
+        dir.path(),
+        &[
+            "--web",
+            &w,
+            "--web-trusted-proxy",
+            "127.0.0.1",
+            "--max-per-ip",
+            "1",
+        ],
+    );
+    let front = free_port();
+    let cfg = shipped_config(&format!("    bind 127.0.0.1:{front}\n"), web);
+    let _proxy = haproxy_on(&cfg, front, dir.path());
+    // Both players claim 203.0.113.5 (and more); each is counted by their own address.
+    let mut two = forging_page_from("127.0.0.2", front, "two", "203.0.113.5").await;
+    let mut three = forging_page_from("127.0.0.3", front, "three", "203.0.113.5").await;
+    assert!(two.until(|s| header_has(s, "you are two")).await);
+    assert!(three.until(|s| header_has(s, "you are three")).await);
+    // A second page from 127.0.0.2 claiming another address is over 127.0.0.2's limit.
+    let mut again = forging_page_from("127.0.0.2", front, "again", "203.0.113.77").await;
+    let closed = again.closed().await;
+    assert!(
+        closed
+            .reason
+            .contains("too many connections from your address"),
+        "{closed:?}"
+    );
+    drop((two, three));
+    let mut lines: Vec<String> = Vec::new();
+    let deadline = Instant::now() + PATIENCE;
+    while !(lines
+        .iter()
+        .any(|l| l.contains("127.0.0.2") && l.contains("\"two\""))
+        && lines
+            .iter()
+            .any(|l| l.contains("127.0.0.3") && l.contains("\"three\"")))
+    {
+        let left = deadline.saturating_duration_since(Instant::now());
+        match log.recv_timeout(left) {
+            Ok(l) => lines.push(l),
+            Err(_) => panic!("the players' own addresses were never logged: {lines:#?}"),
+        }
+    }
+    lines.extend(log.try_iter());
+    for forged in ["203.0.113", "198.51.100"] {
+        assert!(
+            lines.iter().all(|l| !l.contains(forged)),
+            "a client's own address reached the log: {lines:#?}"
+        );
+    }
+}
+
+#[test]
+fn the_shipped_web_snippet_ends_tls_with_a_real_certificate() {
+    if !installed("haproxy", "-v") || !installed("openssl", "version") || !installed("curl", "-V") {
+        eprintln!("SKIPPED: HAProxy, openssl or curl is not installed");
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let pem = dir.path().join("game.pem");
+    let (key, cert) = (dir.path().join("key.pem"), dir.path().join("cert.pem"));
+    let made = Command::new("openssl")
+        .args([
+            "req",
+            "-x509",
+            "-newkey",
+            "ec",
+            "-pkeyopt",
+            "ec_paramgen_curve:prime256v1",
+        ])
+        .args(["-nodes", "-days", "1", "-subj", "/CN=localhost", "-keyout"])
+        .arg(&key)
+        .arg("-out")
+        .arg(&cert)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .status()
+        .unwrap();
+    assert!(made.success(), "openssl made a certificate");
+    let both = [std::fs::read(&cert).unwrap(), std::fs::read(&key).unwrap()].concat();
+    std::fs::write(&pem, both).unwrap();
+    let web = crate::serve_process::free_port();
+    let w = web.to_string();
+    let (_world, _ssh, _log) = crate::serve_process::spawn_server(
+        dir.path(),
+        &["--web", &w, "--web-trusted-proxy", "127.0.0.1"],
+    );
+    let front = free_port();
+    let binds = format!("    bind 127.0.0.1:{front} ssl crt {}\n", pem.display());
+    let _proxy = haproxy_on(&shipped_config(&binds, web), front, dir.path());
+    let out = Command::new("curl")
+        .args([
+            "-sk",
+            "-o",
+            "/dev/null",
+            "-w",
+            "%{http_code} %{ssl_verify_result}",
+        ])
+        .arg(format!("https://127.0.0.1:{front}/healthz"))
+        .output()
+        .unwrap();
+    let said = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        said.starts_with("200"),
+        "/healthz over TLS through the snippet: {said}"
+    );
+    let page = Command::new("curl")
+        .args(["-sk"])
+        .arg(format!("https://127.0.0.1:{front}/"))
+        .output()
+        .unwrap();
+    assert!(
+        String::from_utf8_lossy(&page.stdout).contains("<script"),
+        "the page over TLS"
+    );
+}

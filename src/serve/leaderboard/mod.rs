@@ -5,8 +5,8 @@
 //! Names are the in-game names (SSH user names, made unique); they are bounded when stored
 //! ([`bounded_name`]) and escaped wherever printed ([`shown_name`]). [`backup`] copies the file
 //! while worlds write it. [`pg_store`] keeps the same board in PostgreSQL for worlds on several
-//! hosts ([`pg_config`]: where it is, and the password, as libpq finds them); [`database`] opens
-//! whichever `--db` names.
+//! hosts ([`pg_config`]: where it is, and the password, as libpq finds them; [`pg_answer`]: a
+//! refusal told from an outage); [`database`] opens whichever `--db` names.
 //!
 //! No round is lost while the database is away: each round has an identity ([`round_id`]) the
 //! stores use to ignore a second insert; it goes to a queue on disk ([`queue`]) before the
@@ -18,6 +18,7 @@ pub mod backup;
 pub mod database;
 pub mod open_error;
 pub mod outage;
+pub mod pg_answer;
 pub mod pg_config;
 pub mod pg_store;
 pub mod pg_text;

@@ -3,8 +3,10 @@
 //! command line (`--db-password-file`, for systemd's `LoadCredential=`), then the environment
 //! (`PGSERVICE`'s entry in the service file, `PGHOST`, `PGPORT`, `PGUSER`, `PGDATABASE`,
 //! `PGPASSWORD`, `PGCONNECT_TIMEOUT`), then the password file (`PGPASSFILE`, else
-//! `~/.pgpass`; ignored, as libpq does, when others may read it). The password never has to be
-//! on a command line, where every local user reads it.
+//! `~/.pgpass`). The password never has to be on a command line, where every local user reads
+//! it; and a password file that others may read is refused, with the `chmod` that fixes it
+//! (libpq ignores such a `.pgpass` with a warning; sshd refuses such a key), unless the operator
+//! says to use it anyway (`--db-insecure-password-file`).
 
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -42,12 +44,17 @@ pub fn url_has_password(url: &str) -> bool {
 }
 
 impl PgTarget {
-    /// `url` completed from `password_file` and the process's environment, as libpq would.
+    /// `url` completed from `password_file` and the process's environment, as libpq would;
+    /// a password file others may read is refused unless `insecure`.
     ///
     /// # Errors
-    /// The URL does not parse, or `password_file` cannot be read.
-    pub fn resolve(url: &str, password_file: Option<&Path>) -> Result<Self, String> {
-        Self::resolve_with(url, password_file, &|k| {
+    /// The URL does not parse, or a password file cannot be read or others may read it.
+    pub fn resolve(
+        url: &str,
+        password_file: Option<&Path>,
+        insecure: bool,
+    ) -> Result<Self, String> {
+        Self::resolve_with(url, password_file, insecure, &|k| {
             std::env::var(k).ok().filter(|v| !v.is_empty())
         })
     }
@@ -59,6 +66,7 @@ impl PgTarget {
     pub fn resolve_with(
         url: &str,
         password_file: Option<&Path>,
+        insecure: bool,
         env: &dyn Fn(&str) -> Option<String>,
     ) -> Result<Self, String> {
         let shown_url = shown(url);
@@ -70,6 +78,7 @@ impl PgTarget {
         })?;
         if config.get_password().is_none() {
             if let Some(path) = password_file {
+                private_file("--db-password-file", path, insecure)?;
                 config.password(
                     crate::serve::auth::password_from_file(path)
                         .map_err(|e| format!("--db-password-file: {e}"))?,
@@ -115,7 +124,7 @@ impl PgTarget {
         if config.get_password().is_none() {
             if let Some(p) = setting("password", "PGPASSWORD") {
                 config.password(p);
-            } else if let Some(p) = from_pgpass(&config, env) {
+            } else if let Some(p) = from_pgpass(&config, insecure, env)? {
                 config.password(p);
             }
         }
@@ -134,13 +143,25 @@ fn pgpass_path(env: &dyn Fn(&str) -> Option<String>) -> Option<PathBuf> {
 }
 
 /// The password of the first `host:port:database:user:password` line of the password file
-/// matching `config` (`*` matches anything), if the file is the owner's alone.
-fn from_pgpass(config: &Config, env: &dyn Fn(&str) -> Option<String>) -> Option<String> {
-    let path = pgpass_path(env)?;
-    if !owner_only(&path) {
-        return None;
-    }
-    let text = std::fs::read_to_string(&path).ok()?;
+/// matching `config` (`*` matches anything), if there is such a file.
+///
+/// # Errors
+/// Others may read the file, and not `insecure`.
+fn from_pgpass(
+    config: &Config,
+    insecure: bool,
+    env: &dyn Fn(&str) -> Option<String>,
+) -> Result<Option<String>, String> {
+    let Some(path) = pgpass_path(env).filter(|p| p.is_file()) else {
+        return Ok(None);
+    };
+    private_file("password file", &path, insecure)?;
+    Ok(pgpass_entry(config, &path))
+}
+
+/// The password of `path`'s first line matching `config`.
+fn pgpass_entry(config: &Config, path: &Path) -> Option<String> {
+    let text = std::fs::read_to_string(path).ok()?;
     let host = match config.get_hosts().first()? {
         postgres::config::Host::Tcp(h) => h.clone(),
         #[cfg(unix)]
@@ -179,17 +200,48 @@ fn pgpass_fields(line: &str) -> Vec<String> {
     fields
 }
 
-/// Whether only its owner may read `path` (libpq ignores a password file others can read).
-fn owner_only(path: &Path) -> bool {
+/// Refuses a password file (`what`, at `path`) that its group or others may use, naming its
+/// mode and the `chmod` that fixes it, unless `insecure`. In systemd's credentials directory
+/// (`LoadCredential=`), which is the service's alone, only bits for others refuse it: systemd
+/// may grant the service its credential with an ACL, whose mask shows as group bits (as for the
+/// host key).
+///
+/// # Errors
+/// The refusal, one line.
+pub fn private_file(what: &str, path: &Path, insecure: bool) -> Result<(), String> {
+    let credentials = std::env::var_os("CREDENTIALS_DIRECTORY").map(PathBuf::from);
+    private_file_in(what, path, insecure, credentials.as_deref())
+}
+
+/// [`private_file`] with systemd's credentials directory given (`None`: not under systemd).
+///
+/// # Errors
+/// As [`private_file`].
+pub fn private_file_in(
+    what: &str,
+    path: &Path,
+    insecure: bool,
+    credentials: Option<&Path>,
+) -> Result<(), String> {
     #[cfg(unix)]
     {
         use std::os::unix::fs::PermissionsExt;
-        std::fs::metadata(path).is_ok_and(|m| m.is_file() && m.permissions().mode() & 0o077 == 0)
+        let Ok(meta) = std::fs::metadata(path) else {
+            return Ok(()); // reading it says what is wrong
+        };
+        let mode = meta.permissions().mode() & 0o777;
+        let credential = credentials.is_some_and(|d| path.starts_with(d));
+        let loose = if credential { 0o007 } else { 0o077 };
+        if mode & loose != 0 && !insecure {
+            let p = path.display();
+            return Err(format!(
+                "{what} {p}: its group or others may read it (mode {mode:04o}), so anyone on                  this host may learn the database's password; run `chmod 600 {p}` (or pass                  --db-insecure-password-file to use it anyway)"
+            ));
+        }
     }
     #[cfg(not(unix))]
-    {
-        path.is_file()
-    }
+    let _ = (what, path, insecure, credentials);
+    Ok(())
 }
 
 /// The `key=value` settings of service `name`: from `PGSERVICEFILE` (else
@@ -250,7 +302,7 @@ mod tests {
             .iter()
             .map(|(k, v)| ((*k).to_owned(), (*v).to_owned()))
             .collect();
-        PgTarget::resolve_with(url, file, &|k| vars.get(k).cloned())
+        PgTarget::resolve_with(url, file, false, &|k| vars.get(k).cloned())
             .unwrap()
             .config
     }
@@ -264,6 +316,11 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let file = dir.path().join("pw");
         std::fs::write(&file, "from-file\n").unwrap();
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            std::fs::set_permissions(&file, std::fs::Permissions::from_mode(0o600)).unwrap();
+        }
         let pgpass = dir.path().join("pgpass");
         std::fs::write(
             &pgpass,
@@ -295,9 +352,52 @@ mod tests {
         {
             use std::os::unix::fs::PermissionsExt;
             std::fs::set_permissions(&pgpass, std::fs::Permissions::from_mode(0o644)).unwrap();
-            let c = resolve(url, None, &[("PGPASSFILE", pass)]);
-            assert_eq!(password(&c), None, "a password file others read is ignored");
+            let env = |k: &str| (k == "PGPASSFILE").then(|| pass.to_owned());
+            let e = PgTarget::resolve_with(url, None, false, &env).unwrap_err();
+            assert!(
+                e.contains("mode 0644") && e.contains(&format!("chmod 600 {pass}")),
+                "a password file others read is refused, saying how to fix it: {e}"
+            );
+            let c = PgTarget::resolve_with(url, None, true, &env)
+                .unwrap()
+                .config;
+            assert_eq!(password(&c), Some("a:b\\c"), "unless told to use it anyway");
         }
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_password_file_others_may_read_is_refused_with_the_chmod_that_fixes_it() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("db_password");
+        std::fs::write(&file, "secret\n").unwrap();
+        let url = "postgres://ann@db.example/h";
+        for mode in [0o644, 0o640, 0o604, 0o660] {
+            std::fs::set_permissions(&file, std::fs::Permissions::from_mode(mode)).unwrap();
+            let e = PgTarget::resolve_with(url, Some(&file), false, &|_| None).unwrap_err();
+            assert!(
+                e.starts_with("--db-password-file")
+                    && e.contains(&format!("mode {mode:04o}"))
+                    && e.contains(&format!("chmod 600 {}", file.display())),
+                "{e}"
+            );
+            assert!(!e.contains("secret"), "{e}");
+            let c = PgTarget::resolve_with(url, Some(&file), true, &|_| None).unwrap();
+            assert_eq!(password(&c.config), Some("secret"));
+        }
+        for mode in [0o600, 0o400] {
+            std::fs::set_permissions(&file, std::fs::Permissions::from_mode(mode)).unwrap();
+            let c = PgTarget::resolve_with(url, Some(&file), false, &|_| None).unwrap();
+            assert_eq!(password(&c.config), Some("secret"));
+        }
+        // A systemd credential: an ACL's group bits are no refusal there, others' bits are.
+        std::fs::set_permissions(&file, std::fs::Permissions::from_mode(0o440)).unwrap();
+        let what = "--db-password-file";
+        assert!(private_file_in(what, &file, false, Some(dir.path())).is_ok());
+        assert!(private_file_in(what, &file, false, None).is_err());
+        std::fs::set_permissions(&file, std::fs::Permissions::from_mode(0o444)).unwrap();
+        assert!(private_file_in(what, &file, false, Some(dir.path())).is_err());
     }
 
     #[test]
@@ -336,7 +436,7 @@ mod tests {
             [postgres::config::Host::Tcp("pg.example".into())]
         );
         assert_eq!((c.get_user(), password(&c)), (Some("fleet"), Some("svc")));
-        let e = PgTarget::resolve_with("postgres://h/d", None, &|k| {
+        let e = PgTarget::resolve_with("postgres://h/d", None, false, &|k| {
             (k == "PGSERVICE").then(|| "missing".to_owned())
         })
         .unwrap_err();

@@ -45,6 +45,9 @@ const MIGRATIONS: &[&str] = &[
 /// The advisory lock worlds take while they migrate, so two starting at once migrate once.
 const MIGRATION_LOCK: i64 = 0x6861_6c66_6361_7374; // "halfcast"
 
+/// How long a ping waits for the server's answer.
+const PING_PATIENCE: std::time::Duration = std::time::Duration::from_secs(5);
+
 /// Whether `db` (what `--db` was given) names a PostgreSQL database rather than a file.
 #[must_use]
 pub fn is_url(db: &str) -> bool {
@@ -74,10 +77,11 @@ impl PgStore {
     ///
     /// # Errors
     /// [`OpenError::Away`] when the server cannot be reached now (or the connection is lost
-    /// while migrating); [`OpenError::Refused`] when it refuses the login, the database holds a
-    /// newer schema or another program's `rounds` table, or a migration fails.
+    /// while migrating); [`OpenError::Refused`] when it refuses the login or the database
+    /// ([`super::pg_answer`]), the database holds a newer schema or another program's `rounds`
+    /// table, or a migration fails.
     pub fn open(target: &PgTarget) -> Result<Self, OpenError> {
-        let mut store = Self::connect(target).map_err(OpenError::Away)?;
+        let mut store = Self::connect(target)?;
         match store.migrate() {
             Ok(()) => Ok(store),
             Err(e) if store.client.is_closed() => Err(OpenError::Away(e)),
@@ -90,7 +94,7 @@ impl PgStore {
     /// # Errors
     /// As [`PgStore::open`], and when the schema is older than this build's.
     pub fn open_read(target: &PgTarget) -> Result<Self, String> {
-        let mut store = Self::connect(target)?;
+        let mut store = Self::connect(target).map_err(|e| e.to_string())?;
         let version = store.version()?;
         if version != SCHEMA_VERSION {
             return Err(failed(
@@ -104,11 +108,16 @@ impl PgStore {
         Ok(store)
     }
 
-    fn connect(target: &PgTarget) -> Result<Self, String> {
+    fn connect(target: &PgTarget) -> Result<Self, OpenError> {
+        let cannot = |c: String| failed(&target.shown, "cannot connect", c);
+        super::pg_answer::speaks_postgres(&target.config).map_err(|e| match e {
+            OpenError::Away(c) => OpenError::Away(cannot(c)),
+            OpenError::Refused(c) => OpenError::Refused(cannot(c)),
+        })?;
         let client = target
             .config
             .connect(NoTls)
-            .map_err(|e| failed(&target.shown, "cannot connect", causes(&e)))?;
+            .map_err(|e| super::pg_answer::classify(&e, cannot))?;
         Ok(Self {
             config: target.config.clone(),
             url: target.shown.clone(),
@@ -125,6 +134,17 @@ impl PgStore {
                 .map_err(|e| format!("PostgreSQL {} is unreachable: {}", self.url, causes(&e)))?;
         }
         Ok(())
+    }
+
+    /// Whether the server answers now (connecting again if the connection was lost).
+    ///
+    /// # Errors
+    /// That it is unreachable, or its message.
+    pub fn ping(&mut self) -> Result<(), String> {
+        self.alive()?;
+        self.client
+            .is_valid(PING_PATIENCE)
+            .map_err(|e| format!("PostgreSQL {} does not answer: {}", self.url, causes(&e)))
     }
 
     /// Runs the migrations this database lacks, under an advisory lock.

@@ -17,8 +17,9 @@ pub fn shown(url: &str) -> String {
     }
 }
 
-/// An error with its causes ("error connecting to server: Connection refused (os error 111)"):
-/// the client's own message alone rarely says what went wrong.
+/// An error with its causes ("error connecting to server: Connection refused (os error 111)"),
+/// on one line (a server's DETAIL and HINT lines joined to it): the client's own message alone
+/// rarely says what went wrong.
 #[must_use]
 pub fn causes(e: &(dyn std::error::Error + 'static)) -> String {
     let mut out = e.to_string();
@@ -31,5 +32,5 @@ pub fn causes(e: &(dyn std::error::Error + 'static)) -> String {
         }
         next = cause.source();
     }
-    out
+    out.replace('\n', " ")
 }

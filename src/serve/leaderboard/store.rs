@@ -137,6 +137,16 @@ impl Store {
         Ok(store)
     }
 
+    /// Whether the file answers a query now.
+    ///
+    /// # Errors
+    /// SQLite's message.
+    pub fn ping(&self) -> Result<(), String> {
+        self.conn
+            .query_row("SELECT 1", [], |_| Ok(()))
+            .map_err(|e| e.to_string())
+    }
+
     /// Reads the schema version and checks the file's integrity; refuses newer versions.
     fn check(&self, path: &Path) -> Result<i64, String> {
         // The version and the tables in one statement (one snapshot): another world may

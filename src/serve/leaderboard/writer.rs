@@ -6,7 +6,10 @@
 //! A round goes to the backlog ([`super::backlog`]: on disk first) and then to the database;
 //! while the database is away (not there at start, stopped, its disk full) the backlog grows
 //! and the thread tries again after a growing pause ([`super::outage`]), writing the backlog
-//! in order once it answers. Reads wait out an outage the same way and log it once.
+//! in order once it answers. Reads wait out an outage the same way and log it once. While
+//! nothing waits, the thread asks the database whether it answers every [`PROBE_EVERY`], so an
+//! outage is seen (logged, counted, `halfcast_leaderboard_connected` at 0) when it starts, not
+//! when the next round ends, and the "back after" line gives its length.
 
 use std::path::{Path, PathBuf};
 use std::sync::mpsc::{sync_channel, Receiver, RecvTimeoutError, SyncSender, TrySendError};
@@ -16,7 +19,7 @@ use std::time::Instant;
 use tokio::sync::watch;
 
 use super::backlog::Backlog;
-use super::database::{self, Database, OpenError};
+use super::database::{self, Access, Database, OpenError};
 use super::outage::Outage;
 use super::queue::DiskQueue;
 use super::{board_key, Boards, RoundRecord};
@@ -25,6 +28,9 @@ use crate::serve::ops::metrics;
 
 /// Jobs that may wait for the thread; more are dropped.
 const QUEUE: usize = 256;
+
+/// How often the thread asks a database it is not otherwise using whether it answers.
+pub const PROBE_EVERY: std::time::Duration = std::time::Duration::from_secs(1);
 
 /// What the thread is asked to do.
 #[derive(Debug)]
@@ -45,10 +51,13 @@ enum Job {
 pub struct Target {
     /// `--db`: a SQLite file or a `postgres://` URL.
     pub db: PathBuf,
-    /// `--db-password-file`.
-    pub password_file: Option<PathBuf>,
+    /// `--db-password-file`, `--db-insecure-password-file`.
+    pub access: Access,
     /// `--queue-dir`.
     pub queue_dir: PathBuf,
+    /// `--db-start-on-error`: a database that refuses at start (a wrong password, no such
+    /// database) is waited for as an outage instead of stopping the start.
+    pub start_on_error: bool,
 }
 
 /// A line to the leaderboard thread; cheap to clone.
@@ -65,9 +74,13 @@ impl Leaderboard {
     /// error: the world starts, says so, and its rounds queue until the database answers.
     ///
     /// # Errors
-    /// When the queue directory cannot be made, the database refuses to be used (newer schema,
-    /// another program's, damaged), its boards cannot be read, or the thread cannot start.
+    /// When `--db` is malformed or a password file others may read, the queue directory cannot
+    /// be made, the database refuses to be used (a wrong password, no such role or database,
+    /// not PostgreSQL, newer schema, another program's, damaged; unless
+    /// [`Target::start_on_error`]), its boards cannot be read, or the thread cannot start.
     pub fn start(target: Target, served: &[(String, String)], log: Log) -> Result<Self, String> {
+        database::check(&target.db, &target.access)?;
+        metrics::db_connected(false);
         let (queue, (found, notes)) = DiskQueue::open(&target.queue_dir)?;
         for n in notes {
             log.server(n);
@@ -85,6 +98,7 @@ impl Leaderboard {
             backlog: Backlog::new(queue, found),
             writes: Outage::new(),
             reads: Outage::new(),
+            next_probe: Instant::now() + PROBE_EVERY,
             boards: watch::channel(Arc::new(Boards::default())).0,
             log,
             target,
@@ -150,6 +164,8 @@ struct Writer {
     backlog: Backlog,
     writes: Outage,
     reads: Outage,
+    /// When to ask the database whether it answers, if nothing else has by then.
+    next_probe: Instant,
     boards: watch::Sender<Arc<Boards>>,
     log: Log,
 }
@@ -159,19 +175,20 @@ impl Writer {
     fn run(mut self, rx: &Receiver<Job>) {
         self.catch_up();
         loop {
-            let waiting = !self.backlog.is_empty() || self.db.is_none();
-            let job = if waiting {
-                match rx.recv_timeout(self.writes.until_next_try(Instant::now())) {
-                    Ok(job) => Some(job),
-                    Err(RecvTimeoutError::Timeout) => None,
-                    Err(RecvTimeoutError::Disconnected) => return,
-                }
+            let now = Instant::now();
+            let waiting = !self.backlog.is_empty() || self.db.is_none() || self.writes.is_away();
+            let due = if waiting {
+                now + self.writes.until_next_try(now)
             } else {
-                match rx.recv() {
-                    Ok(job) => Some(job),
-                    Err(_) => return,
-                }
+                self.next_probe
             };
+            let job = match rx.recv_timeout(due.saturating_duration_since(now)) {
+                Ok(job) => Some(job),
+                Err(RecvTimeoutError::Timeout) => None,
+                Err(RecvTimeoutError::Disconnected) => return,
+            };
+            // A round's job tries the database itself; any other is no try.
+            let tried = matches!(job, Some(Job::Record(_)));
             match job {
                 Some(Job::Record(r)) => {
                     self.backlog.push(r, self.log);
@@ -199,7 +216,10 @@ impl Writer {
                     }
                     let _ = done.send(());
                 }
-                None => self.catch_up(),
+                None => {}
+            }
+            if !tried && Instant::now() >= due {
+                self.catch_up();
             }
         }
     }
@@ -211,17 +231,23 @@ impl Writer {
             return Ok(true);
         }
         let t = &self.target;
-        match Database::open(&t.db, t.password_file.as_deref()) {
+        let stop_on_refusal = first && !t.start_on_error;
+        match Database::open(&t.db, &t.access) {
             Ok(mut db) => {
                 let mut boards = Boards::clone(&self.boards.borrow());
                 for (hash, mode) in &self.served {
                     match db.board(hash, mode, &[]) {
-                        Ok(b) => boards.maps.insert(board_key(hash, mode), b),
-                        Err(e) if first => {
-                            return Err(format!("leaderboard: cannot read the boards: {e}"))
+                        Ok(b) => {
+                            metrics::db_read("ok");
+                            boards.maps.insert(board_key(hash, mode), b)
                         }
                         Err(e) => {
-                            self.write_failed(&format!("cannot read the boards: {e}"), false);
+                            metrics::db_read("error");
+                            let e = format!("cannot read the boards: {e}");
+                            if stop_on_refusal {
+                                return Err(format!("leaderboard: {e}"));
+                            }
+                            self.write_failed(&e, first.then_some("is away"));
                             return Ok(false);
                         }
                     };
@@ -229,21 +255,39 @@ impl Writer {
                 boards.version += 1;
                 self.boards.send_replace(Arc::new(boards));
                 self.db = Some(db);
+                metrics::db_connected(true);
                 Ok(true)
             }
-            Err(OpenError::Refused(e)) if first => Err(e),
-            Err(OpenError::Away(e) | OpenError::Refused(e)) => {
-                self.write_failed(&e, first);
+            Err(OpenError::Refused(e)) if stop_on_refusal => Err(format!(
+                "{e} (a mistake to fix, not an outage: --db-start-on-error starts anyway)"
+            )),
+            Err(OpenError::Refused(e)) => {
+                self.write_failed(&e, first.then_some("refuses"));
+                Ok(false)
+            }
+            Err(OpenError::Away(e)) => {
+                self.write_failed(&e, first.then_some("is away"));
                 Ok(false)
             }
         }
     }
 
-    /// Writes the backlog in order, if a try is due, until it is empty or a write fails.
+    /// Writes the backlog in order, if a try is due, until it is empty or a write fails; with
+    /// nothing to write, asks the database whether it answers.
     fn catch_up(&mut self) {
         let now = Instant::now();
-        if !self.writes.may_try(now) || !matches!(self.connect(false), Ok(true)) {
+        if !self.writes.may_try(now) {
             return;
+        }
+        self.next_probe = now + PROBE_EVERY;
+        if !matches!(self.connect(false), Ok(true)) {
+            return;
+        }
+        if self.backlog.is_empty() {
+            if let Some(Err(e)) = self.db.as_mut().map(Database::ping) {
+                self.write_failed(&e, None);
+                return;
+            }
         }
         let mut wrote = 0;
         // The boards to read again afterwards, once each however many rounds a backlog held,
@@ -272,10 +316,10 @@ impl Writer {
             self.refresh(&map_hash, &mode, names);
         }
         if let Some(e) = failed {
-            metrics::db_write("error");
-            self.write_failed(&e, false);
+            self.write_failed(&e, None);
             return;
         }
+        metrics::db_connected(true);
         if let Some(away) = self.writes.recovered(Instant::now()) {
             self.log.server(format_args!(
                 "leaderboard {}: back after {:.1} s; {wrote} queued rounds written",
@@ -285,15 +329,19 @@ impl Writer {
         }
     }
 
-    /// A write (or opening the database) failed: logged when it starts an outage.
-    fn write_failed(&mut self, e: &str, at_start: bool) {
+    /// A try to write (or to open the database, or a probe) failed: counted, and logged when it
+    /// starts an outage; `at_start` says how the database failed the world's start ("is away",
+    /// "refuses").
+    fn write_failed(&mut self, e: &str, at_start: Option<&str>) {
+        metrics::db_write("error");
+        metrics::db_connected(false);
         if self.writes.failed(Instant::now()) {
             let shown = database::shown(&self.target.db);
             let dir = self.backlog.dir().display();
             let pending = self.backlog.len();
-            if at_start {
+            if let Some(how) = at_start {
                 self.log.server(format_args!(
-                    "leaderboard {shown} is away ({e}); starting anyway: rounds are queued in \
+                    "leaderboard {shown} {how} ({e}); starting anyway: rounds are queued in \
                      {dir} ({pending} now) and written when it answers"
                 ));
             } else {
@@ -321,7 +369,10 @@ impl Writer {
         names.dedup();
         let Some(db) = self.db.as_mut() else { return };
         match db.board(map_hash, mode, &names) {
-            Ok(b) => publish(&self.boards, key, |m| *m = b),
+            Ok(b) => {
+                self.read_worked(Instant::now());
+                publish(&self.boards, key, |m| *m = b);
+            }
             Err(e) => self.read_failed("a board", &e),
         }
     }
@@ -335,12 +386,7 @@ impl Writer {
         let Some(db) = self.db.as_mut() else { return };
         match db.best(map_hash, mode, &name) {
             Ok(found) => {
-                if let Some(away) = self.reads.recovered(now) {
-                    self.log.server(format_args!(
-                        "leaderboard: reads work again after {:.1} s",
-                        away.as_secs_f64()
-                    ));
-                }
+                self.read_worked(now);
                 if let Some(e) = found {
                     publish(&self.boards, board_key(map_hash, mode), |m| {
                         m.bests.insert(name, e);
@@ -351,8 +397,21 @@ impl Writer {
         }
     }
 
-    /// A read failed: logged once per outage; reads pause meanwhile.
+    /// A read worked: counted, and the end of a reads' outage logged.
+    fn read_worked(&mut self, now: Instant) {
+        metrics::db_read("ok");
+        if let Some(away) = self.reads.recovered(now) {
+            self.log.server(format_args!(
+                "leaderboard: reads work again after {:.1} s",
+                away.as_secs_f64()
+            ));
+        }
+    }
+
+    /// A read failed: counted, logged once per outage; reads pause meanwhile.
     fn read_failed(&mut self, what: &str, e: &str) {
+        metrics::db_read("error");
+        metrics::db_connected(false);
         if self.reads.failed(Instant::now()) {
             self.log.server(format_args!(
                 "leaderboard: cannot read {what}: {e} (reads pause and retry; logged again when \

@@ -158,15 +158,22 @@ impl Log {
         }
     }
 
-    /// A round ended on `map` (its name and content hash), with each player's figures.
-    pub fn round_end(&self, map: &str, hash: &str, mode: &str, seconds: f64, players: Value) {
+    /// Round `round` (its identity, as the leaderboard's `uid` column holds it) ended on a map
+    /// (its name and content hash, and the mode), with each player's figures.
+    pub fn round_end(
+        &self,
+        round: &str,
+        (map, hash, mode): (&str, &str, &str),
+        seconds: f64,
+        players: Value,
+    ) {
         match self.format {
             LogFormat::Text => self.server(format_args!(
-                "round over on {map} ({mode}, {seconds:.1} s): {players}"
+                "round over on {map} ({mode}, {seconds:.1} s, round {round}): {players}"
             )),
             LogFormat::Json if !self.quiet => self.json(
                 "round_end",
-                json!({ "map": map, "map_hash": hash, "mode": mode,
+                json!({ "round": round, "map": map, "map_hash": hash, "mode": mode,
                         "seconds": seconds, "players": players }),
             ),
             LogFormat::Json => {}

@@ -45,6 +45,12 @@ pub const ROUNDS: &str = "halfcast_rounds_total";
 pub const DB_WRITES: &str = "halfcast_leaderboard_writes_total";
 /// Rounds waiting to be written to the leaderboard (the database away, or its disk full).
 pub const PENDING_ROUNDS: &str = "halfcast_leaderboard_pending_rounds";
+/// Leaderboard reads (boards, a player's best), by `result` ("ok", "error": a read that
+/// failed; reads pause and try again).
+pub const DB_READS: &str = "halfcast_leaderboard_reads_total";
+/// Whether the leaderboard's database answered its last try (1) or not (0: away, refusing, or
+/// not reached yet); present when the world keeps a leaderboard.
+pub const DB_CONNECTED: &str = "halfcast_leaderboard_connected";
 
 /// How long a frame ready to be drawn waited for the client's link to take the last one (zero
 /// for most frames on a fast link): the lag a slow link adds to what the player sees.
@@ -80,7 +86,7 @@ pub enum Reason {
 
 impl Reason {
     /// Every reason, for the series that exist at 0 from the start.
-    pub const ALL: [Reason; 7] = [
+    pub const ALL: [Reason; 8] = [
         Reason::Full,
         Reason::PerAddress,
         Reason::Startups,
@@ -88,6 +94,7 @@ impl Reason {
         Reason::Grace,
         Reason::Stall,
         Reason::Proxy,
+        Reason::Origin,
     ];
 
     /// The label value.
@@ -134,6 +141,22 @@ fn zeroes() {
     }
     for result in ["ok", "error", "dropped"] {
         counter!(DB_WRITES, "result" => result).absolute(0);
+    }
+    for result in ["ok", "error"] {
+        counter!(DB_READS, "result" => result).absolute(0);
+    }
+    for transport in ["ssh", "web"] {
+        gauge!(TRANSPORT_SESSIONS, "transport" => transport).set(0.0);
+    }
+    // A histogram with a handle is written out (count 0, every bucket 0) before its first
+    // sample.
+    for name in [
+        RENDER_SECONDS,
+        ENCODE_SECONDS,
+        TICK_SECONDS,
+        LINK_WAIT_SECONDS,
+    ] {
+        let _ = histogram!(name);
     }
     for mode in ["coop", "tag"] {
         counter!(ROUNDS, "mode" => mode).absolute(0);
@@ -207,6 +230,11 @@ fn describe() {
     );
     describe_counter!(ROUNDS, "Rounds finished, by mode.");
     describe_counter!(DB_WRITES, "Leaderboard writes, by result.");
+    describe_counter!(DB_READS, "Leaderboard reads, by result.");
+    describe_gauge!(
+        DB_CONNECTED,
+        "1 when the leaderboard's database answered its last try, else 0."
+    );
     describe_gauge!(
         PENDING_ROUNDS,
         "Rounds queued for the leaderboard, not yet written."
@@ -271,6 +299,16 @@ pub fn round(mode: &'static str) {
 /// A leaderboard write ended with `result` ("ok", "error", "dropped").
 pub fn db_write(result: &'static str) {
     counter!(DB_WRITES, "result" => result).increment(1);
+}
+
+/// A leaderboard read ended with `result` ("ok", "error").
+pub fn db_read(result: &'static str) {
+    counter!(DB_READS, "result" => result).increment(1);
+}
+
+/// Whether the leaderboard's database answered its last try.
+pub fn db_connected(yes: bool) {
+    gauge!(DB_CONNECTED).set(if yes { 1.0 } else { 0.0 });
 }
 
 /// `n` rounds wait for the leaderboard.

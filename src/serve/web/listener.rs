@@ -79,6 +79,7 @@ async fn visit(
         routes::bad_request(socket).await;
         return;
     };
-    let peer = client_addr(tcp_peer, &req, &edge.options.trusted_proxies);
+    let (trusted, header) = (&edge.options.trusted_proxies, edge.options.forwarded_header);
+    let peer = client_addr(tcp_peer, &req, trusted, header);
     routes::answer(socket, req, peer, edge).await;
 }

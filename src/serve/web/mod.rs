@@ -24,4 +24,5 @@ pub(crate) mod session;
 pub(crate) mod sink;
 pub(crate) mod trace_route;
 
+pub use forwarded::ForwardedHeader;
 pub use options::{Compress, WebOptions};

@@ -1,4 +1,5 @@
-//! What an operator sets for the browser edge (`--web`, `--web-origin`, `--web-trusted-proxy`).
+//! What an operator sets for the browser edge (`--web`, `--web-origin`, `--web-trusted-proxy`,
+//! `--web-forwarded-header`).
 
 use std::net::{IpAddr, SocketAddr};
 
@@ -10,10 +11,12 @@ pub struct WebOptions {
     /// Origins (`https://example.org`) whose pages may open the WebSocket besides the page this
     /// server serves itself.
     pub origins: Vec<String>,
-    /// Reverse proxies whose `X-Forwarded-For`/`Forwarded` headers name the player's address.
+    /// Reverse proxies whose `forwarded_header` names the player's address.
     pub trusted_proxies: Vec<IpAddr>,
     /// When a page's frames are compressed.
     pub compress: Compress,
+    /// The one header the trusted proxies write (`--web-forwarded-header`).
+    pub forwarded_header: super::forwarded::ForwardedHeader,
 }
 
 /// When a page's frames go compressed (`--web-compress`).
@@ -38,6 +41,7 @@ impl WebOptions {
             origins: Vec::new(),
             trusted_proxies: Vec::new(),
             compress: Compress::Auto,
+            forwarded_header: super::forwarded::ForwardedHeader::default(),
         }
     }
 }

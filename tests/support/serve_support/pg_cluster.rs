@@ -55,6 +55,12 @@ impl OwnCluster {
         let as_postgres = nix_is_root();
         let dir = tempfile::tempdir().expect("tempdir");
         std::fs::write(dir.path().join("pw"), format!("{PASSWORD}\n")).expect("pwfile");
+        // Its owner's alone, as a world requires of a --db-password-file.
+        {
+            use std::os::unix::fs::PermissionsExt;
+            let private = std::fs::Permissions::from_mode(0o600);
+            std::fs::set_permissions(dir.path().join("pw"), private).expect("chmod 600");
+        }
         if as_postgres {
             let owned = Command::new("chown")
                 .args(["-R", "postgres:"])
@@ -190,6 +196,26 @@ impl OwnCluster {
             c.query_one(sql.as_str(), &[])
                 .expect("the query runs")
                 .get(0)
+        })
+        .join()
+        .expect("the query thread")
+    }
+}
+
+impl OwnCluster {
+    /// The first column of every row of a query returning text (`SELECT uid FROM rounds`).
+    pub fn texts(&self, sql: &str) -> Vec<String> {
+        let (url, sql) = (
+            format!("{}?password={PASSWORD}", self.url()),
+            sql.to_owned(),
+        );
+        std::thread::spawn(move || {
+            let mut c = postgres::Client::connect(&url, postgres::NoTls).expect("connects");
+            c.query(sql.as_str(), &[])
+                .expect("the query runs")
+                .iter()
+                .map(|r| r.get(0))
+                .collect()
         })
         .join()
         .expect("the query thread")

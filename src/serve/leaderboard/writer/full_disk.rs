@@ -46,13 +46,15 @@ fn on_a_full_disk_rounds_wait_in_memory_up_to_a_bound_and_are_written_when_room_
     let mut w = Writer {
         target: Target {
             db: dir.path().join("lb.sqlite"),
-            password_file: None,
+            access: super::database::Access::default(),
             queue_dir: queue_dir.clone(),
+            start_on_error: false,
         },
         db: None,
         served: Vec::new(),
         backlog: Backlog::new(queue, found),
         writes: Outage::new(),
+        next_probe: Instant::now(),
         reads: Outage::new(),
         boards: watch::channel(Arc::new(Boards::default())).0,
         log: Log::new(true),

@@ -1,0 +1,121 @@
+//! The browser edge behind Caddy, with the Caddyfile docs/serving.md shows as it is (its site
+//! address moved to a plain-HTTP loopback port, since a test has no domain to get a certificate
+//! for): pages from 127.0.0.2 and 127.0.0.3 that send `Forwarded` and `X-Forwarded-For` lines of
+//! their own are logged and limited by their own addresses. Skipped with a notice without Caddy
+//! or extra loopback addresses.
+
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+use crate::serve_haproxy::installed;
+use crate::serve_process::{free_port, spawn_server, Guard};
+use crate::serve_support::{header_has, many_loopback_addresses, PATIENCE};
+use crate::serve_web_haproxy::forging_page_from;
+
+/// The Caddyfile after "With Caddy:" in docs/serving.md.
+fn documented_caddyfile() -> String {
+    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/serving.md"))
+        .expect("docs/serving.md");
+    let after = doc
+        .split("With Caddy:\n")
+        .nth(1)
+        .expect("the Caddy example");
+    let block = after.split("```\n").nth(1).expect("its code block");
+    block.to_owned()
+}
+
+/// Caddy on `caddyfile`, once it listens on `front`.
+fn caddy(caddyfile: &str, front: u16, dir: &std::path::Path) -> Guard {
+    let path = dir.join("Caddyfile");
+    std::fs::write(&path, caddyfile).unwrap();
+    let child = Command::new("caddy")
+        .args(["run", "--adapter", "caddyfile", "--config"])
+        .arg(&path)
+        .env("HOME", dir)
+        .env("XDG_DATA_HOME", dir.join("data"))
+        .env("XDG_CONFIG_HOME", dir.join("config"))
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("caddy starts");
+    let deadline = Instant::now() + PATIENCE;
+    while std::net::TcpStream::connect(("127.0.0.1", front)).is_err() {
+        assert!(Instant::now() < deadline, "caddy never listened");
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    Guard(child)
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_documented_caddyfile_gives_the_real_client_whatever_headers_it_sends() {
+    if !installed("caddy", "version") {
+        eprintln!("SKIPPED: Caddy is not installed (apt-get install caddy)");
+        return;
+    }
+    if !many_loopback_addresses() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let web = free_port();
+    let w = web.to_string();
+    let (_world, _ssh, log) = spawn_server(
+        dir.path(),
+        &[
+            "--web",
+            &w,
+            "--web-trusted-proxy",
+            "127.0.0.1",
+            "--max-per-ip",
+            "1",
+        ],
+    );
+    let front = free_port();
+    let shipped = documented_caddyfile();
+    assert!(
+        shipped.contains("game.example.org {") && shipped.contains("reverse_proxy 127.0.0.1:8080"),
+        "the documented Caddyfile changed: {shipped}"
+    );
+    let moved = shipped
+        .replace(
+            "game.example.org {",
+            &format!("{{\n    admin off\n}}\nhttp://127.0.0.1:{front} {{"),
+        )
+        .replace("127.0.0.1:8080", &format!("127.0.0.1:{web}"));
+    let _proxy = caddy(&moved, front, dir.path());
+    let mut two = forging_page_from("127.0.0.2", front, "two", "203.0.113.5").await;
+    let mut three = forging_page_from("127.0.0.3", front, "three", "203.0.113.5").await;
+    assert!(two.until(|s| header_has(s, "you are two")).await);
+    assert!(three.until(|s| header_has(s, "you are three")).await);
+    let mut again = forging_page_from("127.0.0.2", front, "again", "203.0.113.77").await;
+    let closed = again.closed().await;
+    assert!(
+        closed
+            .reason
+            .contains("too many connections from your address"),
+        "{closed:?}"
+    );
+    drop((two, three));
+    let mut lines: Vec<String> = Vec::new();
+    let deadline = Instant::now() + PATIENCE;
+    while !(lines
+        .iter()
+        .any(|l| l.contains("127.0.0.2") && l.contains("\"two\""))
+        && lines
+            .iter()
+            .any(|l| l.contains("127.0.0.3") && l.contains("\"three\"")))
+    {
+        let left = deadline.saturating_duration_since(Instant::now());
+        match log.recv_timeout(left) {
+            Ok(l) => lines.push(l),
+            Err(_) => panic!("the players' own addresses were never logged: {lines:#?}"),
+        }
+    }
+    lines.extend(log.try_iter());
+    for forged in ["203.0.113", "198.51.100"] {
+        assert!(
+            lines.iter().all(|l| !l.contains(forged)),
+            "a client's own address reached the log: {lines:#?}"
+        );
+    }
+}
