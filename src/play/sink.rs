@@ -68,6 +68,13 @@ pub trait FrameSink: Send {
     /// only then).
     fn measures(&self) -> bool;
 
+    /// Whether the link holds the colour level below where it would be (a step down for the
+    /// link), told before each frame: a transport that can shrink its frames (the browser's
+    /// compression) does so rather than let the level drop. By default nothing changes.
+    fn level_held_down(&mut self, by_link: bool) {
+        let _ = by_link;
+    }
+
     /// Tells the client `note`; a terminal reads only frames, so by default nothing is sent.
     fn note(&mut self, note: Note) -> impl Future<Output = Result<(), Gone>> + Send {
         let _ = note;

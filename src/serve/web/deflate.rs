@@ -4,7 +4,9 @@
 //! while the link holds frames back (the page's acknowledgements gate the next frame, and the
 //! gate stays shut for much of a second), and sent as they are once the link has room: a probe
 //! sends raw frames after a calm spell and goes back at the first sign of holding, each failed
-//! probe waiting twice as long. A new page starts compressed, as nothing is known of its link.
+//! probe waiting twice as long. While the link holds the colour level below the top, frames stay
+//! compressed (raw frames would only hold it lower, and compressed ones let it climb back). A
+//! new page starts compressed, as nothing is known of its link.
 //!
 //! On the wire a compressed frame is one binary message: the byte 0x00, then the raw DEFLATE
 //! stream of the frame (an encoder frame never starts with 0x00).
@@ -46,6 +48,8 @@ pub struct Policy {
     backoff: Duration,
     /// When the current raw spell began (a probe, until it holds).
     raw_since: Option<Instant>,
+    /// Whether the link holds the colour level down (then no raw frames).
+    level_held: bool,
 }
 
 impl Policy {
@@ -66,6 +70,19 @@ impl Policy {
             calm_since: Some(now),
             backoff: CALM_FOR,
             raw_since: None,
+            level_held: false,
+        }
+    }
+
+    /// Whether the link holds the colour level down now: raw frames caused it if they were on,
+    /// so a probe counts as failed; none are tried until the level is back at its top.
+    pub fn level_held_down(&mut self, by_link: bool) {
+        if by_link && !self.compressing {
+            self.back_to_compressed(None);
+        }
+        self.level_held = by_link;
+        if by_link {
+            self.calm_since = None;
         }
     }
 
@@ -105,8 +122,9 @@ impl Policy {
             .map_or(Duration::ZERO, |t| now.saturating_duration_since(t));
         let held = self.last_second.max(self.window.1 + open_hold);
         if self.compressing {
-            if held > CALM_HELD {
+            if held > CALM_HELD || self.level_held {
                 self.calm_since = None;
+                return true;
             }
             let calm = *self.calm_since.get_or_insert(now);
             if now.saturating_duration_since(calm) >= self.backoff {
@@ -116,25 +134,33 @@ impl Policy {
                 self.last_second = Duration::ZERO;
             }
         } else if self.window.1 + open_hold > HELD_TOO_LONG {
-            // Raw frames are more than this link carries: back to compressed, and a failed
-            // probe (raw for under a minute) waits twice as long before the next.
-            let lasted = self
-                .raw_since
-                .map_or(MAX_BACKOFF, |t| now.saturating_duration_since(t));
-            self.backoff = if lasted < MAX_BACKOFF {
-                (self.backoff * 2).min(MAX_BACKOFF)
-            } else {
-                CALM_FOR
-            };
-            self.compressing = true;
-            self.calm_since = None;
-            self.raw_since = None;
-            // The raw frames' holding says nothing of compressed ones.
-            self.window = (now, Duration::ZERO);
-            self.last_second = Duration::ZERO;
-            self.held_since = None;
+            self.back_to_compressed(Some(now));
         }
         self.compressing
+    }
+
+    /// Raw frames are more than this link carries: back to compressed, and a failed probe (raw
+    /// for under a minute) waits twice as long before the next.
+    fn back_to_compressed(&mut self, now: Option<Instant>) {
+        let lasted = match (self.raw_since, now) {
+            (Some(t), Some(now)) => now.saturating_duration_since(t),
+            (Some(_), None) => Duration::ZERO,
+            (None, _) => MAX_BACKOFF,
+        };
+        self.backoff = if lasted < MAX_BACKOFF {
+            (self.backoff * 2).min(MAX_BACKOFF)
+        } else {
+            CALM_FOR
+        };
+        self.compressing = true;
+        self.calm_since = None;
+        self.raw_since = None;
+        // The raw frames' holding says nothing of compressed ones.
+        if let Some(now) = now {
+            self.window = (now, Duration::ZERO);
+        }
+        self.last_second = Duration::ZERO;
+        self.held_since = None;
     }
 }
 
@@ -217,6 +243,40 @@ mod tests {
         assert!(
             (4000..4200).contains(&waited),
             "probed again after {waited} ms"
+        );
+    }
+
+    #[test]
+    fn a_level_the_link_holds_down_keeps_frames_compressed() {
+        let t0 = Instant::now();
+        let mut p = Policy::new(Compress::Auto, t0);
+        let mut t = 0;
+        while p.compress(ms(t0, t)) {
+            p.gate(true, ms(t0, t));
+            t += 33;
+        }
+        // Raw, then the level steps down for the link: compressed at once, and no probe while
+        // the level is held down, however calm the link.
+        p.level_held_down(true);
+        for _ in 0..300 {
+            t += 33;
+            p.gate(true, ms(t0, t));
+            assert!(
+                p.compress(ms(t0, t)),
+                "raw at {t} ms with the level held down"
+            );
+        }
+        // Back at the top: raw again after a calm spell twice as long as the first.
+        p.level_held_down(false);
+        let top = t;
+        while p.compress(ms(t0, t)) {
+            p.gate(true, ms(t0, t));
+            t += 33;
+        }
+        assert!(
+            (4000..4200).contains(&(t - top)),
+            "raw {} ms after the top",
+            t - top
         );
     }
 

@@ -100,6 +100,10 @@ impl FrameSink for WebSink {
         true
     }
 
+    fn level_held_down(&mut self, by_link: bool) {
+        self.deflate.level_held_down(by_link);
+    }
+
     async fn note(&mut self, note: Note) -> Result<(), Gone> {
         let text = note_json(&note, &self.maps);
         let mut w = self.writer.lock().await;
