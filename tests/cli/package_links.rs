@@ -185,6 +185,8 @@ fn repository_paths(base: &Path, line: &str) -> Vec<(String, Vec<String>)> {
         .filter(|w| {
             w.contains('/') && !w.starts_with(['-', '/', '~', '$', '.']) && !w.contains("://")
         })
+        // What cargo builds (`target/release/halfcast`) is never in a package.
+        .filter(|w| !w.starts_with("target/"))
         .filter_map(|w| {
             let named = if w.contains('*') {
                 glob(base, w)

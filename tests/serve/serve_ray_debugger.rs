@@ -399,7 +399,9 @@ fn chromium_shows_the_ray_trace_draws_and_steps_through_it() {
     let figures: Value = serde_json::from_str(stdout.lines().last().unwrap()).unwrap();
     let refused = figures["refused"].as_str().unwrap();
     assert_eq!(
-        refused, "position 0.5,0.5 is inside a wall (cell (0,0)): a ray must start in open space",
+        refused,
+        "--pos 0.5,0.5 is inside a wall, cell (0,0) of default.cub \
+         (29x22 cells, x 0 to 29 and y 0 to 22): start in an open cell",
         "the page shows trace's message for a ray in a wall"
     );
     // ray_text.js's num() prints as render::derivation::num does.
