@@ -1,4 +1,4 @@
-//! The answer to one request: the page and its two assets, `/healthz` (the same answer as the
+//! The answer to one request: the page and its assets (its modules under `/js/`), `/info.json`, `/healthz` (the same answer as the
 //! metrics listener's, so a balancer in front of the browser port checks the world it sends
 //! players to), and the WebSocket upgrade at `/ws`, checked for its `Origin`, then admitted
 //! within the server's limits and played.
@@ -41,11 +41,18 @@ pub async fn answer(socket: TcpStream, req: Request, peer: SocketAddr, edge: Arc
         return reply(socket, 405, "text/plain", b"only GET\n").await;
     }
     let text = "text/plain";
-    let health;
+    let (health, info);
     let (status, kind, body): (u16, &str, &[u8]) = match req.path.as_str() {
         "/" => (200, "text/html; charset=utf-8", page::HTML.as_bytes()),
         "/halfcast.css" => (200, "text/css", page::CSS.as_bytes()),
-        "/halfcast.js" => (200, "text/javascript", page::script().as_bytes()),
+        "/info.json" => {
+            info = super::info::json(&edge.shared);
+            (200, "application/json", info.as_bytes())
+        }
+        js if js.starts_with("/js/") => match page::module(&js[4..]) {
+            Some(m) => (200, "text/javascript", m.as_bytes()),
+            None => (404, text, b"not found\n"),
+        },
         // Browsers ask for an icon; there is none, and no error need show for it.
         "/favicon.ico" => (204, text, b""),
         "/healthz" => {
