@@ -2,7 +2,9 @@
 tests/serve/serve_browser.rs: loads the page and joins, checks the view is drawn, holds `d` and
 releases it (how long the view goes on changing after the release, and frames a second while
 turning), taps `d` once, holds `d` while the window loses focus (the page lets go), takes the painter's pixels and the frame bytes they were drawn from,
-resizes the window and does the same again. Prints one JSON object of figures on its last line.
+resizes the window and does the same again; taps `d` for 0 ms and 20 ms and reads how far each
+tap turned from the status line's angle; presses Escape (with and without the game's help shown)
+and checks the game goes on. Prints one JSON object of figures on its last line.
 
 usage: page_check.py URL OUTDIR
 """
@@ -13,8 +15,7 @@ import sys
 
 from playwright.async_api import async_playwright
 
-ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
-        "--disable-component-update", "--disable-sync", "--no-first-run"]
+from pagelib import ARGS, CHROMIUM, VIEW_HASH, Wire, angle, settle, turned
 
 # After each painted frame: when, and a hash of the pixel canvas between the header's and the
 # status line's rows (the view, the minimap and the ray pane).
@@ -94,19 +95,61 @@ async def snapshot(page, frames, out, name, samples=False):
     return snap["cols"], snap["rows"]
 
 
+async def taps(page):
+    """Taps of `d` held 0 ms and 20 ms, three each: the degrees each turned (the status line's
+    angle before and after) and whether the view changed."""
+    out = {}
+    await settle(page)
+    for ms in (0, 20):
+        steps, moved = [], []
+        for _ in range(3):
+            a, h = await angle(page), await page.evaluate(VIEW_HASH)
+            await page.keyboard.down("d")
+            if ms:
+                await page.wait_for_timeout(ms)
+            await page.keyboard.up("d")
+            await page.wait_for_timeout(300)
+            await settle(page)
+            b, h2 = await angle(page), await page.evaluate(VIEW_HASH)
+            steps.append(turned(a, b) if a is not None and b is not None else None)
+            moved.append(h2 != h)
+        out[f"tap_{ms}ms_degrees"] = steps
+        out[f"tap_{ms}ms_view_moved"] = moved
+    return out
+
+
+async def escape(page, wire):
+    """Escape while playing, then with the game's help shown: nothing named Escape is sent, the
+    help closes (the help key again), the connection stays and `d` still turns the view."""
+    before = len(wire.sent)
+    await page.keyboard.press("Escape")
+    await page.keyboard.press("?")
+    await page.wait_for_timeout(300)
+    await page.keyboard.press("Escape")
+    await page.wait_for_timeout(600)
+    sent = [(m["key"], m["down"]) for m in wire.sent[before:] if "key" in m]
+    h = await page.evaluate(VIEW_HASH)
+    await page.keyboard.down("d")
+    await page.wait_for_timeout(400)
+    await page.keyboard.up("d")
+    await page.wait_for_timeout(300)
+    return {
+        "escape_sent": sent,
+        "escape_playing": await page.evaluate("halfcast.link.ws !== null && halfcast.link.ws.readyState === 1"),
+        "escape_form_hidden": await page.evaluate("document.getElementById('join').classList.contains('hidden')"),
+        "escape_then_turned": (await page.evaluate(VIEW_HASH)) != h,
+    }
+
+
 async def main(url, out):
     figures = {}
     async with async_playwright() as p:
-        browser = await p.chromium.launch(executable_path="/usr/bin/chromium", args=ARGS)
+        browser = await p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
         page = await browser.new_page(viewport={"width": 800, "height": 480})
         errors = []
         page.on("pageerror", lambda e: errors.append(str(e)))
-        frames = []
-
-        def on_ws(ws):
-            ws.on("framereceived", lambda payload: frames.append(payload) if isinstance(payload, bytes) else None)
-
-        page.on("websocket", on_ws)
+        wire = Wire(page)
+        frames = wire.frames
         await page.goto(url + "?name=chromey")
         await page.click("#play")
         await page.wait_for_function("() => halfcast.game.frames > 0", timeout=20000)
@@ -176,6 +219,10 @@ async def main(url, out):
         await page.wait_for_timeout(1000)
         figures["large"] = await snapshot(page, frames, out, "large")
         await page.screenshot(path=f"{out}/page-160x45.png")
+
+        figures.update(await taps(page))
+        figures.update(await escape(page, wire))
+        figures["large"] = await snapshot(page, frames, out, "large")
 
         # The glyph key (u) three times: quadrants, sextants, then octants, drawn as rectangles.
         for _ in range(3):
