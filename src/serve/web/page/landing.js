@@ -66,6 +66,7 @@ export class Landing {
     const playing = state.kind !== "form";
     this.form.classList.toggle("hidden", playing);
     document.body.classList.toggle("playing", playing);
+    document.body.classList.toggle("waiting", state.kind === "waiting");
     this.notice.classList.toggle("hidden", state.kind !== "waiting" && !(state.kind === "connecting" && state.attempt > 0));
     if (state.kind === "form") {
       $("said").textContent = state.why || "";
