@@ -187,6 +187,23 @@ fn check_figures(f: &Value) {
     );
     assert_eq!(f["escape_form_hidden"], Value::Bool(true), "{f}");
     assert_eq!(f["escape_then_turned"], Value::Bool(true), "{f}");
+    assert_eq!(f["spectate_button"], "Watch", "{f}");
+    assert_eq!(f["spectate_name_shown"], Value::Bool(false), "{f}");
+    assert_eq!(f["keys_help_shown"], Value::Bool(true), "{f}");
+    assert_eq!(f["fullscreen_button"], Value::Bool(true), "{f}");
+    assert_eq!(f["enter_watches"], Value::Bool(true), "{f}");
+    let world = f["info"]["world"]
+        .as_str()
+        .expect("/info.json names the world");
+    let players = f["info"]["players"]
+        .as_u64()
+        .expect("and counts the players");
+    assert!(players >= 1, "chromey plays: {f}");
+    let title = f["title"].as_str().unwrap_or("");
+    assert!(
+        title.starts_with(&format!("{world} · ")) && title.contains(" playing"),
+        "the title names the world and the player count: {title:?}"
+    );
     assert_eq!(f["small"], serde_json::json!([80, 24]));
     assert_eq!(
         f["large"],

@@ -141,6 +141,30 @@ async def escape(page, wire):
     }
 
 
+async def first_visit(browser, url):
+    """A spectator's first visit: the form shows Watch (no name), the keys and a fullscreen
+    button; Enter with the focus nowhere in particular starts watching; the title names the
+    world and the player count."""
+    page = await browser.new_page(viewport={"width": 800, "height": 480})
+    await page.goto(url + "?spectate")
+    await page.wait_for_function("() => document.title !== 'halfcast'", timeout=20000)
+    shown = lambda sel: page.evaluate(f"!document.querySelector('{sel}').closest('.hidden')")
+    out = {
+        "spectate_button": await page.inner_text("#play"),
+        "spectate_name_shown": await shown("#name"),
+        "keys_help_shown": await shown("#keys-help"),
+        "fullscreen_button": await shown("#join .fullscreen"),
+        "title": await page.title(),
+        "info": await page.evaluate("fetch('info.json').then((r) => r.json())"),
+    }
+    await page.evaluate("document.activeElement.blur()")
+    await page.keyboard.press("Enter")
+    await page.wait_for_function("() => halfcast.game.frames > 0", timeout=20000)
+    out["enter_watches"] = True
+    await page.close()
+    return out
+
+
 async def main(url, out):
     figures = {}
     async with async_playwright() as p:
@@ -231,6 +255,7 @@ async def main(url, out):
         await page.wait_for_function(OCTANTS, timeout=20000)
         await page.wait_for_timeout(1500)
         figures["octant"] = await snapshot(page, frames, out, "octant", samples=True)
+        figures.update(await first_visit(browser, url))
         figures["page_errors"] = errors
         figures["bytes"] = await page.evaluate("halfcast.game.bytes")
         figures["frames"] = await page.evaluate("halfcast.game.frames")
