@@ -187,6 +187,11 @@ fn check_figures(f: &Value) {
     );
     assert_eq!(f["escape_form_hidden"], Value::Bool(true), "{f}");
     assert_eq!(f["escape_then_turned"], Value::Bool(true), "{f}");
+    assert_eq!(
+        f["inflate_order"],
+        serde_json::json!(["one", "two", "probe 1", "three…10000", "four"]),
+        "frames inflated and handed on in the order they came, text messages in between"
+    );
     assert_eq!(f["spectate_button"], "Watch", "{f}");
     assert_eq!(f["spectate_name_shown"], Value::Bool(false), "{f}");
     assert_eq!(f["keys_help_shown"], Value::Bool(true), "{f}");

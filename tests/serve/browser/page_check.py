@@ -165,6 +165,36 @@ async def first_visit(browser, url):
     return out
 
 
+# Contract 1 and 3 on the page's side, without a server that compresses: binary messages whose
+# first byte is 0x00 are raw DEFLATE, inflated by the page; raw frames and text messages that
+# come after an inflating frame wait for it. The game's frame (paint and ack) records these
+# made-up frames instead, so no ack for them reaches the server; the server's own frames pass.
+ORDER = """async () => {
+  const link = halfcast.link, game = halfcast.game, ws = link.ws, got = [];
+  const enc = new TextEncoder(), dec = new TextDecoder();
+  const deflated = async (text) => {
+    const s = new Blob([enc.encode(text)]).stream().pipeThrough(new CompressionStream("deflate-raw"));
+    const z = new Uint8Array(await new Response(s).arrayBuffer());
+    const m = new Uint8Array(z.length + 1); m.set(z, 1); return m.buffer;
+  };
+  const one = await deflated("one"), three = await deflated("three".repeat(2000));
+  const mine = new Set(["one", "two", "three".repeat(2000), "four"]), frame = game.frame;
+  game.frame = (bytes) => {
+    const t = dec.decode(bytes);
+    if (mine.has(t)) got.push(t); else frame.call(game, bytes);
+  };
+  link.on("probe", (v) => got.push("probe " + v));
+  link.message(ws, one);
+  link.message(ws, enc.encode("two").buffer);
+  link.message(ws, '{"probe":1,"unknown":2}');
+  link.message(ws, three);
+  link.message(ws, enc.encode("four").buffer);
+  await new Promise((r) => setTimeout(r, 500));
+  game.frame = frame;
+  return got.map((g) => g.length > 20 ? g.slice(0, 5) + "…" + g.length : g);
+}"""
+
+
 async def main(url, out):
     figures = {}
     async with async_playwright() as p:
@@ -255,6 +285,7 @@ async def main(url, out):
         await page.wait_for_function(OCTANTS, timeout=20000)
         await page.wait_for_timeout(1500)
         figures["octant"] = await snapshot(page, frames, out, "octant", samples=True)
+        figures["inflate_order"] = await page.evaluate(ORDER)
         figures.update(await first_visit(browser, url))
         figures["page_errors"] = errors
         figures["bytes"] = await page.evaluate("halfcast.game.bytes")
