@@ -192,6 +192,7 @@ fn check_figures(f: &Value) {
         serde_json::json!(["one", "two", "probe 1", "three…10000", "four"]),
         "frames inflated and handed on in the order they came, text messages in between"
     );
+    assert_eq!(f["quit_said"], "you left the game", "{f}");
     assert_eq!(f["spectate_button"], "Watch", "{f}");
     assert_eq!(f["spectate_name_shown"], Value::Bool(false), "{f}");
     assert_eq!(f["keys_help_shown"], Value::Bool(true), "{f}");

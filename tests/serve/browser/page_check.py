@@ -35,6 +35,8 @@ HOOK = """() => {
   };
 }"""
 
+SHOWN = "!document.getElementById('join').classList.contains('hidden')"
+
 RESET = "() => { window.__log = []; window.__up = null; window.__down = null; }"
 
 SNAPSHOT = """() => {
@@ -287,6 +289,10 @@ async def main(url, out):
         figures["octant"] = await snapshot(page, frames, out, "octant", samples=True)
         figures["inflate_order"] = await page.evaluate(ORDER)
         figures.update(await first_visit(browser, url))
+        # The visible Quit leaves: the form shows again, saying so.
+        await page.click("#quit")
+        await page.wait_for_function(f"() => {SHOWN}", timeout=20000)
+        figures["quit_said"] = await page.inner_text("#said")
         figures["page_errors"] = errors
         figures["bytes"] = await page.evaluate("halfcast.game.bytes")
         figures["frames"] = await page.evaluate("halfcast.game.frames")

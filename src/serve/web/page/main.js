@@ -56,7 +56,9 @@ const game = {
 };
 
 const link = new Link(game, (state) => landing.show(state, link.who?.name));
-const input = new Input((msg) => link.send(msg), () => link.ws !== null);
+// Keys count only on an open connection: a key pressed while connecting would otherwise be
+// held here with its press never sent.
+const input = new Input((msg) => link.send(msg), () => link.ws?.readyState === WebSocket.OPEN);
 const spectate = new URLSearchParams(location.search).has("spectate");
 const landing = new Landing({
   spectate,
