@@ -120,6 +120,29 @@ pub enum Command {
     ScrollPane(i32),
 }
 
+/// One tap's turn, in degrees: what a key pressed and let go at once moves, on any terminal.
+pub const TAP_TURN_DEG: f64 = 8.0;
+
+/// One tap's walk (or strafe), in cells.
+pub const TAP_WALK_CELLS: f64 = 0.25;
+
+/// One tap's look up or down, in degrees.
+pub const TAP_LOOK_DEG: f64 = 5.0;
+
+/// How long `action` is held, at `speeds`, to move one tap's worth: so a tap is the same angle
+/// and distance at any speed. `None` for crouch, which has no step.
+#[must_use]
+pub fn tap_seconds(action: Action, speeds: Speeds) -> Option<f64> {
+    match action {
+        Action::Crouch => None,
+        Action::TurnLeft | Action::TurnRight => {
+            Some(TAP_TURN_DEG.to_radians() / speeds.turn_radians)
+        }
+        Action::LookUp | Action::LookDown => Some(TAP_LOOK_DEG / super::LOOK_SPEED),
+        _ => Some(TAP_WALK_CELLS / speeds.move_cells),
+    }
+}
+
 /// How fast the player walks and turns; set by `--move-speed`, `--turn-speed` or the config file.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Speeds {

@@ -37,7 +37,9 @@ pub use collision::PLAYER_RADIUS;
 pub use creature::CREATURE_RADIUS;
 pub use debugger::{Cursor, Debugger};
 pub use footing::{Footing, STEP_EASE};
-pub use input::{Action, Command, Held, Input, Speeds};
+pub use input::{
+    tap_seconds, Action, Command, Held, Input, Speeds, TAP_LOOK_DEG, TAP_TURN_DEG, TAP_WALK_CELLS,
+};
 pub use level::{Event, Level, Player};
 pub use score::Score;
 

@@ -3,7 +3,8 @@
 //! edge in `serve`, a browser edge) adapts its connection to [`sink::FrameSink`] and
 //! [`input::Input`] and runs [`session::run`].
 //!
-//! - [`session`]: the loop, given a [`setup`] (when to draw, idle and stall rules, the frame-rate cap);
+//! - [`session`]: the loop, given a [`setup`] (when to draw, idle and stall rules, the frame-rate cap),
+//!   giving back an [`end`];
 //!   [`player`]: what one client has on screen (keys, whom it watches, what a frame is drawn
 //!   from); [`header_text`] and [`header_fit`]: the header row; [`screen`] and [`avatars`]: the
 //!   panes with the other players in them.
@@ -15,6 +16,7 @@
 
 pub mod acks;
 pub(crate) mod avatars;
+pub mod end;
 pub(crate) mod header_fit;
 mod header_text;
 pub mod hooks;

@@ -3,12 +3,13 @@
 
 use std::time::Instant;
 
+use super::end::End;
 use super::header_text::HeaderFrom;
 use super::input::Input;
 use super::link_text::{rate_text, rtt_text};
 use super::pacing::LinkFigures;
 use super::screen::{panes_for, view_rect, SessionScreen};
-use super::setup::{End, Setup};
+use super::setup::Setup;
 use super::world_port::WorldMsg;
 use crate::encode::{ColourChoice, ColourReason};
 use crate::game::multi::players::{PlayerId, Snapshot};
@@ -24,80 +25,91 @@ use crate::ui::results::Board;
 /// How often the link figures on the header may change.
 const LINK_SHOWN_EVERY: std::time::Duration = std::time::Duration::from_secs(1);
 
-/// (snapshot version, size, colour level, block characters, note shown, eye, panes,
-/// leaderboard shown): everything a frame is drawn from.
-type Shown = (
-    u64,
-    (u16, u16),
-    ColourChoice,
-    (Glyphs, bool),
-    Option<PlayerId>,
-    Toggles,
-    Option<(Board, bool)>,
-);
+/// Everything a frame is drawn from: two frames from equal keys are the same bytes, so the
+/// second need not be sent.
+#[derive(Debug, Clone, PartialEq)]
+struct ShownKey {
+    /// The world snapshot's version.
+    version: u64,
+    size: (u16, u16),
+    colour: ColourChoice,
+    glyphs: Glyphs,
+    /// Whether a note is over the status line.
+    note: bool,
+    /// Whose eyes the view is seen through.
+    eye: Option<PlayerId>,
+    toggles: Toggles,
+    /// The leaderboard, and whether `L` put it over the game.
+    leaders: Option<(Board, bool)>,
+}
 
 /// What is on the client's screen and what it asked for; everything the frame depends on.
 pub(super) struct Player {
-    pub spectator: bool,
-    pub me: PlayerId,
-    pub size: (u16, u16),
+    spectator: bool,
+    me: PlayerId,
+    size: (u16, u16),
     /// Whether the client claimed a bigger terminal than we draw (the header says so).
-    pub clamped: bool,
+    clamped: bool,
     following: Option<PlayerId>,
     parser: InputParser,
     /// Parsed input events, reused.
     keys: Vec<InputEvent>,
-    pub pending_since: Option<Instant>,
-    pub controls: Controls,
+    /// Since when an unfinished escape sequence waits for its next byte.
+    pending_since: Option<Instant>,
+    controls: Controls,
     /// What the world was last told: held keys and view width.
     sent: (Held, usize),
-    pub last_input: Instant,
-    pub screen: SessionScreen,
+    /// Messages for the world not yet sent (one per key event, with known releases).
+    to_world: Vec<WorldMsg>,
+    last_input: Instant,
+    screen: SessionScreen,
     /// What the frame on screen was drawn from, to skip identical frames.
-    shown: Option<Shown>,
+    shown: Option<ShownKey>,
     /// The leaderboard to show (on the results, and over the game while `L` is on).
-    pub leaders: Option<Board>,
+    leaders: Option<Board>,
     /// Whether `L` put the leaderboard over the game.
-    pub show_leaders: bool,
+    show_leaders: bool,
     /// The glyph key's cycle for this client (without octant behind tmux, unless asked for).
     glyph_cycle: GlyphCycle,
     /// The last header and what it was made from: it changes only when someone joins, leaves
     /// or scores, so most frames reuse it.
     header: Option<(HeaderFrom, String)>,
     /// Whether a note was over the status line in the frame on screen.
-    pub notice_shown: bool,
+    notice_shown: bool,
     /// Whether the transport measures this link (then the header shows its figures).
     link_known: bool,
     /// The link figures the header shows, and when they last changed.
-    pub link: Option<(String, Instant)>,
+    link: Option<(String, Instant)>,
 }
 
 impl Player {
     pub fn new(setup: &Setup, size: (u32, u32), link_known: bool, now: Instant) -> Self {
+        let (client, rules) = (&setup.client, &setup.rules);
         let mut screen =
-            SessionScreen::new(&setup.world_data, setup.avatar_sheet, setup.colour.level);
-        screen.set_colour(setup.colour);
-        screen.set_glyphs(setup.glyphs);
+            SessionScreen::new(&rules.world_data, rules.avatar_sheet, client.colour.level);
+        screen.set_colour(client.colour);
+        screen.set_glyphs(client.glyphs);
         Self {
-            spectator: setup.spectator,
-            me: setup.id,
+            spectator: client.spectator,
+            me: client.id,
             size: clamp_size(size),
             clamped: is_clamped(size),
             following: None,
             parser: InputParser::new(),
             keys: Vec::new(),
             pending_since: None,
-            controls: Controls::new(setup.input_mode),
+            controls: Controls::new(client.input_mode),
             sent: (Held::default(), usize::MAX),
+            to_world: Vec::new(),
             last_input: now,
             screen,
             shown: None,
             leaders: None,
             show_leaders: false,
             glyph_cycle: GlyphCycle::new(
-                setup.octant_dropper.clone(),
-                setup.glyphs,
-                setup.force_octants,
+                client.octant_dropper.clone(),
+                client.glyphs,
+                client.force_octants,
             ),
             header: None,
             notice_shown: false,
@@ -128,6 +140,53 @@ impl Player {
         }
     }
 
+    /// The colour level frames are drawn at.
+    pub fn colour(&self) -> ColourChoice {
+        self.screen.colour()
+    }
+
+    /// Draws later frames at `colour` (the link's step, not the player's choice).
+    pub fn set_colour(&mut self, colour: ColourChoice) {
+        self.screen.set_colour(colour);
+    }
+
+    /// How long the last frame took to render and to encode, for the server's metrics.
+    pub fn frame_times(&self) -> (std::time::Duration, std::time::Duration) {
+        self.screen.last_times()
+    }
+
+    /// Shows `note` over the status line until `until`.
+    pub fn note_until(&mut self, note: String, until: Instant) {
+        self.screen.notice.show_until(note, until);
+    }
+
+    /// Whether a note appeared or ran out since the frame on screen.
+    pub fn note_changed(&self, now: Instant) -> bool {
+        self.screen.notice.showing(now) != self.notice_shown
+    }
+
+    /// How long the client has sent nothing.
+    pub fn idle_for(&self, now: Instant) -> std::time::Duration {
+        now.duration_since(self.last_input)
+    }
+
+    /// Whether an unfinished escape sequence has waited `wait` for its next byte (then it is a
+    /// lone Esc after all: [`Player::flush_escape`]).
+    pub fn escape_due(&self, now: Instant, wait: std::time::Duration) -> bool {
+        self.pending_since
+            .is_some_and(|t| now.duration_since(t) >= wait)
+    }
+
+    /// Whether the frame from `snap` shows a leaderboard: on the results, or while `L` is on.
+    pub fn wants_board(&self, snap: &Snapshot) -> bool {
+        snap.ended.is_some() || self.show_leaders
+    }
+
+    /// The leaderboard for the next frame (none while it is not shown).
+    pub fn set_leaders(&mut self, board: Option<Board>) {
+        self.leaders = board;
+    }
+
     /// Follows the client's claimed terminal size, within the bounds.
     pub fn resize(&mut self, cols: u32, rows: u32) {
         self.size = clamp_size((cols, rows));
@@ -138,6 +197,7 @@ impl Player {
     /// waits for [`Player::flush_escape`]), key events are taken as they are. Returns an end if a
     /// key quits.
     pub fn take(&mut self, input: Input, snap: &Snapshot, now: Instant) -> Option<End> {
+        self.last_input = now;
         let mut keys = std::mem::take(&mut self.keys);
         keys.clear();
         match input {
@@ -184,7 +244,10 @@ impl Player {
                     Routed::NextTarget => self.following = cycle(snap, self.following, true),
                     Routed::PrevTarget => self.following = cycle(snap, self.following, false),
                     Routed::Leaderboard => self.show_leaders = !self.show_leaders,
-                    Routed::Tui(ev) => self.controls.handle(&ev, now),
+                    Routed::Tui(ev) => {
+                        self.controls.handle(&ev, now);
+                        self.each_key_to_world(now);
+                    }
                     Routed::Nothing => {}
                 },
             }
@@ -221,8 +284,28 @@ impl Player {
         }
     }
 
+    /// With known releases, the world hears every key event on its own, so a press and release
+    /// that arrive together (a quick tap, or a link bunching them) are still a hold and its end
+    /// in the world's inbox ([`crate::game::multi::players::Players::input_with_releases`]).
+    fn each_key_to_world(&mut self, now: Instant) {
+        if self.spectator || self.controls.mode() == InputMode::Emulated {
+            return;
+        }
+        if let Some(msg) = self.world_input(now) {
+            self.to_world.push(msg);
+        }
+    }
+
+    /// The messages for the world since the last call, oldest first, ending with the input at
+    /// `now` when it changed.
+    pub fn world_messages(&mut self, now: Instant) -> Vec<WorldMsg> {
+        let mut out = std::mem::take(&mut self.to_world);
+        out.extend(self.world_input(now));
+        out
+    }
+
     /// The message for the world at `now`, when the player's input changed since the last one.
-    pub fn world_input(&mut self, now: Instant) -> Option<WorldMsg> {
+    fn world_input(&mut self, now: Instant) -> Option<WorldMsg> {
         let input = self.controls.take_input(now);
         let width = usize::from(view_rect(&panes_for(self.size, self.screen.toggles)).width);
         if input.commands.is_empty() && (input.held, width) == self.sent {
@@ -233,6 +316,7 @@ impl Player {
             id: self.me,
             input,
             view_width: width,
+            releases_known: self.controls.mode() != InputMode::Emulated,
         })
     }
 
@@ -254,27 +338,27 @@ impl Player {
     }
 
     /// Everything the frame drawn from `snap` depends on.
-    fn key(&mut self, snap: &Snapshot, now: Instant) -> Shown {
-        let eye = self.eye(snap);
-        (
-            snap.version,
-            self.size,
-            self.screen.colour(),
-            (self.screen.glyphs(), self.screen.notice.showing(now)),
-            eye,
-            self.screen.toggles,
-            self.leaders.clone().map(|b| (b, self.show_leaders)),
-        )
+    fn key(&mut self, snap: &Snapshot, now: Instant) -> ShownKey {
+        ShownKey {
+            version: snap.version,
+            size: self.size,
+            colour: self.screen.colour(),
+            glyphs: self.screen.glyphs(),
+            note: self.screen.notice.showing(now),
+            eye: self.eye(snap),
+            toggles: self.screen.toggles,
+            leaders: self.leaders.clone().map(|b| (b, self.show_leaders)),
+        }
     }
 
     /// Appends the bytes of the next frame to `out` (nothing if the screen would not change).
     pub fn compose(&mut self, snap: &Snapshot, now: Instant, out: &mut Vec<u8>) {
         let key = self.key(snap, now);
-        let eye = key.4;
+        let eye = key.eye;
         if self.shown.as_ref() == Some(&key) {
             return;
         }
-        self.notice_shown = key.3 .1;
+        self.notice_shown = key.note;
         self.shown = Some(key);
         self.screen
             .set_leaders(self.leaders.clone(), self.show_leaders);

@@ -1,5 +1,5 @@
 //! One session's screen: a header row (who you are, who is here), then exactly the local TUI's
-//! panes — the 3D view, minimap, ray debugger pane and status line — drawn by `tui::screen`
+//! panes — the 3D view, minimap, ray debugger pane and status line — drawn by `ui::screen`
 //! and put on the wire by the same `Presenter` (ratatui's diff for the panes, the byte-lean
 //! encoder for the view).
 

@@ -21,11 +21,12 @@ use std::time::{Duration, Instant};
 use tokio::sync::watch;
 use tokio::time::MissedTickBehavior;
 
+pub use super::end::{End, Tally};
 use super::hooks::Hooks;
 use super::input::{Input, InputSource};
 use super::pacing::{LinkFigures, LinkPacer, Step};
 use super::player::Player;
-pub use super::setup::{End, Feeds, Setup, Tally};
+pub use super::setup::{Client, Feeds, Rules, Setup};
 use super::sink::FrameSink;
 use super::world_port::{WorldHandle, WorldMsg};
 use crate::encode::{ColourChoice, ColourReason};
@@ -77,8 +78,8 @@ pub async fn run<I: InputSource, S: FrameSink, H: Hooks>(
     hooks: H,
 ) -> (End, Tally) {
     let size = *feeds.size.borrow();
-    let mut lp = Loop::new(&setup, size, sink, hooks);
-    let early = Input::Bytes(setup.early.clone());
+    let early = Input::Bytes(setup.client.early.clone());
+    let mut lp = Loop::new(setup, size, sink, hooks);
     let mut early_end = lp.p.take(early, &Snapshot::default(), now());
     let period = lp.grid.period();
     let mut tick = tokio::time::interval(period);
@@ -97,7 +98,7 @@ pub async fn run<I: InputSource, S: FrameSink, H: Hooks>(
                 }
                 Ok(())
             }
-            input = feeds.input.recv() => lp.on_input(input, &setup).await,
+            input = feeds.input.recv() => lp.on_input(input).await,
             changed = feeds.size.changed() => match changed {
                 Err(_) => Err(End::ClientGone),
                 Ok(()) => {
@@ -112,7 +113,7 @@ pub async fn run<I: InputSource, S: FrameSink, H: Hooks>(
                 lp.want = true;
                 Ok(())
             }
-            at = tick.tick() => lp.on_tick(at, &setup).await,
+            at = tick.tick() => lp.on_tick(at).await,
             () = sleep_until_some(lp.again), if lp.again.is_some() => {
                 lp.again = None;
                 Ok(())
@@ -122,13 +123,15 @@ pub async fn run<I: InputSource, S: FrameSink, H: Hooks>(
             break end;
         }
         if lp.want {
-            if let Err(end) = lp.frame(&setup).await {
+            if let Err(end) = lp.frame().await {
                 break end;
             }
         }
     };
-    if !setup.spectator {
-        setup.world.send(WorldMsg::Leave { id: setup.id }).await;
+    let client = &lp.setup.client;
+    if !client.spectator {
+        let leave = WorldMsg::Leave { id: client.id };
+        lp.setup.rules.world.send(leave).await;
     }
     lp.tally.link = lp.figures();
     (end, lp.tally)
@@ -136,6 +139,7 @@ pub async fn run<I: InputSource, S: FrameSink, H: Hooks>(
 
 /// A session's state between the events of its loop.
 struct Loop<S, H> {
+    setup: Setup,
     p: Player,
     sink: S,
     hooks: H,
@@ -158,45 +162,45 @@ struct Loop<S, H> {
 }
 
 impl<S: FrameSink, H: Hooks> Loop<S, H> {
-    fn new(setup: &Setup, size: (u32, u32), sink: S, hooks: H) -> Self {
-        let grid = FrameGrid::new(setup.fps);
-        let p = Player::new(setup, size, sink.measures(), now());
+    fn new(setup: Setup, size: (u32, u32), sink: S, hooks: H) -> Self {
+        let grid = FrameGrid::new(setup.rules.fps);
+        let p = Player::new(&setup, size, sink.measures(), now());
         Self {
-            pacer: LinkPacer::new(grid.period(), p.screen.colour().level),
+            pacer: LinkPacer::new(grid.period(), p.colour().level),
             p,
             sink,
             hooks,
-            snaps: setup.world.snapshots(),
+            snaps: setup.rules.world.snapshots(),
             grid,
             tally: Tally::default(),
             out: Vec::new(),
             want: true,
             again: None,
             last_tick: None,
-            named: setup.spectator,
+            named: setup.client.spectator,
             asked: None,
+            setup,
         }
     }
 
     /// Input arrived (or the client closed its side: `None`).
-    async fn on_input(&mut self, input: Option<Input>, setup: &Setup) -> Result<(), End> {
+    async fn on_input(&mut self, input: Option<Input>) -> Result<(), End> {
         let input = input.ok_or(End::ClientGone)?;
-        self.p.last_input = now();
         let snap = Arc::clone(&self.snaps.borrow());
         if let Some(end) = self.p.take(input, &snap, now()) {
             return Err(end);
         }
         // At once, not at the next frame tick: the world applies it on its next tick.
-        self.tell_world(setup).await;
+        self.tell_world().await;
         self.want = true;
         Ok(())
     }
 
     /// The player's input, when it changed, to the world.
-    async fn tell_world(&mut self, setup: &Setup) {
-        if !setup.spectator {
-            if let Some(msg) = self.p.world_input(now()) {
-                setup.world.send(msg).await;
+    async fn tell_world(&mut self) {
+        if !self.setup.client.spectator {
+            for msg in self.p.world_messages(now()) {
+                self.setup.rules.world.send(msg).await;
             }
         }
     }
@@ -205,14 +209,14 @@ impl<S: FrameSink, H: Hooks> Loop<S, H> {
     fn announce(&mut self, note: Option<String>) {
         if let Some(note) = note {
             let now = now();
-            self.p.screen.notice.show_until(note, now + STANDING_NOTE);
+            self.p.note_until(note, now + STANDING_NOTE);
             self.want = true;
         }
     }
 
     /// A frame tick: what time changes by itself (a lone Esc, idleness, a held key's inferred
     /// end, a stalled link, a note running out).
-    async fn on_tick(&mut self, at: tokio::time::Instant, setup: &Setup) -> Result<(), End> {
+    async fn on_tick(&mut self, at: tokio::time::Instant) -> Result<(), End> {
         let period = self.grid.period();
         if let Some(prev) = self.last_tick {
             let gap = at.duration_since(prev).as_secs_f64() / period.as_secs_f64();
@@ -222,28 +226,25 @@ impl<S: FrameSink, H: Hooks> Loop<S, H> {
         }
         self.last_tick = Some(at);
         let now = now();
-        if self
-            .p
-            .pending_since
-            .is_some_and(|t| now.duration_since(t) >= ESC_WAIT)
-        {
+        if self.p.escape_due(now, ESC_WAIT) {
             let snap = Arc::clone(&self.snaps.borrow());
             if let Some(end) = self.p.flush_escape(&snap, now) {
                 return Err(end);
             }
             self.want = true;
         }
-        if !setup.spectator && now.duration_since(self.p.last_input) >= setup.idle_timeout {
+        let rules = &self.setup.rules;
+        if !self.setup.client.spectator && self.p.idle_for(now) >= rules.idle_timeout {
             return Err(End::Idle);
         }
         // A held key's end is inferred from time, so the world hears it from here too.
-        self.tell_world(setup).await;
+        self.tell_world().await;
         // A frame the client has not taken for the stall timeout: its link is dead or it
         // stopped reading.
         if self
             .pacer
             .waiting(now)
-            .is_some_and(|w| w >= setup.stall_timeout)
+            .is_some_and(|w| w >= self.setup.rules.stall_timeout)
         {
             let sample = self.sink.sample();
             let answered = self.sink.answered(period, now);
@@ -260,20 +261,20 @@ impl<S: FrameSink, H: Hooks> Loop<S, H> {
         }
         // The world's snapshots bring its changes; the tick brings only what time changes by
         // itself: a note over the status line running out.
-        self.want |= self.p.screen.notice.showing(now) != self.p.notice_shown;
+        self.want |= self.p.note_changed(now);
         Ok(())
     }
 
     /// Draws and sends a frame if the cap, the link and the screen allow; otherwise notes when
     /// to look again.
-    async fn frame(&mut self, setup: &Setup) -> Result<(), End> {
+    async fn frame(&mut self) -> Result<(), End> {
         let now = now();
         if let Some(at) = self.grid.wait_until(now) {
             self.again = Some(tokio::time::Instant::from_std(at));
             return Ok(());
         }
         let snap = Arc::clone(&self.snaps.borrow_and_update());
-        self.follow(&snap, setup);
+        self.follow(&snap);
         if self.p.unchanged(&snap, now) {
             self.want = false;
             return Ok(());
@@ -290,17 +291,17 @@ impl<S: FrameSink, H: Hooks> Loop<S, H> {
         if self.out.is_empty() {
             return Ok(());
         }
-        let (render, encode) = self.p.screen.last_times();
+        let (render, encode) = self.p.frame_times();
         self.hooks.frame_timed(render, encode);
         let n = self.out.len();
         let bytes = std::mem::take(&mut self.out);
         let wire_before = self.sink.written();
-        match tokio::time::timeout(setup.stall_timeout, self.sink.send(bytes)).await {
+        let stall = self.setup.rules.stall_timeout;
+        match tokio::time::timeout(stall, self.sink.send(bytes)).await {
             Err(_) => Err(End::Stalled),
             Ok(Err(_)) => Err(End::ClientGone),
             Ok(Ok(())) => {
-                self.pacer
-                    .sent(wire_before, self.p.screen.colour().level, now);
+                self.pacer.sent(wire_before, self.p.colour().level, now);
                 self.grid.drawn(now);
                 self.tally.frames += 1;
                 self.tally.bytes += n as u64;
@@ -312,12 +313,13 @@ impl<S: FrameSink, H: Hooks> Loop<S, H> {
 
     /// What the frame from `snap` shows besides the world: the name the world gave us, our best
     /// asked for on each map, the leaderboard while it shows.
-    fn follow(&mut self, snap: &Snapshot, setup: &Setup) {
-        let me = snap.player(setup.id);
+    fn follow(&mut self, snap: &Snapshot) {
+        let client = &self.setup.client;
+        let me = snap.player(client.id);
         if let (false, Some(me)) = (self.named, me) {
             self.named = true;
-            if me.name != setup.name {
-                self.hooks.renamed(&setup.name, &me.name);
+            if me.name != client.name {
+                self.hooks.renamed(&client.name, &me.name);
             }
         }
         if let Some(me) = me {
@@ -328,11 +330,12 @@ impl<S: FrameSink, H: Hooks> Loop<S, H> {
             }
         }
         // Only while shown: a frame of play builds no board.
-        self.p.leaders = if snap.ended.is_some() || self.p.show_leaders {
-            self.hooks.board(snap, setup.id)
+        let board = if self.p.wants_board(snap) {
+            self.hooks.board(snap, client.id)
         } else {
             None
         };
+        self.p.set_leaders(board);
     }
 
     /// Whether the link lets the next frame go now (the last one has nearly arrived).
@@ -356,16 +359,16 @@ impl<S: FrameSink, H: Hooks> Loop<S, H> {
 
     /// Steps the colour level as the link asks, unless the player chose it.
     fn step_level(&mut self, now: Instant) {
-        if self.p.screen.colour().reason == ColourReason::Key {
+        if self.p.colour().reason == ColourReason::Key {
             return;
         }
-        if let Some(step) = self.pacer.step(self.p.screen.colour().level, now) {
+        if let Some(step) = self.pacer.step(self.p.colour().level, now) {
             let (level, down) = match step {
                 Step::Down(l) => (l, true),
                 Step::Up(l) => (l, false),
             };
             self.hooks.level_stepped(down);
-            self.p.screen.set_colour(ColourChoice {
+            self.p.set_colour(ColourChoice {
                 level,
                 reason: ColourReason::Link,
             });

@@ -9,11 +9,13 @@ use tokio::sync::{mpsc, watch};
 use super::hooks::Hooks;
 use super::input::Input;
 use super::link::LinkSample;
-use super::session::{self, now, End, Feeds, Setup, Tally};
+use super::session::{self, now, Client, End, Feeds, Rules, Setup, Tally};
 use super::sink::{FrameSink, Gone};
 use crate::encode::{ColorLevel, ColourChoice, ColourReason};
-use crate::game::multi::players::Rules;
+use crate::game::multi::players::Rules as GameRules;
+use crate::game::multi::players::Snapshot;
 use crate::game::multi::round::Mode;
+use crate::game::TAP_TURN_DEG;
 use crate::play::avatars::with_avatar_sheet;
 use crate::render::glyphs::Glyphs;
 use crate::ui::key_bytes::{Key, KeyEvent, KeyKind};
@@ -146,6 +148,8 @@ impl Hooks for Steps {
 /// A running session: its input, its link, its level steps.
 struct Run {
     input: mpsc::Sender<Input>,
+    /// The world's snapshots, to read where the player looks.
+    snaps: watch::Receiver<Arc<Snapshot>>,
     link: Arc<Mutex<Link>>,
     steps: Steps,
     done: tokio::task::JoinHandle<(End, Tally)>,
@@ -165,11 +169,11 @@ fn start(rate: f64, rtt: Duration, level: ColorLevel) -> Run {
     let (port, _phase) = crate::serve::world_task::spawn_rounds(
         vec![Arc::clone(&world)],
         30,
-        Rules::new(Mode::Coop, 1),
+        GameRules::new(Mode::Coop, 1),
         |_| {},
         held,
     );
-    let setup = Setup {
+    let client = Client {
         id: 1,
         name: "ann".into(),
         spectator: false,
@@ -182,6 +186,9 @@ fn start(rate: f64, rtt: Duration, level: ColorLevel) -> Run {
         force_octants: "",
         input_mode: InputMode::Emulated,
         early: Vec::new(),
+    };
+    let snaps = port.snapshots();
+    let rules = Rules {
         world: port,
         world_data: world,
         avatar_sheet: sheet,
@@ -189,6 +196,7 @@ fn start(rate: f64, rtt: Duration, level: ColorLevel) -> Run {
         idle_timeout: Duration::from_secs(600),
         stall_timeout: Duration::from_secs(30),
     };
+    let setup = Setup { client, rules };
     let (input, input_rx) = mpsc::channel(64);
     let (shutdown, shutdown_rx) = watch::channel(false);
     let (size, size_rx) = watch::channel((80, 24));
@@ -203,7 +211,8 @@ fn start(rate: f64, rtt: Duration, level: ColorLevel) -> Run {
     let steps = Steps::default();
     let (sink_link, steps_hooks) = (Arc::clone(&link), steps.clone());
     let done = tokio::spawn(async move {
-        let joined = session::join(&setup.world, setup.id, &setup.name, setup.spectator).await;
+        let c = &setup.client;
+        let joined = session::join(&setup.rules.world, c.id, &c.name, c.spectator).await;
         session::run(
             joined,
             setup,
@@ -215,6 +224,7 @@ fn start(rate: f64, rtt: Duration, level: ColorLevel) -> Run {
     });
     Run {
         input,
+        snaps,
         link,
         steps,
         done,
@@ -232,6 +242,25 @@ impl Run {
             kind,
         };
         self.input.send(Input::Keys(vec![ev])).await.unwrap();
+    }
+
+    /// Key events that arrive together (a quick tap, or a link that bunched them).
+    async fn keys(&self, events: &[(char, KeyKind)]) {
+        let events = events
+            .iter()
+            .map(|&(c, kind)| KeyEvent {
+                key: Key::Char(c),
+                kind,
+            })
+            .collect();
+        self.input.send(Input::Keys(events)).await.unwrap();
+    }
+
+    /// Where the player looks now, in degrees (0 east, 90 north).
+    fn angle(&self) -> f64 {
+        let snap = self.snaps.borrow();
+        let dir = snap.player(1).expect("in the world").state.camera.dir;
+        (-dir.y).atan2(dir.x).to_degrees()
     }
 
     /// Frames handed over from `from` on: (when, bytes, when it reached the client).
@@ -399,5 +428,81 @@ async fn a_tap_from_idle_is_drawn_at_once() {
         "first frame {first:?} after the tap"
     );
     assert!(frames.len() <= 3, "a tap drew {} frames", frames.len());
+    run.quit().await;
+}
+
+/// The turn from `before` to `after`, in degrees, positive to the right.
+fn turned(before: f64, after: f64) -> f64 {
+    (before - after + 540.0).rem_euclid(360.0) - 180.0
+}
+
+/// Starts a browser player (true releases) in a still world, settled.
+async fn browser_player() -> Run {
+    let run = start(1e9, Duration::from_millis(1), ColorLevel::TrueColor);
+    wait(Duration::from_secs(1)).await;
+    run
+}
+
+#[tokio::test(start_paused = true)]
+async fn taps_shorter_than_a_tick_each_turn_exactly_one_tap() {
+    let run = browser_player().await;
+    let tick = Duration::from_secs(1) / 30;
+    // Every length under a tick, at every phase against the world's ticks.
+    for down_ms in [0, 5, 10, 20, 30] {
+        for phase_ms in [0, 7, 14, 21, 28] {
+            wait(Duration::from_millis(phase_ms)).await;
+            let before = run.angle();
+            run.key('d', KeyKind::Press).await;
+            wait(Duration::from_millis(down_ms)).await;
+            run.key('d', KeyKind::Release).await;
+            wait(tick * 4).await;
+            let t = turned(before, run.angle());
+            assert!(
+                (t - TAP_TURN_DEG).abs() < 1e-6,
+                "a {down_ms} ms tap at phase {phase_ms} ms turned {t}°"
+            );
+        }
+    }
+    run.quit().await;
+}
+
+#[tokio::test(start_paused = true)]
+async fn press_and_release_bunched_by_the_link_are_each_a_tap() {
+    let run = browser_player().await;
+    let before = run.angle();
+    use KeyKind::{Press, Release};
+    run.keys(&[('d', Press), ('d', Release), ('d', Press), ('d', Release)])
+        .await;
+    run.keys(&[('a', Press), ('a', Release), ('d', Press), ('d', Release)])
+        .await;
+    wait(Duration::from_millis(200)).await;
+    let t = turned(before, run.angle());
+    assert!(
+        (t - 2.0 * TAP_TURN_DEG).abs() < 1e-6,
+        "turned {t}°, not two taps"
+    );
+    run.quit().await;
+}
+
+#[tokio::test(start_paused = true)]
+async fn a_hold_turns_by_the_time_held_and_no_more() {
+    let run = browser_player().await;
+    let per_second = crate::game::TURN_SPEED.to_degrees();
+    for held_ms in [40u64, 100, 500, 1000] {
+        let before = run.angle();
+        run.key('d', KeyKind::Press).await;
+        wait(Duration::from_millis(held_ms)).await;
+        run.key('d', KeyKind::Release).await;
+        wait(Duration::from_millis(200)).await;
+        let t = turned(before, run.angle());
+        // The world turns on whole ticks: the time held within one tick's turn, and never less
+        // than a tap.
+        let expected = (per_second * held_ms as f64 / 1000.0).max(TAP_TURN_DEG);
+        let tick = per_second / 30.0;
+        assert!(
+            (t - expected).abs() <= tick + 1e-6,
+            "held {held_ms} ms: turned {t:.2}°, expected {expected:.2}° ± {tick:.2}°"
+        );
+    }
     run.quit().await;
 }

@@ -1,11 +1,11 @@
-//! What a play session is given by its transport, and what it gives back when it ends.
+//! What a play session is given before it starts: what its client brought (learnt by the
+//! transport) and what the server decides for every session alike.
 
 use std::sync::Arc;
 use std::time::Duration;
 
 use tokio::sync::watch;
 
-use super::pacing::LinkFigures;
 use super::world_port::WorldHandle;
 use crate::encode::ColourChoice;
 use crate::game::multi::players::PlayerId;
@@ -14,8 +14,14 @@ use crate::ui::keys::InputMode;
 use crate::ui::octant_support::OctantDropper;
 use crate::world::World;
 
-/// Who plays and how a session starts: what the transport learnt of its client before play.
+/// Everything a session starts from: its client's facts and the server's rules.
 pub struct Setup {
+    pub client: Client,
+    pub rules: Rules,
+}
+
+/// Who plays and what their client is: what the transport learnt of it before play.
+pub struct Client {
     pub id: PlayerId,
     pub name: String,
     /// Watches a player's view instead of playing.
@@ -32,6 +38,11 @@ pub struct Setup {
     pub input_mode: InputMode,
     /// Input the client sent before play began (typed while the transport asked its terminal).
     pub early: Vec<u8>,
+}
+
+/// What the server decides for every session, whatever carries it.
+#[derive(Clone)]
+pub struct Rules {
     pub world: WorldHandle,
     /// The served world (with the avatar sheet at `avatar_sheet`).
     pub world_data: Arc<World>,
@@ -54,24 +65,4 @@ pub struct Feeds<I> {
     pub shutdown: watch::Receiver<bool>,
     /// A note from the server for every player (a world draining), shown until the session ends.
     pub announce: watch::Receiver<Option<String>>,
-}
-
-/// Why a session ended (for the log, and for how the transport says goodbye).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum End {
-    Quit,
-    ClientGone,
-    Idle,
-    Stalled,
-    Shutdown,
-}
-
-/// A finished session's figures, for the transport's log line and counters.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct Tally {
-    pub frames: u64,
-    pub bytes: u64,
-    /// Frame ticks that passed without a frame: the session was late, or the link held it.
-    pub dropped: u64,
-    pub link: LinkFigures,
 }

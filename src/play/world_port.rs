@@ -22,6 +22,9 @@ pub enum WorldMsg {
         id: PlayerId,
         input: Input,
         view_width: usize,
+        /// Whether the client's key releases are known (a browser, a kitty-protocol terminal):
+        /// then a key pressed and let go between two ticks still moves one tap.
+        releases_known: bool,
     },
 }
 

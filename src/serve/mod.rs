@@ -1,6 +1,9 @@
 //! `halfcast serve`: a server where everyone connected walks one shared world.
 //!
 //! Rooms, one concept each:
+//! - [`edge`]: the one way in for every transport: admission and refusals, the name check,
+//!   connection numbers, a player let in and counted live, the session run with its panic
+//!   caught, the end's bookkeeping, the server's hooks into a session.
 //! - [`ssh`]: the SSH edge (protocol, auth, host key, the channel as a play session's sink);
 //!   the session itself is transport-free, in [`crate::play`].
 //! - [`web`]: the browser edge (the page, its WebSocket, the page's acks as a frame sink); it
@@ -11,13 +14,13 @@
 //! - [`world_task`]: the fixed-tick task owning [`crate::game::multi::players::Players`] (one
 //!   `game::GameState` per player, moved by `game::step_shared`, and the doors they share);
 //!   sessions send it the `game::Input` of their keys and read its snapshots.
-//! - [`shared`]: what every edge's connections share with the server; [`session_hooks`]: a
-//!   session's metrics, log line and leaderboard, for any edge.
+//! - [`shared`]: what every edge's connections share with the server.
 //! - [`served_map`]: a map of the rotation and its content hash; [`leaderboard`]: finished
 //!   rounds in SQLite or PostgreSQL, written by a thread of its own.
 //! - [`ops`]: metrics, `/healthz`, drain, process figures, the log.
 
 pub(crate) mod config;
+pub mod edge;
 pub mod leaderboard;
 pub mod limits;
 pub mod ops;
@@ -25,7 +28,6 @@ pub(crate) mod proxy_header;
 pub(crate) mod round_phase;
 pub(crate) mod served_map;
 pub mod server;
-pub(crate) mod session_hooks;
 pub(crate) mod shared;
 pub mod ssh;
 pub mod web;

@@ -14,6 +14,7 @@ use tokio::sync::watch;
 use tokio::task::JoinHandle;
 
 use super::config::ServeConfig;
+use super::edge::hooks::BoardLine;
 use super::leaderboard::database;
 use super::leaderboard::writer::Leaderboard;
 use super::leaderboard::RoundRecord;
@@ -24,7 +25,6 @@ use super::ops::log::Log;
 use super::ops::stats::{ServeStats, StatsSnapshot};
 use super::round_phase::RoundPhase;
 use super::served_map::ServedMap;
-use super::session_hooks::BoardLine;
 use super::shared::Shared;
 use super::ssh::hostkey;
 pub use super::ssh::listener::refusal_bytes;
@@ -245,16 +245,16 @@ pub async fn start_maps(
             mode,
         }),
         config,
+        next_id: AtomicU64::new(1),
     });
     log.server(format_args!("listening on {addr}"));
-    let next_id = Arc::new(AtomicU64::new(1));
-    let web = start_web(&shared, &ready, &next_id, stop_accepting.subscribe()).await?;
+    let web = start_web(&shared, &ready, stop_accepting.subscribe()).await?;
     let (closed_tx, closed) = watch::channel(false);
     let header_waits = Arc::new(AtomicU64::new(0));
     let accept = tokio::spawn(accept_loop(
         listener,
         ssh,
-        (shared, next_id),
+        shared,
         (stop_accepting_rx, closed_tx, Arc::clone(&header_waits)),
     ));
     Ok(RunningServer {
@@ -366,7 +366,6 @@ fn start_world(
 async fn start_web(
     shared: &Arc<Shared>,
     ready: &Arc<Readiness>,
-    next_id: &Arc<AtomicU64>,
     stop: watch::Receiver<bool>,
 ) -> Result<Option<SocketAddr>, String> {
     let Some(options) = shared.config.web.clone() else {
@@ -376,7 +375,6 @@ async fn start_web(
         options,
         shared: Arc::clone(shared),
         ready: Arc::clone(ready),
-        next_id: Arc::clone(next_id),
     };
     Ok(Some(super::web::listener::start(edge, stop).await?.0))
 }

@@ -58,6 +58,13 @@ pub fn spawn_rounds(
                         id,
                         input,
                         view_width,
+                        releases_known: true,
+                    }) => players.input_with_releases(id, input, view_width),
+                    Ok(WorldMsg::Input {
+                        id,
+                        input,
+                        view_width,
+                        releases_known: false,
                     }) => players.input(id, input, view_width),
                     Err(mpsc::error::TryRecvError::Empty) => break,
                     Err(mpsc::error::TryRecvError::Disconnected) => return,

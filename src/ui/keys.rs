@@ -15,7 +15,7 @@ use crossterm::event::{
 
 use super::keymap::{Key, KeyAction, KeyMap};
 use super::repeat::RepeatTiming;
-use crate::game::{Action, Command, Held, Input, Speeds, LOOK_SPEED};
+use crate::game::{Action, Command, Held, Input, Speeds};
 
 /// How key presses and releases reach us; shown in the status line and help.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -55,14 +55,7 @@ pub const KITTY_STALE: Duration = Duration::from_millis(900);
 /// bounds a release that never comes.
 pub const RELEASED_STALE: Duration = Duration::from_secs(3600);
 
-/// One tap's turn without release events, in degrees.
-pub const TAP_TURN_DEG: f64 = 8.0;
-
-/// One tap's walk (or strafe) without release events, in cells.
-pub const TAP_WALK_CELLS: f64 = 0.25;
-
-/// One tap's look up or down without release events, in degrees.
-pub const TAP_LOOK_DEG: f64 = 5.0;
+pub use crate::game::{TAP_LOOK_DEG, TAP_TURN_DEG, TAP_WALK_CELLS};
 
 /// Things the TUI itself does (not the game); defined with the replay format that records them.
 pub use crate::replay::format::UiCommand;
@@ -242,13 +235,7 @@ impl Controls {
 
     /// A tap's length in seconds of holding `action` at the current speeds.
     fn tap_seconds(&self, action: Action) -> f64 {
-        match action {
-            Action::TurnLeft | Action::TurnRight => {
-                TAP_TURN_DEG.to_radians() / self.speeds.turn_radians
-            }
-            Action::LookUp | Action::LookDown => TAP_LOOK_DEG / LOOK_SPEED,
-            _ => TAP_WALK_CELLS / self.speeds.move_cells,
-        }
+        crate::game::tap_seconds(action, self.speeds).unwrap_or(0.0)
     }
 
     fn hold(&mut self, key: Key, action: Action, now: Instant) {

@@ -360,3 +360,43 @@ fn copy_dir(from: &Path, to: &Path) {
         }
     }
 }
+
+/// Which of `serve`'s transports a file under `src/serve/` names (`crate::serve::ssh`, `…::web`).
+fn transports_named(code: &str) -> BTreeSet<&'static str> {
+    ["ssh", "web"]
+        .into_iter()
+        .filter(|t| {
+            code.contains(&format!("crate::serve::{t}"))
+                || code.contains(&format!("serve::{{{t}"))
+                || code.contains(&format!("super::super::{t}"))
+        })
+        .collect()
+}
+
+#[test]
+fn the_transports_go_through_the_one_way_in_and_never_use_each_other() {
+    let serve = root().join("src/serve");
+    let mut bad = Vec::new();
+    for (dir, may) in [("ssh", "ssh"), ("web", "web"), ("edge", "")] {
+        let mut files = Vec::new();
+        rust_files(&serve.join(dir), &mut files);
+        assert!(!files.is_empty(), "src/serve/{dir} has files");
+        for file in files {
+            let code = code_only(&std::fs::read_to_string(&file).unwrap());
+            for t in transports_named(&code) {
+                if t != may {
+                    bad.push(format!(
+                        "{}: `serve/{dir}` may not use `serve/{t}`",
+                        file.display()
+                    ));
+                }
+            }
+        }
+    }
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
+    assert_eq!(
+        transports_named("use crate::serve::{web::x, edge};"),
+        BTreeSet::from(["web"]),
+        "the reader sees a group"
+    );
+}

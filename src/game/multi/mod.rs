@@ -5,6 +5,7 @@
 pub mod players;
 pub mod rotation;
 pub mod round;
+mod taps;
 
 /// A connection's id; also names its player in the world.
 pub type PlayerId = u64;

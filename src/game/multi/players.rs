@@ -109,6 +109,8 @@ struct Player {
     held: Held,
     commands: Vec<Command>,
     walking: bool,
+    /// How long each held key has moved this player, so a quick tap still moves one tap.
+    taps: super::taps::Taps,
 }
 
 /// How a server's rounds run: their length, the results' pause, the order of the maps.
@@ -231,6 +233,7 @@ impl Players {
                 held: Held::default(),
                 commands: Vec::new(),
                 walking: false,
+                taps: Default::default(),
             },
         );
     }
@@ -262,6 +265,20 @@ impl Players {
             p.commands.extend(input.commands.into_iter().take(room));
             p.state.view_width = view_width;
         }
+    }
+
+    /// [`Players::input`] from a client whose key releases are known (a browser, a kitty-protocol
+    /// terminal): a key pressed and let go before a tick saw it enough still moves one tap
+    /// ([`super::taps`]).
+    pub fn input_with_releases(&mut self, id: PlayerId, input: Input, view_width: usize) {
+        if let Some(p) = self.players.get_mut(&id) {
+            let mut nudges = Vec::new();
+            let speeds = p.state.speeds;
+            p.taps.changed((p.held, input.held), speeds, &mut nudges);
+            let room = MAX_COMMANDS.saturating_sub(p.commands.len());
+            p.commands.extend(nudges.into_iter().take(room));
+        }
+        self.input(id, input, view_width);
     }
 
     /// Number of players.
@@ -312,6 +329,7 @@ impl Players {
                 held: p.held,
                 commands: std::mem::take(&mut p.commands),
             };
+            p.taps.ticked(p.held, dt);
             let before = p.state.camera.pos;
             // The shared doors and level stand in for the player's own while it steps (locks,
             // a creature in a doorway).

@@ -27,21 +27,23 @@ pub const AFTER_LAST_ROUND: Duration = Duration::from_secs(5);
 /// balancer (a restart plus HAProxy's `rise 2` checks 2 s apart: about 5 s).
 pub const RECONNECT_AFTER: std::ops::RangeInclusive<u64> = 2..=15;
 
-/// The line a session's terminal shows last when the server stops with `farewell`.
-#[must_use]
-pub fn farewell_line(farewell: &str) -> Vec<u8> {
-    format!("halfcast: {farewell}.\r\n").into_bytes()
-}
-
-/// [`farewell_line`] for session `session`: a restart tells this player when to reconnect,
-/// a number of seconds in [`RECONNECT_AFTER`] drawn from the session and the process.
+/// The line session `session`'s terminal shows last when the server stops with `farewell`
+/// ([`farewell_for`]).
 #[must_use]
 pub fn farewell_line_for(farewell: &str, session: u64) -> Vec<u8> {
+    format!("halfcast: {}.\r\n", farewell_for(farewell, session)).into_bytes()
+}
+
+/// What session `session` is told when the server stops with `farewell`: a restart says when to
+/// reconnect (`… in N s`), a number of seconds in [`RECONNECT_AFTER`] drawn from the session and
+/// the process, the same for every transport.
+#[must_use]
+pub fn farewell_for(farewell: &str, session: u64) -> String {
     if farewell != RESTARTING {
-        return farewell_line(farewell);
+        return farewell.to_owned();
     }
     let wait = reconnect_after(session ^ process_salt());
-    format!("halfcast: {farewell} in {wait} s.\r\n").into_bytes()
+    format!("{farewell} in {wait} s")
 }
 
 /// Seconds in [`RECONNECT_AFTER`], spread evenly over `key`s (SplitMix64's finaliser).
@@ -86,7 +88,7 @@ mod tests {
         assert!(line.ends_with(" s.\r\n"), "{line:?}");
         assert_eq!(
             farewell_line_for(SHUTTING_DOWN, 7),
-            farewell_line(SHUTTING_DOWN)
+            b"halfcast: the server is shutting down.\r\n"
         );
     }
 }

@@ -22,6 +22,8 @@ pub const CONNECTIONS: &str = "halfcast_connections_total";
 /// Connections turned away, by `reason`: full, per-address, startups, auth, grace, stall,
 /// proxy (a missing or bad PROXY header).
 pub const REFUSALS: &str = "halfcast_refusals_total";
+/// Sessions that panicked (a bug; each ended that session only), by `transport`.
+pub const SESSION_FAILURES: &str = "halfcast_session_failures_total";
 /// Frames sent to clients.
 pub const FRAMES_SENT: &str = "halfcast_frames_sent_total";
 /// Frame ticks skipped because a client was still taking the previous frame.
@@ -127,6 +129,9 @@ fn zeroes() {
     for why in Reason::ALL {
         counter!(REFUSALS, "reason" => why.label()).absolute(0);
     }
+    for transport in ["ssh", "web"] {
+        counter!(SESSION_FAILURES, "transport" => transport).absolute(0);
+    }
     for result in ["ok", "error", "dropped"] {
         counter!(DB_WRITES, "result" => result).absolute(0);
     }
@@ -165,6 +170,10 @@ fn describe() {
     describe_gauge!(LOGGING_IN, "Connections accepted and still logging in.");
     describe_counter!(CONNECTIONS, "Connections accepted.");
     describe_counter!(REFUSALS, "Connections turned away, by reason.");
+    describe_counter!(
+        SESSION_FAILURES,
+        "Sessions that panicked, by transport (each ended that session only)."
+    );
     describe_counter!(FRAMES_SENT, "Frames sent to clients.");
     describe_counter!(
         FRAMES_SKIPPED,
@@ -207,6 +216,11 @@ fn describe() {
 /// A connection was turned away.
 pub fn refused(why: Reason) {
     counter!(REFUSALS, "reason" => why.label()).increment(1);
+}
+
+/// A session over `transport` panicked.
+pub fn session_failed(transport: &'static str) {
+    counter!(SESSION_FAILURES, "transport" => transport).increment(1);
 }
 
 /// A connection was accepted.

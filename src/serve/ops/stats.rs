@@ -12,6 +12,8 @@ pub struct ServeStats {
     pub bytes_sent: AtomicU64,
     /// Frame ticks skipped because a session was still sending the previous frame.
     pub frames_dropped: AtomicU64,
+    /// Sessions that panicked (each ended that session only).
+    pub sessions_failed: AtomicU64,
 }
 
 /// A plain copy of [`ServeStats`] at one moment.
@@ -23,6 +25,7 @@ pub struct StatsSnapshot {
     pub frames_sent: u64,
     pub bytes_sent: u64,
     pub frames_dropped: u64,
+    pub sessions_failed: u64,
 }
 
 impl ServeStats {
@@ -42,6 +45,7 @@ impl ServeStats {
             frames_sent: r(&self.frames_sent),
             bytes_sent: r(&self.bytes_sent),
             frames_dropped: r(&self.frames_dropped),
+            sessions_failed: r(&self.sessions_failed),
         }
     }
 }

@@ -11,21 +11,23 @@ use russh::{Channel, ChannelId, Pty};
 use tokio::sync::{mpsc, watch};
 
 use super::auth::Backoff;
-use super::session::{self, SessionInputs, SessionParams};
+use super::lifeline::Lifeline;
+use super::session::{self, SshClient};
 use crate::play::session::End;
 use crate::serve::config::DEFAULT_SIZE;
+use crate::serve::edge::admission;
+use crate::serve::edge::arrival::{arrive, Who};
+use crate::serve::edge::name::display_name;
+use crate::serve::edge::run::Outcome;
+use crate::serve::edge::Via;
 use crate::serve::limits::{Pending, Playing, Refusal};
-use crate::serve::ops::lifecycle::Lifeline;
 use crate::serve::ops::metrics::{self, Reason};
-use crate::serve::ops::stats::ServeStats;
 use crate::serve::shared::Shared;
 
 /// The user name that watches instead of playing (`ssh -p 2222 watch@host`).
 pub const SPECTATOR_USER: &str = "watch";
 /// Key reads a session may have waiting; a client that floods beyond this loses its own keys.
 const INPUT_QUEUE: usize = 64;
-/// Longest player name shown to others.
-const MAX_NAME: usize = 16;
 
 /// How long a connection whose game ended may linger before it is closed (the client normally
 /// closes it first, on the channel's close).
@@ -50,8 +52,6 @@ pub struct ConnHandler {
     started: bool,
     /// The logging-in place, until the shell starts.
     pending: Option<Pending>,
-    /// The playing place, from the shell start to the connection's end.
-    playing: Option<Playing>,
     life: Arc<Lifeline>,
 }
 
@@ -81,7 +81,6 @@ impl ConnHandler {
             data: None,
             started: false,
             pending: Some(pending),
-            playing: None,
             life,
         }
     }
@@ -117,45 +116,31 @@ impl ConnHandler {
 
     /// Refuses a place to play: logged, counted, and told to the client as an SSH disconnect.
     fn turn_away(&self, session: &mut Session, why: &Refusal) -> Result<(), russh::Error> {
-        self.shared
-            .log
-            .refusal(Some(self.id), self.peer, why.reason().label(), why);
-        metrics::refused(why.reason());
-        ServeStats::add(&self.shared.stats.refused, 1);
+        admission::refuse(&self.shared, Some(self.id), self.peer, why.reason(), why);
+        self.disconnect(session, why)
+    }
+
+    /// Tells the client why it may not play, as an SSH disconnect.
+    fn disconnect(&self, session: &mut Session, why: &Refusal) -> Result<(), russh::Error> {
         session.disconnect(russh::Disconnect::TooManyConnections, &why.to_string(), "")
     }
 
     /// Turns the logging-in place into a playing one, or disconnects saying the server is full.
-    fn take_place(&mut self, session: &mut Session) -> Result<bool, russh::Error> {
-        let promoted = self.pending.as_ref().map(Pending::promote);
-        match promoted {
-            Some(Ok(place)) => {
-                self.playing = Some(place);
+    fn take_place(&mut self, session: &mut Session) -> Result<Option<Playing>, russh::Error> {
+        let Some(pending) = self.pending.as_ref() else {
+            return Ok(None);
+        };
+        match admission::take_place(&self.shared, (Some(self.id), self.peer), pending) {
+            Ok(place) => {
                 self.pending = None;
                 self.life.set_playing();
-                Ok(true)
+                Ok(Some(place))
             }
-            Some(Err(why)) => {
-                self.turn_away(session, &why)?;
-                Ok(false)
+            Err(why) => {
+                self.disconnect(session, &why)?;
+                Ok(None)
             }
-            None => Ok(false),
         }
-    }
-}
-
-/// A name safe to show on other people's screens: printable ASCII, at most [`MAX_NAME`] chars.
-#[must_use]
-pub fn display_name(user: &str, id: u64) -> String {
-    let name: String = user
-        .chars()
-        .filter(|c| c.is_ascii_graphic())
-        .take(MAX_NAME)
-        .collect();
-    if name.is_empty() {
-        format!("player{id}")
-    } else {
-        name
     }
 }
 
@@ -299,67 +284,42 @@ impl russh::server::Handler for ConnHandler {
         if !self.ours(channel) || self.started {
             return session.channel_failure(channel);
         }
-        if !self.take_place(session)? {
+        let Some(place) = self.take_place(session)? else {
             return Ok(());
-        }
+        };
         self.started = true;
         session.channel_success(channel)?;
         let (tx, rx) = mpsc::channel(INPUT_QUEUE);
         self.data = Some(tx);
-        let sh = &self.shared;
-        let spectator = self.user == SPECTATOR_USER;
-        let params = SessionParams {
+        let who = Who {
             id: self.id,
             peer: self.peer,
             name: display_name(&self.user, self.id),
-            spectator,
+            spectator: self.user == SPECTATOR_USER,
+            via: Via::Ssh {
+                term: self.term.clone(),
+            },
+        };
+        let client = SshClient {
             term: self.term.clone(),
             colorterm: self.colorterm.clone(),
             tmux: self.tmux.clone(),
             glyphs: self.glyphs,
             handle: session.handle(),
             channel,
-            world: sh.world.clone(),
-            boards: sh.boards.clone(),
-            world_data: Arc::clone(&sh.world_data),
-            avatar_sheet: sh.avatar_sheet,
-            fps: sh.config.fps,
-            idle_timeout: sh.config.idle_timeout,
-            stall_timeout: sh.config.stall_timeout,
-            stats: Arc::clone(&sh.stats),
-            log: sh.log,
-            shutdown: sh.shutdown.clone(),
             life: Arc::clone(&self.life),
-            echo: sh.config.proxy_protocol,
-            farewell: sh.farewell.clone(),
+            echo: self.shared.config.proxy_protocol,
         };
-        let inputs = SessionInputs {
-            data: rx,
-            size: self.size.subscribe(),
-        };
-        sh.log
-            .login(self.id, self.peer, &params.name, spectator, &self.term);
-        let live = LiveSession::new(Arc::clone(&sh.stats));
-        let (handle, log, id, peer) = (session.handle(), sh.log, self.id, self.peer);
+        let (shared, size) = (Arc::clone(&self.shared), self.size.subscribe());
         let life = Arc::clone(&self.life);
         tokio::spawn(async move {
-            // Held for the task's life, so the count drops even if the session panics.
-            let _live = live;
-            match tokio::spawn(session::run(params, inputs)).await {
-                // A client that stopped reading can take no goodbye: cut the connection now.
-                Ok(End::Stalled) => {}
-                Ok(_) => tokio::time::sleep(AFTER_GAME).await,
-                Err(e) => {
-                    // A bug in one session ends that session only: log it and hang up on its client.
-                    log.session(id, peer, format_args!("session failed: {e}"));
-                    let _ = tokio::time::timeout(AFTER_GAME, async {
-                        let _ = handle.data(channel, session::LEAVE.to_vec()).await;
-                        let _ = handle.close(channel).await;
-                    })
-                    .await;
-                }
+            let arrival = arrive(&shared, who, place).await;
+            let outcome = session::run(arrival, client, rx, size).await;
+            // A client that stopped reading can take no goodbye: cut the connection now.
+            if !matches!(outcome, Outcome::Ended(End::Stalled, _)) {
+                tokio::time::sleep(AFTER_GAME).await;
             }
-            // One game per connection: when it is over, so is the connection (and its place).
+            // One game per connection: when it is over, so is the connection.
             life.kill();
         });
         Ok(())
@@ -467,35 +427,4 @@ impl russh::server::Handler for ConnHandler {
     }
     // Channel opens other than "session" (direct-tcpip, x11, streamlocal, forwarded) keep the
     // default handlers, which drop the open handle and so refuse the channel.
-}
-
-/// Counts a running session in [`ServeStats::sessions_live`] until dropped.
-struct LiveSession(Arc<ServeStats>);
-
-impl LiveSession {
-    fn new(stats: Arc<ServeStats>) -> Self {
-        ServeStats::add(&stats.sessions_live, 1);
-        Self(stats)
-    }
-}
-
-impl Drop for LiveSession {
-    fn drop(&mut self) {
-        self.0
-            .sessions_live
-            .fetch_sub(1, std::sync::atomic::Ordering::Relaxed);
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn names_are_printable_and_short() {
-        assert_eq!(display_name("ann", 1), "ann");
-        assert_eq!(display_name("\x1b[31mevil", 2), "[31mevil");
-        assert_eq!(display_name("", 3), "player3");
-        assert_eq!(display_name(&"x".repeat(100), 4).len(), MAX_NAME);
-    }
 }

@@ -22,11 +22,11 @@ use tokio::sync::watch;
 
 use super::auth::Backoff;
 use super::handler::ConnHandler;
+use super::lifeline::Lifeline;
 use crate::serve::config::ServeConfig;
+use crate::serve::edge::admission;
 use crate::serve::limits::Refusal;
-use crate::serve::ops::lifecycle::Lifeline;
 use crate::serve::ops::metrics::Reason;
-use crate::serve::ops::stats::ServeStats;
 use crate::serve::proxy_header::{read_header, Inbound, Source, HEADER_WAIT};
 use crate::serve::shared::Shared;
 
@@ -76,8 +76,6 @@ struct Door {
     shared: Arc<Shared>,
     /// Failed password logins per source address.
     backoff: Arc<Backoff>,
-    /// Session numbers, shared with the browser listener.
-    next_id: Arc<AtomicU64>,
     lingering: Arc<AtomicU64>,
     /// Shared with [`RunningServer`]: a draining world waits for these too.
     header_waits: Arc<AtomicU64>,
@@ -88,14 +86,13 @@ struct Door {
 pub(crate) async fn accept_loop(
     listener: TcpListener,
     ssh: Arc<Config>,
-    (shared, next_id): (Arc<Shared>, Arc<AtomicU64>),
+    shared: Arc<Shared>,
     (mut stop, closed, header_waits): (watch::Receiver<bool>, watch::Sender<bool>, Arc<AtomicU64>),
 ) {
     let door = Arc::new(Door {
         ssh,
         shared,
         backoff: Arc::default(),
-        next_id,
         lingering: Arc::new(AtomicU64::new(0)),
         header_waits,
     });
@@ -160,11 +157,7 @@ fn enter(door: &Arc<Door>, socket: tokio::net::TcpStream, tcp_peer: SocketAddr) 
 
 /// Closes a connection whose PROXY header is missing or malformed.
 fn bad_header(door: &Door, socket: tokio::net::TcpStream, tcp_peer: SocketAddr, why: &str) {
-    ServeStats::add(&door.shared.stats.refused, 1);
-    crate::serve::ops::metrics::refused(Reason::Proxy);
-    door.shared
-        .log
-        .refusal(None, tcp_peer, Reason::Proxy.label(), why);
+    admission::refuse(&door.shared, None, tcp_peer, Reason::Proxy, why);
     let _ = socket.try_write(format!("halfcast: {why}\r\n").as_bytes());
 }
 
@@ -178,32 +171,20 @@ fn admit(
     accepted: Instant,
 ) {
     let shared = &door.shared;
-    let pending = match shared.limiter.admit(peer.ip()) {
+    let pending = match admission::admit(shared, peer) {
         Ok(s) => s,
         Err(why) => {
-            ServeStats::add(&shared.stats.refused, 1);
-            crate::serve::ops::metrics::refused(why.reason());
-            let (logging_in, playing) = shared.limiter.live();
-            shared.log.refusal(
-                None,
-                peer,
-                why.reason().label(),
-                format_args!("{why} ({logging_in} logging in, {playing} playing)"),
-            );
             refuse(socket, why, &door.lingering);
             return;
         }
     };
-    ServeStats::add(&shared.stats.connections, 1);
-    crate::serve::ops::metrics::connected();
-    let id = door.next_id.fetch_add(1, Ordering::Relaxed);
+    let id = admission::connected(shared, peer);
     let ssh = Arc::clone(&door.ssh);
     let shared = Arc::clone(shared);
     let backoff = Arc::clone(&door.backoff);
     let tcp = socket.local_addr().ok().zip(socket.peer_addr().ok());
     let stream = inbound(socket);
     tokio::spawn(async move {
-        shared.log.connect(id, peer);
         let life = Arc::new(Lifeline::default());
         if let Some((local, remote)) = tcp {
             life.set_tcp(local, remote);

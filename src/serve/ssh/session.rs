@@ -1,8 +1,8 @@
 //! The SSH edge of a play session: what an SSH client gives before play (its terminal's name,
-//! its answers to the colour query), the session run over the channel ([`super::sink`]), and
+//! its answers to the colour query), its channel as the session's sink ([`super::sink`]), and
 //! the goodbye a terminal needs (the alternate screen left, a last line, the channel closed).
+//! The session's run and its end are the one way in's ([`crate::serve::edge::run`]).
 
-use std::net::SocketAddr;
 use std::sync::Arc;
 use std::time::Duration;
 
@@ -11,22 +11,17 @@ use russh::ChannelId;
 use tokio::sync::{mpsc, watch};
 
 use super::ask_colour::{ask_colour, SSH_QUERY_PATIENCE};
+use super::lifeline::Lifeline;
 use super::sink::SshSink;
 use crate::encode::ColourChoice;
 use crate::game::multi::players::PlayerId;
-use crate::play::session::{self, End, Feeds, Setup};
-use crate::play::world_port::WorldHandle;
+use crate::play::session::End;
 use crate::render::glyphs::Glyphs;
-use crate::serve::ops::drain::{self};
-use crate::serve::ops::lifecycle::Lifeline;
-use crate::serve::ops::log::Log;
-use crate::serve::ops::stats::ServeStats;
-use crate::serve::session_hooks::{
-    draining_notes, session_ended, session_started, BoardLine, ServerHooks,
-};
+use crate::serve::edge::arrival::Arrival;
+use crate::serve::edge::run::{Facts, Goodbye, Outcome, Transport};
+use crate::serve::ops::drain;
 use crate::ui::keys::InputMode;
 use crate::ui::octant_support::{octant_dropper, TermEnv};
-use crate::world::World;
 
 /// Alternate screen, hidden cursor, cleared; kitty keyboard flags pushed (disambiguate, event
 /// types, all keys as escapes) and queried, so release events arrive where supported.
@@ -35,14 +30,12 @@ const ENTER: &[u8] = b"\x1b[?1049h\x1b[?25l\x1b[0m\x1b[2J\x1b[>11u\x1b[?u";
 pub const LEAVE: &[u8] = b"\x1b[<u\x1b[0m\x1b[?25h\x1b[?1049l";
 /// How an SSH player asks for octants where the glyph key skips them.
 pub const FORCE_OCTANTS: &str = "ssh -o SetEnv=HALFCAST_GLYPHS=octant forces";
+/// How long a goodbye may take to go out.
+const BYE_WAIT: Duration = Duration::from_secs(2);
 
-/// What the SSH edge knows of a connection when its shell starts.
-pub struct SessionParams {
-    pub id: PlayerId,
-    pub peer: SocketAddr,
-    pub name: String,
-    /// Watches a player's view instead of playing.
-    pub spectator: bool,
+/// What the SSH edge knows of its client when the shell starts: its terminal, and the channel
+/// and socket it plays over.
+pub struct SshClient {
     pub term: String,
     pub colorterm: Option<String>,
     /// `TMUX`, when the client sent it (an env request): tmux drops octants.
@@ -52,119 +45,104 @@ pub struct SessionParams {
     pub glyphs: Option<Glyphs>,
     pub handle: Handle,
     pub channel: ChannelId,
-    pub world: WorldHandle,
-    /// The lasting leaderboard, when the server keeps one.
-    pub boards: Option<BoardLine>,
-    /// The served world (with the avatar sheet at `avatar_sheet`).
-    pub world_data: Arc<World>,
-    pub avatar_sheet: usize,
-    pub fps: u32,
-    /// Players with no keystroke for this long are closed; spectators never are.
-    pub idle_timeout: Duration,
-    /// A client that takes no frame for this long is dropped.
-    pub stall_timeout: Duration,
-    pub stats: Arc<ServeStats>,
-    pub log: Log,
-    pub shutdown: watch::Receiver<bool>,
     /// The connection's socket: bytes written so far, its TCP addresses, and where the link
     /// figures go when the session ends.
     pub life: Arc<Lifeline>,
     /// Whether frames are acknowledged end to end ([`crate::play::acks`]): behind a load
     /// balancer (`--proxy-protocol`), where the kernel sees only the hop to the balancer.
     pub echo: bool,
-    /// The last line a player sees when the server stops (see [`drain`]).
-    pub farewell: watch::Receiver<&'static str>,
 }
 
-/// What the connection handler feeds the session: raw key bytes, and the latest pty size.
-pub struct SessionInputs {
-    pub data: mpsc::Receiver<Vec<u8>>,
-    pub size: watch::Receiver<(u32, u32)>,
-}
-
-/// Runs one SSH client's session until it ends, then says goodbye and logs it.
-pub async fn run(p: SessionParams, mut inputs: SessionInputs) -> End {
-    session_started(p.spectator, "ssh");
-    let joined = session::join(&p.world, p.id, &p.name, p.spectator).await;
-    let mut colour = level_for_term(&p.term, p.colorterm.as_deref());
+/// Runs a let-in SSH client's session: its terminal's colours asked, then play over the channel,
+/// then the terminal put back.
+pub async fn run(
+    arrival: Arrival,
+    c: SshClient,
+    mut data: mpsc::Receiver<Vec<u8>>,
+    size: watch::Receiver<(u32, u32)>,
+) -> Outcome {
+    let mut colour = level_for_term(&c.term, c.colorterm.as_deref());
     let mut early = Vec::new();
     // Before the first frame: a TERM guess is checked with the client's terminal itself, on the
     // alternate screen, so a terminal that shows a query as text shows it there only.
     if colour.worth_asking() {
         let asked = ask_colour(
-            &p.handle,
-            p.channel,
+            &c.handle,
+            c.channel,
             ENTER,
-            &mut inputs.data,
+            &mut data,
             SSH_QUERY_PATIENCE,
             colour,
         )
         .await;
         (colour, early) = asked;
     } else {
-        let _ = p.handle.data(p.channel, ENTER.to_vec()).await;
+        let _ = c.handle.data(c.channel, ENTER.to_vec()).await;
     }
-    let setup = Setup {
-        id: p.id,
-        name: p.name.clone(),
-        spectator: p.spectator,
+    let facts = Facts {
         colour,
-        glyphs: p.glyphs.unwrap_or_default(),
+        glyphs: c.glyphs.unwrap_or_default(),
         octant_dropper: octant_dropper(TermEnv {
-            term: Some(&p.term),
-            tmux: p.tmux.as_deref(),
+            term: Some(&c.term),
+            tmux: c.tmux.as_deref(),
         }),
         force_octants: FORCE_OCTANTS,
         input_mode: InputMode::Emulated,
         early,
-        world: p.world.clone(),
-        world_data: Arc::clone(&p.world_data),
-        avatar_sheet: p.avatar_sheet,
-        fps: p.fps,
-        idle_timeout: p.idle_timeout,
-        stall_timeout: p.stall_timeout,
     };
-    let feeds = Feeds {
-        input: inputs.data,
-        size: inputs.size,
-        shutdown: p.shutdown.clone(),
-        announce: draining_notes(p.farewell.clone()),
+    let transport = Transport {
+        facts,
+        input: data,
+        size,
+        sink: SshSink::new(c.handle.clone(), c.channel, Arc::clone(&c.life), c.echo),
     };
-    let sink = SshSink::new(p.handle.clone(), p.channel, Arc::clone(&p.life), p.echo);
-    let hooks = ServerHooks::new(p.id, p.peer, p.log, p.boards.clone());
-    let (end, tally) = session::run(joined, setup, feeds, sink, hooks).await;
-    p.life.set_link(tally.link);
-    if !matches!(end, End::ClientGone | End::Stalled) {
-        goodbye(&p, end).await;
-    }
-    session_ended(
-        (&p.stats, p.log),
-        (p.id, p.peer),
-        (p.spectator, "ssh"),
-        end,
-        &tally,
-    );
-    end
+    let bye = SshGoodbye {
+        handle: c.handle,
+        channel: c.channel,
+        life: c.life,
+        id: arrival.who().id,
+        farewell: arrival.shared().farewell.clone(),
+    };
+    arrival.play(transport, bye).await
 }
 
-/// The terminal put back as it was, a last line, and the channel closed; best effort, as the
-/// client may already be gone (a dead link is not waited on).
-async fn goodbye(p: &SessionParams, end: End) {
-    let mut bye = LEAVE.to_vec();
-    let farewell = drain::farewell_line_for(*p.farewell.borrow(), p.id);
-    bye.extend_from_slice(match end {
-        End::Idle => b"halfcast: closed after being idle too long.\r\n".as_slice(),
-        End::Shutdown => &farewell,
-        _ => b"",
-    });
-    let h = &p.handle;
-    let _ = tokio::time::timeout(Duration::from_secs(2), async {
-        let _ = h.data(p.channel, bye).await;
-        let _ = h.exit_status_request(p.channel, 0).await;
-        let _ = h.eof(p.channel).await;
-        let _ = h.close(p.channel).await;
-    })
-    .await;
+/// How an SSH client is left: the terminal put back as it was, a last line, the channel closed.
+struct SshGoodbye {
+    handle: Handle,
+    channel: ChannelId,
+    life: Arc<Lifeline>,
+    id: PlayerId,
+    farewell: watch::Receiver<&'static str>,
+}
+
+impl Goodbye for SshGoodbye {
+    async fn goodbye(self, outcome: &Outcome) {
+        let last: Vec<u8> = match *outcome {
+            Outcome::Ended(end, tally) => {
+                self.life.set_link(tally.link);
+                match end {
+                    // A dead link or a closed client is not waited on.
+                    End::ClientGone | End::Stalled => return,
+                    End::Idle => b"halfcast: closed after being idle too long.\r\n".to_vec(),
+                    End::Shutdown => drain::farewell_line_for(*self.farewell.borrow(), self.id),
+                    End::Quit => Vec::new(),
+                }
+            }
+            Outcome::Failed => Vec::new(),
+        };
+        let mut bye = LEAVE.to_vec();
+        bye.extend_from_slice(&last);
+        let (h, channel) = (&self.handle, self.channel);
+        let _ = tokio::time::timeout(BYE_WAIT, async {
+            let _ = h.data(channel, bye).await;
+            if matches!(outcome, Outcome::Ended(..)) {
+                let _ = h.exit_status_request(channel, 0).await;
+                let _ = h.eof(channel).await;
+            }
+            let _ = h.close(channel).await;
+        })
+        .await;
+    }
 }
 
 /// The colour level for a client's `TERM` (and `COLORTERM`, when its client sends it as an env

@@ -8,11 +8,11 @@ use std::time::{Duration, Instant};
 use russh::server::Handle;
 use russh::ChannelId;
 
+use super::lifeline::Lifeline;
 use super::link_probe::LinkProbe;
 use crate::play::acks::EchoGate;
 use crate::play::link::LinkSample;
 use crate::play::sink::{FrameSink, Gone};
-use crate::serve::ops::lifecycle::Lifeline;
 
 /// How long a task waits for the client's answer to a frame's echo.
 const ECHO_WAIT: Duration = Duration::from_secs(60);

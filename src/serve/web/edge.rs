@@ -1,7 +1,6 @@
 //! What the browser edge shares with the rest of the server: the same world, limits, log,
 //! leaderboard and health as the SSH edge, handed over by [`crate::serve::server`].
 
-use std::sync::atomic::AtomicU64;
 use std::sync::Arc;
 
 use super::options::WebOptions;
@@ -15,6 +14,4 @@ pub struct WebEdge {
     pub shared: Arc<Shared>,
     /// What `/healthz` answers.
     pub ready: Arc<Readiness>,
-    /// Session numbers, shared with the SSH listener so log lines never share one.
-    pub next_id: Arc<AtomicU64>,
 }

@@ -17,16 +17,17 @@ use tokio_tungstenite::WebSocketStream;
 use super::edge::WebEdge;
 use super::page;
 use super::request::Request;
-use super::session::{self, WebPlayer};
-use crate::serve::ops::metrics;
-use crate::serve::ops::stats::ServeStats;
+use super::session;
+use crate::serve::edge::admission;
+use crate::serve::edge::arrival::Who;
+use crate::serve::edge::name::{display_name, shown_name};
+use crate::serve::edge::Via;
+use crate::serve::ops::metrics::{self, Reason};
 
 /// The largest message a page may send (its messages are a few dozen bytes).
 pub const MAX_MESSAGE: usize = 4096;
 /// Frames the server may have queued unwritten for one page before its writes wait.
 const MAX_WRITE_BUFFER: usize = 4 * 1024 * 1024;
-/// Longest player name shown to others.
-const MAX_NAME: usize = 16;
 /// The grid a page gets when its request names none.
 const DEFAULT_SIZE: (u32, u32) = (80, 24);
 
@@ -129,14 +130,8 @@ async fn upgrade(mut socket: TcpStream, req: Request, peer: SocketAddr, edge: Ar
     };
     let origin = req.header("origin");
     if !super::origin::allowed(origin, req.header("host"), &edge.options.origins) {
-        metrics::refused(metrics::Reason::Origin);
-        edge.shared.log.refusal(
-            None,
-            peer,
-            metrics::Reason::Origin.label(),
-            format_args!("a page from {:?} may not play here", origin.unwrap_or("")),
-        );
-        ServeStats::add(&edge.shared.stats.refused, 1);
+        let why = format!("a page from {:?} may not play here", origin.unwrap_or(""));
+        admission::refuse(&edge.shared, None, peer, Reason::Origin, why);
         return reply(
             socket,
             403,
@@ -163,41 +158,28 @@ async fn upgrade(mut socket: TcpStream, req: Request, peer: SocketAddr, edge: Ar
 
 /// Admits the page's player within the limits and runs the session, or closes saying why not.
 async fn play(ws: WebSocketStream<TcpStream>, req: &Request, peer: SocketAddr, edge: Arc<WebEdge>) {
-    let place = edge
-        .shared
-        .limiter
-        .admit(peer.ip())
-        .and_then(|p| p.promote());
+    let shared = &edge.shared;
+    let place = admission::admit(shared, peer)
+        .and_then(|pending| admission::take_place(shared, (None, peer), &pending));
     let place = match place {
         Ok(place) => place,
         Err(why) => {
-            ServeStats::add(&edge.shared.stats.refused, 1);
-            metrics::refused(why.reason());
-            edge.shared
-                .log
-                .refusal(None, peer, why.reason().label(), why);
             let (writer, _reader) = futures_util::StreamExt::split(ws);
             let text = why.to_string();
             session::close(&Mutex::new(writer), CloseCode::Again, &text).await;
             return;
         }
     };
-    ServeStats::add(&edge.shared.stats.connections, 1);
-    metrics::connected();
-    let id = edge
-        .next_id
-        .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    edge.shared.log.connect(id, peer);
+    let id = admission::connected(shared, peer);
     let q = Query::read(&req.query);
-    let player = WebPlayer {
+    let who = Who {
         id,
         peer,
-        name: q.name.unwrap_or_else(|| format!("player{id}")),
+        name: display_name(q.name.as_deref().unwrap_or(""), id),
         spectator: q.spectate,
-        size: q.size.unwrap_or(DEFAULT_SIZE),
-        place,
+        via: Via::Web,
     };
-    session::run(ws, edge, player).await;
+    session::run(ws, edge, (who, place, q.size.unwrap_or(DEFAULT_SIZE))).await;
 }
 
 /// What the upgrade's query says: `name=`, `spectate`, `cols=` and `rows=`.
@@ -228,17 +210,6 @@ impl Query {
             .filter(|&(c, r)| (1..=max).contains(&c) && (1..=max).contains(&r));
         q
     }
-}
-
-/// A name safe to show on other people's screens: printable ASCII, at most [`MAX_NAME`]
-/// characters (the SSH edge's rule), `None` when nothing is left.
-fn shown_name(raw: &str) -> Option<String> {
-    let name: String = raw
-        .chars()
-        .filter(char::is_ascii_graphic)
-        .take(MAX_NAME)
-        .collect();
-    (!name.is_empty()).then_some(name)
 }
 
 /// `%xx` escapes and `+` decoded; malformed escapes kept as they are.

@@ -1,8 +1,8 @@
 //! The browser edge of a play session: the page's messages read into input, sizes and
-//! acknowledgements ([`super::messages`]), the session run with a [`WebSink`], and a goodbye as
-//! the WebSocket's close reason, which the page shows.
+//! acknowledgements ([`super::messages`]), a [`WebSink`] for its frames, and a goodbye as the
+//! WebSocket's close code and reason, which the page shows. The session's run and its end are the
+//! one way in's ([`crate::serve::edge::run`]).
 
-use std::net::SocketAddr;
 use std::sync::Arc;
 use std::time::Duration;
 
@@ -10,6 +10,7 @@ use futures_util::stream::SplitStream;
 use futures_util::{SinkExt, StreamExt};
 use tokio::net::TcpStream;
 use tokio::sync::{mpsc, watch, Mutex};
+use tokio::task::JoinHandle;
 use tokio::time::Instant;
 use tokio_tungstenite::tungstenite::protocol::frame::coding::CloseCode;
 use tokio_tungstenite::tungstenite::protocol::CloseFrame;
@@ -23,10 +24,11 @@ use super::sink::{WebSink, Writer};
 use crate::encode::{ColorLevel, ColourChoice, ColourReason};
 use crate::play::acks::Echoes;
 use crate::play::input::Input;
-use crate::play::session::{self, End, Feeds, Setup};
+use crate::play::session::{self, End};
+use crate::serve::edge::arrival::{arrive, Who};
+use crate::serve::edge::run::{Facts, Goodbye, Outcome, Transport};
 use crate::serve::limits::Playing;
-use crate::serve::ops::stats::ServeStats;
-use crate::serve::session_hooks::{draining_notes, session_ended, session_started, ServerHooks};
+use crate::serve::ops::drain::{self, RESTARTING};
 use crate::ui::keys::InputMode;
 
 type Reader = SplitStream<WebSocketStream<TcpStream>>;
@@ -41,25 +43,18 @@ const BURST: f64 = 400.0;
 /// How long a goodbye may take to go out.
 const BYE_WAIT: Duration = Duration::from_secs(2);
 
-/// Who a WebSocket plays as, from its upgrade request.
-pub struct WebPlayer {
-    pub id: u64,
-    pub peer: SocketAddr,
-    pub name: String,
-    pub spectator: bool,
-    pub size: (u32, u32),
-    /// The session's place within `--max-sessions`, held until it ends.
-    pub place: Playing,
-}
-
-/// Runs one page's session until it ends, then closes the WebSocket with the reason and logs it.
-pub async fn run(ws: WebSocketStream<TcpStream>, edge: Arc<WebEdge>, p: WebPlayer) {
+/// Runs one let-in page's session until it ends, then closes the WebSocket with the reason.
+pub async fn run(
+    ws: WebSocketStream<TcpStream>,
+    edge: Arc<WebEdge>,
+    (who, place, size): (Who, Playing, (u32, u32)),
+) {
     let (writer, reader) = ws.split();
     let writer = Arc::new(Mutex::new(writer));
     let book = AckBook::default();
     let sink = WebSink::new(Arc::clone(&writer), book.clone());
     let (input_tx, input_rx) = mpsc::channel(INPUT_QUEUE);
-    let (size_tx, size_rx) = watch::channel(p.size);
+    let (size_tx, size_rx) = watch::channel(size);
     let page = Page {
         input: input_tx,
         size: size_tx,
@@ -68,51 +63,33 @@ pub async fn run(ws: WebSocketStream<TcpStream>, edge: Arc<WebEdge>, p: WebPlaye
         writer: Arc::clone(&writer),
     };
     let log = edge.shared.log;
-    let (id, peer) = (p.id, p.peer);
+    let (id, peer) = (who.id, who.peer);
     let reading = tokio::spawn(async move {
         if let Err(why) = page.read(reader).await {
             log.session(id, peer, format_args!("closed: {}", why.1));
             close(&page.writer, why.0, why.1).await;
         }
     });
-    session_started(p.spectator, "web");
-    let joined = session::join(&edge.shared.world, p.id, &p.name, p.spectator).await;
-    ServeStats::add(&edge.shared.stats.sessions_live, 1);
-    edge.shared.log.login_web(id, peer, &p.name, p.spectator);
-    let setup = setup(&edge, &p);
-    let feeds = Feeds {
+    let arrival = arrive(&edge.shared, who, place).await;
+    let transport = Transport {
+        facts: browser_facts(),
         input: input_rx,
         size: size_rx,
-        shutdown: edge.shared.shutdown.clone(),
-        announce: draining_notes(edge.shared.farewell.clone()),
+        sink,
     };
-    let hooks = ServerHooks::new(id, peer, edge.shared.log, edge.shared.boards.clone());
-    let (end, tally) = session::run(joined, setup, feeds, sink, hooks).await;
-    reading.abort();
-    let bye = farewell(end, *edge.shared.farewell.borrow());
-    close(&writer, CloseCode::Normal, &bye).await;
-    session_ended(
-        (&edge.shared.stats, edge.shared.log),
-        (p.id, p.peer),
-        (p.spectator, "web"),
-        end,
-        &tally,
-    );
-    edge.shared
-        .stats
-        .sessions_live
-        .fetch_sub(1, std::sync::atomic::Ordering::Relaxed);
-    drop(p.place);
+    let bye = WebGoodbye {
+        writer,
+        reading,
+        id,
+        farewell: edge.shared.farewell.clone(),
+    };
+    arrival.play(transport, bye).await;
 }
 
-/// A browser's session start: true colour (the page draws every colour), key releases as they
-/// happen, the server's frame rate and timeouts.
-fn setup(edge: &WebEdge, p: &WebPlayer) -> Setup {
-    let c = &edge.shared.config;
-    Setup {
-        id: p.id,
-        name: p.name.clone(),
-        spectator: p.spectator,
+/// What a browser brings: true colour (the page draws every colour), key releases as they
+/// happen, the default block characters.
+fn browser_facts() -> Facts {
+    Facts {
         colour: ColourChoice {
             level: ColorLevel::TrueColor,
             reason: ColourReason::Browser,
@@ -122,22 +99,39 @@ fn setup(edge: &WebEdge, p: &WebPlayer) -> Setup {
         force_octants: "",
         input_mode: InputMode::Released,
         early: Vec::new(),
-        world: edge.shared.world.clone(),
-        world_data: Arc::clone(&edge.shared.world_data),
-        avatar_sheet: edge.shared.avatar_sheet,
-        fps: c.fps,
-        idle_timeout: c.idle_timeout,
-        stall_timeout: c.stall_timeout,
     }
 }
 
-/// What the page reads as the session's last words.
-fn farewell(end: End, farewell: &'static str) -> String {
-    match end {
-        End::Idle => "closed after being idle too long".to_owned(),
-        End::Shutdown => farewell.to_owned(),
-        End::Stalled => "the page took no frame for too long".to_owned(),
-        End::Quit | End::ClientGone => "bye".to_owned(),
+/// How a page is left: its reader stopped, and a close frame whose code says whether to come
+/// back (1012: the world restarts, with the wait in the reason; 1001: the server stopped) and
+/// whose reason the page shows.
+struct WebGoodbye {
+    writer: Arc<Mutex<Writer>>,
+    reading: JoinHandle<()>,
+    id: u64,
+    farewell: watch::Receiver<&'static str>,
+}
+
+impl Goodbye for WebGoodbye {
+    async fn goodbye(self, outcome: &Outcome) {
+        self.reading.abort();
+        let farewell = *self.farewell.borrow();
+        let (code, text) = match *outcome {
+            Outcome::Ended(End::Shutdown, _) if farewell == RESTARTING => {
+                (CloseCode::Restart, drain::farewell_for(farewell, self.id))
+            }
+            Outcome::Ended(End::Shutdown, _) => (CloseCode::Away, farewell.to_owned()),
+            Outcome::Ended(End::Idle, _) => {
+                (CloseCode::Normal, "closed after being idle too long".into())
+            }
+            Outcome::Ended(End::Stalled, _) => (
+                CloseCode::Normal,
+                "the page took no frame for too long".into(),
+            ),
+            Outcome::Ended(End::Quit | End::ClientGone, _) => (CloseCode::Normal, "bye".into()),
+            Outcome::Failed => (CloseCode::Error, "the server failed this session".into()),
+        };
+        close(&self.writer, code, &text).await;
     }
 }
 

@@ -39,6 +39,7 @@ async fn send(world: &WorldHandle, held: &[Action], commands: Vec<Command>) {
                 commands,
             },
             view_width: 80,
+            releases_known: false,
         })
         .await;
 }

@@ -1,6 +1,5 @@
-//! The server's side of a play session, for every transport: its frame metrics, its log line when
-//! the world renames a player, the leaderboard it shows, the world's draining as a note, and the
-//! counts and last log line when it ends.
+//! The server's side of a running play session, for every transport: its frame metrics, its log
+//! line when the world renames a player, the leaderboard it shows, the world's draining as a note.
 
 use std::net::SocketAddr;
 use std::sync::Arc;
@@ -8,16 +7,13 @@ use std::time::Duration;
 
 use tokio::sync::watch;
 
-use super::leaderboard::writer::Leaderboard;
-use super::leaderboard::{board_key, shown_name, Boards, TOP};
-use super::ops::drain::{DRAINING_NOTICE, RESTARTING};
-use super::ops::log::Log;
-use super::ops::metrics::{self, FrameMetrics, Reason};
-use super::ops::stats::ServeStats;
 use crate::game::multi::players::{PlayerId, Snapshot};
 use crate::play::hooks::Hooks;
-use crate::play::link_text::link_summary;
-use crate::play::session::{End, Tally};
+use crate::serve::leaderboard::writer::Leaderboard;
+use crate::serve::leaderboard::{board_key, shown_name, Boards, TOP};
+use crate::serve::ops::drain::{DRAINING_NOTICE, RESTARTING};
+use crate::serve::ops::log::Log;
+use crate::serve::ops::metrics::FrameMetrics;
 use crate::ui::results::Board;
 
 /// What a session needs of the lasting leaderboard.
@@ -100,48 +96,6 @@ impl Hooks for ServerHooks {
         let (line, rx) = self.boards.as_ref()?;
         leaders(line, &rx.borrow(), snap, me)
     }
-}
-
-/// A session of `transport` ("ssh", "web") begins: the live-session gauges count it.
-pub fn session_started(spectator: bool, transport: &'static str) {
-    metrics::session(spectator, true);
-    metrics::transport_session(transport, true);
-}
-
-/// A session of `transport` ended with `end`: the gauges and totals take it off and add its
-/// figures, and its last log line says how it went.
-pub fn session_ended(
-    (stats, log): (&ServeStats, Log),
-    (id, peer): (u64, SocketAddr),
-    (spectator, transport): (bool, &'static str),
-    end: End,
-    tally: &Tally,
-) {
-    metrics::session(spectator, false);
-    metrics::transport_session(transport, false);
-    if end == End::Stalled {
-        metrics::refused(Reason::Stall);
-    }
-    ServeStats::add(&stats.frames_sent, tally.frames);
-    ServeStats::add(&stats.bytes_sent, tally.bytes);
-    ServeStats::add(&stats.frames_dropped, tally.dropped);
-    // SSH's is the line operators know; another transport says which it is.
-    let over = if transport == "ssh" {
-        String::new()
-    } else {
-        format!(" over {transport}")
-    };
-    log.session(
-        id,
-        peer,
-        format_args!(
-            "session ended ({end:?}){over}: {} frames, {} bytes, {} frame ticks skipped{}",
-            tally.frames,
-            tally.bytes,
-            tally.dropped,
-            link_summary(&tally.link),
-        ),
-    );
 }
 
 /// The world's draining, as a note for a session's player: told at once, not only when it

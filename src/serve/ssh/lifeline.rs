@@ -119,7 +119,7 @@ impl Lifeline {
         let mut rx = self.kill.subscribe();
         Killable {
             wire: Arc::clone(&self.wire),
-            wire_metric: super::metrics::wire_bytes(),
+            wire_metric: crate::serve::ops::metrics::wire_bytes(),
             inner,
             kill: Box::pin(async move {
                 // Err: the lifeline is gone, and nobody is left to keep the connection.
