@@ -15,6 +15,9 @@ pub enum Input {
     /// Key presses and releases as they happened (a browser knows both): holds end exactly at
     /// release. Repeats are not sent.
     Keys(Vec<KeyEvent>),
+    /// Debug this column of the 3D view (the player's view freezes, as pausing does), or stop
+    /// debugging (`None`): a browser page's click on its view.
+    Ray(Option<u32>),
 }
 
 /// Where a session reads its client's input from: a channel of [`Input`], or of a terminal's

@@ -25,6 +25,7 @@ pub mod link;
 pub mod link_text;
 pub mod pacing;
 mod player;
+mod ray_debug;
 pub(crate) mod screen;
 pub mod session;
 pub mod setup;

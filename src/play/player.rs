@@ -8,8 +8,10 @@ use super::header_text::HeaderFrom;
 use super::input::Input;
 use super::link_text::{rate_text, rtt_text};
 use super::pacing::LinkFigures;
+use super::ray_debug::RayDebug;
 use super::screen::{panes_for, view_rect, SessionScreen};
 use super::setup::Setup;
+use super::sink::Note;
 use super::world_port::WorldMsg;
 use crate::encode::{ColourChoice, ColourReason};
 use crate::game::multi::players::{PlayerId, Snapshot};
@@ -61,6 +63,10 @@ pub(super) struct Player {
     sent: (Held, usize),
     /// Messages for the world not yet sent (one per key event, with known releases).
     to_world: Vec<WorldMsg>,
+    /// The column a page asked to debug, until the world shows it.
+    ray: RayDebug,
+    /// Where the client was last told the view is.
+    view_told: Option<Note>,
     last_input: Instant,
     screen: SessionScreen,
     /// What the frame on screen was drawn from, to skip identical frames.
@@ -101,6 +107,8 @@ impl Player {
             controls: Controls::new(client.input_mode),
             sent: (Held::default(), usize::MAX),
             to_world: Vec::new(),
+            ray: RayDebug::default(),
+            view_told: None,
             last_input: now,
             screen,
             shown: None,
@@ -213,6 +221,7 @@ impl Player {
                 self.releases_known(InputMode::Released);
                 keys.extend(events.into_iter().map(InputEvent::Key));
             }
+            Input::Ray(column) => self.debug_column(column, snap),
         }
         let end = self.on_keys(&keys, snap, now);
         self.keys = keys;
@@ -284,6 +293,53 @@ impl Player {
         }
     }
 
+    /// Debugs `column` of the view (or leaves the debugger): the world is told at once.
+    fn debug_column(&mut self, column: Option<u32>, snap: &Snapshot) {
+        if self.spectator {
+            return;
+        }
+        let width = usize::from(self.view().width);
+        let commands = self.ray.ask(column, (snap, self.me), width);
+        if commands.is_empty() {
+            return;
+        }
+        self.to_world.push(WorldMsg::Input {
+            id: self.me,
+            input: crate::game::Input {
+                held: self.sent.0,
+                commands,
+            },
+            view_width: width,
+            releases_known: self.controls.mode() != InputMode::Emulated,
+        });
+    }
+
+    /// The 3D view's cells on this client's screen.
+    fn view(&self) -> ratatui::layout::Rect {
+        view_rect(&panes_for(self.size, self.screen.toggles))
+    }
+
+    /// What the client should be told before the frame from `snap`: where the view is, when it
+    /// moved, and the ray it asked for, once the world debugs it.
+    pub fn notes(&mut self, snap: &Snapshot) -> Vec<Note> {
+        let mut out = Vec::new();
+        let v = self.view();
+        let view = Note::View {
+            x: v.x,
+            y: v.y,
+            cols: v.width,
+            rows: v.height,
+        };
+        if self.view_told.as_ref() != Some(&view) {
+            self.view_told = Some(view.clone());
+            out.push(view);
+        }
+        if let Some(ray) = self.ray.ready((snap, self.me), (v.width, v.height)) {
+            out.push(Note::Ray(ray));
+        }
+        out
+    }
+
     /// With known releases, the world hears every key event on its own, so a press and release
     /// that arrive together (a quick tap, or a link bunching them) are still a hold and its end
     /// in the world's inbox ([`crate::game::multi::players::Players::input_with_releases`]).
@@ -307,7 +363,7 @@ impl Player {
     /// The message for the world at `now`, when the player's input changed since the last one.
     fn world_input(&mut self, now: Instant) -> Option<WorldMsg> {
         let input = self.controls.take_input(now);
-        let width = usize::from(view_rect(&panes_for(self.size, self.screen.toggles)).width);
+        let width = usize::from(self.view().width);
         if input.commands.is_empty() && (input.held, width) == self.sent {
             return None;
         }

@@ -275,6 +275,9 @@ impl<S: FrameSink, H: Hooks> Loop<S, H> {
         }
         let snap = Arc::clone(&self.snaps.borrow_and_update());
         self.follow(&snap);
+        for note in self.p.notes(&snap) {
+            self.sink.note(note).await.map_err(|_| End::ClientGone)?;
+        }
         if self.p.unchanged(&snap, now) {
             self.want = false;
             return Ok(());

@@ -11,6 +11,37 @@ use super::link::LinkSample;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Gone;
 
+/// What a session tells a client that reads more than frames (a browser page draws its own ray
+/// debugger): where the 3D view is on its screen, and the ray it debugs.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Note {
+    /// The 3D view's cells in the screen grid (0-based), told whenever they change.
+    View {
+        x: u16,
+        y: u16,
+        cols: u16,
+        rows: u16,
+    },
+    /// The ray this player debugs, in the terms `halfcast trace` takes it.
+    Ray(RayQuery),
+}
+
+/// One column's ray as `halfcast trace` takes it: `--pos X,Y --angle A --column C --size
+/// COLSxROWS --fov F` on the map played.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RayQuery {
+    pub pos: (f64, f64),
+    /// Degrees, 0 east, 90 north.
+    pub angle: f64,
+    pub column: usize,
+    /// The 3D view's size in cells.
+    pub size: (u16, u16),
+    /// The horizontal field of view in degrees.
+    pub fov: f64,
+    /// Which of the served maps (by its place in the rotation).
+    pub map: usize,
+}
+
 /// Where a session's frames go, and what is known of their arrival.
 pub trait FrameSink: Send {
     /// Hands one frame's bytes to the transport; ready once it has taken them (they are on their
@@ -36,4 +67,10 @@ pub trait FrameSink: Send {
     /// Whether [`FrameSink::sample`] gives figures at all (the header shows the link's figures
     /// only then).
     fn measures(&self) -> bool;
+
+    /// Tells the client `note`; a terminal reads only frames, so by default nothing is sent.
+    fn note(&mut self, note: Note) -> impl Future<Output = Result<(), Gone>> + Send {
+        let _ = note;
+        std::future::ready(Ok(()))
+    }
 }

@@ -229,8 +229,10 @@ pub async fn start_maps(
         ))
     });
     let stats = Arc::new(ServeStats::default());
+    let maps = worlds.clone();
     let (handle, phase, rounds) = start_world(&config, worlds, &hashes, leaderboard.clone(), log);
     let shared = Arc::new(Shared {
+        maps,
         world: handle,
         world_data: Arc::new(world),
         avatar_sheet,

@@ -19,6 +19,8 @@ use crate::world::World;
 pub struct Shared {
     pub config: ServeConfig,
     pub world: WorldHandle,
+    /// The served maps' worlds, in the rotation's order (a page's ray names its map by name).
+    pub maps: Vec<Arc<World>>,
     /// The served world, with the avatar sheet at `avatar_sheet`.
     pub world_data: Arc<World>,
     pub avatar_sheet: usize,

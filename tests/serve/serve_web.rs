@@ -166,6 +166,79 @@ async fn a_resize_redraws_at_the_new_size() {
     srv.shutdown().await;
 }
 
+/// A click on the page's view: the server says where the view is, freezes this player on the
+/// clicked column, and answers with the ray in `halfcast trace`'s terms, which `trace` draws.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_clicked_column_comes_back_as_a_ray_that_trace_draws() {
+    let (srv, dir, addr) = web_server(|_| {}).await;
+    let mut page = play(addr, "learner").await;
+    let view = page.note("view").await.expect("the view's place");
+    assert!(page.until(|s| header_has(s, "you are learner")).await);
+    let (cols, rows) = (
+        view["cols"].as_u64().unwrap(),
+        view["rows"].as_u64().unwrap(),
+    );
+    assert!(cols > 20 && rows > 5, "{view}");
+    page.send(r#"{"ray":17}"#).await;
+    let ray = page.note("ray").await.expect("the ray");
+    assert_eq!(ray["column"], 17, "{ray}");
+    assert_eq!(ray["size"], serde_json::json!([cols, rows]), "{ray}");
+    assert!(ray.get("map").is_none(), "one map: none named");
+    let pos = format!("{},{}", ray["pos"][0], ray["pos"][1]);
+    let out = dir.path().join("ray.svg");
+    let trace = std::process::Command::new(env!("CARGO_BIN_EXE_halfcast"))
+        .args(["trace", "--pos", &pos, "--angle", &ray["angle"].to_string()])
+        .args(["--column", "17", "--size", &format!("{cols}x{rows}")])
+        .args(["--fov", &ray["fov"].to_string(), "-o"])
+        .arg(&out)
+        .output()
+        .expect("trace runs");
+    assert!(trace.status.success(), "{trace:?}");
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(
+        svg.contains("data-perp="),
+        "a figure with its perpendicular distance"
+    );
+    // The view froze for this player: a held key no longer turns it.
+    page.drain_for(Duration::from_millis(300)).await;
+    let before = view_text(page.screen.screen());
+    page.send(r#"{"key":"d","down":true}"#).await;
+    page.drain_for(Duration::from_millis(500)).await;
+    page.send(r#"{"key":"d","down":false}"#).await;
+    assert_eq!(
+        view_text(page.screen.screen()),
+        before,
+        "the view stays frozen"
+    );
+    // Leaving the debugger lets the view turn again.
+    page.send(r#"{"ray":null}"#).await;
+    page.drain_for(Duration::from_millis(300)).await;
+    page.send(r#"{"key":"d","down":true}"#).await;
+    assert!(
+        page.until(|s| view_text(s) != before).await,
+        "turning again"
+    );
+    srv.shutdown().await;
+}
+
+/// A page asking for more than an SSH pty may claim is drawn at the same bounds, and told so.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_page_gets_no_more_than_an_ssh_client_and_is_told_so() {
+    let (srv, _dir, addr) = web_server(|_| {}).await;
+    let mut page = play(addr, "greedy").await;
+    assert!(page.until(|s| status_has(s, "quit")).await);
+    let (cols, rows) = halfcast::play::size::clamp_size(u32::MAX, u32::MAX);
+    page.screen.set_size(rows, cols);
+    page.send(r#"{"size":[100000,100000]}"#).await;
+    let told = format!("clamped to {cols}x{rows}");
+    assert!(
+        page.until(|s| header_has(s, &told)).await,
+        "{:?}",
+        row_text(page.screen.screen(), 0)
+    );
+    srv.shutdown().await;
+}
+
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn bad_messages_close_with_a_reason_and_the_server_goes_on() {
     let (srv, _dir, addr) = web_server(|_| {}).await;
@@ -283,6 +356,7 @@ async fn per_address_limits_use_a_trusted_proxys_client_address() {
             screen: vt100::Parser::new(24, 80, 0),
             frames: 0,
             acking: true,
+            notes: Vec::new(),
         }
     };
     let mut one = via("203.0.113.1").await;

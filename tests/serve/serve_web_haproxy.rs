@@ -65,6 +65,7 @@ async fn page_from(from: &str, front: u16, name: &str) -> WebClient {
         screen: vt100::Parser::new(24, 80, 0),
         frames: 0,
         acking: true,
+        notes: Vec::new(),
     }
 }
 

@@ -93,6 +93,7 @@ fn one_place() -> (Arc<Shared>, Alive) {
     let shared = Arc::new(Shared {
         config: ServeConfig::local(addr, PathBuf::from("unused")),
         world: port,
+        maps: vec![Arc::clone(&world)],
         world_data: world,
         avatar_sheet: sheet,
         stats: Arc::new(ServeStats::default()),

@@ -1,15 +1,13 @@
 //! What the page sends, one JSON object per WebSocket text message: `{"ack":N}` once frame N is
 //! drawn, `{"size":[cols,rows]}` when the window changes, `{"key":"d","down":true}` for a key's
 //! press or release (`"ctrl":true` with a letter for Ctrl+letter; keys named as the browser's
-//! `KeyboardEvent.key`). Anything else is a bad message, and closes the connection with its
+//! `KeyboardEvent.key`), `{"ray":C}` to debug column C of the 3D view and `{"ray":null}` to
+//! leave the debugger. Anything else is a bad message, and closes the connection with its
 //! reason.
 
 use serde::Deserialize;
 
 use crate::ui::key_bytes::{Key, KeyEvent, KeyKind};
-
-/// The most columns or rows a page may ask for.
-pub const MAX_CELLS: u32 = 1000;
 
 /// One message from the page.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -20,6 +18,8 @@ pub enum PageMessage {
     Size(u32, u32),
     /// A key went down or up.
     Key(KeyEvent),
+    /// Debug this column of the 3D view (the view freezes for this player), or leave (`None`).
+    Ray(Option<u32>),
 }
 
 #[derive(Deserialize)]
@@ -30,6 +30,14 @@ struct Wire {
     key: Option<String>,
     down: Option<bool>,
     ctrl: Option<bool>,
+    /// `null` is there but empty: it leaves the debugger.
+    #[serde(default, deserialize_with = "present")]
+    ray: Option<Option<u32>>,
+}
+
+/// A field that may be `null`: `Some(None)` then, `None` only when it is absent.
+fn present<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Option<Option<u32>>, D::Error> {
+    Option::<u32>::deserialize(d).map(Some)
 }
 
 /// Reads one text message.
@@ -38,10 +46,18 @@ struct Wire {
 /// The reason the connection is closed with, when the message is not one of the above.
 pub fn parse(text: &str) -> Result<PageMessage, &'static str> {
     let w: Wire = serde_json::from_str(text).map_err(|_| "not a message this server reads")?;
+    if let Some(column) = w.ray {
+        return match (w.ack, w.size, w.key, w.down) {
+            (None, None, None, None) => Ok(PageMessage::Ray(column)),
+            _ => Err("not a message this server reads"),
+        };
+    }
     match (w.ack, w.size, w.key, w.down) {
         (Some(n), None, None, None) => Ok(PageMessage::Ack(n)),
         (None, Some((c, r)), None, None) => {
-            if (1..=MAX_CELLS).contains(&c) && (1..=MAX_CELLS).contains(&r) {
+            // Any size goes, as over SSH: the session draws at most what
+            // [`crate::play::size`] allows and its header says it clamped.
+            if c >= 1 && r >= 1 {
                 Ok(PageMessage::Size(c, r))
             } else {
                 Err("window size out of range")
@@ -134,6 +150,9 @@ mod tests {
             parse(r#"{"key":"F5","down":true}"#),
             Ok(PageMessage::Key(KeyEvent { key: Key::F(5), .. }))
         ));
+        assert_eq!(parse(r#"{"ray":12}"#), Ok(PageMessage::Ray(Some(12))));
+        assert_eq!(parse(r#"{"ray":null}"#), Ok(PageMessage::Ray(None)));
+        assert!(parse(r#"{"ray":1,"ack":1}"#).is_err());
     }
 
     #[test]
@@ -145,7 +164,8 @@ mod tests {
             r#"{"ack":-1}"#,
             r#"{"ack":1,"size":[1,1]}"#,
             r#"{"size":[0,24]}"#,
-            r#"{"size":[80,100000]}"#,
+            r#"{"size":[80,-1]}"#,
+            r#"{"ray":"x"}"#,
             r#"{"key":"Meta","down":true}"#,
             r#"{"key":"F13","down":true}"#,
             r#"{"key":"\u0007","down":true}"#,

@@ -4,10 +4,12 @@
 //! server's limits (sharing [`edge`] with the rest of the server), [`request`] reads an HTTP request's head, [`routes`] answers it (the page,
 //! `/healthz`, the upgrade), [`origin`] refuses other sites' pages, [`info`] answers `/info.json`, [`forwarded`] reads a trusted
 //! proxy's client address, [`messages`] reads what the page sends, [`acked`] turns the page's
-//! acknowledgements into link figures, [`sink`] is the session's frame sink, [`session`] runs it,
+//! acknowledgements into link figures, [`sink`] is the session's frame sink (compressed by
+//! [`deflate`] while the link needs it), [`session`] runs it,
 //! and [`page`] holds the page's own HTML, CSS and JavaScript.
 
 pub(crate) mod acked;
+pub(crate) mod deflate;
 pub(crate) mod edge;
 pub(crate) mod forwarded;
 pub(crate) mod info;

@@ -204,10 +204,7 @@ impl Query {
                 _ => {}
             }
         }
-        let max = super::messages::MAX_CELLS;
-        q.size = cols
-            .zip(rows)
-            .filter(|&(c, r)| (1..=max).contains(&c) && (1..=max).contains(&r));
+        q.size = cols.zip(rows).filter(|&(c, r)| c >= 1 && r >= 1);
         q
     }
 }

@@ -52,7 +52,13 @@ pub async fn run(
     let (writer, reader) = ws.split();
     let writer = Arc::new(Mutex::new(writer));
     let book = AckBook::default();
-    let sink = WebSink::new(Arc::clone(&writer), book.clone());
+    let maps: Arc<[String]> = edge
+        .shared
+        .maps
+        .iter()
+        .map(|w| w.map.name.clone())
+        .collect();
+    let sink = WebSink::new(Arc::clone(&writer), book.clone(), maps);
     let (input_tx, input_rx) = mpsc::channel(INPUT_QUEUE);
     let (size_tx, size_rx) = watch::channel(size);
     let page = Page {
@@ -206,6 +212,10 @@ impl Page {
             PageMessage::Key(ev) => self
                 .input
                 .try_send(Input::Keys(vec![ev]))
+                .map_err(|_| bad("keys faster than the game reads them")),
+            PageMessage::Ray(column) => self
+                .input
+                .try_send(Input::Ray(column))
                 .map_err(|_| bad("keys faster than the game reads them")),
         }
     }

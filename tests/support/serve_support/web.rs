@@ -22,6 +22,8 @@ pub struct WebClient {
     pub frames: u64,
     /// Whether each frame is acknowledged as it is read (a page always does).
     pub acking: bool,
+    /// The server's text messages (JSON notes: where the view is, a debugged ray), in order.
+    pub notes: Vec<String>,
 }
 
 /// How a connection ended: the close frame's code and reason.
@@ -53,6 +55,7 @@ pub async fn open(addr: SocketAddr, query: &str, origin: Option<&str>) -> Result
                 screen: vt100::Parser::new(rows, cols, 0),
                 frames: 0,
                 acking: true,
+                notes: Vec::new(),
             })
         }
         Err(Error::Http(resp)) => Err(resp.status().as_u16()),
@@ -88,12 +91,14 @@ impl WebClient {
             match msg {
                 Message::Binary(b) => {
                     self.frames += 1;
-                    self.screen.process(&b);
+                    let frame = frame_bytes(&b);
+                    self.screen.process(&frame);
                     if self.acking {
                         self.send(&format!("{{\"ack\":{}}}", self.frames)).await;
                     }
-                    return Ok(Some(b.to_vec()));
+                    return Ok(Some(frame));
                 }
+                Message::Text(t) => self.notes.push(t.to_string()),
                 Message::Close(c) => {
                     return Err(Closed {
                         code: c.as_ref().map(|c| c.code),
@@ -101,6 +106,27 @@ impl WebClient {
                     })
                 }
                 _ => {}
+            }
+        }
+    }
+
+    /// Reads frames until a note whose JSON has `key` at its top comes (returned), or
+    /// [`PATIENCE`] passes.
+    pub async fn note(&mut self, key: &str) -> Option<serde_json::Value> {
+        let deadline = tokio::time::Instant::now() + PATIENCE;
+        loop {
+            let found = self.notes.iter().find_map(|n| {
+                let v: serde_json::Value = serde_json::from_str(n).expect("a note is JSON");
+                v.get(key).cloned()
+            });
+            if found.is_some() {
+                self.notes.retain(|n| !n.contains(&format!("\"{key}\"")));
+                return found;
+            }
+            if tokio::time::Instant::now() >= deadline
+                || self.frame(Duration::from_millis(200)).await.is_err()
+            {
+                return None;
             }
         }
     }
@@ -151,5 +177,20 @@ impl WebClient {
     pub async fn key(&mut self, key: &str, down: bool) {
         self.send(&format!("{{\"key\":\"{key}\",\"down\":{down}}}"))
             .await;
+    }
+}
+
+/// A frame message's bytes as the page reads them: a message starting 0x00 is the raw DEFLATE
+/// of the frame after that byte, any other the frame itself.
+#[must_use]
+pub fn frame_bytes(message: &[u8]) -> Vec<u8> {
+    match message.split_first() {
+        Some((0, deflated)) => {
+            let mut out = Vec::new();
+            std::io::Read::read_to_end(&mut flate2::read::DeflateDecoder::new(deflated), &mut out)
+                .expect("a compressed frame inflates");
+            out
+        }
+        _ => message.to_vec(),
     }
 }
