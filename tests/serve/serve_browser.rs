@@ -151,6 +151,9 @@ fn check_figures(f: &Value) {
         "the view still turned {} ms after the window lost focus",
         num("blur_lag_ms")
     );
+    // A press and its release in one task (0 ms) reach the world together: exactly one tap's
+    // step. A 20 ms hold may be seen by two of the world's ticks on a loaded machine, and then
+    // moves by the ticks that saw it (the tap rule): never less than one tap's step.
     for ms in [0, 20] {
         let steps = &f[format!("tap_{ms}ms_degrees")];
         let moved = &f[format!("tap_{ms}ms_view_moved")];
@@ -162,11 +165,18 @@ fn check_figures(f: &Value) {
         {
             let step = step
                 .as_f64()
-                .unwrap_or_else(|| panic!("no angle on the status line: {f}"));
+                .unwrap_or_else(|| panic!("no angle on the status line: {f}"))
+                .abs();
             assert!(
-                (step.abs() - TAP_DEGREES).abs() <= 0.15,
-                "a {ms} ms tap of d turned {step}°, not one tap's {TAP_DEGREES}°: {f}"
+                step >= TAP_DEGREES - 0.15,
+                "a {ms} ms tap of d turned {step}°, less than one tap's {TAP_DEGREES}°: {f}"
             );
+            if ms == 0 {
+                assert!(
+                    step <= TAP_DEGREES + 0.15,
+                    "a 0 ms tap of d turned {step}°, not one tap's {TAP_DEGREES}°: {f}"
+                );
+            }
             assert_eq!(
                 moved,
                 &Value::Bool(true),

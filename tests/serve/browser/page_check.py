@@ -97,19 +97,28 @@ async def snapshot(page, frames, out, name, samples=False):
     return snap["cols"], snap["rows"]
 
 
+# One tap of `d` made in the page itself, so no round trip to Playwright falls between the press
+# and its release: both in one task for 0 ms, else the release a timer of `ms` later. Gives the
+# milliseconds the page saw between them.
+TAP = """(ms) => new Promise((done) => {
+  const key = (type) => dispatchEvent(new KeyboardEvent(type, { key: "d", code: "KeyD" }));
+  const t0 = performance.now();
+  key("keydown");
+  const up = () => { key("keyup"); done(performance.now() - t0); };
+  if (ms === 0) up(); else setTimeout(up, ms);
+})"""
+
+
 async def taps(page):
     """Taps of `d` held 0 ms and 20 ms, three each: the degrees each turned (the status line's
-    angle before and after) and whether the view changed."""
+    angle before and after), whether the view changed, and the hold the page made."""
     out = {}
     await settle(page)
     for ms in (0, 20):
-        steps, moved = [], []
+        steps, moved, held = [], [], []
         for _ in range(3):
             a, h = await angle(page), await page.evaluate(VIEW_HASH)
-            await page.keyboard.down("d")
-            if ms:
-                await page.wait_for_timeout(ms)
-            await page.keyboard.up("d")
+            held.append(round(await page.evaluate(TAP, ms), 1))
             await page.wait_for_timeout(300)
             await settle(page)
             b, h2 = await angle(page), await page.evaluate(VIEW_HASH)
@@ -117,6 +126,7 @@ async def taps(page):
             moved.append(h2 != h)
         out[f"tap_{ms}ms_degrees"] = steps
         out[f"tap_{ms}ms_view_moved"] = moved
+        out[f"tap_{ms}ms_held_ms"] = held
     return out
 
 

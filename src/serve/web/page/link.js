@@ -100,7 +100,8 @@ export class Link {
     this.pending++;
     this.chain = this.chain.then(() => v).then(
       (got) => { this.pending--; if (ws === this.ws) use(got); },
-      () => { this.pending--; if (ws === this.ws) ws.close(1000, "a frame did not inflate"); },
+      // A frame that does not inflate is a broken connection (4000, ours): connect again.
+      () => { this.pending--; if (ws === this.ws) ws.close(4000, "a frame did not inflate"); },
     );
   }
 
@@ -144,10 +145,5 @@ export class Link {
       this.who = null;
       this.show({ kind: "form", why: "you left the game" });
     }
-  }
-
-  // Whether a game is on (playing, or waiting to come back).
-  get active() {
-    return this.who !== null;
   }
 }
