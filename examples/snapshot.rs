@@ -1,6 +1,6 @@
 //! Pinning a frame of your own map in a test: the colour-aware text form (for insta) and a
 //! golden PNG. Run as a program it prints the text form; `cargo test --example snapshot` runs
-//! the two tests below (`RATATUI_CELLS_UPDATE=1` writes the golden the first time).
+//! the two tests below (`INSTA_UPDATE=always` writes the golden the first time).
 
 use halfcast::world::TextureSource;
 use halfcast::{Camera, Scene, Vec2, World};

@@ -36,7 +36,7 @@
 //! let ansi = scene.to_ansi(80, 24); // the bytes a truecolor terminal receives
 //! let text = scene.to_cells_text(80, 24); // colour-aware text for insta snapshots
 //! assert_eq!(fb, halfcast::Framebuffer::from_image_bytes(&png).unwrap());
-//! assert!(ansi.contains('▀') && text.starts_with("halfcast-cells v2 80x24"));
+//! assert!(ansi.contains('▀') && text.starts_with("ratatui-cells v1 80x24"));
 //! ```
 //!
 //! # Embed the view in a ratatui app
@@ -86,7 +86,7 @@
 //! [`snapshot::cells_text`] turns any frame (a framebuffer, a ratatui `Buffer`, the bytes a
 //! terminal received) into colour-aware text for `insta::assert_snapshot!` or a stored snapshot;
 //! [`snapshot::assert_png_golden`] compares a framebuffer with a golden PNG within a tolerance
-//! (with no golden yet, it says to run once with `RATATUI_CELLS_UPDATE=1`). The text helpers are
+//! (with no golden yet, it says to run once with `INSTA_UPDATE=always`). The text helpers are
 //! the [`ratatui_cells`] crate's, for any ratatui app. `examples/snapshot.rs` pins a custom map
 //! both ways.
 //!
@@ -179,6 +179,9 @@ pub mod present;
 pub mod serve;
 #[doc(hidden)]
 pub mod texture;
+// One column's ray as `halfcast trace` and the browser's `/trace.*` ask for it.
+#[doc(hidden)]
+pub mod trace_query;
 #[doc(hidden)]
 #[allow(missing_docs)]
 #[cfg(feature = "tui")]

@@ -8,7 +8,8 @@
 //!   cell), the differing cells in the failure message; [`assert_frames_look_same`] compares
 //!   only what the screen shows.
 //! - **A stored snapshot** ([`assert_cells_snapshot!`](ratatui_cells::assert_cells_snapshot)):
-//!   a frame against a file of cells text, with the cell diff on failure.
+//!   a frame against its insta snapshot of cells text, with the cell diff on failure; insta
+//!   names, stores, reviews and accepts it.
 //! - **Pixels** ([`assert_png_golden`]): a framebuffer against a golden PNG, within a
 //!   [`Tolerance`], for frames too large to review as text; any text frame becomes one with
 //!   [`crate::output::screenshot::screenshot`] (compare those with [`Tolerance::EXACT`]).
@@ -21,7 +22,7 @@
 //! let world = World::default_world();
 //! let scene = Scene::new(&world, Camera::from_angle(Vec2::new(8.5, 5.5), 30.0, 66.0));
 //! insta::assert_snapshot!(scene.to_cells_text(6, 3), @r#"
-//! halfcast-cells v2 6x3
+//! ratatui-cells v1 6x3
 //! "▀▀▀▀▀▀"
 //! "▀▀▀▀▀▀"
 //! "▀▀▀▀▀▀"
@@ -50,10 +51,10 @@
 //! These are the [`ratatui_cells`] crate's, which works on any ratatui screen; halfcast adds
 //! frames of [`Framebuffer`] pixels to what they take.
 //!
-//! A golden PNG (rewritten instead of compared when [`UPDATE_ENV`], `RATATUI_CELLS_UPDATE=1`,
-//! is set, the switch that also rewrites stored cells snapshots; on a mismatch the actual frame
-//! is saved in the system's temporary folder, never beside the golden, and the failure names
-//! it):
+//! A golden PNG (rewritten instead of compared when insta's switch, `INSTA_UPDATE=always`, is
+//! set, the switch that also rewrites stored cells snapshots and every insta snapshot; see
+//! [`update_requested`]; on a mismatch the actual frame is saved in the system's temporary
+//! folder, never beside the golden, and the failure names it):
 //!
 //! ```
 //! use halfcast::snapshot::{assert_png_golden, Tolerance};
@@ -71,19 +72,29 @@ use std::path::{Path, PathBuf};
 
 pub use ratatui_cells::{
     assert_cells_snapshot, assert_frames_eq, assert_frames_look_same, cells_text,
-    check_stored_snapshot, UPDATE_ENV,
 };
 
 use crate::render::framebuffer::Framebuffer;
 
-/// The switch's older name, still honoured for golden PNGs.
-pub const LEGACY_UPDATE_ENV: &str = "HALFCAST_UPDATE_GOLDEN";
+/// The one switch that rewrites golden PNGs, as it rewrites stored cells snapshots and every
+/// other insta snapshot: insta's own, set to `always` (or insta's `INSTA_FORCE_UPDATE=1`).
+pub const UPDATE_ENV: &str = "INSTA_UPDATE";
 
-/// Whether golden files are to be written instead of compared: [`UPDATE_ENV`] (the one switch
-/// for PNG goldens and stored cells snapshots alike) or its older name.
+/// The switch's older names, still honoured for golden PNGs (any value but `0` or empty).
+pub const LEGACY_UPDATE_ENVS: [&str; 2] = ["HALFCAST_UPDATE_GOLDEN", "RATATUI_CELLS_UPDATE"];
+
+/// The first of [`LEGACY_UPDATE_ENVS`], the name the goldens' docs and messages gave longest.
+pub const LEGACY_UPDATE_ENV: &str = LEGACY_UPDATE_ENVS[0];
+
+/// Whether golden PNGs are to be written instead of compared: `INSTA_UPDATE=always` (the one
+/// switch for PNG goldens and insta snapshots alike), `INSTA_FORCE_UPDATE=1`, or one of
+/// [`LEGACY_UPDATE_ENVS`].
 #[must_use]
 pub fn update_requested() -> bool {
-    ratatui_cells::update_requested() || std::env::var_os(LEGACY_UPDATE_ENV).is_some()
+    let set = |name: &str| std::env::var_os(name).is_some_and(|v| !v.is_empty() && v != "0");
+    std::env::var_os(UPDATE_ENV).is_some_and(|v| v == "always")
+        || set("INSTA_FORCE_UPDATE")
+        || LEGACY_UPDATE_ENVS.into_iter().any(set)
 }
 
 /// How different two frames may be and still count as equal (rounding, not regressions).
@@ -150,7 +161,7 @@ pub fn diff_frames(a: &Framebuffer, b: &Framebuffer, threshold: u8) -> Option<Fr
     Some(d)
 }
 
-/// Asserts `fb` matches the PNG at `path` within `tol`; with [`UPDATE_ENV`] set, writes it instead.
+/// Asserts `fb` matches the PNG at `path` within `tol`; when [`update_requested`], writes it instead.
 ///
 /// # Panics
 /// When the golden file is missing (saying how to create it) or unreadable, the sizes differ, or
@@ -168,7 +179,7 @@ pub fn assert_png_golden(fb: &Framebuffer, path: impl AsRef<Path>, tol: Toleranc
     }
     if !path.exists() {
         panic!(
-            "no golden image at {} yet: run the test once with {UPDATE_ENV}=1 or \
+            "no golden image at {} yet: run the test once with {UPDATE_ENV}=always or \
              {LEGACY_UPDATE_ENV}=1 to create it from this frame, look at the PNG, and commit it",
             path.display()
         );
@@ -178,7 +189,7 @@ pub fn assert_png_golden(fb: &Framebuffer, path: impl AsRef<Path>, tol: Toleranc
         .and_then(|bytes| Framebuffer::from_image_bytes(&bytes))
         .unwrap_or_else(|e| {
             panic!(
-                "golden {} is not a readable PNG ({e}); run with {UPDATE_ENV}=1 to rewrite it",
+                "golden {} is not a readable PNG ({e}); run with {UPDATE_ENV}=always to rewrite it",
                 path.display()
             )
         });
@@ -201,7 +212,7 @@ pub fn assert_png_golden(fb: &Framebuffer, path: impl AsRef<Path>, tol: Toleranc
             );
         }
         panic!(
-            "frame differs from {} ({verdict:?}); actual saved as {}; if the change is intended run with {UPDATE_ENV}=1",
+            "frame differs from {} ({verdict:?}); actual saved as {}; if the change is intended run with {UPDATE_ENV}=always",
             path.display(),
             actual.display()
         );

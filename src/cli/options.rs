@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use clap::Args;
 use halfcast::camera::DEFAULT_FOV_DEG;
 use halfcast::render::light::Fog;
+pub(crate) use halfcast::trace_query::values::{parse_finite, parse_fov, parse_pos};
 use halfcast::Vec2;
 
 #[derive(Args, Debug)]
@@ -50,36 +51,6 @@ pub(crate) struct WorldArgs {
     /// How far every door is open, 0 (shut) to 1 (open).
     #[arg(long, default_value_t = 0.0, value_parser = parse_unit)]
     pub(crate) door_open: f64,
-}
-
-pub(crate) fn parse_finite(s: &str) -> Result<f64, String> {
-    let v: f64 = s
-        .trim()
-        .parse()
-        .map_err(|_| format!("'{s}' is not a number"))?;
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(format!("'{s}' is not a finite number"))
-    }
-}
-
-pub(crate) fn parse_pos(s: &str) -> Result<Vec2, String> {
-    let (x, y) = s
-        .split_once(',')
-        .ok_or_else(|| format!("'{s}' is not X,Y"))?;
-    Ok(Vec2::new(parse_finite(x)?, parse_finite(y)?))
-}
-
-pub(crate) fn parse_fov(s: &str) -> Result<f64, String> {
-    let v = parse_finite(s)?;
-    if v > 0.0 && v < 180.0 {
-        Ok(v)
-    } else {
-        Err(format!(
-            "field of view {v} must be between 0 and 180 degrees (exclusive)"
-        ))
-    }
 }
 
 pub(crate) fn parse_pitch(s: &str) -> Result<f64, String> {

@@ -11,12 +11,8 @@ use halfcast::{Framebuffer, Glyphs, Scene};
 
 use super::options::{MapArgs, PoseArgs, WorldArgs};
 use super::{camera_for, detect_level, load_world, parse_level, write_output, Failure};
-
-/// Largest view `render` accepts, in cells (columns × rows): the largest frame `diff` reads.
-const MAX_RENDER: (u16, u16) = (
-    halfcast::termframe::MAX_FRAME.0 as u16,
-    halfcast::termframe::MAX_FRAME.1 as u16,
-);
+/// `COLSxROWS`, 1×1 to the largest frame `diff` reads (shared with the web's ray addresses).
+pub(crate) use halfcast::trace_query::values::parse_size;
 
 #[derive(Args, Debug)]
 pub(crate) struct RenderArgs {
@@ -60,25 +56,6 @@ pub(crate) enum Format {
 
 pub(crate) fn parse_glyphs(s: &str) -> Result<Glyphs, String> {
     s.parse()
-}
-
-pub(crate) fn parse_size(s: &str) -> Result<(u16, u16), String> {
-    let (c, r) = s
-        .split_once(['x', 'X'])
-        .ok_or_else(|| format!("'{s}' is not COLSxROWS"))?;
-    let num = |t: &str| {
-        t.trim()
-            .parse::<u16>()
-            .map_err(|_| format!("'{s}' is not COLSxROWS"))
-    };
-    let (c, r) = (num(c)?, num(r)?);
-    if c == 0 || r == 0 || c > MAX_RENDER.0 || r > MAX_RENDER.1 {
-        return Err(format!(
-            "size {c}x{r} is out of range (1x1 to {}x{})",
-            MAX_RENDER.0, MAX_RENDER.1
-        ));
-    }
-    Ok((c, r))
 }
 
 pub(crate) fn render(args: &RenderArgs) -> Result<(), Failure> {

@@ -59,6 +59,9 @@ pub(crate) struct ServeArgs {
     /// player's address; repeatable.
     #[arg(long, value_name = "IP", requires = "web")]
     pub(crate) web_trusted_proxy: Vec<std::net::IpAddr>,
+    /// Compress the page's frames: auto (while its link holds them back), always, or never.
+    #[arg(long, value_enum, default_value = "auto", requires = "web")]
+    pub(crate) web_compress: halfcast::serve::web::Compress,
     /// Every connection starts with a PROXY protocol v1 or v2 header (behind HAProxy or
     /// another balancer); its address is the one limits, logs and metrics use.
     #[arg(long)]
@@ -293,6 +296,7 @@ fn start_and_run(args: ServeArgs) -> Result<(), Failure> {
         listen,
         origins: args.web_origin.clone(),
         trusted_proxies: args.web_trusted_proxy.clone(),
+        compress: args.web_compress,
     });
     config.log_format = args.log_format;
     config.shuffle = args.shuffle;

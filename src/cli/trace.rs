@@ -1,16 +1,15 @@
 //! `halfcast trace`: a figure of one column's DDA traversal, as SVG or PNG (see
-//! `halfcast::output::figure`). Takes `render`'s map, pose and size flags.
+//! `halfcast::output::figure`). Takes `render`'s map, pose and size flags; the checks and the
+//! cast are `halfcast::trace_query`'s, which the browser's `/trace.*` routes share.
 
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use halfcast::map::Cell;
-use halfcast::output::figure::ColumnCast;
-use halfcast::world::door::DoorState;
+use halfcast::trace_query::TraceQuery;
 
 use super::options::{parse_eye, parse_pitch, parse_unit, MapArgs, PoseArgs};
 use super::render::parse_size;
-use super::{camera_for, load_world, write_output, Failure};
+use super::{load_world, write_output, Failure};
 
 #[derive(Args, Debug)]
 pub(crate) struct TraceArgs {
@@ -68,45 +67,20 @@ impl TraceArgs {
 
 pub(crate) fn trace(args: &TraceArgs) -> Result<(), Failure> {
     let world = load_world(&args.map)?;
-    let map = &world.map;
-    let camera = camera_for(&world, &args.pose);
-    let (cols, rows) = (usize::from(args.size.0), usize::from(args.size.1));
-    if args.column >= cols {
-        return Err(Failure::input(format!(
-            "column {} is out of range: a {cols}-column view has columns 0 to {}",
-            args.column,
-            cols - 1
-        )));
-    }
-    let (i, j) = (camera.pos.x.floor() as i64, camera.pos.y.floor() as i64);
-    match map.cell(i, j) {
-        Cell::Floor { .. } | Cell::Door(_) => {}
-        Cell::Void => {
-            return Err(Failure::input(format!(
-                "position {},{} is outside the map (cell ({i},{j}))",
-                camera.pos.x, camera.pos.y
-            )))
-        }
-        Cell::Wall(_) => {
-            return Err(Failure::input(format!(
-                "position {},{} is inside a wall (cell ({i},{j})): a ray must start in open space",
-                camera.pos.x, camera.pos.y
-            )))
-        }
-    }
-    if map.has_heights() {
-        halfcast::game::pose::still_eye(map, camera.pos, args.z).map_err(Failure::input)?;
-    }
-    let mut doors = DoorState::new(map);
-    for cell in doors.cells().to_vec() {
-        doors.set_open(cell, args.door_open);
-    }
-    let view = halfcast::View::new(args.pitch, args.z).on_ground(map.floor_height(i, j));
-    let column = ColumnCast::new(map, &doors, &camera, &view, (cols, rows), args.column);
-    let figure = column.figure(map, &camera, cols);
+    let query = TraceQuery {
+        pos: args.pose.pos,
+        angle: args.pose.angle,
+        fov: args.pose.fov,
+        size: args.size,
+        column: args.column,
+        pitch: args.pitch,
+        z: args.z,
+        door_open: args.door_open,
+    };
+    let ray = query.trace(&world).map_err(Failure::input)?;
     let bytes = match args.figure_format() {
-        FigureFormat::Svg => figure.to_svg().into_bytes(),
-        FigureFormat::Png => figure.to_framebuffer().to_png().map_err(Failure::io)?,
+        FigureFormat::Svg => ray.svg(&world.map).into_bytes(),
+        FigureFormat::Png => ray.png(&world.map).map_err(Failure::io)?,
     };
     write_output(args.output.as_ref(), &bytes)
 }

@@ -31,7 +31,7 @@ impl Scene<'_> {
         self.render(cols, rows).to_png()
     }
 
-    /// The frame in the colour-aware text form snapshots pin (`halfcast-cells v2`, see
+    /// The frame in the colour-aware text form snapshots pin (`ratatui-cells v1`, see
     /// [`crate::snapshot::cells_text`]), so a test can `insta::assert_snapshot!` it.
     #[must_use]
     pub fn to_cells_text(&self, cols: u16, rows: u16) -> String {

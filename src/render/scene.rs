@@ -18,7 +18,7 @@
 //! let png = scene.to_png(40, 12).unwrap(); // `render --format png`
 //! assert!(png.starts_with(b"\x89PNG"));
 //! let text = scene.to_cells_text(40, 12); // colour-aware text that snapshots pin
-//! assert!(text.starts_with("halfcast-cells v2 40x12\n"));
+//! assert!(text.starts_with("ratatui-cells v1 40x12\n"));
 //! // Every form shows the same frame.
 //! assert_eq!(text, halfcast::snapshot::cells_text(&buf));
 //! assert_eq!(text, halfcast::snapshot::cells_text(&fb));

@@ -232,10 +232,10 @@ pub async fn start_maps(
     let maps = worlds.clone();
     let (handle, phase, rounds) = start_world(&config, worlds, &hashes, leaderboard.clone(), log);
     let shared = Arc::new(Shared {
-        maps,
         world: handle,
         world_data: Arc::new(world),
         avatar_sheet,
+        maps,
         stats: Arc::clone(&stats),
         log,
         shutdown: shutdown_rx.clone(),

@@ -19,11 +19,12 @@ use crate::world::World;
 pub struct Shared {
     pub config: ServeConfig,
     pub world: WorldHandle,
-    /// The served maps' worlds, in the rotation's order (a page's ray names its map by name).
-    pub maps: Vec<Arc<World>>,
     /// The served world, with the avatar sheet at `avatar_sheet`.
     pub world_data: Arc<World>,
     pub avatar_sheet: usize,
+    /// Every served map, in rotation order: the ray debugger's `/trace.*?map=NAME` finds its
+    /// world here (by `Map::name`; the first when no map is named).
+    pub maps: Vec<Arc<World>>,
     pub stats: Arc<ServeStats>,
     pub log: Log,
     pub shutdown: watch::Receiver<bool>,

@@ -39,5 +39,5 @@ pub fn appearance(cell: &TermCell) -> TermCell {
 /// [`super::diff_strict`].
 #[must_use]
 pub fn diff(a: &TermFrame, b: &TermFrame) -> DiffReport {
-    ratatui_cells::diff_by(a, b, appearance)
+    ratatui_cells::compare::diff_by(a, b, appearance)
 }

@@ -13,6 +13,7 @@
 
 mod cell_rgb;
 mod highlight;
+mod legacy_cells;
 mod look;
 mod parse;
 mod pixels;
@@ -27,11 +28,25 @@ pub use pixels::FramePixels;
 #[cfg(any(test, feature = "vt100"))]
 pub use screen::{from_parser, from_screen};
 
-pub use ratatui_cells::{
-    cell_code, colour_name, diff_by, diff_looks, from_ansi, from_ansi_sized, from_buffer_debug,
-    from_cells_text, named_colour, style_words, to_cells_text, try_from_ansi, CellDiff, DiffReport,
-    Glyph, Screen, TermCell, TermFrame, CELLS_HEADER, MAX_FRAME, MAX_FRAME_BYTES,
-};
+pub use ratatui_cells::ansi::{from_ansi, from_ansi_sized, try_from_ansi, Screen};
+pub use ratatui_cells::cells::{Glyph, TermCell};
+pub use ratatui_cells::colour::{colour_name, named_colour};
+pub use ratatui_cells::compare::{diff_by, diff_looks, CellDiff, DiffReport};
+pub use ratatui_cells::format::{cell_code, from_buffer_debug, from_cells_text, style_words};
+pub use ratatui_cells::limits::MAX_FRAME;
+
+/// Most bytes a frame file may hold when read from disk: anything a person reviews fits, and a
+/// runaway file is refused instead of read.
+pub const MAX_FRAME_BYTES: u64 = 64 << 20;
+/// The cells text of a frame ([`ratatui_cells::cells_text`]), under the name halfcast's callers
+/// always used.
+#[must_use]
+pub fn to_cells_text(frame: &TermFrame) -> String {
+    ratatui_cells::cells_text(frame)
+}
+/// The first line of the cells text: [`ratatui_cells::format::HEADER`].
+pub use ratatui_cells::format::HEADER as CELLS_HEADER;
+pub use ratatui_cells::TermFrame;
 
 /// The strict comparison (every part of every cell), [`ratatui_cells::diff`]; this module's
 /// [`diff`] compares looks, as `halfcast diff` does.

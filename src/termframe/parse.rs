@@ -3,6 +3,8 @@
 
 use std::path::Path;
 
+use ratatui_cells::format::FrameFormat as Format;
+
 use crate::color::Rgb;
 use crate::render::framebuffer::Framebuffer;
 use crate::termframe::{FramePixels, TermFrame, MAX_FRAME, MAX_FRAME_BYTES};
@@ -14,7 +16,7 @@ pub enum FrameFormat {
     Png,
     /// ANSI escape sequences, read through a terminal model.
     Ansi,
-    /// halfcast's cells text (glyph grid and style runs).
+    /// The cells text (glyph grid and style runs), or one of halfcast's older forms of it.
     Cells,
     /// A ratatui `Buffer`'s `Debug` form (what `insta::assert_debug_snapshot!(buffer)` pins).
     BufferDebug,
@@ -22,13 +24,14 @@ pub enum FrameFormat {
     Text,
 }
 
-impl From<ratatui_cells::FrameFormat> for FrameFormat {
-    fn from(f: ratatui_cells::FrameFormat) -> Self {
+impl From<Format> for FrameFormat {
+    fn from(f: Format) -> Self {
         match f {
-            ratatui_cells::FrameFormat::Ansi => Self::Ansi,
-            ratatui_cells::FrameFormat::Cells => Self::Cells,
-            ratatui_cells::FrameFormat::BufferDebug => Self::BufferDebug,
-            ratatui_cells::FrameFormat::Text => Self::Text,
+            Format::Ansi => Self::Ansi,
+            Format::Cells => Self::Cells,
+            Format::BufferDebug => Self::BufferDebug,
+            // A `TestBackend`'s `Display` holds text only.
+            _ => Self::Text,
         }
     }
 }
@@ -64,9 +67,13 @@ pub fn parse_frame(bytes: &[u8]) -> Result<(TermFrame, FrameFormat), String> {
         }
         return Ok((TermFrame::from_framebuffer(&fb), FrameFormat::Png));
     }
-    match ratatui_cells::parse_frame(bytes) {
-        Ok((frame, format)) => Ok((frame, format.into())),
-        Err(e) if e == "not UTF-8 text" => Err("not a PNG and not UTF-8 text".into()),
-        Err(e) => Err(e),
+    let Ok(text) = std::str::from_utf8(bytes) else {
+        return Err("not a PNG and not UTF-8 text".into());
+    };
+    if let Some(older) = super::legacy_cells::read_legacy(text) {
+        return older.map(|frame| (frame, FrameFormat::Cells));
     }
+    ratatui_cells::format::parse_frame(bytes)
+        .map(|(frame, format)| (frame, format.into()))
+        .map_err(|e| e.to_string())
 }

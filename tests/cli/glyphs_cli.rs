@@ -27,7 +27,7 @@ fn render_writes_each_setting_as_the_terminal_shows_it() {
         "render", "--size", "20x6", "--glyphs", "octant", "--format", "cells",
     ]);
     let text = String::from_utf8(cells.stdout).unwrap();
-    assert!(text.starts_with("halfcast-cells v2 20x6\n") && has_octant(&text));
+    assert!(text.starts_with("ratatui-cells v1 20x6\n") && has_octant(&text));
     let ansi = halfcast_ok(&[
         "render", "--size", "20x6", "--glyphs", "octant", "--format", "ansi", "--colors", "256",
     ]);

@@ -41,6 +41,7 @@ mod serve_pg_outage;
 mod serve_postgres;
 mod serve_proxy;
 mod serve_putty;
+mod serve_ray_debugger;
 mod serve_refusals;
 mod serve_rotation;
 mod serve_session;

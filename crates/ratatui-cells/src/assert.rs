@@ -1,7 +1,7 @@
 //! One-line equality assertions between two frames, failing at the caller's line with the cell
 //! diff.
 
-use crate::diff::{diff, diff_looks, DiffReport};
+use crate::compare::{diff, diff_looks, DiffReport};
 use crate::frame::TermFrame;
 
 /// Asserts two frames are the same in every part of every cell (glyph, colours as named, the
@@ -18,7 +18,7 @@ pub fn assert_frames_eq(expected: impl Into<TermFrame>, actual: impl Into<TermFr
     fail_on(&report, "frames differ");
 }
 
-/// Asserts two frames look the same on screen ([`crate::diff_looks`]): `▀` in a/b equals `▄`
+/// Asserts two frames look the same on screen ([`crate::compare::diff_looks`]): `▀` in a/b equals `▄`
 /// in b/a, a space equals `█` with the colours swapped, a space's foreground and the
 /// difference between the default foreground and background do not count. For a backend or an
 /// encoder free to pick among equivalent glyphs; [`assert_frames_eq`] is the default.

@@ -1,6 +1,7 @@
 //! A grid of terminal cells: what a ratatui `Buffer`, a snapshot file or the bytes a backend
 //! sent all become, so any two can be compared.
 
+use ratatui_core::backend::TestBackend;
 use ratatui_core::buffer::Buffer;
 
 use crate::cell::TermCell;
@@ -87,6 +88,13 @@ impl From<Buffer> for TermFrame {
     /// [`TermFrame::from_buffer`] of an owned buffer (`terminal.backend().buffer().clone()`).
     fn from(buf: Buffer) -> Self {
         Self::from_buffer(&buf)
+    }
+}
+
+impl From<&TestBackend> for TermFrame {
+    /// The backend's buffer ([`TermFrame::from_buffer`]): what `terminal.backend()` shows.
+    fn from(backend: &TestBackend) -> Self {
+        Self::from_buffer(backend.buffer())
     }
 }
 

@@ -4,6 +4,7 @@
 use std::fmt;
 
 use ratatui_core::buffer::CellWidth;
+use unicode_segmentation::UnicodeSegmentation;
 
 /// Bytes kept inline: a letter with two combining marks, or an emoji with a modifier, fits.
 const INLINE: usize = 15;
@@ -84,6 +85,19 @@ pub fn width_of(cluster: &str) -> usize {
         1 => 1,
         _ => usize::from(cluster.cell_width()),
     }
+}
+
+/// One grid row's glyphs as a terminal lays them out: a cell per grapheme cluster, plus a
+/// continuation cell for each extra column a wide one takes.
+pub(crate) fn glyph_row(row: &str) -> Vec<Glyph> {
+    let mut glyphs = Vec::new();
+    for g in row.graphemes(true) {
+        glyphs.push(Glyph::new(g));
+        for _ in 1..width_of(g) {
+            glyphs.push(Glyph::CONTINUATION);
+        }
+    }
+    glyphs
 }
 
 impl From<char> for Glyph {

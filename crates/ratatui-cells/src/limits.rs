@@ -4,12 +4,10 @@
 /// are checked against it before anything is allocated.
 pub const MAX_FRAME: (usize, usize) = (4000, 2000);
 
-/// Most bytes a frame file may hold when read from disk (a stored snapshot): anything a person
-/// reviews fits, and a runaway file is refused instead of read.
-pub const MAX_FRAME_BYTES: u64 = 64 << 20;
-
 /// The error for a frame larger than [`MAX_FRAME`].
-pub(crate) fn too_large(what: &str, cols: usize, rows: usize) -> String {
+pub(crate) fn too_large(what: &str, cols: usize, rows: usize) -> crate::Error {
     let (mc, mr) = MAX_FRAME;
-    format!("{what} is {cols}x{rows} cells; the limit is {mc}x{mr}")
+    crate::Error::new(format!(
+        "{what} is {cols}x{rows} cells; the limit is {mc}x{mr}"
+    ))
 }

@@ -6,7 +6,7 @@
 mod crossings;
 pub mod drawing;
 pub mod font;
-mod frame;
+pub mod frame;
 pub mod palette;
 pub mod plan;
 pub mod raster;

@@ -15,6 +15,8 @@ use std::time::{Duration, Instant};
 use flate2::write::DeflateEncoder;
 use flate2::Compression;
 
+use super::options::Compress;
+
 /// The first byte of a compressed frame's message.
 pub const COMPRESSED: u8 = 0x00;
 /// How much of the last second the gate may hold frames before raw frames are given up.
@@ -29,6 +31,8 @@ const MAX_BACKOFF: Duration = Duration::from_secs(60);
 /// Whether frames go compressed, from how long the link held them.
 #[derive(Debug, Clone)]
 pub struct Policy {
+    /// Always or never, when the operator chose (`--web-compress`).
+    fixed: Option<bool>,
     compressing: bool,
     /// When the gate last started holding a frame, while it still does.
     held_since: Option<Instant>,
@@ -45,10 +49,16 @@ pub struct Policy {
 }
 
 impl Policy {
-    /// A policy for a new page: compressed until the link shows room.
+    /// A policy for a new page: compressed until the link shows room (`Auto`), or as the
+    /// operator chose.
     #[must_use]
-    pub fn new(now: Instant) -> Self {
+    pub fn new(mode: Compress, now: Instant) -> Self {
         Self {
+            fixed: match mode {
+                Compress::Auto => None,
+                Compress::Always => Some(true),
+                Compress::Never => Some(false),
+            },
             compressing: true,
             held_since: None,
             window: (now, Duration::ZERO),
@@ -86,6 +96,9 @@ impl Policy {
 
     /// Whether the frame about to go at `now` is compressed.
     pub fn compress(&mut self, now: Instant) -> bool {
+        if let Some(fixed) = self.fixed {
+            return fixed;
+        }
         self.roll(now);
         let open_hold = self
             .held_since
@@ -167,7 +180,7 @@ mod tests {
     #[test]
     fn a_calm_link_goes_raw_and_a_holding_one_goes_back_with_backoff() {
         let t0 = Instant::now();
-        let mut p = Policy::new(t0);
+        let mut p = Policy::new(Compress::Auto, t0);
         assert!(p.compress(t0), "a new page starts compressed");
         // Two calm seconds of frames (the gate always open): raw from then on.
         let mut t = 0;
@@ -210,7 +223,7 @@ mod tests {
     #[test]
     fn a_link_that_keeps_holding_stays_compressed() {
         let t0 = Instant::now();
-        let mut p = Policy::new(t0);
+        let mut p = Policy::new(Compress::Auto, t0);
         for i in 0..300 {
             let t = i * 33;
             p.gate(false, ms(t0, t));

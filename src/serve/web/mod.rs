@@ -5,8 +5,9 @@
 //! `/healthz`, the upgrade), [`origin`] refuses other sites' pages, [`info`] answers `/info.json`, [`forwarded`] reads a trusted
 //! proxy's client address, [`messages`] reads what the page sends, [`acked`] turns the page's
 //! acknowledgements into link figures, [`sink`] is the session's frame sink (compressed by
-//! [`deflate`] while the link needs it), [`session`] runs it,
-//! and [`page`] holds the page's own HTML, CSS and JavaScript.
+//! [`deflate`] while the link needs it), [`session`] runs it, [`page`] holds the page's own
+//! HTML, CSS and JavaScript, and [`trace_route`] answers the ray debugger's `/trace.json`,
+//! `/trace.svg` and `/trace.png`.
 
 pub(crate) mod acked;
 pub(crate) mod deflate;
@@ -22,5 +23,6 @@ pub(crate) mod request;
 pub(crate) mod routes;
 pub(crate) mod session;
 pub(crate) mod sink;
+pub(crate) mod trace_route;
 
-pub use options::WebOptions;
+pub use options::{Compress, WebOptions};

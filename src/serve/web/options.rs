@@ -12,6 +12,21 @@ pub struct WebOptions {
     pub origins: Vec<String>,
     /// Reverse proxies whose `X-Forwarded-For`/`Forwarded` headers name the player's address.
     pub trusted_proxies: Vec<IpAddr>,
+    /// When a page's frames are compressed.
+    pub compress: Compress,
+}
+
+/// When a page's frames go compressed (`--web-compress`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+pub enum Compress {
+    /// While the page's link holds frames back ([`super::deflate`]).
+    #[default]
+    Auto,
+    /// Every frame (a link known to be slow; measurements).
+    Always,
+    /// None (the CPU matters more than the link; measurements).
+    Never,
 }
 
 impl WebOptions {
@@ -22,6 +37,7 @@ impl WebOptions {
             listen,
             origins: Vec::new(),
             trusted_proxies: Vec::new(),
+            compress: Compress::Auto,
         }
     }
 }

@@ -15,6 +15,10 @@ use crate::render::glyphs::Glyphs;
 pub const HTML: &str = include_str!("page/index.html");
 /// Its style sheet.
 pub const CSS: &str = include_str!("page/halfcast.css");
+/// The ray debugger's own page (`/ray?pos=…`): the ray panel without playing.
+pub const RAY_HTML: &str = include_str!("page/ray.html");
+/// The ray panel's style sheet.
+pub const RAY_CSS: &str = include_str!("page/ray.css");
 
 /// The page's modules as written, by the name they are served under (`/js/<name>`).
 const MODULES: &[(&str, &str)] = &[
@@ -26,6 +30,10 @@ const MODULES: &[(&str, &str)] = &[
     ("touch.js", include_str!("page/touch.js")),
     ("landing.js", include_str!("page/landing.js")),
     ("layout.js", include_str!("page/layout.js")),
+    // The ray debugger's panel (issue 53), on the game page and on `/ray`.
+    ("ray.js", include_str!("page/ray.js")),
+    ("ray_figure.js", include_str!("page/ray_figure.js")),
+    ("ray_text.js", include_str!("page/ray_text.js")),
 ];
 
 static TABLES: LazyLock<String> = LazyLock::new(tables);
@@ -85,8 +93,8 @@ mod tests {
         for (name, js) in MODULES {
             assert!(js.lines().count() < 300, "{name} has 300 lines or more");
             for line in js.lines().filter(|l| l.starts_with("import ")) {
-                let from = line.rsplit("\"./").next().unwrap_or("");
-                let wanted = from.trim_end_matches(['"', ';']);
+                let from = line.rsplit("./").next().unwrap_or("");
+                let wanted = from.trim_end_matches(['"', '\'', ';']);
                 assert!(
                     module(wanted).is_some(),
                     "{name} imports {wanted}, not served"

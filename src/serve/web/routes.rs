@@ -1,7 +1,8 @@
-//! The answer to one request: the page and its assets (its modules under `/js/`), `/info.json`, `/healthz` (the same answer as the
-//! metrics listener's, so a balancer in front of the browser port checks the world it sends
-//! players to), and the WebSocket upgrade at `/ws`, checked for its `Origin`, then admitted
-//! within the server's limits and played.
+//! The answer to one request: the page and its assets (its modules under `/js/`), `/info.json`,
+//! the ray debugger's page (`/ray`) and its trace routes (`/trace.json`, `.svg`, `.png`:
+//! [`super::trace_route`]), `/healthz` (the same answer as the metrics listener's, so a balancer
+//! in front of the browser port checks the world it sends players to), and the WebSocket upgrade
+//! at `/ws`, checked for its `Origin`, then admitted within the server's limits and played.
 
 use std::net::SocketAddr;
 use std::sync::Arc;
@@ -42,7 +43,7 @@ pub async fn answer(socket: TcpStream, req: Request, peer: SocketAddr, edge: Arc
         return reply(socket, 405, "text/plain", b"only GET\n").await;
     }
     let text = "text/plain";
-    let (health, info);
+    let (health, info, traced);
     let (status, kind, body): (u16, &str, &[u8]) = match req.path.as_str() {
         "/" => (200, "text/html; charset=utf-8", page::HTML.as_bytes()),
         "/halfcast.css" => (200, "text/css", page::CSS.as_bytes()),
@@ -63,6 +64,13 @@ pub async fn answer(socket: TcpStream, req: Request, peer: SocketAddr, edge: Arc
             (h.status(), text, health.as_bytes())
         }
         "/ws" => return upgrade(socket, req, peer, edge).await,
+        // The ray debugger: its page and the trace's data and figure (its modules are under /js/).
+        "/ray" => (200, "text/html; charset=utf-8", page::RAY_HTML.as_bytes()),
+        "/ray.css" => (200, "text/css", page::RAY_CSS.as_bytes()),
+        "/trace.json" | "/trace.svg" | "/trace.png" => {
+            traced = super::trace_route::answer(&req.path, &req.query, &edge).await;
+            (traced.status, traced.kind, traced.body.as_slice())
+        }
         _ => (404, text, b"not found\n"),
     };
     if req.method == "HEAD" {

@@ -58,7 +58,8 @@ pub async fn run(
         .iter()
         .map(|w| w.map.name.clone())
         .collect();
-    let sink = WebSink::new(Arc::clone(&writer), book.clone(), maps);
+    let compress = edge.options.compress;
+    let sink = WebSink::new(Arc::clone(&writer), book.clone(), (compress, maps));
     let (input_tx, input_rx) = mpsc::channel(INPUT_QUEUE);
     let (size_tx, size_rx) = watch::channel(size);
     let page = Page {

@@ -15,6 +15,7 @@ use tokio_tungstenite::WebSocketStream;
 
 use super::acked::AckBook;
 use super::deflate::{self, Policy};
+use super::options::Compress;
 use crate::play::acks::{EchoGate, Echoes};
 use crate::play::link::LinkSample;
 use crate::play::sink::{FrameSink, Gone, Note};
@@ -36,13 +37,17 @@ pub struct WebSink {
 impl WebSink {
     /// A sink writing to `writer`, its acknowledgements recorded in `book`.
     #[must_use]
-    pub fn new(writer: Arc<Mutex<Writer>>, book: AckBook, maps: Arc<[String]>) -> Self {
+    pub fn new(
+        writer: Arc<Mutex<Writer>>,
+        book: AckBook,
+        (compress, maps): (Compress, Arc<[String]>),
+    ) -> Self {
         Self {
             writer,
             book,
             gate: EchoGate::new(),
             written: 0,
-            deflate: Policy::new(crate::play::session::now()),
+            deflate: Policy::new(compress, crate::play::session::now()),
             maps,
         }
     }

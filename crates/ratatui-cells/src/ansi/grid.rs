@@ -12,28 +12,28 @@ use crate::glyph::{width_of, Glyph};
 /// A terminal screen: cells, cursor, pen and the modes that change where glyphs land.
 #[derive(Debug, Clone)]
 pub(crate) struct Grid {
-    pub cols: usize,
-    pub rows: usize,
+    pub(crate) cols: usize,
+    pub(crate) rows: usize,
     cells: Vec<TermCell>,
-    pub x: usize,
-    pub y: usize,
-    pub pen: Pen,
+    pub(crate) x: usize,
+    pub(crate) y: usize,
+    pub(crate) pen: Pen,
     /// The cursor is past the last column: the next glyph goes to the next line first.
     pending_wrap: bool,
     /// The column of the last cluster printed on row `y`, while nothing moved the cursor since:
     /// a following character that joins its cluster (a combining mark, a skin tone, the second
     /// half of a flag) is added to it.
     last: Option<usize>,
-    pub saved: (usize, usize, Pen),
+    pub(crate) saved: (usize, usize, Pen),
     /// The scrolling region, first and last row (inclusive).
-    pub top: usize,
-    pub bottom: usize,
-    pub autowrap: bool,
+    pub(crate) top: usize,
+    pub(crate) bottom: usize,
+    pub(crate) autowrap: bool,
 }
 
 impl Grid {
     /// A blank screen of `cols` × `rows` (each at least 1), the cursor at the top left.
-    pub fn new(cols: usize, rows: usize) -> Self {
+    pub(crate) fn new(cols: usize, rows: usize) -> Self {
         let (cols, rows) = (cols.max(1), rows.max(1));
         Self {
             cols,
@@ -52,7 +52,7 @@ impl Grid {
     }
 
     /// The top-left `cols` × `rows` cells as a frame.
-    pub fn frame(&self, cols: usize, rows: usize) -> TermFrame {
+    pub(crate) fn frame(&self, cols: usize, rows: usize) -> TermFrame {
         let (cols, rows) = (cols.min(self.cols), rows.min(self.rows));
         let cells = (0..rows)
             .flat_map(|y| {
@@ -77,7 +77,7 @@ impl Grid {
     }
 
     /// Moves the cursor (clamped to the screen); the next glyph starts a new cluster.
-    pub fn move_to(&mut self, x: usize, y: usize) {
+    pub(crate) fn move_to(&mut self, x: usize, y: usize) {
         self.x = x.min(self.cols - 1);
         self.y = y.min(self.rows - 1);
         self.pending_wrap = false;
@@ -86,7 +86,7 @@ impl Grid {
 
     /// Prints one character: joined to the last cluster when it continues it, else a new
     /// cluster at the cursor.
-    pub fn print(&mut self, c: char) {
+    pub(crate) fn print(&mut self, c: char) {
         if let Some(lx) = self.last {
             let at = self.at(lx, self.y);
             let mut joined = String::from(self.cells[at].glyph.as_str());
@@ -182,7 +182,7 @@ impl Grid {
     }
 
     /// Line feed: down a row, scrolling the region when at its bottom.
-    pub fn line_feed(&mut self) {
+    pub(crate) fn line_feed(&mut self) {
         self.pending_wrap = false;
         self.last = None;
         if self.y == self.bottom {
@@ -193,7 +193,7 @@ impl Grid {
     }
 
     /// Reverse index: up a row, scrolling the region down when at its top.
-    pub fn reverse_index(&mut self) {
+    pub(crate) fn reverse_index(&mut self) {
         self.pending_wrap = false;
         self.last = None;
         if self.y == self.top {
@@ -228,17 +228,17 @@ impl Grid {
     }
 
     /// Scrolls the region up `n` rows (SU, and a line feed at its bottom).
-    pub fn scroll_up(&mut self, n: usize) {
+    pub(crate) fn scroll_up(&mut self, n: usize) {
         self.shift_up(self.top, self.bottom, n);
     }
 
     /// Scrolls the region down `n` rows (SD, and a reverse index at its top).
-    pub fn scroll_down(&mut self, n: usize) {
+    pub(crate) fn scroll_down(&mut self, n: usize) {
         self.shift_down(self.top, self.bottom, n);
     }
 
     /// Inserts (IL) or deletes (DL) `n` rows at the cursor's, within the scrolling region.
-    pub fn insert_or_delete_rows(&mut self, n: usize, insert: bool) {
+    pub(crate) fn insert_or_delete_rows(&mut self, n: usize, insert: bool) {
         if self.y < self.top || self.y > self.bottom {
             return;
         }
@@ -251,7 +251,7 @@ impl Grid {
     }
 
     /// Inserts (ICH) or deletes (DCH) `n` cells at the cursor, shifting the rest of its row.
-    pub fn insert_or_delete_cells(&mut self, n: usize, insert: bool) {
+    pub(crate) fn insert_or_delete_cells(&mut self, n: usize, insert: bool) {
         let (a, c) = (self.at(self.x, self.y), self.at(0, self.y + 1));
         let n = n.min(c - a);
         if insert {
@@ -267,7 +267,7 @@ impl Grid {
     }
 
     /// Erases cells `from..to` of the screen (row-major indices, clamped).
-    pub fn erase(&mut self, from: usize, to: usize) {
+    pub(crate) fn erase(&mut self, from: usize, to: usize) {
         let to = to.min(self.cells.len());
         let blank = self.blank();
         if from < to {
@@ -277,12 +277,12 @@ impl Grid {
     }
 
     /// The cursor's cell index.
-    pub fn cursor_index(&self) -> usize {
+    pub(crate) fn cursor_index(&self) -> usize {
         self.at(self.x, self.y)
     }
 
     /// Forgets everything: blank screen, home cursor, default pen and modes (RIS).
-    pub fn reset(&mut self) {
+    pub(crate) fn reset(&mut self) {
         *self = Grid::new(self.cols, self.rows);
     }
 }

@@ -125,7 +125,7 @@ pub fn from_ansi_sized(bytes: &[u8], cols: u16, rows: u16) -> TermFrame {
 ///
 /// # Errors
 /// The size the stream draws into, when over the limit.
-pub fn try_from_ansi(bytes: &[u8]) -> Result<TermFrame, String> {
+pub fn try_from_ansi(bytes: &[u8]) -> Result<TermFrame, crate::Error> {
     let fixed = with_carriage_returns(bytes);
     let (rows, cols) = extent(&fixed);
     if cols > MAX_FRAME.0 || rows > MAX_FRAME.1 {
@@ -155,7 +155,9 @@ mod tests {
     #[test]
     fn a_cursor_far_away_is_refused_or_cut_to_the_limit() {
         assert_eq!(
-            try_from_ansi(b"\x1b[65535;65535Hx").unwrap_err(),
+            try_from_ansi(b"\x1b[65535;65535Hx")
+                .unwrap_err()
+                .to_string(),
             "ANSI frame is 65535x65535 cells; the limit is 4000x2000"
         );
         let huge = b"\x1b[99999999999999999999999;18446744073709551615H\x1b[18446744073709551615Cx";

@@ -9,10 +9,10 @@ use crate::colour::named_colour;
 /// Colours and attributes for the next glyph.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Pen {
-    pub fg: Color,
-    pub bg: Color,
-    pub underline: Color,
-    pub modifiers: Modifier,
+    pub(crate) fg: Color,
+    pub(crate) bg: Color,
+    pub(crate) underline: Color,
+    pub(crate) modifiers: Modifier,
 }
 
 impl Default for Pen {

@@ -6,7 +6,9 @@ use ratatui::backend::{Backend, CrosstermBackend};
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Modifier, Style};
-use ratatui_cells::{diff, from_ansi_sized, named_colour, Screen, TermFrame};
+use ratatui_cells::ansi::Screen;
+use ratatui_cells::colour::named_colour;
+use ratatui_cells::{diff, from_ansi_sized, TermFrame};
 
 /// Clusters of every kind: ASCII, blocks, combining marks, CJK, Hangul (precomposed and as
 /// jamo), emoji with skin tones, flags (a tag sequence too), ZWJ sequences, keycaps, VS16 and

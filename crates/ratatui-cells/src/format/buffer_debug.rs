@@ -1,17 +1,18 @@
 //! Reading a ratatui `Buffer`'s `Debug` form back into cells: what
-//! `insta::assert_debug_snapshot!(buffer)` pins, so `halfcast diff` compares such snapshots
-//! with each other or with any other frame.
+//! `insta::assert_debug_snapshot!(buffer)` pins, so such a snapshot compares with any other
+//! frame and migrates to cells text.
 
 use ratatui_core::style::{Color, Modifier};
 
 use crate::cell::TermCell;
 use crate::colour::named_colour;
+use crate::error::Error;
 use crate::frame::{mark_continuations, TermFrame};
+use crate::glyph::glyph_row;
 use crate::limits::MAX_FRAME;
-use crate::text::read_grid_row;
 
 /// How a ratatui buffer's `Debug` form starts.
-pub const BUFFER_DEBUG_HEADER: &str = "Buffer {";
+pub(crate) const BUFFER_DEBUG_HEADER: &str = "Buffer {";
 
 /// The value after `key: ` up to the next `, ` (or the end).
 fn field<'a>(line: &'a str, key: &str) -> Option<&'a str> {
@@ -64,8 +65,8 @@ fn debug_modifiers(s: &str) -> Option<Modifier> {
 ///
 /// # Errors
 /// A form that is not a buffer's `Debug`, naming what is wrong; a size over [`MAX_FRAME`].
-pub fn from_buffer_debug(text: &str) -> Result<TermFrame, String> {
-    let bad = |what: &str| format!("not a ratatui Buffer's Debug form: {what}");
+pub fn from_buffer_debug(text: &str) -> Result<TermFrame, Error> {
+    let bad = |what: &str| Error::new(format!("not a ratatui Buffer's Debug form: {what}"));
     let mut lines = text.lines().map(str::trim);
     if lines.next() != Some(BUFFER_DEBUG_HEADER) {
         return Err(bad("no 'Buffer {' line"));
@@ -77,10 +78,10 @@ pub fn from_buffer_debug(text: &str) -> Result<TermFrame, String> {
         _ => return Err(bad("no 'area: Rect { .. width: W, height: H }' line")),
     };
     if cols > MAX_FRAME.0 || rows > MAX_FRAME.1 {
-        return Err(format!(
+        return Err(Error::new(format!(
             "ratatui Buffer is {cols}x{rows} cells; the limit is {}x{}",
             MAX_FRAME.0, MAX_FRAME.1
-        ));
+        )));
     }
     let mut cells = Vec::with_capacity(cols * rows);
     if rows > 0 && cols > 0 {
@@ -98,7 +99,7 @@ pub fn from_buffer_debug(text: &str) -> Result<TermFrame, String> {
                     })
                 })
                 .ok_or_else(|| bad(&format!("content row {y} is not a quoted string")))?;
-            let glyphs = read_grid_row(row);
+            let glyphs = glyph_row(row);
             if glyphs.len() != cols {
                 return Err(bad(&format!(
                     "content row {y} is {} cells, not {cols}",
@@ -172,7 +173,7 @@ mod tests {
     #[test]
     fn what_is_not_a_buffer_says_why() {
         assert_eq!(
-            from_buffer_debug("Buffer {\n    area: Rect { x: 0, y: 0, width: 2, height: 1 },\n    content: [\n        \"abc\",\n").unwrap_err(),
+            from_buffer_debug("Buffer {\n    area: Rect { x: 0, y: 0, width: 2, height: 1 },\n    content: [\n        \"abc\",\n").unwrap_err().to_string(),
             "not a ratatui Buffer's Debug form: content row 0 is 3 cells, not 2"
         );
         assert!(from_buffer_debug("Buffer {\n").is_err());

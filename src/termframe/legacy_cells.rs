@@ -1,14 +1,21 @@
-//! The first cells text form, `halfcast-cells v1`, still read so older files diff: one line per
-//! row of `GLYPH` + fg hex + `/` + bg hex cells (`~~~~~~` = default), 24-bit colours only and no
-//! attributes. Nothing writes it any more.
+//! The cells text forms halfcast wrote before the format became ratatui-cells', still read so
+//! older files and snapshots diff. Nothing writes them any more.
+//!
+//! - `halfcast-cells v2`: the ratatui-cells format under halfcast's first name; only the header
+//!   differs, so it reads as ratatui-cells' cells text.
+//! - `halfcast-cells v1`: one line per row of `GLYPH` + fg hex + `/` + bg hex cells (`~~~~~~` =
+//!   default), 24-bit colours only and no attributes.
 
-use ratatui_core::style::Color;
+use ratatui::style::Color;
+use ratatui_cells::format::{from_cells_text, HEADER};
 
-use crate::cell::TermCell;
-use crate::frame::TermFrame;
+use crate::termframe::{TermCell, TermFrame, MAX_FRAME};
 
 /// First line of the first cells text form.
-pub const CELLS_HEADER_V1: &str = "halfcast-cells v1";
+const CELLS_HEADER_V1: &str = "halfcast-cells v1";
+
+/// First line of the second form: ratatui-cells' format under halfcast's first name.
+const CELLS_HEADER_V2: &str = "halfcast-cells v2";
 
 /// Characters from one cell's start to the next: 14 for the cell, 1 space.
 const CELL_STRIDE: usize = 15;
@@ -27,14 +34,45 @@ fn parse_colour(s: &str) -> Option<Color> {
     Some(Color::Rgb((v >> 16) as u8, (v >> 8) as u8, v as u8))
 }
 
-/// Reads a `halfcast-cells v1` file (cells written before attributes were kept); errors name the line.
-///
-/// # Errors
-/// A header that is not `halfcast-cells v1 COLSxROWS`, or a malformed row or cell.
-pub fn from_cells_text_v1(text: &str) -> Result<TermFrame, String> {
+/// Reads `text` when it is one of halfcast's older cells text forms (after an insta header, if
+/// any); `None` for any other text.
+pub(super) fn read_legacy(text: &str) -> Option<Result<TermFrame, String>> {
+    let body = text
+        .strip_prefix("---\n")
+        .and_then(|rest| rest.find("\n---\n").map(|end| &rest[end + 5..]))
+        .unwrap_or(text);
+    if let Some(rest) = body.strip_prefix(CELLS_HEADER_V2) {
+        return Some(from_cells_text(&format!("{HEADER}{rest}")).map_err(|e| e.to_string()));
+    }
+    body.starts_with(CELLS_HEADER_V1)
+        .then(|| from_cells_text_v1(body))
+}
+
+/// The size a `halfcast-cells v1` first line gives, within [`MAX_FRAME`].
+fn v1_header(header: &str) -> Result<(usize, usize), String> {
+    let size = header
+        .strip_prefix(CELLS_HEADER_V1)
+        .map(str::trim)
+        .ok_or_else(|| format!("line 1: expected '{CELLS_HEADER_V1} COLSxROWS'"))?;
+    let (c, r) = size.split_once('x').ok_or("line 1: bad size")?;
+    let (cols, rows): (usize, usize) = (
+        c.parse().map_err(|_| "line 1: bad size")?,
+        r.parse().map_err(|_| "line 1: bad size")?,
+    );
+    let (max_cols, max_rows) = MAX_FRAME;
+    if cols > max_cols || rows > max_rows {
+        return Err(format!(
+            "line 1: size {cols}x{rows} is over the limit of {max_cols}x{max_rows} cells"
+        ));
+    }
+    Ok((cols, rows))
+}
+
+/// Reads a `halfcast-cells v1` file (cells written before attributes were kept); errors name
+/// the line.
+fn from_cells_text_v1(text: &str) -> Result<TermFrame, String> {
     let mut lines = text.lines();
-    let (cols, rows) =
-        crate::text::cells_header(lines.next().unwrap_or_default(), CELLS_HEADER_V1)?;
+    let (cols, rows) = v1_header(lines.next().unwrap_or_default())?;
     // Both are now small, so `cols * CELL_STRIDE` and `cols * rows` cannot overflow.
     let mut cells = Vec::with_capacity(cols * rows);
     for y in 0..rows {
@@ -72,6 +110,17 @@ pub fn from_cells_text_v1(text: &str) -> Result<TermFrame, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn v2_reads_as_the_ratatui_cells_format() {
+        let frame = read_legacy("halfcast-cells v2 2x1\n\"ok\"\nstyles:\ny0 x1 bold\n")
+            .unwrap()
+            .unwrap();
+        assert_eq!(frame.cell(1, 0).modifiers, ratatui::style::Modifier::BOLD);
+        let snap = "---\nsource: tests/x.rs\n---\nhalfcast-cells v2 1x1\n\"a\"\n";
+        assert_eq!(read_legacy(snap).unwrap().unwrap().cell(0, 0).glyph, 'a');
+        assert!(read_legacy("ratatui-cells v1 1x1\n\"a\"\n").is_none());
+    }
 
     #[test]
     fn v1_reads_with_default_colours() {

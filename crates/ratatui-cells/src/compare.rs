@@ -7,8 +7,8 @@ use ratatui_core::style::Color;
 
 use crate::cell::TermCell;
 use crate::colour::xterm_rgb;
+use crate::format::cell_code;
 use crate::frame::TermFrame;
-use crate::text::cell_code;
 
 /// How many differing cells a report's [`DiffReport::summary`] lists, one line each.
 pub const LISTED_CELLS: usize = 50;
@@ -129,15 +129,6 @@ fn parts_changed(a: &TermCell, b: &TermCell) -> String {
     ];
     let changed: Vec<&str> = parts.iter().filter(|p| p.0).map(|p| p.1).collect();
     changed.join(", ")
-}
-
-impl CellDiff {
-    /// Which parts of the cell changed: `glyph`, `fg`, `bg`, `underline colour`, `attributes`
-    /// (comma-separated).
-    #[must_use]
-    pub fn what_changed(&self) -> String {
-        self.changed.clone()
-    }
 }
 
 impl DiffReport {

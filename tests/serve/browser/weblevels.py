@@ -1,0 +1,178 @@
+#!/usr/bin/env python3
+"""What a browser player's link carries: bytes a frame, the colour level held, frames a second,
+and how stale the view is after a release in the first seconds of play.
+
+Runs `halfcast serve --web --web-compress MODE` and a WebSocket player that inflates and
+acknowledges each frame as the page does, inside a fresh network namespace whose loopback is a
+token bucket (the recipe of ../shared/tools/linklag.py), then:
+
+- first: joins, turns (`d` held) from 0.3 s to 1.8 s after joining, releases, and reports how
+  long frames that change the 3D view keep arriving after the release (the lag the page shows
+  in its first seconds, before anything is known of the link);
+- steady: after 6 s of play, holds `d` for HOLD s and reports frames a second, bytes a frame on
+  the wire and inflated, and the level the status line names at the end.
+
+A frame "changes the view" when any cell of the view's rows (from the server's `view` note)
+differs after it, read through a terminal model (pyte): status-line-only frames do not count.
+
+  python3 weblevels.py BIN [--rate 3mbit|none] [--cols 80 --rows 24] [--compress auto|always|never]
+Prints one JSON line. Needs root (it re-runs itself under `unshare -rn`), `tc`, and
+`pip install websockets pyte`.
+"""
+import argparse, asyncio, json, os, re, socket, subprocess, sys, tempfile, time, zlib
+
+import pyte
+
+
+def shaped(rate, queue_ms):
+    subprocess.run(["ip", "link", "set", "lo", "up", "mtu", "1500"], check=True)
+    if rate != "none":
+        subprocess.run(["tc", "qdisc", "add", "dev", "lo", "root", "tbf", "rate", rate,
+                        "burst", "16kb", "latency", f"{queue_ms}ms"], check=True)
+
+
+def free_port():
+    s = socket.socket(); s.bind(("127.0.0.1", 0)); p = s.getsockname()[1]; s.close(); return p
+
+
+class Page:
+    """A page's connection: frames inflated, drawn into a terminal model, acknowledged."""
+
+    def __init__(self, ws, cols, rows):
+        self.ws = ws
+        self.screen = pyte.Screen(cols, rows)
+        self.stream = pyte.ByteStream(self.screen)
+        self.view = None  # (y, rows)
+        self.log = []  # (arrival, wire bytes, inflated bytes, changed the view)
+        self.n = 0
+
+    def view_rows(self):
+        if not self.view:
+            return ()
+        y, rows = self.view
+        return tuple(self.screen.display[y:y + rows])
+
+    async def read(self):
+        async for msg in self.ws:
+            if isinstance(msg, str):
+                note = json.loads(msg)
+                if "view" in note:
+                    self.view = (note["view"]["y"], note["view"]["rows"])
+                continue
+            frame = zlib.decompress(msg[1:], -15) if msg[:1] == b"\x00" else msg
+            before = self.view_rows()
+            self.stream.feed(frame)
+            self.n += 1
+            self.log.append((time.monotonic(), len(msg), len(frame), self.view_rows() != before))
+            await self.ws.send(json.dumps({"ack": self.n}))
+
+    async def key(self, down):
+        await self.ws.send(json.dumps({"key": "d", "down": down}))
+
+    def status(self):
+        return self.screen.display[-1]
+
+    def last_view_change_after(self, t):
+        changed = [u for (u, _, _, c) in self.log if u >= t and c]
+        return (max(changed) - t) if changed else 0.0
+
+    def between(self, a, b):
+        return [e for e in self.log if a <= e[0] <= b]
+
+
+async def quiet(page, s=1.0, limit=20):
+    end = time.monotonic() + limit
+    while time.monotonic() < end:
+        await asyncio.sleep(0.1)
+        changed = [u for (u, _, _, c) in page.log if c]
+        if not changed or time.monotonic() - changed[-1] > s:
+            return
+
+
+LEVEL = re.compile(r"(truecolor|256|16|mono) \((?:link|browser|key)\)")
+
+
+async def measure(args, port):
+    import websockets
+    url = f"ws://127.0.0.1:{port}/ws?name=lv&cols={args.cols}&rows={args.rows}"
+    async with websockets.connect(url, max_size=None) as ws:
+        page = Page(ws, args.cols, args.rows)
+        joined = time.monotonic()
+        reader = asyncio.create_task(page.read())
+        await asyncio.sleep(0.3)
+        await page.key(True)
+        await asyncio.sleep(1.5)
+        up = time.monotonic()
+        await page.key(False)
+        await quiet(page, 1.0)
+        first_lag = page.last_view_change_after(up) * 1000
+        first_level = LEVEL.search(page.status())
+        await asyncio.sleep(max(0.0, 6 - (time.monotonic() - joined)))
+        await quiet(page, 1.0)
+        t0 = time.monotonic()
+        await page.key(True)
+        await asyncio.sleep(args.hold)
+        t1 = time.monotonic()
+        await page.key(False)
+        await quiet(page, 1.0)
+        lag = page.last_view_change_after(t1) * 1000
+        turning = [e for e in page.between(t0 + 1.0, t1) if e[3]]
+        span = t1 - t0 - 1.0
+        level = LEVEL.search(page.status())
+        reader.cancel()
+        return {
+            "rate": args.rate, "size": f"{args.cols}x{args.rows}", "compress": args.compress,
+            "first_release_lag_ms": round(first_lag),
+            "first_level": first_level.group(1) if first_level else None,
+            "turning_fps": round(len(turning) / span, 1),
+            "wire_bytes_per_frame": round(sum(e[1] for e in turning) / max(1, len(turning))),
+            "inflated_bytes_per_frame": round(sum(e[2] for e in turning) / max(1, len(turning))),
+            "release_lag_ms": round(lag),
+            "level": level.group(1) if level else page.status().strip()[-40:],
+        }
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("bin")
+    ap.add_argument("--rate", default="3mbit")
+    ap.add_argument("--queue-ms", type=int, default=200)
+    ap.add_argument("--hold", type=float, default=4.0)
+    ap.add_argument("--cols", type=int, default=80)
+    ap.add_argument("--rows", type=int, default=24)
+    ap.add_argument("--compress", default="auto")
+    ap.add_argument("--inside", action="store_true")
+    args = ap.parse_args()
+    if not args.inside:
+        os.execvp("unshare", ["unshare", "-rn", sys.executable, *sys.argv, "--inside"])
+    shaped(args.rate, args.queue_ms)
+    port, web = free_port(), free_port()
+    with tempfile.TemporaryDirectory() as d:
+        # The default map with nothing that moves by itself: only the player's keys change the view.
+        repo = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
+        os.symlink(os.path.join(repo, "textures"), f"{d}/textures")
+        os.mkdir(f"{d}/maps")
+        with open(os.path.join(repo, "maps", "default.cub")) as f:
+            lines = [l for l in f if not l.startswith(("ITEM ", "DOORLOCK ", "EXIT ", "CREATURE "))
+                     and "frames=" not in l]
+        with open(f"{d}/maps/still.cub", "w") as f:
+            f.writelines(lines)
+        srv = subprocess.Popen([args.bin, "serve", f"{d}/maps/still.cub", "--listen",
+                                f"127.0.0.1:{port}", "--web", f"127.0.0.1:{web}",
+                                "--web-compress", args.compress, "--host-key", f"{d}/hk",
+                                "--db", "none", "--quiet"],
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        try:
+            for _ in range(100):
+                try:
+                    socket.create_connection(("127.0.0.1", web), timeout=1).close()
+                    break
+                except OSError:
+                    time.sleep(0.1)
+            print(json.dumps(asyncio.run(measure(args, web))))
+        finally:
+            srv.terminate()
+            srv.wait()
+
+
+main()
