@@ -1,10 +1,12 @@
 //! The page in a real browser: Debian's Chromium, headless, driven by Playwright for Python
 //! (`browser/page_check.py`). It joins the world beside an SSH player, who sees its name; the
-//! view is drawn; a held key turns it and its release stops it; a tap moves it; losing focus lets
-//! go of a held key; a larger window
-//! is a larger session; and the painter's pixels equal halfcast's own reading of the same frame
-//! bytes (`termframe`) cell by cell. Prints a skip notice when Chromium or Playwright is absent
-//! (`.ci/run` installs both).
+//! view is drawn; a held key turns it and its release stops it; a tap moves it, and taps of 0 ms
+//! and 20 ms each turn it by one tap's step; losing focus lets go of a held key; Escape never
+//! ends the game; a larger window is a larger session; and the painter's pixels equal
+//! halfcast's own reading of the same frame bytes (`termframe`) cell by cell. A touch phone fits
+//! the page and plays by touch (`browser/phone_check.py`), and an open page plays again by itself
+//! after its server drains and restarts (`browser/restart_check.py`). Prints a skip notice when
+//! Chromium or Playwright is absent (`.ci/run` installs both).
 
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -40,8 +42,18 @@ fn still_world() -> World {
 }
 
 fn script() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/serve/browser/page_check.py")
+    browser_script("page_check.py")
 }
+
+fn browser_script(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/serve/browser")
+        .join(name)
+}
+
+/// One tap's step of turn over SSH (`ui::keys::TAP_TURN_DEG`); the status line shows the angle to
+/// a tenth of a degree.
+const TAP_DEGREES: f64 = 8.0;
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn chromium_plays_on_the_page() {
@@ -138,6 +150,75 @@ fn check_figures(f: &Value) {
         num("blur_lag_ms") <= RELEASE_BOUND_MS,
         "the view still turned {} ms after the window lost focus",
         num("blur_lag_ms")
+    );
+    // A press and its release in one task (0 ms) reach the world together: exactly one tap's
+    // step. A 20 ms hold may be seen by two of the world's ticks on a loaded machine, and then
+    // moves by the ticks that saw it (the tap rule): never less than one tap's step.
+    for ms in [0, 20] {
+        let steps = &f[format!("tap_{ms}ms_degrees")];
+        let moved = &f[format!("tap_{ms}ms_view_moved")];
+        for (step, moved) in steps
+            .as_array()
+            .unwrap()
+            .iter()
+            .zip(moved.as_array().unwrap())
+        {
+            let step = step
+                .as_f64()
+                .unwrap_or_else(|| panic!("no angle on the status line: {f}"))
+                .abs();
+            assert!(
+                step >= TAP_DEGREES - 0.15,
+                "a {ms} ms tap of d turned {step}°, less than one tap's {TAP_DEGREES}°: {f}"
+            );
+            if ms == 0 {
+                assert!(
+                    step <= TAP_DEGREES + 0.15,
+                    "a 0 ms tap of d turned {step}°, not one tap's {TAP_DEGREES}°: {f}"
+                );
+            }
+            assert_eq!(
+                moved,
+                &Value::Bool(true),
+                "a {ms} ms tap left the view: {f}"
+            );
+        }
+    }
+    let help = |down| serde_json::json!(["?", down]);
+    assert_eq!(
+        f["escape_sent"],
+        Value::Array(vec![help(true), help(false), help(true), help(false)]),
+        "Escape is never sent; with the help shown it closes it (the help key again)"
+    );
+    assert_eq!(
+        f["escape_playing"],
+        Value::Bool(true),
+        "Escape ended the game: {f}"
+    );
+    assert_eq!(f["escape_form_hidden"], Value::Bool(true), "{f}");
+    assert_eq!(f["escape_then_turned"], Value::Bool(true), "{f}");
+    assert_eq!(
+        f["inflate_order"],
+        serde_json::json!(["one", "two", "probe 1", "three…10000", "four"]),
+        "frames inflated and handed on in the order they came, text messages in between"
+    );
+    assert_eq!(f["quit_said"], "you left the game", "{f}");
+    assert_eq!(f["spectate_button"], "Watch", "{f}");
+    assert_eq!(f["spectate_name_shown"], Value::Bool(false), "{f}");
+    assert_eq!(f["keys_help_shown"], Value::Bool(true), "{f}");
+    assert_eq!(f["fullscreen_button"], Value::Bool(true), "{f}");
+    assert_eq!(f["enter_watches"], Value::Bool(true), "{f}");
+    let world = f["info"]["world"]
+        .as_str()
+        .expect("/info.json names the world");
+    let players = f["info"]["players"]
+        .as_u64()
+        .expect("and counts the players");
+    assert!(players >= 1, "chromey plays: {f}");
+    let title = f["title"].as_str().unwrap_or("");
+    assert!(
+        title.starts_with(&format!("{world} · ")) && title.contains(" playing"),
+        "the title names the world and the player count: {title:?}"
     );
     assert_eq!(f["small"], serde_json::json!([80, 24]));
     assert_eq!(
@@ -266,4 +347,213 @@ fn painter_against_termframe(out: &Path, name: &str) -> (usize, usize) {
         }
     }
     (compared, wrong)
+}
+
+/// Runs `browser/NAME URL OUTDIR` to its end: its last line's JSON.
+async fn run_check(name: &str, url: String, out: &Path) -> Value {
+    let child = std::process::Command::new("python3")
+        .arg(browser_script(name))
+        .arg(url)
+        .arg(out)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("python3 runs");
+    let done = tokio::task::spawn_blocking(move || child.wait_with_output())
+        .await
+        .expect("joined")
+        .expect("its output");
+    let stdout = String::from_utf8_lossy(&done.stdout);
+    assert!(
+        done.status.success(),
+        "{name} failed:\n{stdout}\n{}",
+        String::from_utf8_lossy(&done.stderr)
+    );
+    serde_json::from_str(stdout.lines().last().unwrap_or("")).expect("JSON")
+}
+
+/// Whether the box `[left, top, right, bottom]` lies within a `w` × `h` screen.
+fn inside(b: &Value, (w, h): (i64, i64)) -> bool {
+    let n: Vec<i64> = serde_json::from_value(b.clone()).unwrap();
+    n[0] >= 0 && n[1] >= 0 && n[2] <= w && n[3] <= h && n[0] < n[2] && n[1] < n[3]
+}
+
+/// A layout from phone_check.py fits its screen: nothing wider than it, the grid (and, while
+/// playing, the touch controls) wholly on it.
+fn fits(f: &Value, what: &str, playing: bool) {
+    let l = &f[what];
+    let inner: (i64, i64) = serde_json::from_value(l["inner"].clone()).unwrap();
+    let scroll: (i64, i64) = serde_json::from_value(l["scroll"].clone()).unwrap();
+    assert!(
+        scroll.0 <= inner.0,
+        "{what}: the page is wider than the screen: {l}"
+    );
+    assert!(
+        scroll.1 <= inner.1,
+        "{what}: the page is taller than the screen: {l}"
+    );
+    assert!(
+        inside(&l["grid_box"], inner),
+        "{what}: the grid is not all on screen: {l}"
+    );
+    if playing {
+        assert_eq!(l["form_shown"], Value::Bool(false), "{l}");
+        assert!(
+            inside(&l["pad_box"], inner),
+            "{what}: the stick is off screen: {l}"
+        );
+        assert!(
+            inside(&l["buttons_box"], inner),
+            "{what}: buttons off screen: {l}"
+        );
+    } else {
+        assert!(
+            inside(&l["form_box"], inner),
+            "{what}: the form is cut: {l}"
+        );
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_touch_phone_fits_the_screen_and_plays_by_touch() {
+    if !browser_ready() {
+        eprintln!("skip: no {CHROMIUM} or no Python playwright (apt-get install chromium; pip install playwright)");
+        return;
+    }
+    let (srv, dir) = server_with(
+        |c| c.web = Some(WebOptions::new("127.0.0.1:0".parse().unwrap())),
+        still_world(),
+    )
+    .await;
+    let web = srv.web_addr().expect("web listener");
+    let out = dir.path().join("phone");
+    std::fs::create_dir_all(&out).unwrap();
+    let f = run_check("phone_check.py", format!("http://{web}/"), &out).await;
+    println!("phone figures: {f}");
+    assert_eq!(f["page_errors"], Value::Array(vec![]), "{f}");
+    assert_eq!(f["touch_help_shown"], Value::Bool(true), "{f}");
+    fits(&f, "landing", false);
+    fits(&f, "portrait", true);
+    fits(&f, "landscape", true);
+    let keys = |k: &str| -> Vec<(String, bool)> { serde_json::from_value(f[k].clone()).unwrap() };
+    let walk = keys("walk_keys");
+    assert!(
+        walk.first() == Some(&("w".into(), true)) && walk.contains(&("w".into(), false)),
+        "the stick pushed up did not walk forward: {walk:?}"
+    );
+    assert_eq!(
+        f["walk_moved"],
+        Value::Bool(true),
+        "walking by touch left the view: {f}"
+    );
+    let turn = keys("turn_keys");
+    let taps = turn
+        .iter()
+        .filter(|k| **k == ("d".to_owned(), true))
+        .count();
+    assert!(
+        taps >= 3,
+        "a 90 px drag right made {taps} taps of d: {turn:?}"
+    );
+    assert_eq!(turn.len(), 2 * taps, "every tap let go: {turn:?}");
+    assert_eq!(
+        f["turn_moved"],
+        Value::Bool(true),
+        "a drag left the view: {f}"
+    );
+    assert_eq!(f["other_messages"], Value::Array(vec![]), "{f}");
+    let landscape: (u64, u64) = serde_json::from_value(f["landscape"]["grid"].clone()).unwrap();
+    let portrait: (u64, u64) = serde_json::from_value(f["portrait"]["grid"].clone()).unwrap();
+    assert!(landscape.0 > portrait.0 && landscape.1 < portrait.1, "{f}");
+    let sent: Vec<(u64, u64)> = serde_json::from_value(f["sizes_sent"].clone()).unwrap();
+    assert_eq!(
+        sent.last(),
+        Some(&landscape),
+        "the turned phone's grid was not sent"
+    );
+    srv.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_restarted_server_gets_the_open_page_playing_again_by_itself() {
+    use std::io::BufRead;
+    if !browser_ready() {
+        eprintln!("skip: no {CHROMIUM} or no Python playwright (apt-get install chromium; pip install playwright)");
+        return;
+    }
+    let web_on = |addr: std::net::SocketAddr| {
+        move |c: &mut halfcast::serve::ServeConfig| {
+            c.web = Some(WebOptions::new(addr));
+        }
+    };
+    let (srv, dir) = server_with(web_on("127.0.0.1:0".parse().unwrap()), still_world()).await;
+    let web = srv.web_addr().expect("web listener");
+    let out = dir.path().join("restart");
+    std::fs::create_dir_all(&out).unwrap();
+    let mut child = std::process::Command::new("python3")
+        .arg(browser_script("restart_check.py"))
+        .arg(format!("http://{web}/"))
+        .arg(&out)
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("python3 runs");
+    let mut lines = std::io::BufReader::new(child.stdout.take().unwrap()).lines();
+    let (first, mut lines) = tokio::task::spawn_blocking(move || (lines.next(), lines))
+        .await
+        .unwrap();
+    let first = first.and_then(Result::ok);
+    assert_eq!(first.as_deref(), Some("playing"), "the page never played");
+    // systemd's restart: drain, stop, start again on the same port.
+    srv.drain(Duration::from_secs(1)).await;
+    srv.shutdown_restarting().await;
+    let (again, _dir2) = server_with(web_on(web), still_world()).await;
+    // The page waits the restart's spread wait (2-15 s) and plays again, then reports.
+    let last = tokio::task::spawn_blocking(move || lines.next().and_then(Result::ok))
+        .await
+        .unwrap();
+    let mut ssh = Client::connect(again.local_addr(), "sshy", 100, 20, "xterm-256color").await;
+    let seen = ssh.until(|s| header_has(s, "chromey")).await;
+    let header = row_text(ssh.screen.screen(), 0);
+    drop(ssh);
+    drop(child.stdin.take());
+    let done = tokio::task::spawn_blocking(move || child.wait_with_output())
+        .await
+        .unwrap()
+        .expect("its output");
+    assert!(
+        done.status.success(),
+        "restart_check.py failed:\n{}",
+        String::from_utf8_lossy(&done.stderr)
+    );
+    let f: Value = serde_json::from_str(&last.unwrap_or_default()).expect("JSON");
+    println!("restart figures: {f}");
+    assert_eq!(f["page_errors"], Value::Array(vec![]), "{f}");
+    assert_eq!(
+        f["form_instead"],
+        Value::Null,
+        "the page went back to its form instead of reconnecting (contract 2: a restart closes \
+         with 1012 and `reconnect to continue in N s`): {f}"
+    );
+    assert!(
+        seen,
+        "the restarted world never saw chromey again: {header:?}"
+    );
+    let notice = f["notices"][0].as_str().unwrap_or("");
+    assert!(
+        notice.contains("reconnecting as chromey"),
+        "the page did not say it reconnects: {f}"
+    );
+    let sockets = f["sockets"].as_array().unwrap();
+    assert!(sockets.len() >= 2, "{f}");
+    assert!(
+        sockets
+            .iter()
+            .all(|u| u.as_str().unwrap().contains("name=chromey")),
+        "every connection under the same name: {f}"
+    );
+    assert_eq!(f["form_shown"], Value::Bool(false), "{f}");
+    assert_eq!(f["notice_after"], Value::Null, "{f}");
+    again.shutdown().await;
 }

@@ -52,11 +52,15 @@ fn view_colours(s: &vt100::Screen) -> Vec<String> {
 async fn the_page_its_script_and_health_are_served() {
     let (srv, _dir, addr) = web_server(|_| {}).await;
     let port = addr.port();
-    let (page, script, health, missing) = tokio::task::spawn_blocking(move || {
+    let (page, (tables, link, info), health, missing) = tokio::task::spawn_blocking(move || {
         use crate::serve_support::http::get;
         (
             get(port, "/"),
-            get(port, "/halfcast.js"),
+            (
+                get(port, "/js/tables.js"),
+                get(port, "/js/link.js"),
+                get(port, "/info.json"),
+            ),
             get(port, "/healthz"),
             get(port, "/nothing"),
         )
@@ -69,9 +73,19 @@ async fn the_page_its_script_and_health_are_served() {
         !page.1.contains("http://") && !page.1.contains("https://"),
         "no CDN"
     );
-    assert_eq!(script.0, 200);
-    assert!(script.1.starts_with("const PALETTE = [[0,0,0],"));
-    assert!(script.1.contains("new WebSocket("));
+    // The page's script is ES modules (contract 5): the tables, the connection.
+    assert!(page.1.contains("src=\"js/main.js\""), "{}", page.1);
+    assert_eq!(tables.0, 200);
+    assert!(tables.1.starts_with("export const PALETTE = [[0,0,0],"));
+    assert_eq!(link.0, 200);
+    assert!(link.1.contains("new WebSocket("));
+    let info: serde_json::Value = serde_json::from_str(&info.1).expect("/info.json is JSON");
+    assert_eq!(info["players"], 0, "{info}");
+    assert_eq!(info["mode"], "coop", "{info}");
+    assert!(
+        info["world"].as_str().is_some_and(|w| !w.is_empty()),
+        "{info}"
+    );
     assert_eq!(health, (200, "accepting\n".to_owned()));
     assert_eq!(missing.0, 404);
     srv.shutdown().await;

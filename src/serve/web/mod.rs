@@ -2,7 +2,7 @@
 //! `/ws` from the same process and world as the SSH listener. A thin adapter over
 //! [`crate::play`], as [`crate::serve::ssh`] is: [`listener`] takes connections in within the
 //! server's limits (sharing [`edge`] with the rest of the server), [`request`] reads an HTTP request's head, [`routes`] answers it (the page,
-//! `/healthz`, the upgrade), [`origin`] refuses other sites' pages, [`forwarded`] reads a trusted
+//! `/healthz`, the upgrade), [`origin`] refuses other sites' pages, [`info`] answers `/info.json`, [`forwarded`] reads a trusted
 //! proxy's client address, [`messages`] reads what the page sends, [`acked`] turns the page's
 //! acknowledgements into link figures, [`sink`] is the session's frame sink (compressed by
 //! [`deflate`] while the link needs it), [`session`] runs it, [`page`] holds the page's own
@@ -13,6 +13,7 @@ pub(crate) mod acked;
 pub(crate) mod deflate;
 pub(crate) mod edge;
 pub(crate) mod forwarded;
+pub(crate) mod info;
 pub(crate) mod listener;
 pub(crate) mod messages;
 pub(crate) mod options;

@@ -1,8 +1,8 @@
-//! The answer to one request: the page and its two assets, the ray debugger's page (`/ray`)
-//! and its trace routes (`/trace.json`, `.svg`, `.png`: [`super::trace_route`]), `/healthz`
-//! (the same answer as the metrics listener's, so a balancer in front of the browser port checks
-//! the world it sends players to), and the WebSocket upgrade at `/ws`, checked for its `Origin`,
-//! then admitted within the server's limits and played.
+//! The answer to one request: the page and its assets (its modules under `/js/`), `/info.json`,
+//! the ray debugger's page (`/ray`) and its trace routes (`/trace.json`, `.svg`, `.png`:
+//! [`super::trace_route`]), `/healthz` (the same answer as the metrics listener's, so a balancer
+//! in front of the browser port checks the world it sends players to), and the WebSocket upgrade
+//! at `/ws`, checked for its `Origin`, then admitted within the server's limits and played.
 
 use std::net::SocketAddr;
 use std::sync::Arc;
@@ -43,12 +43,18 @@ pub async fn answer(socket: TcpStream, req: Request, peer: SocketAddr, edge: Arc
         return reply(socket, 405, "text/plain", b"only GET\n").await;
     }
     let text = "text/plain";
-    let health;
-    let traced;
+    let (health, info, traced);
     let (status, kind, body): (u16, &str, &[u8]) = match req.path.as_str() {
         "/" => (200, "text/html; charset=utf-8", page::HTML.as_bytes()),
         "/halfcast.css" => (200, "text/css", page::CSS.as_bytes()),
-        "/halfcast.js" => (200, "text/javascript", page::script().as_bytes()),
+        "/info.json" => {
+            info = super::info::json(&edge.shared);
+            (200, "application/json", info.as_bytes())
+        }
+        js if js.starts_with("/js/") => match page::module(&js[4..]) {
+            Some(m) => (200, "text/javascript", m.as_bytes()),
+            None => (404, text, b"not found\n"),
+        },
         // Browsers ask for an icon; there is none, and no error need show for it.
         "/favicon.ico" => (204, text, b""),
         "/healthz" => {
@@ -58,14 +64,9 @@ pub async fn answer(socket: TcpStream, req: Request, peer: SocketAddr, edge: Arc
             (h.status(), text, health.as_bytes())
         }
         "/ws" => return upgrade(socket, req, peer, edge).await,
-        // The ray debugger: its page, its modules, and the trace's data and figure.
+        // The ray debugger: its page and the trace's data and figure (its modules are under /js/).
         "/ray" => (200, "text/html; charset=utf-8", page::RAY_HTML.as_bytes()),
         "/ray.css" => (200, "text/css", page::RAY_CSS.as_bytes()),
-        "/js/ray.js" | "/js/ray_figure.js" | "/js/ray_text.js" => (
-            200,
-            "text/javascript",
-            page::ray_module(&req.path).as_bytes(),
-        ),
         "/trace.json" | "/trace.svg" | "/trace.png" => {
             traced = super::trace_route::answer(&req.path, &req.query, &edge).await;
             (traced.status, traced.kind, traced.body.as_slice())

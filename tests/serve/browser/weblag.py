@@ -7,8 +7,9 @@ token bucket (the recipe of ../shared/tools/linklag.py: lo at MTU 1500, `tc qdis
 
 - hold: `d` (turn right) pressed for HOLD s, then released; how long frames that change the view
   keep arriving after the release. The map is the default one with nothing that moves by itself,
-  so every frame of more than FLOOR bytes after the release is a view still turning (a frame of
-  the status line's figures alone is under 100 bytes).
+  so every frame that draws on the view's rows after the release is a view still turning; a
+  frame that writes only the header or the status line (its figures change twice a second, and
+  at 160×48 such a frame is well over a few hundred bytes) is not a view frame.
 - taps: `d` pressed and released 80 ms later, from idle; the same figure.
 
 Whole repaints (a colour level step redraws the same view at the new level) are counted apart
@@ -19,9 +20,47 @@ Re-executes itself under `unshare -rn` when not already in a fresh namespace.
   python3 weblag.py BIN [--rate 1mbit|none] [--hold 3] [--cols 80 --rows 24] [--runs 3]
 Prints one JSON line.
 """
-import argparse, asyncio, json, os, socket, subprocess, sys, tempfile, time
+import argparse, asyncio, json, os, re, socket, subprocess, sys, tempfile, time, zlib
 
-FLOOR = 200
+CSI = re.compile(rb"\x1b\[([0-9;?<>=]*)([@-~])")
+
+
+def frame_bytes(msg):
+    """A binary message's frame: raw DEFLATE after a 0x00 byte, else the bytes themselves."""
+    return zlib.decompressobj(-15).decompress(msg[1:]) if msg[:1] == b"\x00" else msg
+
+
+def draws_view(frame, rows):
+    """Whether the frame writes anything on the rows between the header (row 1) and the status
+    line (the last row), following the encoder's cursor moves (CUP, CUU/CUD, CR LF)."""
+    row, at = 1, 0
+
+    def wrote(text):
+        return any(b >= 0x20 and b != 0x7f for b in text.replace(b"\n", b"").replace(b"\r", b""))
+
+    def text_rows(text, row):
+        """The row after `text` (None when it writes on the view's rows)."""
+        for k, part in enumerate(text.split(b"\n")):
+            if k > 0:
+                row = min(row + 1, rows)
+            if 1 < row < rows and wrote(part):
+                return None
+        return row
+
+    for m in CSI.finditer(frame):
+        row = text_rows(frame[at:m.start()], row)
+        if row is None:
+            return True
+        at = m.end()
+        p, final = m.group(1), m.group(2)
+        n = [int(x) if x.isdigit() else 0 for x in p.split(b";")] if p and p[:1].isdigit() else [0]
+        if final in (b"H", b"f"):
+            row = max(n[0], 1)
+        elif final == b"A":
+            row = max(row - max(n[0], 1), 1)
+        elif final == b"B":
+            row = min(row + max(n[0], 1), rows)
+    return text_rows(frame[at:], row) is None
 
 
 def shaped(args):
@@ -36,9 +75,12 @@ def free_port():
 
 
 class Player:
-    def __init__(self, ws):
+    def __init__(self, ws, rows):
         self.ws = ws
-        self.log = []  # (monotonic arrival, bytes)
+        self.rows = rows
+        self.log = []  # (monotonic arrival, bytes on the wire)
+        # Whether each frame draws on the view's rows (not only the header or status line).
+        self.view = []
         # Whether each frame is a whole repaint (a colour level step's): the same view redrawn,
         # counted apart from the view still turning.
         self.repaint = []
@@ -51,23 +93,25 @@ class Player:
             if isinstance(msg, bytes):
                 self.n += 1
                 self.log.append((time.monotonic(), len(msg)))
-                self.repaint.append(b"\x1b[2J" in msg)
+                frame = frame_bytes(msg)
+                self.view.append(draws_view(frame, self.rows))
+                self.repaint.append(b"\x1b[2J" in frame)
                 if self.keep:
-                    self.raw.append(msg)
+                    self.raw.append(frame)
                 await self.ws.send(json.dumps({"ack": self.n}))
 
     async def key(self, down):
         await self.ws.send(json.dumps({"key": "d", "down": down}))
 
     def last_big_after(self, t):
-        big = [u for (u, n), r in zip(self.log, self.repaint) if u >= t and n > FLOOR and not r]
+        big = [u for (u, _), v, r in zip(self.log, self.view, self.repaint) if u >= t and v and not r]
         return (max(big) - t) if big else 0.0
 
     def repaints_after(self, t):
         return len([u for u, r in zip(self.log, self.repaint) if u[0] >= t and r])
 
     def fps_between(self, a, b):
-        return len([u for (u, n) in self.log if a <= u <= b and n > FLOOR]) / (b - a)
+        return len([u for (u, _), v in zip(self.log, self.view) if a <= u <= b and v]) / (b - a)
 
     def bytes_between(self, a, b):
         return sum(n for (u, n) in self.log if a <= u <= b)
@@ -78,7 +122,7 @@ async def quiet(player, s=1.0, limit=30):
     end = time.monotonic() + limit
     while time.monotonic() < end:
         await asyncio.sleep(0.1)
-        big = [u for (u, n) in player.log if n > FLOOR]
+        big = [u for (u, _), v in zip(player.log, player.view) if v]
         if not big or time.monotonic() - big[-1] > s:
             return
 
@@ -87,7 +131,7 @@ async def measure(args, port):
     import websockets
     url = f"ws://127.0.0.1:{port}/ws?name=lag&cols={args.cols}&rows={args.rows}"
     async with websockets.connect(url, max_size=None) as ws:
-        p = Player(ws)
+        p = Player(ws, args.rows)
         p.keep = args.verbose
         reader = asyncio.create_task(p.read())
         await asyncio.sleep(2)
@@ -114,7 +158,7 @@ async def measure(args, port):
             taps.append(p.last_big_after(up) * 1000)
             if args.verbose:
                 for (u, n), m in zip(p.log, p.raw or [b""] * len(p.log)):
-                    if u > up + 0.1 and n > FLOOR:
+                    if u > up + 0.1 and draws_view(m, args.rows):
                         print("late", round((u - up) * 1000), m[:120], m[-200:], file=sys.stderr)
                 print("tap", [(round((u - up) * 1000), n) for (u, n) in p.log if u >= up - 0.2], file=sys.stderr)
         reader.cancel()
