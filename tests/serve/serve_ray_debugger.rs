@@ -606,3 +606,111 @@ fn check_walk(ctx: &str, page: &Value, steps: usize) {
         "{ctx}"
     );
 }
+
+/// `key=value` of an address, by key.
+fn address_value<'a>(address: &'a str, key: &str) -> &'a str {
+    address
+        .split('&')
+        .find_map(|kv| kv.strip_prefix(key)?.strip_prefix('='))
+        .unwrap_or_else(|| panic!("{key} in {address}"))
+}
+
+/// A player clicks a column of the live view: the page's address then carries the ray as
+/// `halfcast trace` takes it, trace with those values finds the hit cell and perpendicular
+/// distance the page shows, stepping walks the derivation, and the address opened in a fresh
+/// browser shows the same ray without playing.
+#[test]
+fn a_click_on_the_view_debugs_that_column_and_its_address_reproduces_it() {
+    if !browser_ready() {
+        eprintln!("skip: no {CHROMIUM} or no Python playwright (apt-get install chromium; pip install playwright)");
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let web = free_port();
+    let web_addr = format!("127.0.0.1:{web}");
+    let (_server, _port, _rx) = spawn_server(dir.path(), &["--web", &web_addr]);
+    for _ in 0..200 {
+        if std::net::TcpStream::connect(("127.0.0.1", web)).is_ok() {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    let column = 1 + seed() % 30;
+    let out = Command::new("python3")
+        .arg(repo("tests/serve/browser/click_check.py"))
+        .arg(format!("http://127.0.0.1:{web}"))
+        .arg(column.to_string())
+        .arg(dir.path())
+        .output()
+        .expect("python3 runs");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "click_check.py failed:\n{stdout}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let got: Value = serde_json::from_str(stdout.lines().last().unwrap()).unwrap();
+    println!("clicked column {column}: /?{}", got["address"]);
+    let address = got["address"].as_str().unwrap();
+    assert_eq!(address_value(address, "column"), column.to_string());
+    let decoded = |v: &str| v.replace("%2C", ",");
+    let svg = dir.path().join("clicked.svg");
+    let trace = Command::new(env!("CARGO_BIN_EXE_halfcast"))
+        .args(["trace", "--pos", &decoded(address_value(address, "pos"))])
+        .args(["--angle", address_value(address, "angle")])
+        .args(["--column", address_value(address, "column")])
+        .args(["--size", address_value(address, "size")])
+        // The address names the field of view only when it is not the default, as trace's does.
+        .args(
+            address
+                .split('&')
+                .find_map(|kv| kv.strip_prefix("fov="))
+                .map(|f| ["--fov", f])
+                .into_iter()
+                .flatten(),
+        )
+        .arg("-o")
+        .arg(&svg)
+        .output()
+        .expect("trace runs");
+    assert!(trace.status.success(), "{trace:?}");
+    let svg = std::fs::read_to_string(&svg).unwrap();
+    let perp: f64 = attr(
+        svg.lines().find(|l| l.contains("data-perp=")).unwrap(),
+        "data-perp",
+    )
+    .unwrap()
+    .parse()
+    .unwrap();
+    let hit = svg
+        .split("hit (")
+        .nth(1)
+        .and_then(|s| s.split(')').next())
+        .expect("trace names its hit cell");
+    let text = got["text"].as_str().unwrap();
+    for (what, shown) in [("hit", format!("({hit})")), ("perp", format!("{perp:.2}"))] {
+        assert!(
+            text.contains(&shown),
+            "the page's {what} {shown} is not in:\n{text}"
+        );
+        assert!(
+            got["fresh_text"].as_str().unwrap().contains(&shown),
+            "the fresh page's {what} {shown}"
+        );
+    }
+    assert_eq!(
+        got["fresh_frames"], 0,
+        "the shared ray shows without playing"
+    );
+    let parts: Vec<&str> = got["parts"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p.as_str().unwrap())
+        .collect();
+    assert_eq!(parts[1], "setup", "{parts:?}");
+    assert_eq!(parts[2], parts[4], "forward and back: {parts:?}");
+    assert!(parts[3].starts_with("step 2 of"), "{parts:?}");
+    assert!(parts[5].starts_with("hit ("), "{parts:?}");
+    assert_eq!(got["errors"], serde_json::json!([]));
+}

@@ -32,6 +32,7 @@ const MODULES: &[(&str, &str)] = &[
     ("layout.js", include_str!("page/layout.js")),
     // The ray debugger's panel (issue 53), on the game page and on `/ray`.
     ("ray.js", include_str!("page/ray.js")),
+    ("raywire.js", include_str!("page/raywire.js")),
     ("ray_figure.js", include_str!("page/ray_figure.js")),
     ("ray_text.js", include_str!("page/ray_text.js")),
 ];

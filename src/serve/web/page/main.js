@@ -10,6 +10,7 @@ import { Input } from "./input.js";
 import { Touch } from "./touch.js";
 import { Landing, titled } from "./landing.js";
 import { fit, same, touchScreen } from "./layout.js";
+import { wireRays } from "./raywire.js";
 
 const $ = (id) => document.getElementById(id);
 const touch = touchScreen();
@@ -89,5 +90,15 @@ addEventListener("resize", resized);
 addEventListener("orientationchange", resized);
 window.visualViewport?.addEventListener("resize", resized);
 
+// The ray debugger: a click on the view debugs its column; `/?pos=…` shows a shared ray.
+const rays = wireRays({
+  link,
+  grid: $("pixels"),
+  dock: $("raydock"),
+  touch: controls,
+  cols: () => screen.cols,
+  rows: () => screen.rows,
+});
+
 // For tests, panels and the curious.
-window.halfcast = { screen, game, link, input, touch: controls, send: (msg) => link.send(msg) };
+window.halfcast = { screen, game, link, input, touch: controls, rays, send: (msg) => link.send(msg) };
