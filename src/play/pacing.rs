@@ -399,6 +399,13 @@ impl LinkPacer {
         self.quiet_frames = 0;
     }
 
+    /// Whether `level` is below the level this session started at (where the link's steps stop
+    /// going up).
+    #[must_use]
+    pub fn below_ceiling(&self, level: ColorLevel) -> bool {
+        level != self.ceiling
+    }
+
     /// The figures for the status line, metrics and the log.
     #[must_use]
     pub fn figures(&self) -> LinkFigures {

@@ -299,8 +299,9 @@ impl<S: FrameSink, H: Hooks> Loop<S, H> {
         let n = self.out.len();
         let bytes = std::mem::take(&mut self.out);
         let wire_before = self.sink.written();
-        self.sink
-            .level_held_down(self.p.colour().reason == ColourReason::Link);
+        let colour = self.p.colour();
+        let held = colour.reason == ColourReason::Link && self.pacer.below_ceiling(colour.level);
+        self.sink.level_held_down(held);
         let stall = self.setup.rules.stall_timeout;
         match tokio::time::timeout(stall, self.sink.send(bytes)).await {
             Err(_) => Err(End::Stalled),
