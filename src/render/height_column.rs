@@ -110,7 +110,49 @@ pub struct HeightColumn {
     pub closed: WindowClosed,
 }
 
+/// One vertical face with the window of open rows (top, bottom) before and after it: how the
+/// face narrowed the column, as the ray pane, the trace's data and its side view explain it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FaceWindow {
+    pub face: FaceSpan,
+    pub before: (usize, usize),
+    pub after: (usize, usize),
+}
+
 impl HeightColumn {
+    /// The rows a view of `rows` pixel rows (or the column's bands, if they reach further) has
+    /// open before the first band.
+    #[must_use]
+    pub fn first_window(&self, rows: usize) -> (usize, usize) {
+        let reach = self.bands.iter().map(|b| b.rows().1).max().unwrap_or(0);
+        (0, rows.max(reach))
+    }
+
+    /// Each face front to back with the window it left, the window opening as `window`: a band
+    /// reaching the window's top raises it, any other lowers its bottom.
+    #[must_use]
+    pub fn face_windows(&self, window: (usize, usize)) -> Vec<FaceWindow> {
+        let (mut top, mut bottom) = window;
+        let mut faces = Vec::new();
+        for b in &self.bands {
+            let before = (top, bottom);
+            let (a, z) = b.rows();
+            if a <= top {
+                top = z.max(top);
+            } else {
+                bottom = a.min(bottom);
+            }
+            if let Band::Face(f) = b {
+                faces.push(FaceWindow {
+                    face: *f,
+                    before,
+                    after: (top, bottom),
+                });
+            }
+        }
+        faces
+    }
+
     /// The vertical faces drawn, front to back (the JSON `spans`).
     pub fn faces(&self) -> impl Iterator<Item = &FaceSpan> {
         self.bands.iter().filter_map(|b| match b {

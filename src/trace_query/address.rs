@@ -85,8 +85,9 @@ fn short(v: f64) -> String {
     }
 }
 
-/// `%xx` escapes and `+` decoded; malformed escapes kept as they are.
-fn percent_decoded(s: &str) -> String {
+/// `%xx` escapes and `+` decoded; malformed escapes kept as they are (any address's query).
+#[must_use]
+pub fn percent_decoded(s: &str) -> String {
     let b = s.as_bytes();
     let mut out = Vec::with_capacity(b.len());
     let mut i = 0;

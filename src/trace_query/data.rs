@@ -337,32 +337,23 @@ fn perp(d: &Derivation) -> PerpData {
 /// The window of open rows, narrowed face by face as the column's draw list says: a band
 /// reaching the window's top raises it, any other lowers its bottom.
 fn heights(col: &HeightColumn, rows: usize) -> HeightsData {
-    let (mut top, mut bottom) = (
-        0,
-        rows.max(col.bands.iter().map(|b| b.rows().1).max().unwrap_or(0)),
-    );
-    let mut faces = Vec::new();
-    for b in &col.bands {
-        let before = [top, bottom];
-        let (a, z) = b.rows();
-        if a <= top {
-            top = z.max(top);
-        } else {
-            bottom = a.min(bottom);
-        }
-        if let Band::Face(f) = b {
-            faces.push(FaceData {
+    let faces = col
+        .face_windows(col.first_window(rows))
+        .into_iter()
+        .map(|w| {
+            let f = w.face;
+            FaceData {
                 cell: [f.cell.0, f.cell.1],
                 kind: f.kind.as_str(),
                 side: f.side,
                 perp_dist: f.perp_dist,
                 z: [f.z.0, f.z.1],
                 rows: [f.rows.0, f.rows.1],
-                before,
-                after: [top, bottom],
-            });
-        }
-    }
+                before: [w.before.0, w.before.1],
+                after: [w.after.0, w.after.1],
+            }
+        })
+        .collect();
     let closing_dz = col.bands.iter().rev().find_map(|b| match b {
         Band::Face(f) if f.cell == col.closed.cell => Some(f.z.1 - f.z.0),
         _ => None,

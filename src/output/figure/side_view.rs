@@ -8,7 +8,7 @@ use super::palette::{CAMERA, GRID, TEXT, TEXT_SIZE, WALL, WINDOW, X_SIDE, Y_SIDE
 use crate::map::{Map, Span};
 use crate::render::cast::Side;
 use crate::render::derivation::{num, Derivation};
-use crate::render::height_cast::{Band, FaceSpan, HeightColumn, Projection};
+use crate::render::height_cast::{FaceSpan, HeightColumn, Projection};
 
 /// Height of the side view in pixels (without its caption).
 pub const HEIGHT: f64 = 220.0;
@@ -150,21 +150,12 @@ pub fn draw(
 
 /// The window of rows still open after each face the column drew.
 fn wedges(col: &HeightColumn, proj: &Projection) -> Vec<Wedge> {
-    let mut top = 0usize;
-    let mut bottom = proj.height;
     let mut t_from = 0.0;
     let mut wedges = Vec::new();
-    for b in &col.bands {
-        let (a, z) = b.rows();
-        if a <= top {
-            top = z.max(top);
-        } else {
-            bottom = a.min(bottom);
-        }
-        if let Band::Face(f) = b {
-            wedges.push((t_from, f.perp_dist, top, bottom, *f));
-            t_from = f.perp_dist;
-        }
+    for w in col.face_windows((0, proj.height)) {
+        let f = w.face;
+        wedges.push((t_from, f.perp_dist, w.after.0, w.after.1, f));
+        t_from = f.perp_dist;
     }
     wedges
 }

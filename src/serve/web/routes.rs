@@ -24,6 +24,7 @@ use crate::serve::edge::arrival::Who;
 use crate::serve::edge::name::{display_name, shown_name};
 use crate::serve::edge::Via;
 use crate::serve::ops::metrics::{self, Reason};
+use crate::trace_query::address::percent_decoded;
 
 /// The largest message a page may send (its messages are a few dozen bytes).
 pub const MAX_MESSAGE: usize = 4096;
@@ -215,30 +216,6 @@ impl Query {
         q.size = cols.zip(rows).filter(|&(c, r)| c >= 1 && r >= 1);
         q
     }
-}
-
-/// `%xx` escapes and `+` decoded; malformed escapes kept as they are.
-fn percent_decoded(s: &str) -> String {
-    let b = s.as_bytes();
-    let mut out = Vec::with_capacity(b.len());
-    let mut i = 0;
-    while i < b.len() {
-        let hex = |c: u8| (c as char).to_digit(16);
-        match b[i] {
-            b'%' if i + 2 < b.len() => match (hex(b[i + 1]), hex(b[i + 2])) {
-                (Some(h), Some(l)) => {
-                    out.push((h * 16 + l) as u8);
-                    i += 3;
-                    continue;
-                }
-                _ => out.push(b'%'),
-            },
-            b'+' => out.push(b' '),
-            c => out.push(c),
-        }
-        i += 1;
-    }
-    String::from_utf8_lossy(&out).into_owned()
 }
 
 #[cfg(test)]

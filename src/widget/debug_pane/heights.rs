@@ -1,15 +1,8 @@
 //! What the pane says of a column on a map with heights: each vertical face with the window
 //! of rows open before and after it, and where the window closed.
 
-use crate::render::height_cast::{Band, FaceSpan, HeightColumn};
-
-/// The vertical faces the column drew, each with the open window of rows before and after it.
-#[derive(Debug, Clone, PartialEq)]
-pub(super) struct FaceWindow {
-    pub(super) face: FaceSpan,
-    pub(super) before: (usize, usize),
-    pub(super) after: (usize, usize),
-}
+use crate::render::height_cast::{Band, HeightColumn};
+pub(super) use crate::render::height_column::FaceWindow;
 
 /// The traced column's draw list on an `Hz` map, as the pane prints it.
 #[derive(Debug, Clone, PartialEq)]
@@ -23,27 +16,7 @@ pub(super) struct Heights {
 impl Heights {
     /// The faces of `col` in a view of `rows` pixel rows, each with the window it left.
     pub(super) fn new(col: &HeightColumn, rows: usize) -> Self {
-        let (mut top, mut bottom) = (
-            0,
-            rows.max(col.bands.iter().map(|b| b.rows().1).max().unwrap_or(0)),
-        );
-        let mut faces = Vec::new();
-        for b in &col.bands {
-            let before = (top, bottom);
-            let (a, z) = b.rows();
-            if a <= top {
-                top = z.max(top);
-            } else {
-                bottom = a.min(bottom);
-            }
-            if let Band::Face(f) = b {
-                faces.push(FaceWindow {
-                    face: *f,
-                    before,
-                    after: (top, bottom),
-                });
-            }
-        }
+        let faces = col.face_windows(col.first_window(rows));
         let closing_dz = col.bands.iter().rev().find_map(|b| match b {
             Band::Face(f) if f.cell == col.closed.cell => Some(f.z.1 - f.z.0),
             _ => None,

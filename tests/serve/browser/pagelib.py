@@ -72,3 +72,29 @@ async def settle(page, quiet_ms=500, limit_ms=8000):
             last, same_since = h, 0
         await page.wait_for_timeout(100)
         waited += 100
+
+
+def still_map(d):
+    """Writes `d/maps/still.cub`, the default map with nothing that moves by itself (creatures,
+    animated sprites) and nothing to pick up, beside a link to the textures; returns its path."""
+    import os
+    repo = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
+    os.symlink(os.path.join(repo, "textures"), f"{d}/textures")
+    os.mkdir(f"{d}/maps")
+    with open(os.path.join(repo, "maps", "default.cub")) as f:
+        lines = [l for l in f if not l.startswith(("ITEM ", "DOORLOCK ", "EXIT ", "CREATURE "))
+                 and "frames=" not in l]
+    with open(f"{d}/maps/still.cub", "w") as f:
+        f.writelines(lines)
+    return f"{d}/maps/still.cub"
+
+
+def wait_for_port(port, tries=100):
+    """Waits until something listens on 127.0.0.1:`port`."""
+    import socket, time
+    for _ in range(tries):
+        try:
+            socket.create_connection(("127.0.0.1", port), timeout=1).close()
+            return
+        except OSError:
+            time.sleep(0.1)

@@ -20,6 +20,7 @@ Re-executes itself under `unshare -rn` when not already in a fresh namespace.
   python3 weblag.py BIN [--rate 1mbit|none] [--hold 3] [--cols 80 --rows 24] [--runs 3]
 Prints one JSON line.
 """
+from pagelib import still_map, wait_for_port
 import argparse, asyncio, json, os, re, socket, subprocess, sys, tempfile, time, zlib
 
 CSI = re.compile(rb"\x1b\[([0-9;?<>=]*)([@-~])")
@@ -185,26 +186,12 @@ def main():
     shaped(args)
     port, web = free_port(), free_port()
     with tempfile.TemporaryDirectory() as d:
-        # The default map with nothing that moves by itself (creatures, animated sprites) and
-        # nothing to pick up: only the player's keys change the view.
-        repo = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
-        os.symlink(os.path.join(repo, "textures"), f"{d}/textures")
-        os.mkdir(f"{d}/maps")
-        with open(os.path.join(repo, "maps", "default.cub")) as f:
-            lines = [l for l in f if not l.startswith(("ITEM ", "DOORLOCK ", "EXIT ", "CREATURE "))
-                     and "frames=" not in l]
-        with open(f"{d}/maps/still.cub", "w") as f:
-            f.writelines(lines)
-        srv = subprocess.Popen([args.bin, "serve", f"{d}/maps/still.cub", "--listen", f"127.0.0.1:{port}", "--web",
+        still = still_map(d)
+        srv = subprocess.Popen([args.bin, "serve", still, "--listen", f"127.0.0.1:{port}", "--web",
                                 f"127.0.0.1:{web}", "--host-key", f"{d}/hk", "--db", "none",
                                 "--quiet"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         try:
-            for _ in range(100):
-                try:
-                    socket.create_connection(("127.0.0.1", web), timeout=1).close()
-                    break
-                except OSError:
-                    time.sleep(0.1)
+            wait_for_port(web)
             print(json.dumps(asyncio.run(measure(args, web))))
         finally:
             srv.terminate()

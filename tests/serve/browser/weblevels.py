@@ -19,6 +19,7 @@ differs after it, read through a terminal model (pyte): status-line-only frames 
 Prints one JSON line. Needs root (it re-runs itself under `unshare -rn`), `tc`, and
 `pip install websockets pyte`.
 """
+from pagelib import still_map, wait_for_port
 import argparse, asyncio, json, os, re, socket, subprocess, sys, tempfile, time, zlib
 
 import pyte
@@ -60,11 +61,14 @@ class Page:
                     self.view = (note["view"]["y"], note["view"]["rows"])
                 continue
             frame = zlib.decompress(msg[1:], -15) if msg[:1] == b"\x00" else msg
+            arrived = time.monotonic()
+            # Acknowledged before the terminal model reads it: a browser paints a frame in a few
+            # milliseconds, the model in Python takes far longer, and that is not the link's.
+            self.n += 1
+            await self.ws.send(json.dumps({"ack": self.n}))
             before = self.view_rows()
             self.stream.feed(frame)
-            self.n += 1
-            self.log.append((time.monotonic(), len(msg), len(frame), self.view_rows() != before))
-            await self.ws.send(json.dumps({"ack": self.n}))
+            self.log.append((arrived, len(msg), len(frame), self.view_rows() != before))
 
     async def key(self, down):
         await self.ws.send(json.dumps({"key": "d", "down": down}))
@@ -148,27 +152,14 @@ def main():
     shaped(args.rate, args.queue_ms)
     port, web = free_port(), free_port()
     with tempfile.TemporaryDirectory() as d:
-        # The default map with nothing that moves by itself: only the player's keys change the view.
-        repo = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
-        os.symlink(os.path.join(repo, "textures"), f"{d}/textures")
-        os.mkdir(f"{d}/maps")
-        with open(os.path.join(repo, "maps", "default.cub")) as f:
-            lines = [l for l in f if not l.startswith(("ITEM ", "DOORLOCK ", "EXIT ", "CREATURE "))
-                     and "frames=" not in l]
-        with open(f"{d}/maps/still.cub", "w") as f:
-            f.writelines(lines)
-        srv = subprocess.Popen([args.bin, "serve", f"{d}/maps/still.cub", "--listen",
+        still = still_map(d)
+        srv = subprocess.Popen([args.bin, "serve", still, "--listen",
                                 f"127.0.0.1:{port}", "--web", f"127.0.0.1:{web}",
                                 "--web-compress", args.compress, "--host-key", f"{d}/hk",
                                 "--db", "none", "--quiet"],
                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         try:
-            for _ in range(100):
-                try:
-                    socket.create_connection(("127.0.0.1", web), timeout=1).close()
-                    break
-                except OSError:
-                    time.sleep(0.1)
+            wait_for_port(web)
             print(json.dumps(asyncio.run(measure(args, web))))
         finally:
             srv.terminate()
