@@ -269,7 +269,7 @@ impl Players {
 
     /// [`Players::input`] from a client whose key releases are known (a browser, a kitty-protocol
     /// terminal): a key pressed and let go before a tick saw it enough still moves one tap
-    /// ([`super::taps`]).
+    /// (`taps`).
     pub fn input_with_releases(&mut self, id: PlayerId, input: Input, view_width: usize) {
         if let Some(p) = self.players.get_mut(&id) {
             let mut nudges = Vec::new();

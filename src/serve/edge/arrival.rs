@@ -1,5 +1,5 @@
 //! A player let in: logged in, counted live, and in the world, until its place is given back.
-//! Everything counted here is undone by dropping the [`Arrival`] (or the [`Live`] it holds), so a
+//! Everything counted here is undone by dropping the [`Arrival`] (or the `Live` it holds), so a
 //! session that ends in any way, a panic included, leaves no place, gauge or count behind.
 
 use std::net::SocketAddr;

@@ -23,7 +23,7 @@ use crate::ui::keys::InputMode;
 use crate::ui::octant_support::OctantDropper;
 
 /// What a transport learnt of its client before play (the rest of a session's start is the
-/// server's: [`Shared::rules`]).
+/// server's: `Shared::rules`).
 pub struct Facts {
     /// The colour level to start at (the transport's guess or its client's answer).
     pub colour: ColourChoice,
