@@ -3,8 +3,9 @@
 //! colours), at a cost of a few hundred microseconds of one core a frame. So they are compressed
 //! while the link holds frames back (the page's acknowledgements gate the next frame, and the
 //! gate stays shut for much of a second), and sent as they are once the link has room: a probe
-//! sends raw frames after a calm spell and goes back at the first sign of holding, each failed
-//! probe waiting twice as long. While the link holds the colour level below the top, frames stay
+//! sends raw frames after a calm spell, when the best delivery rate the acknowledgements showed
+//! lately carries them at the full frame rate, and goes back at the first sign of holding, each
+//! failed probe waiting twice as long. While the link holds the colour level below the top, frames stay
 //! compressed (raw frames would only hold it lower, and compressed ones let it climb back). A
 //! new page starts compressed, as nothing is known of its link.
 //!
@@ -29,6 +30,8 @@ const CALM_FOR: Duration = Duration::from_secs(2);
 const CALM_HELD: Duration = Duration::from_millis(50);
 /// The longest wait between two probes of raw frames.
 const MAX_BACKOFF: Duration = Duration::from_secs(60);
+/// How long the best delivery rate the acknowledgements showed is trusted.
+const RATE_MEMORY: Duration = Duration::from_secs(3);
 
 /// Whether frames go compressed, from how long the link held them.
 #[derive(Debug, Clone)]
@@ -50,6 +53,13 @@ pub struct Policy {
     raw_since: Option<Instant>,
     /// Whether the link holds the colour level down (then no raw frames).
     level_held: bool,
+    /// Mean bytes of a frame before compression.
+    raw_mean: f64,
+    /// The best delivery rate the page's acknowledgements showed lately (bytes a second), and
+    /// when: a raw frame stream that needs more is not tried.
+    rate_peak: (f64, Instant),
+    /// The time between frames at the session's frame rate.
+    period: Duration,
 }
 
 impl Policy {
@@ -71,7 +81,30 @@ impl Policy {
             backoff: CALM_FOR,
             raw_since: None,
             level_held: false,
+            raw_mean: 0.0,
+            rate_peak: (0.0, now),
+            period: Duration::from_millis(33),
         }
+    }
+
+    /// A frame of `raw` bytes (before compression) is about to go, frames going `period` apart;
+    /// the page's acknowledgements lately showed `rate` bytes a second.
+    pub fn frame(&mut self, raw: usize, (rate, period): (f64, Duration), now: Instant) {
+        self.raw_mean = if self.raw_mean == 0.0 {
+            raw as f64
+        } else {
+            0.75 * self.raw_mean + 0.25 * raw as f64
+        };
+        if rate >= self.rate_peak.0 || now.saturating_duration_since(self.rate_peak.1) > RATE_MEMORY
+        {
+            self.rate_peak = (rate, now);
+        }
+        self.period = period;
+    }
+
+    /// Whether raw frames at the full frame rate need no more than the link has shown it carries.
+    fn raw_would_fit(&self) -> bool {
+        self.raw_mean / self.period.as_secs_f64().max(1e-3) <= self.rate_peak.0
     }
 
     /// Whether the link holds the colour level down now: raw frames caused it if they were on,
@@ -127,7 +160,7 @@ impl Policy {
                 return true;
             }
             let calm = *self.calm_since.get_or_insert(now);
-            if now.saturating_duration_since(calm) >= self.backoff {
+            if now.saturating_duration_since(calm) >= self.backoff && self.raw_would_fit() {
                 self.compressing = false;
                 self.raw_since = Some(now);
                 self.window = (now, Duration::ZERO);
@@ -185,6 +218,11 @@ mod tests {
         t0 + Duration::from_millis(n)
     }
 
+    /// 30 kB frames on a link that has shown `mbps` megabytes a second.
+    fn on_link(p: &mut Policy, mbps: f64, at: Instant) {
+        p.frame(30_000, (mbps * 1e6, Duration::from_millis(33)), at);
+    }
+
     #[test]
     fn a_compressed_frame_inflates_to_the_frame() {
         let frame = b"\x1b[38;2;10;20;30m\xe2\x96\x80".repeat(500);
@@ -211,6 +249,7 @@ mod tests {
         // Two calm seconds of frames (the gate always open): raw from then on.
         let mut t = 0;
         while p.compress(ms(t0, t)) {
+            on_link(&mut p, 10.0, ms(t0, t));
             p.gate(true, ms(t0, t));
             t += 33;
             assert!(t < 3000, "never went raw");
@@ -236,6 +275,7 @@ mod tests {
         // The next probe waits twice as long (4 s of calm).
         let back_at = t;
         while p.compress(ms(t0, t)) {
+            on_link(&mut p, 10.0, ms(t0, t));
             p.gate(true, ms(t0, t));
             t += 33;
         }
@@ -252,6 +292,7 @@ mod tests {
         let mut p = Policy::new(Compress::Auto, t0);
         let mut t = 0;
         while p.compress(ms(t0, t)) {
+            on_link(&mut p, 10.0, ms(t0, t));
             p.gate(true, ms(t0, t));
             t += 33;
         }
@@ -270,6 +311,7 @@ mod tests {
         p.level_held_down(false);
         let top = t;
         while p.compress(ms(t0, t)) {
+            on_link(&mut p, 10.0, ms(t0, t));
             p.gate(true, ms(t0, t));
             t += 33;
         }
@@ -278,6 +320,19 @@ mod tests {
             "raw {} ms after the top",
             t - top
         );
+    }
+
+    #[test]
+    fn raw_frames_are_not_tried_where_the_link_has_not_shown_their_rate() {
+        let t0 = Instant::now();
+        let mut p = Policy::new(Compress::Auto, t0);
+        // 30 kB frames at 30 a second are 0.9 MB/s; this link has shown 0.5 MB/s.
+        for i in 0..300 {
+            let t = i * 33;
+            on_link(&mut p, 0.5, ms(t0, t));
+            p.gate(true, ms(t0, t));
+            assert!(p.compress(ms(t0, t)), "raw at {t} ms");
+        }
     }
 
     #[test]

@@ -32,6 +32,8 @@ pub struct WebSink {
     deflate: Policy,
     /// The served maps' names, in the rotation's order, for a ray's `map`.
     maps: Arc<[String]>,
+    /// The time between frames the session last asked about.
+    period: Duration,
 }
 
 impl WebSink {
@@ -49,6 +51,7 @@ impl WebSink {
             written: 0,
             deflate: Policy::new(compress, crate::play::session::now()),
             maps,
+            period: Duration::from_millis(33),
         }
     }
 
@@ -62,6 +65,8 @@ impl WebSink {
 impl FrameSink for WebSink {
     async fn send(&mut self, frame: Vec<u8>) -> Result<(), Gone> {
         let now = crate::play::session::now();
+        let rate = self.book.sample().delivery_rate as f64;
+        self.deflate.frame(frame.len(), (rate, self.period), now);
         let frame = if self.deflate.compress(now) {
             deflate::compressed(&frame)
         } else {
@@ -87,6 +92,7 @@ impl FrameSink for WebSink {
     }
 
     fn answered(&mut self, period: Duration, now: Instant) -> bool {
+        self.period = period;
         let open = self.gate.clear(period, now);
         self.deflate.gate(open, now);
         open

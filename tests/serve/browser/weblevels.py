@@ -13,7 +13,8 @@ token bucket (the recipe of ../shared/tools/linklag.py), then:
   the wire and inflated, and the level the status line names at the end.
 
 A frame "changes the view" when any cell of the view's rows (from the server's `view` note)
-differs after it, read through a terminal model (pyte): status-line-only frames do not count.
+differs after it, read through a terminal model (pyte) after the run: status-line-only frames do
+not count, and the model's slowness never delays an acknowledgement.
 
   python3 weblevels.py BIN [--rate 3mbit|none] [--cols 80 --rows 24] [--compress auto|always|never]
 Prints one JSON line. Needs root (it re-runs itself under `unshare -rn`), `tc`, and
@@ -37,21 +38,16 @@ def free_port():
 
 
 class Page:
-    """A page's connection: frames inflated, drawn into a terminal model, acknowledged."""
+    """A page's connection: frames inflated and acknowledged at once, as a browser that paints
+    in a few milliseconds does; they are read into a terminal model (pyte, far slower than a
+    page) only afterwards, so the model's time is never taken for the link's."""
 
     def __init__(self, ws, cols, rows):
         self.ws = ws
-        self.screen = pyte.Screen(cols, rows)
-        self.stream = pyte.ByteStream(self.screen)
+        self.cols, self.rows = cols, rows
         self.view = None  # (y, rows)
-        self.log = []  # (arrival, wire bytes, inflated bytes, changed the view)
+        self.got = []  # (arrival, wire bytes, frame bytes)
         self.n = 0
-
-    def view_rows(self):
-        if not self.view:
-            return ()
-        y, rows = self.view
-        return tuple(self.screen.display[y:y + rows])
 
     async def read(self):
         async for msg in self.ws:
@@ -61,35 +57,50 @@ class Page:
                     self.view = (note["view"]["y"], note["view"]["rows"])
                 continue
             frame = zlib.decompress(msg[1:], -15) if msg[:1] == b"\x00" else msg
-            arrived = time.monotonic()
-            # Acknowledged before the terminal model reads it: a browser paints a frame in a few
-            # milliseconds, the model in Python takes far longer, and that is not the link's.
             self.n += 1
             await self.ws.send(json.dumps({"ack": self.n}))
-            before = self.view_rows()
-            self.stream.feed(frame)
-            self.log.append((arrived, len(msg), len(frame), self.view_rows() != before))
+            self.got.append((time.monotonic(), len(msg), frame))
 
     async def key(self, down):
         await self.ws.send(json.dumps({"key": "d", "down": down}))
 
-    def status(self):
-        return self.screen.display[-1]
+    def replay(self):
+        """Every frame read into the model: (arrival, wire, inflated, changed the view, status
+        line after it)."""
+        screen = pyte.Screen(self.cols, self.rows)
+        stream = pyte.ByteStream(screen)
+        y, rows = self.view or (0, 0)
+        out = []
+        for at, wire, frame in self.got:
+            before = tuple(screen.display[y:y + rows])
+            stream.feed(frame)
+            changed = tuple(screen.display[y:y + rows]) != before
+            out.append((at, wire, len(frame), changed, screen.display[-1]))
+        return out
 
-    def last_view_change_after(self, t):
-        changed = [u for (u, _, _, c) in self.log if u >= t and c]
-        return (max(changed) - t) if changed else 0.0
+    def quiet_for(self, s):
+        """Seconds since the last frame of more than a status line's bytes."""
+        big = [at for (at, _, frame) in self.got if len(frame) > 300]
+        return time.monotonic() - big[-1] if big else s
 
-    def between(self, a, b):
-        return [e for e in self.log if a <= e[0] <= b]
+
+def last_view_change_after(log, t):
+    changed = [e[0] for e in log if e[0] >= t and e[3]]
+    return (max(changed) - t) if changed else 0.0
+
+
+def level_at(log, t):
+    """The level the status line named at time `t`."""
+    status = [e[4] for e in log if e[0] <= t]
+    m = LEVEL.search(status[-1]) if status else None
+    return m.group(1) if m else None
 
 
 async def quiet(page, s=1.0, limit=20):
     end = time.monotonic() + limit
     while time.monotonic() < end:
         await asyncio.sleep(0.1)
-        changed = [u for (u, _, _, c) in page.log if c]
-        if not changed or time.monotonic() - changed[-1] > s:
+        if page.quiet_for(s) >= s:
             return
 
 
@@ -109,8 +120,7 @@ async def measure(args, port):
         up = time.monotonic()
         await page.key(False)
         await quiet(page, 1.0)
-        first_lag = page.last_view_change_after(up) * 1000
-        first_level = LEVEL.search(page.status())
+        first_seen = time.monotonic()
         await asyncio.sleep(max(0.0, 6 - (time.monotonic() - joined)))
         await quiet(page, 1.0)
         t0 = time.monotonic()
@@ -119,21 +129,21 @@ async def measure(args, port):
         t1 = time.monotonic()
         await page.key(False)
         await quiet(page, 1.0)
-        lag = page.last_view_change_after(t1) * 1000
-        turning = [e for e in page.between(t0 + 1.0, t1) if e[3]]
-        span = t1 - t0 - 1.0
-        level = LEVEL.search(page.status())
+        end = time.monotonic()
         reader.cancel()
-        return {
-            "rate": args.rate, "size": f"{args.cols}x{args.rows}", "compress": args.compress,
-            "first_release_lag_ms": round(first_lag),
-            "first_level": first_level.group(1) if first_level else None,
-            "turning_fps": round(len(turning) / span, 1),
-            "wire_bytes_per_frame": round(sum(e[1] for e in turning) / max(1, len(turning))),
-            "inflated_bytes_per_frame": round(sum(e[2] for e in turning) / max(1, len(turning))),
-            "release_lag_ms": round(lag),
-            "level": level.group(1) if level else page.status().strip()[-40:],
-        }
+    log = page.replay()
+    turning = [e for e in log if t0 + 1.0 <= e[0] <= t1 and e[3]]
+    span = t1 - t0 - 1.0
+    return {
+        "rate": args.rate, "size": f"{args.cols}x{args.rows}", "compress": args.compress,
+        "first_release_lag_ms": round(last_view_change_after([e for e in log if e[0] <= first_seen], up) * 1000),
+        "first_level": level_at(log, first_seen),
+        "turning_fps": round(len(turning) / span, 1),
+        "wire_bytes_per_frame": round(sum(e[1] for e in turning) / max(1, len(turning))),
+        "inflated_bytes_per_frame": round(sum(e[2] for e in turning) / max(1, len(turning))),
+        "release_lag_ms": round(last_view_change_after(log, t1) * 1000),
+        "level": level_at(log, end),
+    }
 
 
 def main():
