@@ -202,15 +202,29 @@ fn get(port: u16, path: &str) -> (u16, Vec<u8>) {
 
 /// `halfcast serve --web` with the three maps; its web port once it listens.
 fn serve(dir: &Path) -> (crate::serve_process::Guard, u16) {
+    let maps: Vec<String> = MAPS.iter().map(|m| repo(m).display().to_string()).collect();
+    let (guard, web, _log) = serve_maps(dir, &maps);
+    (guard, web)
+}
+
+/// `halfcast serve --web` with `maps` (none: the embedded map); its web port once it listens,
+/// and its log, which must be kept while players play (the server writes a line for each).
+fn serve_maps(
+    dir: &Path,
+    maps: &[String],
+) -> (
+    crate::serve_process::Guard,
+    u16,
+    std::sync::mpsc::Receiver<String>,
+) {
     let web = free_port();
     let web_addr = format!("127.0.0.1:{web}");
-    let maps: Vec<String> = MAPS.iter().map(|m| repo(m).display().to_string()).collect();
     let mut args = vec!["--web", &web_addr];
     args.extend(maps.iter().map(String::as_str));
-    let (guard, _port, _rx) = spawn_server(dir, &args);
+    let (guard, _port, log) = spawn_server(dir, &args);
     for _ in 0..200 {
         if std::net::TcpStream::connect(("127.0.0.1", web)).is_ok() {
-            return (guard, web);
+            return (guard, web, log);
         }
         std::thread::sleep(std::time::Duration::from_millis(50));
     }
@@ -626,15 +640,7 @@ fn a_click_on_the_view_debugs_that_column_and_its_address_reproduces_it() {
         return;
     }
     let dir = tempfile::tempdir().unwrap();
-    let web = free_port();
-    let web_addr = format!("127.0.0.1:{web}");
-    let (_server, _port, _rx) = spawn_server(dir.path(), &["--web", &web_addr]);
-    for _ in 0..200 {
-        if std::net::TcpStream::connect(("127.0.0.1", web)).is_ok() {
-            break;
-        }
-        std::thread::sleep(std::time::Duration::from_millis(50));
-    }
+    let (_server, web, _log) = serve_maps(dir.path(), &[]);
     let column = 1 + seed() % 30;
     let out = Command::new("python3")
         .arg(repo("tests/serve/browser/click_check.py"))

@@ -212,42 +212,7 @@ async fn the_shipped_web_snippet_gives_the_real_client_whatever_headers_it_sends
     let cfg = shipped_config(&format!("    bind 127.0.0.1:{front}\n"), web);
     let _proxy = haproxy_on(&cfg, front, dir.path());
     // Both players claim 203.0.113.5 (and more); each is counted by their own address.
-    let mut two = forging_page_from("127.0.0.2", front, "two", "203.0.113.5").await;
-    let mut three = forging_page_from("127.0.0.3", front, "three", "203.0.113.5").await;
-    assert!(two.until(|s| header_has(s, "you are two")).await);
-    assert!(three.until(|s| header_has(s, "you are three")).await);
-    // A second page from 127.0.0.2 claiming another address is over 127.0.0.2's limit.
-    let mut again = forging_page_from("127.0.0.2", front, "again", "203.0.113.77").await;
-    let closed = again.closed().await;
-    assert!(
-        closed
-            .reason
-            .contains("too many connections from your address"),
-        "{closed:?}"
-    );
-    drop((two, three));
-    let mut lines: Vec<String> = Vec::new();
-    let deadline = Instant::now() + PATIENCE;
-    while !(lines
-        .iter()
-        .any(|l| l.contains("127.0.0.2") && l.contains("\"two\""))
-        && lines
-            .iter()
-            .any(|l| l.contains("127.0.0.3") && l.contains("\"three\"")))
-    {
-        let left = deadline.saturating_duration_since(Instant::now());
-        match log.recv_timeout(left) {
-            Ok(l) => lines.push(l),
-            Err(_) => panic!("the players' own addresses were never logged: {lines:#?}"),
-        }
-    }
-    lines.extend(log.try_iter());
-    for forged in ["203.0.113", "198.51.100"] {
-        assert!(
-            lines.iter().all(|l| !l.contains(forged)),
-            "a client's own address reached the log: {lines:#?}"
-        );
-    }
+    forged_addresses_never_count(front, &log).await;
 }
 
 #[test]
@@ -313,4 +278,49 @@ fn the_shipped_web_snippet_ends_tls_with_a_real_certificate() {
         String::from_utf8_lossy(&page.stdout).contains("<script"),
         "the page over TLS"
     );
+}
+
+/// Through a trusted proxy on `front`, pages from 127.0.0.2 and 127.0.0.3 that send their own
+/// `Forwarded` and `X-Forwarded-For` are limited and logged (`log`, the world's) by the address
+/// the proxy saw; no forged address reaches the log.
+pub(crate) async fn forged_addresses_never_count(
+    front: u16,
+    log: &std::sync::mpsc::Receiver<String>,
+) {
+    let mut two = forging_page_from("127.0.0.2", front, "two", "203.0.113.5").await;
+    let mut three = forging_page_from("127.0.0.3", front, "three", "203.0.113.5").await;
+    assert!(two.until(|s| header_has(s, "you are two")).await);
+    assert!(three.until(|s| header_has(s, "you are three")).await);
+    // A second page from 127.0.0.2 claiming another address is over 127.0.0.2's limit.
+    let mut again = forging_page_from("127.0.0.2", front, "again", "203.0.113.77").await;
+    let closed = again.closed().await;
+    assert!(
+        closed
+            .reason
+            .contains("too many connections from your address"),
+        "{closed:?}"
+    );
+    drop((two, three));
+    let mut lines: Vec<String> = Vec::new();
+    let deadline = Instant::now() + PATIENCE;
+    while !(lines
+        .iter()
+        .any(|l| l.contains("127.0.0.2") && l.contains("\"two\""))
+        && lines
+            .iter()
+            .any(|l| l.contains("127.0.0.3") && l.contains("\"three\"")))
+    {
+        let left = deadline.saturating_duration_since(Instant::now());
+        match log.recv_timeout(left) {
+            Ok(l) => lines.push(l),
+            Err(_) => panic!("the players' own addresses were never logged: {lines:#?}"),
+        }
+    }
+    lines.extend(log.try_iter());
+    for forged in ["203.0.113", "198.51.100"] {
+        assert!(
+            lines.iter().all(|l| !l.contains(forged)),
+            "a client's own address reached the log: {lines:#?}"
+        );
+    }
 }
