@@ -7,6 +7,11 @@
 //! the newest state. When the link carries fewer than [`MIN_FPS`] frames a second at the
 //! session's colour level, the level steps down (truecolor → 256 → 16), and back up when the link
 //! would carry the richer level with room to spare.
+//!
+//! Frame sizes are kept as the encoder's bytes, and the wire's share of them (a browser's
+//! compression makes it about a quarter) is the last moving frame's: so a level seen once raw is
+//! judged at the size compression gives it, and a transport that could shrink its frames is asked
+//! to ([`Step::Shrink`]) before the level drops.
 
 use std::time::{Duration, Instant};
 
@@ -55,6 +60,9 @@ const SIZE_RATIO_UP: f64 = 4.0;
 pub enum Step {
     Down(ColorLevel),
     Up(ColorLevel),
+    /// The same level in smaller frames: the transport said it could shrink them, and at that
+    /// size the link carries the level.
+    Shrink,
 }
 
 /// One frame handed to the SSH layer and not yet known to have arrived.
@@ -89,8 +97,12 @@ pub struct LinkFigures {
 pub struct LinkPacer {
     period: Duration,
     in_flight: Option<InFlight>,
-    /// Mean wire bytes of a moving frame, per level (truecolor, 256, 16, mono).
+    /// Mean encoder bytes of a moving frame, per level (truecolor, 256, 16, mono).
     sizes: [Option<f64>; 4],
+    /// The encoder's bytes in the last frame.
+    last_bytes: u64,
+    /// Wire bytes per encoder byte of the last moving frame (below 1 while compressed).
+    wire_ratio: f64,
     last_sent: Option<Instant>,
     /// Wire bytes written when the last frame was handed over.
     last_wire: u64,
@@ -149,6 +161,8 @@ impl LinkPacer {
             period,
             in_flight: None,
             sizes: [None; 4],
+            last_bytes: 0,
+            wire_ratio: 1.0,
             last_sent: None,
             last_wire: 0,
             settled: 0,
@@ -282,9 +296,9 @@ impl LinkPacer {
         }
     }
 
-    /// Records a frame handed to the SSH layer at `now`, `wire` socket bytes having been written
-    /// before it, drawn at `level`.
-    pub fn sent(&mut self, wire: u64, level: ColorLevel, now: Instant) {
+    /// Records a frame of `bytes` from the encoder handed to the transport at `now`, `wire` bytes
+    /// having gone on the wire before it, drawn at `level`.
+    pub fn sent(&mut self, wire: u64, bytes: u64, level: ColorLevel, now: Instant) {
         // A frame that waited on the link, or came soon after the last, is part of a moving
         // stretch: the previous frame's wire size (all written by now) counts for its level.
         let moving = self.held_up
@@ -292,11 +306,12 @@ impl LinkPacer {
                 now.duration_since(t).as_secs_f64() < self.period.as_secs_f64() * STRETCH
             });
         if let (true, Some(prev)) = (moving && wire > self.last_wire, self.last_level) {
-            let bytes = (wire - self.last_wire) as f64;
+            let prev_bytes = self.last_bytes.max(1) as f64;
+            self.wire_ratio = (wire - self.last_wire) as f64 / prev_bytes;
             // A frame of at least half the level's usual moving size that found the link
             // empty when it went (the last one all acknowledged) keeps the link's quiet going;
             // one that found it busy ends it.
-            let large = self.sizes[index(prev)].is_none_or(|m| bytes >= m / 2.0);
+            let large = self.sizes[index(prev)].is_none_or(|m| prev_bytes >= m / 2.0);
             if large && prev == level {
                 if self.outstanding > 0 {
                     self.quiet_since = None;
@@ -307,7 +322,7 @@ impl LinkPacer {
                 }
             }
             let slot = &mut self.sizes[index(prev)];
-            *slot = Some(slot.map_or(bytes, |m| m + SMOOTHING * (bytes - m)));
+            *slot = Some(slot.map_or(prev_bytes, |m| m + SMOOTHING * (prev_bytes - m)));
             if prev == level {
                 self.settled = self.settled.saturating_add(1);
             }
@@ -315,6 +330,7 @@ impl LinkPacer {
         self.held_up = false;
         self.last_sent = Some(now);
         self.last_wire = wire;
+        self.last_bytes = bytes;
         self.last_level = Some(level);
         self.in_flight = Some(InFlight {
             at: now,
@@ -336,8 +352,13 @@ impl LinkPacer {
     }
 
     /// Frames per second the link carries at `level`, by its delivery rate and that level's
-    /// frame size (measured, or guessed from the level below).
+    /// frame size (measured, or guessed from the level below) on the wire as frames go now.
     fn fps_at(&self, level: ColorLevel, rate: Option<f64>) -> Option<f64> {
+        self.fps_shrunk(level, rate, self.wire_ratio)
+    }
+
+    /// [`Self::fps_at`] with frames `ratio` of the encoder's bytes on the wire.
+    fn fps_shrunk(&self, level: ColorLevel, rate: Option<f64>, ratio: f64) -> Option<f64> {
         let size = match self.sizes[index(level)] {
             Some(s) => s,
             None => {
@@ -345,12 +366,13 @@ impl LinkPacer {
                 self.sizes[index(below)]? * SIZE_RATIO_UP
             }
         };
-        Some(rate? / size.max(1.0))
+        Some(rate? / (size * ratio).max(1.0))
     }
 
     /// The level step the link calls for now at `level`, if any (the caller applies it unless the
-    /// player chose the level).
-    pub fn step(&mut self, level: ColorLevel, now: Instant) -> Option<Step> {
+    /// player chose the level). `shrink` is the wire's share of the encoder's bytes the
+    /// transport could bring its frames to, if it can make them smaller than they go now.
+    pub fn step(&mut self, level: ColorLevel, now: Instant, shrink: Option<f64>) -> Option<Step> {
         let since_step = self
             .last_step
             .map_or(Duration::MAX, |t| now.duration_since(t));
@@ -360,6 +382,17 @@ impl LinkPacer {
                 .fps_at(level, self.held_rate())
                 .is_some_and(|f| f < MIN_FPS)
         {
+            if shrink.is_some_and(|r| {
+                r < self.wire_ratio
+                    && self
+                        .fps_shrunk(level, self.held_rate(), r)
+                        .is_some_and(|f| f >= MIN_FPS)
+            }) {
+                // Smaller frames keep the level: judge them afresh once a few went.
+                self.settled = 0;
+                self.wire_ratio = shrink.unwrap_or(self.wire_ratio);
+                return Some(Step::Shrink);
+            }
             let down = level.lower()?;
             if self.last_up.is_some_and(|(to, _)| to == level) {
                 // The last step up did not hold: wait longer before the next one.
@@ -447,6 +480,10 @@ mod tests {
         wire: u64,
         now: Instant,
         level: ColorLevel,
+        /// The wire's share of a frame's bytes.
+        ratio: f64,
+        /// The share the transport could shrink frames to.
+        could_shrink: Option<f64>,
     }
 
     impl Sim {
@@ -456,6 +493,8 @@ mod tests {
                 wire: 0,
                 now: Instant::now(),
                 level,
+                ratio: 1.0,
+                could_shrink: None,
             }
         }
 
@@ -470,13 +509,20 @@ mod tests {
                 outstanding = (outstanding - rate * step.as_secs_f64()).max(0.0);
                 let s = sample(outstanding as u64, rate as u64);
                 if self.now >= next_want && self.p.clear(self.wire, Some(&s), true, self.now) {
-                    if let Some(Step::Down(l) | Step::Up(l)) = self.p.step(self.level, self.now) {
-                        self.level = l;
-                        levels.push(l);
+                    let shrink = self.could_shrink.filter(|r| *r < self.ratio);
+                    match self.p.step(self.level, self.now, shrink) {
+                        Some(Step::Down(l) | Step::Up(l)) => {
+                            self.level = l;
+                            levels.push(l);
+                        }
+                        Some(Step::Shrink) => self.ratio = shrink.expect("offered"),
+                        None => {}
                     }
-                    self.p.sent(self.wire, self.level, self.now);
-                    self.wire += sizes(self.level);
-                    outstanding += sizes(self.level) as f64;
+                    self.p
+                        .sent(self.wire, sizes(self.level), self.level, self.now);
+                    let wire = (sizes(self.level) as f64 * self.ratio) as u64;
+                    self.wire += wire;
+                    outstanding += wire as f64;
                     next_want = self.now + PERIOD;
                 }
                 self.now += step;
@@ -498,7 +544,7 @@ mod tests {
         let t = Instant::now();
         let mut p = LinkPacer::new(PERIOD, ColorLevel::Ansi256);
         assert!(p.clear(0, None, true, t), "nothing in flight");
-        p.sent(1000, ColorLevel::Ansi256, t);
+        p.sent(1000, 8000, ColorLevel::Ansi256, t);
         assert!(
             !p.clear(1000, Some(&sample(0, 1_000_000)), true, t),
             "not yet written"
@@ -519,7 +565,7 @@ mod tests {
         assert_eq!(p.take_waited(), None);
         assert_eq!(p.waiting(t + PERIOD), None);
         // Without the kernel's figures, a written frame is enough.
-        p.sent(9000, ColorLevel::Ansi256, t);
+        p.sent(9000, 1, ColorLevel::Ansi256, t);
         assert!(!p.clear(9000, None, true, t));
         assert!(p.clear(9001, None, true, t));
     }
@@ -528,7 +574,7 @@ mod tests {
     fn a_path_that_holds_more_than_a_frame_may_keep_it_in_flight() {
         let t = Instant::now();
         let mut p = LinkPacer::new(PERIOD, ColorLevel::Ansi256);
-        p.sent(0, ColorLevel::Ansi256, t);
+        p.sent(0, 30_000, ColorLevel::Ansi256, t);
         // 2.5 MB/s over an 80 ms path holds 200 kB: a 20 kB frame still queued is no wait.
         let far = LinkSample {
             outstanding: 20_000,
@@ -565,6 +611,44 @@ mod tests {
     }
 
     #[test]
+    fn a_transport_that_can_shrink_its_frames_is_asked_to_before_the_level_drops() {
+        use ColorLevel::*;
+        // 375 kB/s (3 Mbit/s): truecolor frames make 11 a second as they are, 45 at a quarter.
+        let mut sim = Sim::new(TrueColor);
+        sim.could_shrink = Some(0.25);
+        assert_eq!(sim.run(375_000.0, 20.0), [TrueColor]);
+        assert!((sim.ratio - 0.25).abs() < 1e-9);
+        assert_eq!(sim.p.figures().steps_down, 0);
+        // Shrunk frames that still do not fit: the level drops after all.
+        let mut sim = Sim::new(TrueColor);
+        sim.could_shrink = Some(0.8);
+        // (Later tries of truecolor on the quiet link fail the same way.)
+        let levels = sim.run(375_000.0, 10.0);
+        assert_eq!(levels[..2], [TrueColor, Ansi256], "{levels:?}");
+        assert!(
+            (sim.ratio - 1.0).abs() < 1e-9,
+            "not shrunk when it would not do"
+        );
+    }
+
+    #[test]
+    fn a_level_measured_as_it_went_is_judged_at_the_size_frames_go_now() {
+        use ColorLevel::*;
+        let mut sim = Sim::new(TrueColor);
+        assert_eq!(sim.run(375_000.0, 4.0), [TrueColor, Ansi256]);
+        // The transport shrinks frames from now on (a browser's compression): truecolor,
+        // measured at 33 kB, goes at a quarter of that, which the link carries.
+        // Up as soon as the hold after the step allows (a try on a quiet link would wait for a
+        // whole hold of quiet first), and it holds.
+        sim.ratio = 0.25;
+        // Only the measured speed may say so here: no try for a link that stayed quiet.
+        (sim.p.quiet_since, sim.p.quiet_frames) = (None, 0);
+        assert_eq!(sim.run(375_000.0, 3.0), [Ansi256, TrueColor]);
+        assert_eq!(sim.run(375_000.0, 30.0), [TrueColor]);
+        assert_eq!(sim.p.figures().steps_up, 1);
+    }
+
+    #[test]
     fn a_step_up_that_does_not_hold_makes_the_next_wait_longer() {
         let mut sim = Sim::new(ColorLevel::TrueColor);
         sim.run(400_000.0, 2.0);
@@ -574,7 +658,7 @@ mod tests {
         p.last_up = Some((ColorLevel::TrueColor, t));
         p.settled = SETTLE_FRAMES;
         assert_eq!(
-            p.step(ColorLevel::TrueColor, t),
+            p.step(ColorLevel::TrueColor, t, None),
             Some(Step::Down(ColorLevel::Ansi256))
         );
         assert_eq!(p.up_hold, hold * 2);
@@ -585,11 +669,11 @@ mod tests {
         let t = Instant::now();
         let mut p = LinkPacer::new(PERIOD, ColorLevel::Ansi256);
         let acked = sample(0, 10_000_000);
-        p.sent(0, ColorLevel::Ansi256, t);
+        p.sent(0, 10_000, ColorLevel::Ansi256, t);
         assert!(p.clear(10_000, Some(&acked), true, t + PERIOD));
         // The next frame, a period later (moving): written and acknowledged by the kernel (the
         // hop to a balancer), not yet answered by the client.
-        p.sent(10_000, ColorLevel::Ansi256, t + PERIOD);
+        p.sent(10_000, 20_000, ColorLevel::Ansi256, t + PERIOD);
         assert!(!p.clear(30_000, Some(&acked), false, t + 2 * PERIOD));
         assert!(p.clear(30_000, Some(&acked), true, t + 3 * PERIOD));
         assert_eq!(p.take_waited(), Some(PERIOD));
@@ -625,7 +709,7 @@ mod tests {
         let mut asked = 0;
         for i in 0..(KEPT_UP_STREAK + 4 * ASK_EVERY) {
             let now = t + PERIOD * i;
-            p.sent(wire, ColorLevel::Ansi256, now);
+            p.sent(wire, 8_000, ColorLevel::Ansi256, now);
             wire += 8_000;
             let ask = p.needs_sample(wire);
             asked += u32::from(ask);
@@ -638,16 +722,16 @@ mod tests {
             "every frame, then one in {ASK_EVERY}"
         );
         // Held up once: asked every frame again.
-        p.sent(wire, ColorLevel::Ansi256, t);
+        p.sent(wire, 8_000, ColorLevel::Ansi256, t);
         wire += 8_000;
         while !p.needs_sample(wire) {
             assert!(p.clear(wire, None, true, t));
-            p.sent(wire, ColorLevel::Ansi256, t);
+            p.sent(wire, 8_000, ColorLevel::Ansi256, t);
             wire += 8_000;
         }
         assert!(!p.clear(wire, Some(&sample(8_000, 1_000_000)), true, t));
         assert!(p.clear(wire, Some(&sample(0, 1_000_000)), true, t + PERIOD));
-        p.sent(wire, ColorLevel::Ansi256, t + PERIOD);
+        p.sent(wire, 8_000, ColorLevel::Ansi256, t + PERIOD);
         assert!(p.needs_sample(wire + 8_000));
     }
 }

@@ -307,7 +307,8 @@ impl<S: FrameSink, H: Hooks> Loop<S, H> {
             Err(_) => Err(End::Stalled),
             Ok(Err(_)) => Err(End::ClientGone),
             Ok(Ok(())) => {
-                self.pacer.sent(wire_before, self.p.colour().level, now);
+                self.pacer
+                    .sent(wire_before, n as u64, self.p.colour().level, now);
                 self.grid.drawn(now);
                 self.tally.frames += 1;
                 self.tally.bytes += n as u64;
@@ -368,10 +369,15 @@ impl<S: FrameSink, H: Hooks> Loop<S, H> {
         if self.p.colour().reason == ColourReason::Key {
             return;
         }
-        if let Some(step) = self.pacer.step(self.p.colour().level, now) {
+        let shrink = self.sink.could_shrink();
+        if let Some(step) = self.pacer.step(self.p.colour().level, now, shrink) {
             let (level, down) = match step {
                 Step::Down(l) => (l, true),
                 Step::Up(l) => (l, false),
+                Step::Shrink => {
+                    self.sink.shrink();
+                    return;
+                }
             };
             self.hooks.level_stepped(down);
             self.p.set_colour(ColourChoice {

@@ -9,6 +9,7 @@ use tokio::sync::{mpsc, watch};
 use super::hooks::Hooks;
 use super::input::Input;
 use super::link::LinkSample;
+use super::pacing::MIN_FPS;
 use super::session::{self, now, Client, End, Feeds, Rules, Setup, Tally};
 use super::sink::{FrameSink, Gone};
 use crate::encode::{ColorLevel, ColourChoice, ColourReason};
@@ -39,6 +40,11 @@ struct Link {
     rate: f64,
     rtt: Duration,
     frames: Vec<Sent>,
+    /// The share of its bytes a frame would keep if the transport shrank it (as a browser's
+    /// compression does), when it can.
+    could_shrink: Option<f64>,
+    /// The share it keeps now.
+    ratio: f64,
 }
 
 impl Link {
@@ -47,6 +53,8 @@ impl Link {
             rate,
             rtt,
             frames: Vec::new(),
+            could_shrink: None,
+            ratio: 1.0,
         }
     }
 
@@ -99,8 +107,22 @@ struct FakeSink(Arc<Mutex<Link>>);
 
 impl FrameSink for FakeSink {
     async fn send(&mut self, frame: Vec<u8>) -> Result<(), Gone> {
-        self.0.lock().unwrap().send(frame.len() as u64, now());
+        let mut link = self.0.lock().unwrap();
+        let bytes = (frame.len() as f64 * link.ratio).ceil() as u64;
+        link.send(bytes, now());
         Ok(())
+    }
+
+    fn could_shrink(&self) -> Option<f64> {
+        let link = self.0.lock().unwrap();
+        link.could_shrink.filter(|r| *r < link.ratio)
+    }
+
+    fn shrink(&mut self) {
+        let mut link = self.0.lock().unwrap();
+        if let Some(r) = link.could_shrink {
+            link.ratio = r;
+        }
     }
 
     fn written(&self) -> u64 {
@@ -390,6 +412,58 @@ async fn the_level_steps_down_on_a_slow_link_and_back_up_when_it_is_fast_again()
     assert_eq!(end, End::Quit);
     assert_eq!(tally.link.steps_down as usize, downs.len());
     assert_eq!(tally.link.steps_up as usize, downs.len());
+}
+
+#[tokio::test(start_paused = true)]
+async fn a_transport_that_can_shrink_its_frames_does_so_before_the_level_drops() {
+    // 3 Mbit/s: turning truecolor frames at 80×24 (about 33 kB) make 11 a second as they are,
+    // 45 at a quarter of their size.
+    let rate = 375_000.0;
+    let run = start(rate, Duration::from_millis(20), ColorLevel::TrueColor);
+    run.link.lock().unwrap().could_shrink = Some(0.25);
+    wait(Duration::from_millis(500)).await;
+    run.key('d', KeyKind::Press).await;
+    wait(Duration::from_secs(3)).await;
+    assert!(
+        (run.link.lock().unwrap().ratio - 0.25).abs() < 1e-9,
+        "shrunk"
+    );
+    let from = now();
+    wait(Duration::from_secs(5)).await;
+    let frames = run.view_frames_since(from);
+    let fps = frames.len() as f64 / 5.0;
+    assert!(fps >= MIN_FPS, "{fps} frames a second while turning");
+    run.key('d', KeyKind::Release).await;
+    let steps = run.steps.0.lock().unwrap().clone();
+    assert!(steps.is_empty(), "the level stayed: {steps:?}");
+    let (_, tally) = run.quit().await;
+    assert_eq!((tally.link.steps_down, tally.link.steps_up), (0, 0));
+}
+
+#[tokio::test(start_paused = true)]
+async fn a_level_measured_raw_comes_back_once_its_frames_go_shrunk() {
+    // The same link, the frames shrunk only once the level has dropped (a browser's
+    // compression starts when the link holds frames back): truecolor's size was measured
+    // raw, but its shrunk frames fit, so the level goes back up and stays.
+    let run = start(375_000.0, Duration::from_millis(20), ColorLevel::TrueColor);
+    wait(Duration::from_millis(500)).await;
+    run.key('d', KeyKind::Press).await;
+    wait(Duration::from_secs(3)).await;
+    let down: Vec<_> = run.steps.0.lock().unwrap().clone();
+    assert_eq!(down.iter().map(|(_, d)| *d).collect::<Vec<_>>(), [true]);
+    run.link.lock().unwrap().ratio = 0.25;
+    // Up once the hold after the step (5 s) is over, not after a further hold of quiet.
+    wait(Duration::from_secs(4)).await;
+    let up: Vec<_> = run.steps.0.lock().unwrap().clone();
+    assert_eq!(
+        up.iter().map(|(_, d)| *d).collect::<Vec<_>>(),
+        [true, false]
+    );
+    wait(Duration::from_secs(20)).await;
+    let steps: Vec<_> = run.steps.0.lock().unwrap().clone();
+    assert_eq!(steps, up, "never down again");
+    run.key('d', KeyKind::Release).await;
+    run.quit().await;
 }
 
 #[tokio::test(start_paused = true)]

@@ -75,6 +75,17 @@ pub trait FrameSink: Send {
         let _ = by_link;
     }
 
+    /// The wire's share of the encoder's bytes the transport could bring its frames to if the
+    /// link needs them smaller than they go now (the browser's compression, while frames go
+    /// raw), or `None`: pacing then asks [`FrameSink::shrink`] before it drops the colour level.
+    fn could_shrink(&self) -> Option<f64> {
+        None
+    }
+
+    /// The link does not carry frames this size at the least frame rate: make the next ones as
+    /// small as [`FrameSink::could_shrink`] said.
+    fn shrink(&mut self) {}
+
     /// Tells the client `note`; a terminal reads only frames, so by default nothing is sent.
     fn note(&mut self, note: Note) -> impl Future<Output = Result<(), Gone>> + Send {
         let _ = note;

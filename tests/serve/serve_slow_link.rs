@@ -4,11 +4,15 @@
 //! while the key still counted as held, plus two, arrive after the last key byte. Before frames
 //! were paced by the link, seconds of queued frames (hundreds of kB) arrived after the release.
 //!
-//! The test re-runs itself under `unshare -rn` (a user and network namespace) to shape the
+//! A browser page on 3 Mbit/s gets truecolor at 80×24 while turning: its frames go compressed
+//! rather than the colour level dropping.
+//!
+//! Each test re-runs itself under `unshare -rn` (a user and network namespace) to shape the
 //! namespace's own loopback; it skips with a notice where `unshare`, `ip` or `tc` are missing or
 //! namespaces are not allowed.
 
-use crate::serve_support::{header_has, server, Client};
+use crate::serve_support::web::open;
+use crate::serve_support::{header_has, row_text, server, Client};
 
 use std::process::Command;
 use std::time::{Duration, Instant};
@@ -17,7 +21,7 @@ use russh::ChannelMsg;
 
 /// Set in the re-run inside the namespace.
 const INSIDE: &str = "HALFCAST_SLOW_LINK_INSIDE";
-/// The link the test shapes.
+/// The link the SSH test shapes.
 const RATE: &str = "512kbit";
 /// The end of every frame (each is one synchronized update).
 const FRAME_END: &[u8] = b"\x1b[?2026l";
@@ -35,6 +39,25 @@ fn tool(name: &str) -> bool {
 
 #[test]
 fn after_a_held_key_is_released_only_the_newest_frames_arrive() {
+    in_namespace(
+        "after_a_held_key_is_released_only_the_newest_frames_arrive",
+        "slow link:",
+        inside,
+    );
+}
+
+#[test]
+fn a_page_on_three_megabits_turns_in_truecolor_compressed() {
+    in_namespace(
+        "a_page_on_three_megabits_turns_in_truecolor_compressed",
+        "page link:",
+        page_inside,
+    );
+}
+
+/// Runs `test` (this file's test of that name) again inside a network namespace of its own,
+/// where it calls `inside`; outside, checks it ran there and printed `said`.
+fn in_namespace(test: &str, said: &str, inside: fn()) {
     if std::env::var_os(INSIDE).is_some() {
         inside();
         return;
@@ -51,7 +74,7 @@ fn after_a_held_key_is_released_only_the_newest_frames_arrive() {
         .arg(&exe)
         .args([
             "--exact",
-            "serve_slow_link::after_a_held_key_is_released_only_the_newest_frames_arrive",
+            &format!("serve_slow_link::{test}"),
             "--nocapture",
             "--test-threads=1",
         ])
@@ -72,14 +95,11 @@ fn after_a_held_key_is_released_only_the_newest_frames_arrive() {
         out.status.success(),
         "inside the namespace:\n{stdout}\n{stderr}"
     );
-    assert!(
-        stdout.contains("slow link:"),
-        "the test ran inside:\n{stdout}"
-    );
+    assert!(stdout.contains(said), "the test ran inside:\n{stdout}");
 }
 
-/// In the namespace: shape loopback, serve, hold a key, release it, count what still comes.
-fn inside() {
+/// Shapes the namespace's loopback to a `rate` token bucket with a 200 ms queue.
+fn shape(rate: &str) {
     let sh = |args: &[&str]| {
         let out = Command::new(args[0])
             .args(&args[1..])
@@ -93,9 +113,14 @@ fn inside() {
     };
     sh(&["ip", "link", "set", "lo", "up", "mtu", "1500"]);
     sh(&[
-        "tc", "qdisc", "add", "dev", "lo", "root", "tbf", "rate", RATE, "burst", "16kb", "latency",
+        "tc", "qdisc", "add", "dev", "lo", "root", "tbf", "rate", rate, "burst", "16kb", "latency",
         "200ms",
     ]);
+}
+
+/// In the namespace: shape loopback, serve, hold a key, release it, count what still comes.
+fn inside() {
+    shape(RATE);
     let rt = tokio::runtime::Runtime::new().expect("runtime");
     rt.block_on(async {
         let (srv, _dir) = server(|_| {}).await;
@@ -171,4 +196,64 @@ fn frames_in(data: &[u8]) -> usize {
     data.windows(FRAME_END.len())
         .filter(|w| *w == FRAME_END)
         .count()
+}
+
+/// In the namespace: a page on 3 Mbit/s joins at truecolor and turns for 10 s, acking each
+/// frame as it reads it; at the end of the turn the level is truecolor again and frames go
+/// compressed. (Raw, turning truecolor frames at 80×24 are about 33 kB: 11 a second on this
+/// link, which would drop the level; compressed, about 9.5 kB.)
+fn page_inside() {
+    shape("3mbit");
+    let rt = tokio::runtime::Runtime::new().expect("runtime");
+    rt.block_on(async {
+        let (srv, _dir) = server(|c| {
+            c.web = Some(halfcast::serve::web::WebOptions::new(
+                "127.0.0.1:0".parse().expect("addr"),
+            ));
+        })
+        .await;
+        let addr = srv.web_addr().expect("the web listener runs");
+        let mut page = open(addr, "name=page&cols=80&rows=24", None)
+            .await
+            .expect("upgraded");
+        assert!(page.until(|s| header_has(s, "you are page")).await);
+        page.drain_for(Duration::from_secs(1)).await;
+        page.key("d", true).await;
+        let started = Instant::now();
+        // (when, bytes on the wire, bytes inflated) of each frame in the turn's last 4 s.
+        let mut late: Vec<(Instant, u64, usize)> = Vec::new();
+        while started.elapsed() < Duration::from_secs(10) {
+            let wire = page.wire;
+            match page.frame(Duration::from_millis(200)).await {
+                Ok(Some(f)) if started.elapsed() >= Duration::from_secs(6) => {
+                    late.push((Instant::now(), page.wire - wire, f.len()));
+                }
+                Ok(_) => {}
+                Err(closed) => panic!("the page was closed: {closed:?}"),
+            }
+        }
+        page.key("d", false).await;
+        let status = row_text(page.screen.screen(), 23);
+        let view: Vec<_> = late.iter().filter(|f| f.2 > 1_500).collect();
+        let wire: u64 = view.iter().map(|f| f.1).sum();
+        let inflated: usize = view.iter().map(|f| f.2).sum();
+        println!(
+            "page link: 3mbit, 80x24: {} view frames in the turn's last 4 s ({:.1}/s), {} bytes \
+             each on the wire, {} inflated; status: {status}",
+            view.len(),
+            view.len() as f64 / 4.0,
+            wire / view.len().max(1) as u64,
+            inflated / view.len().max(1)
+        );
+        assert!(
+            status.contains("truecolor"),
+            "the level at the end: {status}"
+        );
+        assert!(!view.is_empty(), "the view turned");
+        assert!(
+            wire * 2 < inflated as u64,
+            "frames went compressed: {wire} bytes for {inflated}"
+        );
+        srv.shutdown().await;
+    });
 }

@@ -355,6 +355,7 @@ async fn per_address_limits_use_a_trusted_proxys_client_address() {
             ws,
             screen: vt100::Parser::new(24, 80, 0),
             frames: 0,
+            wire: 0,
             acking: true,
             notes: Vec::new(),
         }

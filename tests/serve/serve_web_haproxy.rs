@@ -64,6 +64,7 @@ async fn page_from(from: &str, front: u16, name: &str) -> WebClient {
         ws,
         screen: vt100::Parser::new(24, 80, 0),
         frames: 0,
+        wire: 0,
         acking: true,
         notes: Vec::new(),
     }
@@ -180,6 +181,7 @@ pub(crate) async fn forging_page_from(
         ws,
         screen: vt100::Parser::new(24, 80, 0),
         frames: 0,
+        wire: 0,
         acking: true,
         notes: Vec::new(),
     }

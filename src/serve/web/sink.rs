@@ -67,11 +67,13 @@ impl FrameSink for WebSink {
         let now = crate::play::session::now();
         let rate = self.book.sample().delivery_rate as f64;
         self.deflate.frame(frame.len(), (rate, self.period), now);
+        let raw = frame.len();
         let frame = if self.deflate.compress(now) {
             deflate::compressed(&frame)
         } else {
             frame
         };
+        self.deflate.sent(raw, frame.len());
         let len = frame.len() as u64;
         let (n, _) = self.gate.sent(now);
         self.book.sent(n, len, now);
@@ -108,6 +110,14 @@ impl FrameSink for WebSink {
 
     fn level_held_down(&mut self, by_link: bool) {
         self.deflate.level_held_down(by_link);
+    }
+
+    fn could_shrink(&self) -> Option<f64> {
+        self.deflate.could_shrink()
+    }
+
+    fn shrink(&mut self) {
+        self.deflate.shrink(crate::play::session::now());
     }
 
     async fn note(&mut self, note: Note) -> Result<(), Gone> {

@@ -20,6 +20,8 @@ pub struct WebClient {
     pub screen: vt100::Parser,
     /// Frames read so far.
     pub frames: u64,
+    /// Their messages' bytes (compressed ones as they came).
+    pub wire: u64,
     /// Whether each frame is acknowledged as it is read (a page always does).
     pub acking: bool,
     /// The server's text messages (JSON notes: where the view is, a debugged ray), in order.
@@ -54,6 +56,7 @@ pub async fn open(addr: SocketAddr, query: &str, origin: Option<&str>) -> Result
                 ws,
                 screen: vt100::Parser::new(rows, cols, 0),
                 frames: 0,
+                wire: 0,
                 acking: true,
                 notes: Vec::new(),
             })
@@ -91,6 +94,7 @@ impl WebClient {
             match msg {
                 Message::Binary(b) => {
                     self.frames += 1;
+                    self.wire += b.len() as u64;
                     let frame = frame_bytes(&b);
                     self.screen.process(&frame);
                     if self.acking {
