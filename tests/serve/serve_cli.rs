@@ -184,6 +184,26 @@ fn serves_a_frame_keeps_its_host_key_and_stops_on_sigterm() {
     }
 }
 
+#[test]
+fn a_server_whose_log_nobody_reads_goes_on_serving() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let (_server, port, rx) = crate::serve_process::spawn_server(dir.path(), &["--db", "none"]);
+    // The reader of the server's stderr stops at the next line (the first connection's), and
+    // the pipe closes: every later line fails to write.
+    drop(rx);
+    let rt = tokio::runtime::Runtime::new().expect("runtime");
+    rt.block_on(async {
+        let addr = format!("127.0.0.1:{port}").parse().expect("addr");
+        for name in ["ann", "bob", "cat"] {
+            let mut c = Client::connect(addr, name, 50, 14, "xterm-256color").await;
+            assert!(
+                c.until(|s| header_has(s, &format!("you are {name}"))).await,
+                "{name} plays with the log's pipe closed"
+            );
+        }
+    });
+}
+
 /// Waits for the server to listen.
 fn listening(rx: &mpsc::Receiver<String>) {
     let mut seen = Vec::new();

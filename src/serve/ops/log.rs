@@ -35,6 +35,14 @@ impl FromStr for LogFormat {
     }
 }
 
+/// Writes one log line to stderr. A line nobody can read (stderr closed, its reader gone) is
+/// dropped: the log must never end a session or the accept loop, as `eprintln!` would by
+/// panicking.
+fn line(text: std::fmt::Arguments<'_>) {
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr().lock(), "{text}");
+}
+
 /// Where log lines go (stderr unless quiet), and in which form.
 #[derive(Debug, Clone, Copy)]
 pub struct Log {
@@ -63,7 +71,7 @@ impl Log {
         if let (Some(o), Some(f)) = (obj.as_object_mut(), fields.as_object_mut()) {
             o.append(f);
         }
-        eprintln!("{obj}");
+        line(format_args!("{obj}"));
     }
 
     /// A server-wide line.
@@ -72,7 +80,7 @@ impl Log {
             return;
         }
         match self.format {
-            LogFormat::Text => eprintln!("halfcast serve: {msg}"),
+            LogFormat::Text => line(format_args!("halfcast serve: {msg}")),
             LogFormat::Json => self.json("message", json!({ "text": msg.to_string() })),
         }
     }
@@ -80,7 +88,7 @@ impl Log {
     /// The server could not start, and why (written even when quiet: it is the last word).
     pub fn failed_to_start(&self, why: impl Display) {
         match self.format {
-            LogFormat::Text => eprintln!("halfcast serve: cannot start: {why}"),
+            LogFormat::Text => line(format_args!("halfcast serve: cannot start: {why}")),
             LogFormat::Json => self.json("start_failed", json!({ "text": why.to_string() })),
         }
     }
@@ -91,7 +99,7 @@ impl Log {
             return;
         }
         match self.format {
-            LogFormat::Text => eprintln!("halfcast serve: [session {id} {peer}] {msg}"),
+            LogFormat::Text => line(format_args!("halfcast serve: [session {id} {peer}] {msg}")),
             LogFormat::Json => self.json(
                 "message",
                 json!({ "session": id, "peer": peer.to_string(), "text": msg.to_string() }),
