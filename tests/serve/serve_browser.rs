@@ -5,7 +5,8 @@
 //! ends the game; a larger window is a larger session; and the painter's pixels equal
 //! halfcast's own reading of the same frame bytes (`termframe`) cell by cell. A touch phone fits
 //! the page and plays by touch (`browser/phone_check.py`), and an open page plays again by itself
-//! after its server drains and restarts (`browser/restart_check.py`). Prints a skip notice when
+//! after its server drains and restarts (`browser/restart_check.py`), and a page on a fast link
+//! turns in truecolor with raw frames (`browser/levels_check.py`). Prints a skip notice when
 //! Chromium or Playwright is absent (`.ci/run` installs both).
 
 use std::path::{Path, PathBuf};
@@ -412,6 +413,37 @@ fn fits(f: &Value, what: &str, playing: bool) {
             "{what}: the form is cut: {l}"
         );
     }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_page_on_a_fast_link_turns_in_truecolor_raw() {
+    if !browser_ready() {
+        eprintln!("skip: no {CHROMIUM} or no Python playwright (apt-get install chromium; pip install playwright)");
+        return;
+    }
+    let (srv, dir) = server_with(
+        |c| c.web = Some(WebOptions::new("127.0.0.1:0".parse().unwrap())),
+        still_world(),
+    )
+    .await;
+    let web = srv.web_addr().expect("web listener");
+    let out = dir.path().join("levels");
+    std::fs::create_dir_all(&out).unwrap();
+    let f = run_check("levels_check.py", format!("http://{web}/"), &out).await;
+    println!("fast link figures: {f}");
+    assert_eq!(f["page_errors"], Value::Array(vec![]), "{f}");
+    // The page paints and acks each frame itself, sometimes late (a busy moment of the page
+    // once is no slow link): the level stays, and frames go as they are (but for a compressed
+    // spell after a long busy moment: in 1 run of 5 here, half the turn).
+    let status = f["status"].as_str().unwrap_or_default();
+    assert!(status.contains("truecolor (browser)"), "{f}");
+    let (frames, compressed) = (
+        f["turn_frames"].as_u64().unwrap(),
+        f["compressed"].as_u64().unwrap(),
+    );
+    assert!(frames > 0, "the view turned: {f}");
+    assert!(compressed < frames, "raw frames on loopback: {f}");
+    srv.shutdown().await;
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
