@@ -6,6 +6,15 @@
 //!     --compression none --cols 80 --rows 24 --server-threads 1 [--map PATH] \
 //!     [--metrics on] [--db on] [--round-secs N] [--idle N]`
 //!
+//! `--transport web` makes the clients browser pages instead: each a WebSocket that acks every
+//! frame on arrival and taps the same keys (press and release together), with the server's
+//! `--web-compress auto|always|never` set by `--web-compress` (CPU per browser player against an
+//! SSH player: `--transport ssh --term xterm-direct` is the same truecolor level).
+//!
+//! `--motion turn` has every client turn all the time instead (an SSH client sends `d` every
+//! 30 ms, as a terminal's key repeat does; a page holds `d` down): the same views over both
+//! transports, for comparing them.
+//!
 //! `--glyphs quadrant|sextant|octant` has every client ask for that view setting (the
 //! `HALFCAST_GLYPHS` variable `ssh -o SetEnv=…` sends). `--map` serves that map file (e.g. one
 //! with creatures, to see what game logic costs) instead of the embedded default. `--metrics on` installs the Prometheus recorder and its
@@ -22,16 +31,20 @@
 const USAGE: &str = "usage: serve_bench [--clients N] [--secs S] [--term TERM] [--compression none|zlib@openssh.com]
        [--cols C] [--rows R] [--fps F] [--server-threads T] [--map PATH]
        [--metrics on] [--db on] [--round-secs N] [--idle N] [--glyphs half|quadrant|sextant|octant]
-Connects N russh clients over loopback to an in-process server for S seconds and prints one
+       [--transport ssh|web] [--web-compress auto|always|never] [--motion taps|turn]
+Connects N russh clients (or browser pages) over loopback to an in-process server for S seconds and prints one
 JSON object: server CPU, frames and bytes per client, clients per core at the target fps.";
 
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
+use futures_util::{SinkExt, StreamExt};
+use halfcast::serve::web::{Compress, WebOptions};
 use halfcast::serve::{start, ServeConfig};
 use halfcast::{Glyphs, World};
 use russh::{compression, ChannelMsg};
+use tokio_tungstenite::tungstenite::Message;
 
 /// The allocator the `halfcast` binary serves with (src/main.rs), so the figures are the server's.
 #[global_allocator]
@@ -60,6 +73,11 @@ struct Opts {
     round_secs: Option<u64>,
     idle: usize,
     glyphs: Glyphs,
+    /// Browser pages instead of SSH clients.
+    web: bool,
+    web_compress: Compress,
+    /// Every client turns all the time (else random movement keys every 100 ms).
+    turn: bool,
 }
 
 fn opts() -> Opts {
@@ -78,6 +96,9 @@ fn opts() -> Opts {
         round_secs: None,
         idle: 0,
         glyphs: Glyphs::Half,
+        web: false,
+        web_compress: Compress::Auto,
+        turn: false,
     };
     let args: Vec<String> = std::env::args().skip(1).collect();
     let usage = |why: &str| -> ! {
@@ -114,6 +135,22 @@ fn opts() -> Opts {
             "--glyphs" => match v.parse::<Glyphs>() {
                 Ok(g) => o.glyphs = g,
                 Err(why) => usage(&format!("--glyphs: {why}")),
+            },
+            "--transport" => match v.as_str() {
+                "ssh" => o.web = false,
+                "web" => o.web = true,
+                _ => usage("--transport takes ssh or web"),
+            },
+            "--web-compress" => match v.as_str() {
+                "auto" => o.web_compress = Compress::Auto,
+                "always" => o.web_compress = Compress::Always,
+                "never" => o.web_compress = Compress::Never,
+                _ => usage("--web-compress takes auto, always or never"),
+            },
+            "--motion" => match v.as_str() {
+                "taps" => o.turn = false,
+                "turn" => o.turn = true,
+                _ => usage("--motion takes taps or turn"),
             },
             other => usage(&format!("unknown option {other}")),
         }
@@ -178,6 +215,11 @@ fn main() {
             .port()
     });
     cfg.metrics = metrics_port.map(|p| std::net::SocketAddr::from(([127, 0, 0, 1], p)));
+    if o.web {
+        let mut web = WebOptions::new("127.0.0.1:0".parse().expect("addr"));
+        web.compress = o.web_compress;
+        cfg.web = Some(web);
+    }
     let world = match &o.map {
         Some(path) => {
             World::from_file(std::path::Path::new(path), false)
@@ -189,6 +231,7 @@ fn main() {
     let creatures = world.map.creatures.len();
     let server = server_rt.block_on(start(cfg, world)).expect("server");
     let addr = server.local_addr();
+    let web_addr = server.web_addr();
 
     let client_rt = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(1)
@@ -211,50 +254,19 @@ fn main() {
             let glyphs = o.glyphs.name();
             let (cols, rows) = (o.cols as u16, o.rows as u16);
             let idle = i < o.idle;
-            tasks.push(tokio::spawn(async move {
-                let env = [("HALFCAST_GLYPHS", glyphs)];
-                let (h, mut ch, wire) = serve_support::open_counting(
-                    addr,
-                    &format!("bot{i}"),
-                    (cols, rows),
-                    &term,
-                    &env,
-                    alg,
-                )
-                .await;
-                *pc.wire.lock().expect("wire") = Some(wire);
-                let end = tokio::time::Instant::now() + Duration::from_secs(secs);
-                let mut next_key = tokio::time::Instant::now();
-                let mut lcg = 0x9e37_79b9u32.wrapping_mul(i as u32 + 1);
-                let mut tail: Vec<u8> = Vec::new();
-                loop {
-                    let wake = next_key.min(end);
-                    tokio::select! {
-                        msg = ch.wait() => match msg {
-                            Some(ChannelMsg::Data { data }) => {
-                                pc.payload.fetch_add(data.len() as u64, Ordering::Relaxed);
-                                tail.extend_from_slice(&data);
-                                let n = tail.windows(8).filter(|w| *w == b"\x1b[?2026h").count();
-                                pc.frames.fetch_add(n as u64, Ordering::Relaxed);
-                                let keep = tail.len().min(7);
-                                tail.drain(..tail.len() - keep);
-                            }
-                            None => break,
-                            _ => {}
-                        },
-                        () = tokio::time::sleep_until(wake) => {
-                            if tokio::time::Instant::now() >= end { break; }
-                            next_key += Duration::from_millis(100);
-                            if idle { continue; }
-                            lcg = lcg.wrapping_mul(1_103_515_245).wrapping_add(12345);
-                            let key = MOVES[(lcg >> 16) as usize % MOVES.len()];
-                            let _ = ch.data(&[key][..]).await;
-                        }
-                    }
-                }
-                let _ = ch.data(&b"\x03"[..]).await;
-                let _ = h.disconnect(russh::Disconnect::ByApplication, "", "").await;
-            }));
+            let bot = Bot {
+                i,
+                size: (cols, rows),
+                secs,
+                idle,
+                turn: o.turn,
+                pc,
+            };
+            tasks.push(if let Some(web) = web_addr {
+                tokio::spawn(web_bot(web, bot))
+            } else {
+                tokio::spawn(ssh_bot(addr, bot, term, glyphs, alg))
+            });
         }
         let scraper = metrics_port.map(|port| tokio::spawn(scrape_every_second(port)));
         let cpu0 = thread_cpu("srv-worker") + thread_cpu("halfcast-leader");
@@ -304,7 +316,8 @@ fn main() {
 \"target_fps\":{},\"server_threads\":{},\"server_cpu_percent\":{:.1},\"client_cpu_percent\":{:.1},\"fps_per_client_mean\":{:.1},\
 \"fps_per_client_min_seen\":{:.1},\"payload_bytes_per_s_per_client\":{:.0},\"wire_bytes_per_s_per_client\":{:.0},\
 \"server_frames_sent\":{},\"server_frame_ticks_skipped\":{},\"refused\":{},\
-\"clients_per_core_at_target_fps\":{:.1},\"metrics\":{},\"db\":{},\"round_secs\":{},\"idle_clients\":{},\"glyphs\":\"{}\"}}",
+\"clients_per_core_at_target_fps\":{:.1},\"metrics\":{},\"db\":{},\"round_secs\":{},\"idle_clients\":{},\"glyphs\":\"{}\",\
+\"transport\":\"{}\"}}",
         o.map.as_deref().unwrap_or("(embedded)"),
         creatures,
         o.clients,
@@ -330,7 +343,141 @@ fn main() {
         o.round_secs.unwrap_or(0),
         o.idle.min(o.clients),
         o.glyphs.name(),
+        match (o.web, o.web_compress) {
+            (false, _) => "ssh",
+            (true, Compress::Auto) => "web (compress auto)",
+            (true, Compress::Always) => "web (compress always)",
+            (true, Compress::Never) => "web (compress never)",
+        },
     );
+}
+
+/// One load-test client: its number, its window, how long it plays, whether it presses keys,
+/// and where it counts what it got.
+struct Bot {
+    i: usize,
+    size: (u16, u16),
+    secs: u64,
+    idle: bool,
+    /// Turns all the time instead of random keys.
+    turn: bool,
+    pc: Arc<PerClient>,
+}
+
+impl Bot {
+    /// The next movement key this bot presses (a fixed sequence per bot).
+    fn key(&self, lcg: &mut u32) -> u8 {
+        if self.turn {
+            return b'd';
+        }
+        *lcg = lcg.wrapping_mul(1_103_515_245).wrapping_add(12345);
+        MOVES[(*lcg >> 16) as usize % MOVES.len()]
+    }
+
+    fn seed(&self) -> u32 {
+        0x9e37_79b9u32.wrapping_mul(self.i as u32 + 1)
+    }
+}
+
+/// An SSH player pressing a random movement key every 100 ms.
+async fn ssh_bot(
+    addr: std::net::SocketAddr,
+    bot: Bot,
+    term: String,
+    glyphs: &'static str,
+    alg: compression::Name,
+) {
+    let env = [("HALFCAST_GLYPHS", glyphs)];
+    let name = format!("bot{}", bot.i);
+    let (h, mut ch, wire) =
+        serve_support::open_counting(addr, &name, bot.size, &term, &env, alg).await;
+    let pc = &bot.pc;
+    *pc.wire.lock().expect("wire") = Some(wire);
+    let end = tokio::time::Instant::now() + Duration::from_secs(bot.secs);
+    let mut next_key = tokio::time::Instant::now();
+    let mut lcg = bot.seed();
+    let mut tail: Vec<u8> = Vec::new();
+    loop {
+        let wake = next_key.min(end);
+        tokio::select! {
+            msg = ch.wait() => match msg {
+                Some(ChannelMsg::Data { data }) => {
+                    pc.payload.fetch_add(data.len() as u64, Ordering::Relaxed);
+                    tail.extend_from_slice(&data);
+                    let n = tail.windows(8).filter(|w| *w == b"\x1b[?2026h").count();
+                    pc.frames.fetch_add(n as u64, Ordering::Relaxed);
+                    let keep = tail.len().min(7);
+                    tail.drain(..tail.len() - keep);
+                }
+                None => break,
+                _ => {}
+            },
+            () = tokio::time::sleep_until(wake) => {
+                if tokio::time::Instant::now() >= end { break; }
+                next_key += Duration::from_millis(if bot.turn { 30 } else { 100 });
+                if bot.idle { continue; }
+                let key = bot.key(&mut lcg);
+                let _ = ch.data(&[key][..]).await;
+            }
+        }
+    }
+    let _ = ch.data(&b"\x03"[..]).await;
+    let _ = h.disconnect(russh::Disconnect::ByApplication, "", "").await;
+}
+
+/// A browser page holding a random movement key for 100 ms after another, and
+/// acking each frame as it arrives, as the page does once it drew it. Payload is the frames'
+/// bytes as sent (compressed or not); wire adds nothing for the WebSocket's framing.
+async fn web_bot(addr: std::net::SocketAddr, bot: Bot) {
+    let (cols, rows) = bot.size;
+    let url = format!("ws://{addr}/ws?name=bot{}&cols={cols}&rows={rows}", bot.i);
+    let tcp = tokio::net::TcpStream::connect(addr).await.expect("connect");
+    // As a browser's socket is: an ack must not wait for the last one's TCP acknowledgement.
+    tcp.set_nodelay(true).expect("nodelay");
+    let (ws, _) = tokio_tungstenite::client_async(url, tcp)
+        .await
+        .expect("upgrade");
+    let (mut tx, mut rx) = ws.split();
+    let pc = &bot.pc;
+    let wire = Arc::new(AtomicU64::new(0));
+    *pc.wire.lock().expect("wire") = Some(Arc::clone(&wire));
+    let end = tokio::time::Instant::now() + Duration::from_secs(bot.secs);
+    let mut next_key = tokio::time::Instant::now();
+    let mut lcg = bot.seed();
+    let mut n = 0u64;
+    let mut held = 'w';
+    loop {
+        let wake = next_key.min(end);
+        tokio::select! {
+            msg = rx.next() => match msg {
+                Some(Ok(Message::Binary(data))) => {
+                    n += 1;
+                    pc.payload.fetch_add(data.len() as u64, Ordering::Relaxed);
+                    wire.fetch_add(data.len() as u64, Ordering::Relaxed);
+                    pc.frames.fetch_add(1, Ordering::Relaxed);
+                    let ack = format!("{{\"ack\":{n}}}");
+                    if tx.send(Message::Text(ack.into())).await.is_err() { break; }
+                }
+                Some(Ok(_)) => {}
+                _ => break,
+            },
+            () = tokio::time::sleep_until(wake) => {
+                if tokio::time::Instant::now() >= end { break; }
+                next_key += Duration::from_millis(100);
+                if bot.idle { continue; }
+                // The last key up and the next down: the view moves all the time, as an SSH
+                // bot's taps (each a hold of a terminal's repeat delay) make it.
+                let key = char::from(bot.key(&mut lcg));
+                if bot.turn && held == key { continue; }
+                for (k, down) in [(held, false), (key, true)] {
+                    let msg = format!("{{\"key\":\"{k}\",\"down\":{down}}}");
+                    let _ = tx.send(Message::Text(msg.into())).await;
+                }
+                held = key;
+            }
+        }
+    }
+    let _ = tx.send(Message::Close(None)).await;
 }
 
 /// GETs the metrics page once a second (the scrape's cost on the server counts too).
