@@ -17,6 +17,7 @@ differs after it, read through a terminal model (pyte) after the run: status-lin
 not count, and the model's slowness never delays an acknowledgement.
 
   python3 weblevels.py BIN [--rate 3mbit|none] [--cols 80 --rows 24] [--compress auto|always|never]
+                      [--hold S] [--timeline]
 Prints one JSON line. Needs root (it re-runs itself under `unshare -rn`), `tc`, and
 `pip install websockets pyte`.
 """
@@ -143,7 +144,22 @@ async def measure(args, port):
         "inflated_bytes_per_frame": round(sum(e[2] for e in turning) / max(1, len(turning))),
         "release_lag_ms": round(last_view_change_after(log, t1) * 1000),
         "level": level_at(log, end),
+        **({"timeline": timeline(log, joined)} if args.timeline else {}),
     }
+
+
+def timeline(log, joined):
+    """Each second of the run: frames that changed the view, mean wire and inflated bytes of
+    all frames, the share sent compressed, and the level named at its end."""
+    out = []
+    for s in range(int((log[-1][0] - joined) + 1) if log else 0):
+        a, b = joined + s, joined + s + 1
+        sec = [e for e in log if a <= e[0] < b]
+        if not sec:
+            continue
+        out.append([s, sum(1 for e in sec if e[3]), round(sum(e[1] for e in sec) / len(sec)),
+                    round(sum(e[2] for e in sec) / len(sec)), level_at(log, b)])
+    return out
 
 
 def main():
@@ -155,6 +171,7 @@ def main():
     ap.add_argument("--cols", type=int, default=80)
     ap.add_argument("--rows", type=int, default=24)
     ap.add_argument("--compress", default="auto")
+    ap.add_argument("--timeline", action="store_true", help="add a line a second")
     ap.add_argument("--inside", action="store_true")
     args = ap.parse_args()
     if not args.inside:
