@@ -287,7 +287,7 @@ impl LinkPacer {
             }
         }
         self.figures.rate = self.measured().or(self.peak.map(|(r, _)| r));
-        self.figures.limiting = self.held_rate().is_some();
+        self.figures.limiting = self.slow_rate().is_some();
     }
 
     /// Bytes per second the link delivered when it last held moving frames up, however long
