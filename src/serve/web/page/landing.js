@@ -1,8 +1,11 @@
 // What shows around the game: the name form (keys and touch help, a fullscreen button, Play
 // or Watch), the notice while the page reconnects, the Quit and fullscreen buttons while
-// playing, and the document's title naming the world and who is there (from /info.json).
+// playing (over the header's right end, so shown only while the mouse moves or rests on them),
+// and the document's title naming the world and who is there (from /info.json).
 
 const $ = (id) => document.getElementById(id);
+// How long the Quit and fullscreen buttons stay after the mouse last moved.
+const BAR_SHOWN_MS = 2500;
 
 // The world and its players, for the title: "default.cub · 2 playing · halfcast".
 export async function titled() {
@@ -54,6 +57,15 @@ export class Landing {
     });
     for (const b of document.querySelectorAll(".fullscreen")) b.addEventListener("click", toggleFullscreen);
     for (const b of document.querySelectorAll(".quit")) b.addEventListener("click", quit);
+    this.barTimer = 0;
+    addEventListener("mousemove", () => this.pointing());
+  }
+
+  // The mouse moved: the buttons over the header show for a while.
+  pointing() {
+    document.body.classList.add("pointing");
+    clearTimeout(this.barTimer);
+    this.barTimer = setTimeout(() => document.body.classList.remove("pointing"), BAR_SHOWN_MS);
   }
 
   shown() {
@@ -85,6 +97,8 @@ export class Landing {
       $("notice-text").textContent = `reconnecting ${this.spectate ? "" : `as ${name || "a new player"} `}now…`;
     } else if (state.kind === "playing") {
       titled();
+      // Shown as the game starts, so a player learns where Quit is.
+      this.pointing();
     }
   }
 }
