@@ -417,19 +417,9 @@ fn fits(f: &Value, what: &str, playing: bool) {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_page_on_a_fast_link_turns_in_truecolor_raw() {
-    if !browser_ready() {
-        eprintln!("skip: no {CHROMIUM} or no Python playwright (apt-get install chromium; pip install playwright)");
+    let Some(f) = check_on_still_world("levels_check.py").await else {
         return;
-    }
-    let (srv, dir) = server_with(
-        |c| c.web = Some(WebOptions::new("127.0.0.1:0".parse().unwrap())),
-        still_world(),
-    )
-    .await;
-    let web = srv.web_addr().expect("web listener");
-    let out = dir.path().join("levels");
-    std::fs::create_dir_all(&out).unwrap();
-    let f = run_check("levels_check.py", format!("http://{web}/"), &out).await;
+    };
     println!("fast link figures: {f}");
     assert_eq!(f["page_errors"], Value::Array(vec![]), "{f}");
     // The page paints and acks each frame itself, sometimes late (a busy moment of the page
@@ -443,14 +433,15 @@ async fn a_page_on_a_fast_link_turns_in_truecolor_raw() {
     );
     assert!(frames > 0, "the view turned: {f}");
     assert!(compressed < frames, "raw frames on loopback: {f}");
-    srv.shutdown().await;
 }
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn a_touch_phone_fits_the_screen_and_plays_by_touch() {
+/// Runs `browser/NAME` against a server of the still world with its web edge on (stopped once
+/// the check ends): the check's figures, or `None` with a notice where Chromium or Playwright
+/// is absent.
+async fn check_on_still_world(name: &str) -> Option<Value> {
     if !browser_ready() {
         eprintln!("skip: no {CHROMIUM} or no Python playwright (apt-get install chromium; pip install playwright)");
-        return;
+        return None;
     }
     let (srv, dir) = server_with(
         |c| c.web = Some(WebOptions::new("127.0.0.1:0".parse().unwrap())),
@@ -458,9 +449,18 @@ async fn a_touch_phone_fits_the_screen_and_plays_by_touch() {
     )
     .await;
     let web = srv.web_addr().expect("web listener");
-    let out = dir.path().join("phone");
+    let out = dir.path().join(name.trim_end_matches(".py"));
     std::fs::create_dir_all(&out).unwrap();
-    let f = run_check("phone_check.py", format!("http://{web}/"), &out).await;
+    let f = run_check(name, format!("http://{web}/"), &out).await;
+    srv.shutdown().await;
+    Some(f)
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_touch_phone_fits_the_screen_and_plays_by_touch() {
+    let Some(f) = check_on_still_world("phone_check.py").await else {
+        return;
+    };
     println!("phone figures: {f}");
     assert_eq!(f["page_errors"], Value::Array(vec![]), "{f}");
     assert_eq!(f["touch_help_shown"], Value::Bool(true), "{f}");
@@ -503,7 +503,6 @@ async fn a_touch_phone_fits_the_screen_and_plays_by_touch() {
         Some(&landscape),
         "the turned phone's grid was not sent"
     );
-    srv.shutdown().await;
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
