@@ -38,6 +38,25 @@ pub struct Facts {
     pub early: Vec<u8>,
 }
 
+impl Facts {
+    /// What every browser page brings, asked nothing: true colour (the page draws every
+    /// colour), key releases as they happen, the default block characters.
+    #[must_use]
+    pub fn browser() -> Self {
+        Self {
+            colour: ColourChoice {
+                level: crate::encode::ColorLevel::TrueColor,
+                reason: crate::encode::ColourReason::Browser,
+            },
+            glyphs: Glyphs::default(),
+            octant_dropper: None,
+            force_octants: "",
+            input_mode: InputMode::Released,
+            early: Vec::new(),
+        }
+    }
+}
+
 /// How a session ended, for its transport's goodbye.
 #[derive(Debug, Clone, Copy)]
 pub enum Outcome {

@@ -14,7 +14,6 @@ use super::admission;
 use super::arrival::{arrive, Who};
 use super::run::{Facts, Goodbye, Outcome, Transport};
 use super::Via;
-use crate::encode::{ColorLevel, ColourChoice, ColourReason};
 use crate::game::multi::players::Rules as GameRules;
 use crate::game::multi::round::Mode;
 use crate::play::avatars::with_avatar_sheet;
@@ -27,7 +26,6 @@ use crate::serve::limits::{Caps, Limiter};
 use crate::serve::ops::log::Log;
 use crate::serve::ops::stats::ServeStats;
 use crate::serve::shared::Shared;
-use crate::ui::keys::InputMode;
 use crate::world::World;
 
 /// A sink that takes frames (each at once on the wire) until armed, then panics on the next.
@@ -107,20 +105,6 @@ fn one_place() -> (Arc<Shared>, Alive) {
     (shared, (hold, shutdown_tx, farewell_tx))
 }
 
-fn browser_facts() -> Facts {
-    Facts {
-        colour: ColourChoice {
-            level: ColorLevel::TrueColor,
-            reason: ColourReason::Browser,
-        },
-        glyphs: crate::render::glyphs::Glyphs::default(),
-        octant_dropper: None,
-        force_octants: "",
-        input_mode: InputMode::Released,
-        early: Vec::new(),
-    }
-}
-
 /// Waits (up to 5 s of the real clock) until the world's snapshots say whether `id` plays.
 async fn until_in_world(shared: &Shared, id: u64, present: bool) -> bool {
     let mut snaps = shared.world.snapshots();
@@ -162,7 +146,7 @@ async fn a_panicking_browser_session_is_caught_counted_and_frees_its_place() {
     let (_input, input) = mpsc::channel::<Input>(4);
     let (size_tx, size) = watch::channel((80, 24));
     let transport = Transport {
-        facts: browser_facts(),
+        facts: Facts::browser(),
         input,
         size,
         sink: Fragile(Arc::clone(&armed), 0),
@@ -210,7 +194,7 @@ async fn a_session_that_ends_gives_back_its_place_once() {
     let (input_tx, input) = mpsc::channel::<Vec<u8>>(4);
     let (_size_tx, size) = watch::channel((80, 24));
     let transport = Transport {
-        facts: browser_facts(),
+        facts: Facts::browser(),
         input,
         size,
         sink: Fragile(Arc::new(AtomicBool::new(false)), 0),

@@ -21,7 +21,6 @@ use super::acked::AckBook;
 use super::edge::WebEdge;
 use super::messages::{self, PageMessage};
 use super::sink::{WebSink, Writer};
-use crate::encode::{ColorLevel, ColourChoice, ColourReason};
 use crate::play::acks::Echoes;
 use crate::play::input::Input;
 use crate::play::session::{self, End};
@@ -29,7 +28,6 @@ use crate::serve::edge::arrival::{arrive, Who};
 use crate::serve::edge::run::{Facts, Goodbye, Outcome, Transport};
 use crate::serve::limits::Playing;
 use crate::serve::ops::drain::{self, RESTARTING};
-use crate::ui::keys::InputMode;
 
 type Reader = SplitStream<WebSocketStream<TcpStream>>;
 
@@ -79,7 +77,7 @@ pub async fn run(
     });
     let arrival = arrive(&edge.shared, who, place).await;
     let transport = Transport {
-        facts: browser_facts(),
+        facts: Facts::browser(),
         input: input_rx,
         size: size_rx,
         sink,
@@ -91,22 +89,6 @@ pub async fn run(
         farewell: edge.shared.farewell.clone(),
     };
     arrival.play(transport, bye).await;
-}
-
-/// What a browser brings: true colour (the page draws every colour), key releases as they
-/// happen, the default block characters.
-fn browser_facts() -> Facts {
-    Facts {
-        colour: ColourChoice {
-            level: ColorLevel::TrueColor,
-            reason: ColourReason::Browser,
-        },
-        glyphs: crate::render::glyphs::Glyphs::default(),
-        octant_dropper: None,
-        force_octants: "",
-        input_mode: InputMode::Released,
-        early: Vec::new(),
-    }
 }
 
 /// How a page is left: its reader stopped, and a close frame whose code says whether to come
