@@ -49,11 +49,14 @@ const GOODPUT_MEMORY: Duration = Duration::from_secs(5);
 /// is a hiccup (a browser page busy for 80 ms once, measured on loopback), a slow link holds
 /// up every frame.
 const HELD_SAMPLES: u32 = 3;
+/// The least encoder bytes of a frame whose wire size says how frames go on the wire (a status
+/// line's few dozen bytes compress far worse than any view does).
+const RATIO_FROM: u64 = 1_000;
 /// How long a delivery-rate peak is trusted.
 const RATE_MEMORY: Duration = Duration::from_secs(2);
 /// Weight of the newest moving frame in a level's mean size.
 const SMOOTHING: f64 = 0.25;
-/// Wire size of a moving frame at the next level up, as a multiple of this level's, until one
+/// Size of a moving frame at the next level up, as a multiple of this level's, until one
 /// was seen: each level's turning frames are about four times the next lower one's at every
 /// size measured (truecolor 940, 256 colours 230, 16 colours 53 kB/s at 80×24; docs/serving.md,
 /// "A slow link").
@@ -316,14 +319,17 @@ impl LinkPacer {
     /// having gone on the wire before it, drawn at `level`.
     pub fn sent(&mut self, wire: u64, bytes: u64, level: ColorLevel, now: Instant) {
         // A frame that waited on the link, or came soon after the last, is part of a moving
-        // stretch: the previous frame's wire size (all written by now) counts for its level.
+        // stretch: the previous frame's size counts for its level, and its wire size (all
+        // written by now) says how frames go on the wire.
         let moving = self.held_up
             || self.last_sent.is_some_and(|t| {
                 now.duration_since(t).as_secs_f64() < self.period.as_secs_f64() * STRETCH
             });
         if let (true, Some(prev)) = (moving && wire > self.last_wire, self.last_level) {
             let prev_bytes = self.last_bytes.max(1) as f64;
-            self.wire_ratio = (wire - self.last_wire) as f64 / prev_bytes;
+            if self.last_bytes >= RATIO_FROM {
+                self.wire_ratio = (wire - self.last_wire) as f64 / prev_bytes;
+            }
             // A frame of at least half the level's usual moving size that found the link
             // empty when it went (the last one all acknowledged) keeps the link's quiet going;
             // one that found it busy ends it.

@@ -307,3 +307,18 @@ fn one_late_frame_is_a_hiccup_and_three_lately_a_slow_link() {
         "three late frames in 5 s: the link is slow"
     );
 }
+
+#[test]
+fn a_status_line_says_nothing_of_how_frames_go_on_the_wire() {
+    use ColorLevel::TrueColor;
+    let mut p = LinkPacer::new(PERIOD, TrueColor);
+    let t = Instant::now();
+    // Two compressed view frames (33 kB as 9 kB), then a 60-byte status line that deflate
+    // hardly shrinks.
+    p.sent(0, 33_000, TrueColor, t);
+    p.sent(9_000, 33_000, TrueColor, t + PERIOD);
+    p.sent(18_000, 60, TrueColor, t + 2 * PERIOD);
+    assert!((p.wire_ratio - 9.0 / 33.0).abs() < 1e-9);
+    p.sent(18_055, 33_000, TrueColor, t + 3 * PERIOD);
+    assert!((p.wire_ratio - 9.0 / 33.0).abs() < 1e-9, "{}", p.wire_ratio);
+}
