@@ -6,7 +6,8 @@
 //! halfcast's own reading of the same frame bytes (`termframe`) cell by cell. A touch phone fits
 //! the page and plays by touch (`browser/phone_check.py`), and an open page plays again by itself
 //! after its server drains and restarts (`browser/restart_check.py`), and a page on a fast link
-//! turns in truecolor with raw frames (`browser/levels_check.py`). Prints a skip notice when
+//! turns in truecolor with raw frames, its Quit bar out of the header's way while the mouse
+//! rests (`browser/levels_check.py`). Prints a skip notice when
 //! Chromium or Playwright is absent (`.ci/run` installs both).
 
 use std::path::{Path, PathBuf};
@@ -433,6 +434,9 @@ async fn a_page_on_a_fast_link_turns_in_truecolor_raw() {
     );
     assert!(frames > 0, "the view turned: {f}");
     assert!(compressed < frames, "raw frames on loopback: {f}");
+    // Quit and Fullscreen sit over the header's end: hidden while the mouse rests, back on a move.
+    assert_eq!(f["bar_opacity_still"].as_f64(), Some(0.0), "{f}");
+    assert!(f["bar_opacity_moved"].as_f64() > Some(0.5), "{f}");
 }
 
 /// Runs `browser/NAME` against a server of the still world with its web edge on (stopped once
