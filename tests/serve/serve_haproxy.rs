@@ -7,7 +7,7 @@
 //! tool is not installed. The fleet's behaviour over time (one host key, restarts, health
 //! checks) is in serve_fleet.rs, with the helpers here.
 
-use crate::serve_process::{free_port, spawn_server, Guard};
+use crate::serve_process::{free_port, spawn_listening, spawn_server, Guard};
 use crate::serve_support;
 
 use std::path::Path;
@@ -129,24 +129,11 @@ pub(crate) fn haproxy(dir: &Path, w1: World, w2: World) -> (Guard, u16) {
     let (front, probe) = (free_port(), free_port());
     let cfg_path = dir.join("haproxy.cfg");
     std::fs::write(&cfg_path, config(front, probe, w1, w2)).unwrap();
-    let child = Command::new("haproxy")
-        .arg("-db")
-        .arg("-f")
-        .arg(&cfg_path)
-        .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("haproxy starts");
-    let guard = Guard(child);
-    let deadline = Instant::now() + PATIENCE;
+    let mut haproxy = Command::new("haproxy");
+    haproxy.arg("-db").arg("-f").arg(&cfg_path);
     // HAProxy binds every listener before it serves any: once the probe answers, so does
     // the front.
-    while std::net::TcpStream::connect(("127.0.0.1", probe)).is_err() {
-        assert!(Instant::now() < deadline, "haproxy never listened");
-        std::thread::sleep(Duration::from_millis(50));
-    }
-    (guard, front)
+    (spawn_listening(haproxy, probe), front)
 }
 
 /// Whether HAProxy and OpenSSH's client are both here (a skip notice otherwise).

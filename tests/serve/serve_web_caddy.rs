@@ -4,12 +4,11 @@
 //! their own are logged and limited by their own addresses. Skipped with a notice without Caddy
 //! or extra loopback addresses.
 
-use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+use std::process::Command;
 
 use crate::serve_haproxy::installed;
-use crate::serve_process::{free_port, spawn_server, Guard};
-use crate::serve_support::{many_loopback_addresses, PATIENCE};
+use crate::serve_process::{free_port, spawn_listening, spawn_server, Guard};
+use crate::serve_support::many_loopback_addresses;
 use crate::serve_web_haproxy::forged_addresses_never_count;
 
 /// The Caddyfile after "With Caddy:" in docs/serving.md.
@@ -28,23 +27,14 @@ fn documented_caddyfile() -> String {
 fn caddy(caddyfile: &str, front: u16, dir: &std::path::Path) -> Guard {
     let path = dir.join("Caddyfile");
     std::fs::write(&path, caddyfile).unwrap();
-    let child = Command::new("caddy")
+    let mut caddy = Command::new("caddy");
+    caddy
         .args(["run", "--adapter", "caddyfile", "--config"])
         .arg(&path)
         .env("HOME", dir)
         .env("XDG_DATA_HOME", dir.join("data"))
-        .env("XDG_CONFIG_HOME", dir.join("config"))
-        .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("caddy starts");
-    let deadline = Instant::now() + PATIENCE;
-    while std::net::TcpStream::connect(("127.0.0.1", front)).is_err() {
-        assert!(Instant::now() < deadline, "caddy never listened");
-        std::thread::sleep(Duration::from_millis(50));
-    }
-    Guard(child)
+        .env("XDG_CONFIG_HOME", dir.join("config"));
+    spawn_listening(caddy, front)
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]

@@ -6,13 +6,13 @@
 
 use std::net::SocketAddr;
 use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use halfcast::serve::web::WebOptions;
 use tokio_tungstenite::tungstenite::client::IntoClientRequest;
 
 use crate::serve_haproxy::installed;
-use crate::serve_process::{free_port, Guard};
+use crate::serve_process::{free_port, spawn_listening, Guard};
 use crate::serve_support::web::WebClient;
 use crate::serve_support::{header_has, many_loopback_addresses, server, PATIENCE};
 
@@ -23,22 +23,7 @@ fn haproxy(front: u16, web: SocketAddr, dir: &std::path::Path) -> Guard {
          frontend web\n  bind 127.0.0.1:{front}\n  option forwardfor\n  default_backend halfcast\n\
          backend halfcast\n  server w1 {web}\n"
     );
-    let path = dir.join("haproxy-web.cfg");
-    std::fs::write(&path, cfg).unwrap();
-    let child = Command::new("haproxy")
-        .args(["-db", "-f"])
-        .arg(&path)
-        .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("haproxy starts");
-    let deadline = Instant::now() + PATIENCE;
-    while std::net::TcpStream::connect(("127.0.0.1", front)).is_err() {
-        assert!(Instant::now() < deadline, "haproxy never listened");
-        std::thread::sleep(Duration::from_millis(50));
-    }
-    Guard(child)
+    haproxy_on(&cfg, front, dir)
 }
 
 /// A page's WebSocket from source address `from` through the proxy at `front`, sent with the
@@ -129,22 +114,11 @@ fn shipped_config(binds: &str, web: u16) -> String {
 
 /// HAProxy on `cfg`, once it listens on `front`.
 fn haproxy_on(cfg: &str, front: u16, dir: &std::path::Path) -> Guard {
-    let path = dir.join("haproxy-shipped.cfg");
+    let path = dir.join("haproxy-web.cfg");
     std::fs::write(&path, cfg).unwrap();
-    let child = Command::new("haproxy")
-        .args(["-db", "-f"])
-        .arg(&path)
-        .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("haproxy starts");
-    let deadline = Instant::now() + PATIENCE;
-    while std::net::TcpStream::connect(("127.0.0.1", front)).is_err() {
-        assert!(Instant::now() < deadline, "haproxy never listened");
-        std::thread::sleep(Duration::from_millis(50));
-    }
-    Guard(child)
+    let mut haproxy = Command::new("haproxy");
+    haproxy.args(["-db", "-f"]).arg(&path);
+    spawn_listening(haproxy, front)
 }
 
 /// A page's WebSocket from `from` through the proxy at `front` that also sends addresses of

@@ -4,7 +4,7 @@
 use std::io::{BufRead, BufReader};
 use std::process::{Child, Command, Stdio};
 use std::sync::mpsc;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use crate::serve_support::PATIENCE;
 
@@ -24,6 +24,25 @@ pub fn free_port() -> u16 {
         .and_then(|l| l.local_addr())
         .expect("a free port")
         .port()
+}
+
+/// Starts `cmd` (a proxy in front of the server: HAProxy, Caddy) with its output thrown away,
+/// and returns it once something listens on `port` of the loopback address.
+pub fn spawn_listening(mut cmd: Command, port: u16) -> Guard {
+    let what = cmd.get_program().to_string_lossy().into_owned();
+    let child = cmd
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap_or_else(|e| panic!("{what} starts: {e}"));
+    let guard = Guard(child);
+    let deadline = Instant::now() + PATIENCE;
+    while std::net::TcpStream::connect(("127.0.0.1", port)).is_err() {
+        assert!(Instant::now() < deadline, "{what} never listened");
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    guard
 }
 
 /// Starts `halfcast serve` on `port` with its host key at `host_key`, `extra` flags and `env`
