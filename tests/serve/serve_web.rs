@@ -11,7 +11,7 @@ use halfcast::serve::{RunningServer, ServeConfig};
 use tempfile::TempDir;
 use tokio_tungstenite::tungstenite::protocol::frame::coding::CloseCode;
 
-use crate::serve_support::web::{open, WebClient};
+use crate::serve_support::web::{open, upgrade, WebClient};
 use crate::serve_support::{header_has, live_becomes, row_text, server, status_has, Client};
 
 /// A server with the browser listener on a free port, `tweak`ed.
@@ -350,15 +350,7 @@ async fn per_address_limits_use_a_trusted_proxys_client_address() {
         req.headers_mut()
             .insert("X-Forwarded-For", ip.parse().unwrap());
         let tcp = tokio::net::TcpStream::connect(addr).await.unwrap();
-        let (ws, _) = tokio_tungstenite::client_async(req, tcp).await.unwrap();
-        WebClient {
-            ws,
-            screen: vt100::Parser::new(24, 80, 0),
-            frames: 0,
-            wire: 0,
-            acking: true,
-            notes: Vec::new(),
-        }
+        upgrade(req, tcp).await.expect("upgraded")
     };
     let mut one = via("203.0.113.1").await;
     let mut two = via("203.0.113.2").await;

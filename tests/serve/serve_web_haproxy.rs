@@ -13,7 +13,7 @@ use tokio_tungstenite::tungstenite::client::IntoClientRequest;
 
 use crate::serve_haproxy::installed;
 use crate::serve_process::{free_port, spawn_listening, Guard};
-use crate::serve_support::web::WebClient;
+use crate::serve_support::web::{upgrade, WebClient};
 use crate::serve_support::{header_has, many_loopback_addresses, server, PATIENCE};
 
 fn haproxy(front: u16, web: SocketAddr, dir: &std::path::Path) -> Guard {
@@ -29,6 +29,12 @@ fn haproxy(front: u16, web: SocketAddr, dir: &std::path::Path) -> Guard {
 /// A page's WebSocket from source address `from` through the proxy at `front`, sent with the
 /// page's own origin as a browser would.
 async fn page_from(from: &str, front: u16, name: &str) -> WebClient {
+    through_proxy(from, front, name, None).await
+}
+
+/// A page's WebSocket from `from` through the proxy at `front`, with the page's origin and, when
+/// `forged` names one, that address in both headers a proxy may use.
+async fn through_proxy(from: &str, front: u16, name: &str, forged: Option<&str>) -> WebClient {
     let socket = tokio::net::TcpSocket::new_v4().unwrap();
     socket.bind(format!("{from}:0").parse().unwrap()).unwrap();
     let tcp = socket
@@ -38,21 +44,19 @@ async fn page_from(from: &str, front: u16, name: &str) -> WebClient {
     let mut req = format!("ws://127.0.0.1:{front}/ws?name={name}&cols=80&rows=24")
         .into_client_request()
         .unwrap();
-    req.headers_mut().insert(
+    let h = req.headers_mut();
+    h.insert(
         "Origin",
         format!("http://127.0.0.1:{front}").parse().unwrap(),
     );
-    let (ws, _) = tokio_tungstenite::client_async(req, tcp)
-        .await
-        .expect("upgraded through the proxy");
-    WebClient {
-        ws,
-        screen: vt100::Parser::new(24, 80, 0),
-        frames: 0,
-        wire: 0,
-        acking: true,
-        notes: Vec::new(),
+    if let Some(forged) = forged {
+        h.insert("Forwarded", format!("for={forged}").parse().unwrap());
+        h.append(
+            "X-Forwarded-For",
+            format!("{forged}, 198.51.100.9").parse().unwrap(),
+        );
     }
+    upgrade(req, tcp).await.expect("upgraded through the proxy")
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -129,36 +133,7 @@ pub(crate) async fn forging_page_from(
     name: &str,
     forged: &str,
 ) -> WebClient {
-    let socket = tokio::net::TcpSocket::new_v4().unwrap();
-    socket.bind(format!("{from}:0").parse().unwrap()).unwrap();
-    let tcp = socket
-        .connect(format!("127.0.0.1:{front}").parse().unwrap())
-        .await
-        .expect("the proxy answers");
-    let mut req = format!("ws://127.0.0.1:{front}/ws?name={name}&cols=80&rows=24")
-        .into_client_request()
-        .unwrap();
-    let h = req.headers_mut();
-    h.insert(
-        "Origin",
-        format!("http://127.0.0.1:{front}").parse().unwrap(),
-    );
-    h.insert("Forwarded", format!("for={forged}").parse().unwrap());
-    h.append(
-        "X-Forwarded-For",
-        format!("{forged}, 198.51.100.9").parse().unwrap(),
-    );
-    let (ws, _) = tokio_tungstenite::client_async(req, tcp)
-        .await
-        .expect("upgraded through the proxy");
-    WebClient {
-        ws,
-        screen: vt100::Parser::new(24, 80, 0),
-        frames: 0,
-        wire: 0,
-        acking: true,
-        notes: Vec::new(),
-    }
+    through_proxy(from, front, name, Some(forged)).await
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]

@@ -7,6 +7,7 @@ use std::time::Duration;
 use futures_util::{SinkExt, StreamExt};
 use tokio::net::TcpStream;
 use tokio_tungstenite::tungstenite::client::IntoClientRequest;
+use tokio_tungstenite::tungstenite::handshake::client::Request;
 use tokio_tungstenite::tungstenite::http::HeaderValue;
 use tokio_tungstenite::tungstenite::protocol::frame::coding::CloseCode;
 use tokio_tungstenite::tungstenite::{Error, Message};
@@ -48,19 +49,25 @@ pub async fn open(addr: SocketAddr, query: &str, origin: Option<&str>) -> Result
     let tcp = TcpStream::connect(addr)
         .await
         .expect("the web port answers");
+    upgrade(req, tcp).await
+}
+
+/// Upgrades `req` over `tcp`, a connection made as the test needs it (from a chosen source
+/// address, through a proxy), to a page playing at the grid the request's query asks for; or
+/// the HTTP status the upgrade was refused with.
+pub async fn upgrade(req: Request, tcp: TcpStream) -> Result<WebClient, u16> {
+    // As a browser's socket is: an ack never waits on the last one's TCP acknowledgement.
     tcp.set_nodelay(true).expect("nodelay");
+    let (cols, rows) = size_in(req.uri().query().unwrap_or_default());
     match tokio_tungstenite::client_async(req, tcp).await {
-        Ok((ws, _)) => {
-            let (cols, rows) = size_in(query);
-            Ok(WebClient {
-                ws,
-                screen: vt100::Parser::new(rows, cols, 0),
-                frames: 0,
-                wire: 0,
-                acking: true,
-                notes: Vec::new(),
-            })
-        }
+        Ok((ws, _)) => Ok(WebClient {
+            ws,
+            screen: vt100::Parser::new(rows, cols, 0),
+            frames: 0,
+            wire: 0,
+            acking: true,
+            notes: Vec::new(),
+        }),
         Err(Error::Http(resp)) => Err(resp.status().as_u16()),
         Err(e) => panic!("upgrade failed: {e}"),
     }
