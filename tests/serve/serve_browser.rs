@@ -10,7 +10,7 @@
 //! rests (`browser/levels_check.py`). Prints a skip notice when
 //! Chromium or Playwright is absent (`.ci/run` installs both).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::Duration;
 
 use halfcast::encode::glyph_mask::mask_of;
@@ -20,37 +20,18 @@ use halfcast::Glyphs;
 use halfcast::World;
 use serde_json::Value;
 
+use crate::serve_support::browser;
 use crate::serve_support::{header_has, row_text, server_with, view_rect, Client};
 
-/// Where Debian's `chromium` package puts the browser.
-const CHROMIUM: &str = "/usr/bin/chromium";
 /// How long after a key's release the view may still change, with room for a loaded 2-core
 /// machine running the browser, the server and the tests at once (the measured figure is
 /// printed; docs/serving.md has it).
 const RELEASE_BOUND_MS: f64 = 1000.0;
 
-fn browser_ready() -> bool {
-    Path::new(CHROMIUM).exists()
-        && std::process::Command::new("python3")
-            .args(["-c", "import playwright"])
-            .output()
-            .is_ok_and(|o| o.status.success())
-}
-
 /// The default map with nothing that moves by itself (creatures, animated sprites, items): only
 /// the player's keys change the view, so "the view stopped" can be seen.
 fn still_world() -> World {
     crate::serve_support::default_world_keeping(|l| !l.contains("frames="))
-}
-
-fn script() -> PathBuf {
-    browser_script("page_check.py")
-}
-
-fn browser_script(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/serve/browser")
-        .join(name)
 }
 
 /// One tap's step of turn over SSH (`ui::keys::TAP_TURN_DEG`); the status line shows the angle to
@@ -59,8 +40,7 @@ const TAP_DEGREES: f64 = 8.0;
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn chromium_plays_on_the_page() {
-    if !browser_ready() {
-        eprintln!("skip: no {CHROMIUM} or no Python playwright (apt-get install chromium; pip install playwright)");
+    if !browser::ready() {
         return;
     }
     let (srv, dir) = server_with(
@@ -72,32 +52,19 @@ async fn chromium_plays_on_the_page() {
     let mut ssh = Client::connect(srv.local_addr(), "sshy", 100, 20, "xterm-256color").await;
     let out = dir.path().join("browser");
     std::fs::create_dir_all(&out).unwrap();
-    let child = std::process::Command::new("python3")
-        .arg(script())
-        .arg(format!("http://{web}/"))
-        .arg(&out)
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("python3 runs");
-    let run = tokio::task::spawn_blocking(move || child.wait_with_output());
+    let url = format!("http://{web}/");
+    let child = browser::start("page_check.py", &[url.as_ref(), out.as_os_str()]);
+    let run = tokio::task::spawn_blocking(move || browser::finish("page_check.py", child));
     // While the browser plays, the SSH player sees it in the header.
     let seen = ssh.until(|s| header_has(s, "chromey")).await;
     let header = row_text(ssh.screen.screen(), 0);
     ssh.drain_for(Duration::from_millis(300)).await;
     drop(ssh);
-    let done = run.await.expect("joined").expect("its output");
-    let stdout = String::from_utf8_lossy(&done.stdout);
-    assert!(
-        done.status.success(),
-        "page_check.py failed:\n{stdout}\n{}",
-        String::from_utf8_lossy(&done.stderr)
-    );
+    let figures = joined(run.await);
     assert!(
         seen,
         "the SSH player never saw the browser player: {header:?}"
     );
-    let figures: Value = serde_json::from_str(stdout.lines().last().unwrap_or("")).expect("JSON");
     println!("browser figures: {figures}");
     check_figures(&figures);
     for (name, cols, rows) in [("small", 80, 24), ("large", 160, 45)] {
@@ -351,27 +318,17 @@ fn painter_against_termframe(out: &Path, name: &str) -> (usize, usize) {
     (compared, wrong)
 }
 
-/// Runs `browser/NAME URL OUTDIR` to its end: its last line's JSON.
-async fn run_check(name: &str, url: String, out: &Path) -> Value {
-    let child = std::process::Command::new("python3")
-        .arg(browser_script(name))
-        .arg(url)
-        .arg(out)
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("python3 runs");
-    let done = tokio::task::spawn_blocking(move || child.wait_with_output())
-        .await
-        .expect("joined")
-        .expect("its output");
-    let stdout = String::from_utf8_lossy(&done.stdout);
-    assert!(
-        done.status.success(),
-        "{name} failed:\n{stdout}\n{}",
-        String::from_utf8_lossy(&done.stderr)
-    );
-    serde_json::from_str(stdout.lines().last().unwrap_or("")).expect("JSON")
+/// Runs `browser/NAME URL OUTDIR` to its end, off the test's runtime: its last line's JSON.
+async fn run_check(name: &'static str, url: String, out: &Path) -> Value {
+    let out = out.to_owned();
+    let run =
+        tokio::task::spawn_blocking(move || browser::run(name, &[url.as_ref(), out.as_os_str()]));
+    joined(run.await)
+}
+
+/// A blocking task's result, its panic (a failed check, with what it printed) passed on as is.
+fn joined<T>(done: Result<T, tokio::task::JoinError>) -> T {
+    done.unwrap_or_else(|e| std::panic::resume_unwind(e.into_panic()))
 }
 
 /// Whether the box `[left, top, right, bottom]` lies within a `w` × `h` screen.
@@ -442,9 +399,8 @@ async fn a_page_on_a_fast_link_turns_in_truecolor_raw() {
 /// Runs `browser/NAME` against a server of the still world with its web edge on (stopped once
 /// the check ends): the check's figures, or `None` with a notice where Chromium or Playwright
 /// is absent.
-async fn check_on_still_world(name: &str) -> Option<Value> {
-    if !browser_ready() {
-        eprintln!("skip: no {CHROMIUM} or no Python playwright (apt-get install chromium; pip install playwright)");
+async fn check_on_still_world(name: &'static str) -> Option<Value> {
+    if !browser::ready() {
         return None;
     }
     let (srv, dir) = server_with(
@@ -512,8 +468,7 @@ async fn a_touch_phone_fits_the_screen_and_plays_by_touch() {
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_restarted_server_gets_the_open_page_playing_again_by_itself() {
     use std::io::BufRead;
-    if !browser_ready() {
-        eprintln!("skip: no {CHROMIUM} or no Python playwright (apt-get install chromium; pip install playwright)");
+    if !browser::ready() {
         return;
     }
     let web_on = |addr: std::net::SocketAddr| {
@@ -525,15 +480,8 @@ async fn a_restarted_server_gets_the_open_page_playing_again_by_itself() {
     let web = srv.web_addr().expect("web listener");
     let out = dir.path().join("restart");
     std::fs::create_dir_all(&out).unwrap();
-    let mut child = std::process::Command::new("python3")
-        .arg(browser_script("restart_check.py"))
-        .arg(format!("http://{web}/"))
-        .arg(&out)
-        .stdin(std::process::Stdio::piped())
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("python3 runs");
+    let url = format!("http://{web}/");
+    let mut child = browser::start("restart_check.py", &[url.as_ref(), out.as_os_str()]);
     let mut lines = std::io::BufReader::new(child.stdout.take().unwrap()).lines();
     let (first, mut lines) = tokio::task::spawn_blocking(move || (lines.next(), lines))
         .await

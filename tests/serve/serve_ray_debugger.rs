@@ -16,22 +16,14 @@ use halfcast::{Vec2, World};
 use serde_json::Value;
 
 use crate::serve_process::{free_port, spawn_server};
+use crate::serve_support::browser;
 
-const CHROMIUM: &str = "/usr/bin/chromium";
 /// The maps served, in rotation order.
 const MAPS: [&str; 3] = ["maps/default.cub", "maps/heights.cub", "maps/level1.cub"];
 /// trace's top view: where cell `min`'s corner is drawn (output/figure/mod.rs: MARGIN + 36, 112).
 const TRACE_ORIGIN: (f64, f64) = (52.0, 112.0);
 /// The page's figure: the same (ray_figure.js ORIGIN).
 const PAGE_ORIGIN: (f64, f64) = (40.0, 30.0);
-
-fn browser_ready() -> bool {
-    Path::new(CHROMIUM).exists()
-        && Command::new("python3")
-            .args(["-c", "import playwright"])
-            .output()
-            .is_ok_and(|o| o.status.success())
-}
 
 fn repo(p: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join(p)
@@ -375,8 +367,7 @@ fn facts(svg: &str, grid: &Value) -> TraceFacts {
 
 #[test]
 fn chromium_shows_the_ray_trace_draws_and_steps_through_it() {
-    if !browser_ready() {
-        eprintln!("skip: no {CHROMIUM} or no Python playwright (apt-get install chromium; pip install playwright)");
+    if !browser::ready() {
         return;
     }
     let dir = tempfile::tempdir().unwrap();
@@ -397,20 +388,11 @@ fn chromium_shows_the_ray_trace_draws_and_steps_through_it() {
         .collect();
     let cases_file = dir.path().join("cases.json");
     std::fs::write(&cases_file, serde_json::to_string(&cases).unwrap()).unwrap();
-    let out = Command::new("python3")
-        .arg(repo("tests/serve/browser/ray_check.py"))
-        .arg(format!("http://127.0.0.1:{web}"))
-        .arg(&cases_file)
-        .arg(dir.path())
-        .output()
-        .expect("python3 runs");
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "ray_check.py failed:\n{stdout}\n{}",
-        String::from_utf8_lossy(&out.stderr)
+    let url = format!("http://127.0.0.1:{web}");
+    let figures = browser::run(
+        "ray_check.py",
+        &[url.as_ref(), cases_file.as_os_str(), dir.path().as_os_str()],
     );
-    let figures: Value = serde_json::from_str(stdout.lines().last().unwrap()).unwrap();
     let refused = figures["refused"].as_str().unwrap();
     assert_eq!(
         refused,
@@ -635,27 +617,17 @@ fn address_value<'a>(address: &'a str, key: &str) -> &'a str {
 /// browser shows the same ray without playing.
 #[test]
 fn a_click_on_the_view_debugs_that_column_and_its_address_reproduces_it() {
-    if !browser_ready() {
-        eprintln!("skip: no {CHROMIUM} or no Python playwright (apt-get install chromium; pip install playwright)");
+    if !browser::ready() {
         return;
     }
     let dir = tempfile::tempdir().unwrap();
     let (_server, web, _log) = serve_maps(dir.path(), &[]);
     let column = 1 + seed() % 30;
-    let out = Command::new("python3")
-        .arg(repo("tests/serve/browser/click_check.py"))
-        .arg(format!("http://127.0.0.1:{web}"))
-        .arg(column.to_string())
-        .arg(dir.path())
-        .output()
-        .expect("python3 runs");
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "click_check.py failed:\n{stdout}\n{}",
-        String::from_utf8_lossy(&out.stderr)
+    let (url, column_arg) = (format!("http://127.0.0.1:{web}"), column.to_string());
+    let got = browser::run(
+        "click_check.py",
+        &[url.as_ref(), column_arg.as_ref(), dir.path().as_os_str()],
     );
-    let got: Value = serde_json::from_str(stdout.lines().last().unwrap()).unwrap();
     println!("clicked column {column}: /?{}", got["address"]);
     let address = got["address"].as_str().unwrap();
     assert_eq!(address_value(address, "column"), column.to_string());

@@ -2,6 +2,7 @@
 //! this file with `#[path]`): an in-process server on a free loopback port, and a real russh
 //! client whose output goes through a vt100 terminal model.
 
+pub mod browser;
 pub mod http;
 pub mod openssh;
 pub mod pg_cluster;
