@@ -1,6 +1,7 @@
 """What the browser checks share: Debian's Chromium under Playwright, the frames a page received
 (inflated when the server sent them as raw DEFLATE, contract 1), the messages it sent, and
-readings of its grid (the view's hash, the status line's angle)."""
+readings of its grid (the view's hash, the status line's angle); and for the link measurements
+(weblag.py, weblevels.py), a shaped network namespace and a server on the still map."""
 
 import json
 import re
@@ -98,3 +99,52 @@ def wait_for_port(port, tries=100):
             return
         except OSError:
             time.sleep(0.1)
+
+
+def in_shaped_namespace(rate, queue_ms):
+    """Re-runs this script under `unshare -rn` (a network namespace of its own) unless it runs
+    there already (`--inside`), then shapes that namespace's loopback as
+    ../shared/tools/linklag.py does: MTU 1500 and, unless `rate` is "none", a token bucket of
+    `rate` with a 16 kB burst and a `queue_ms` queue."""
+    import os, subprocess, sys
+    if "--inside" not in sys.argv:
+        os.execvp("unshare", ["unshare", "-rn", sys.executable, *sys.argv, "--inside"])
+    subprocess.run(["ip", "link", "set", "lo", "up", "mtu", "1500"], check=True)
+    if rate != "none":
+        subprocess.run(["tc", "qdisc", "add", "dev", "lo", "root", "tbf", "rate", rate,
+                        "burst", "16kb", "latency", f"{queue_ms}ms"], check=True)
+
+
+def free_port():
+    """A port free now on 127.0.0.1."""
+    import socket
+    s = socket.socket()
+    s.bind(("127.0.0.1", 0))
+    port = s.getsockname()[1]
+    s.close()
+    return port
+
+
+class serving:
+    """`BIN serve` on the still map with its web port on 127.0.0.1, for a `with` block that gets
+    the web port; `extra` flags are added. Stopped at the block's end."""
+
+    def __init__(self, bin, extra=()):
+        self.bin, self.extra = bin, list(extra)
+
+    def __enter__(self):
+        import subprocess, tempfile
+        self.dir = tempfile.TemporaryDirectory()
+        d = self.dir.name
+        web = free_port()
+        self.srv = subprocess.Popen(
+            [self.bin, "serve", still_map(d), "--listen", f"127.0.0.1:{free_port()}",
+             "--web", f"127.0.0.1:{web}", *self.extra, "--host-key", f"{d}/hk", "--db", "none",
+             "--quiet"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        wait_for_port(web)
+        return web
+
+    def __exit__(self, *exc):
+        self.srv.terminate()
+        self.srv.wait()
+        self.dir.cleanup()

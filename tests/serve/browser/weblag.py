@@ -20,8 +20,8 @@ Re-executes itself under `unshare -rn` when not already in a fresh namespace.
   python3 weblag.py BIN [--rate 1mbit|none] [--hold 3] [--cols 80 --rows 24] [--runs 3]
 Prints one JSON line.
 """
-from pagelib import still_map, wait_for_port
-import argparse, asyncio, json, os, re, socket, subprocess, sys, tempfile, time, zlib
+from pagelib import in_shaped_namespace, serving
+import argparse, asyncio, json, re, sys, time, zlib
 
 CSI = re.compile(rb"\x1b\[([0-9;?<>=]*)([@-~])")
 
@@ -62,17 +62,6 @@ def draws_view(frame, rows):
         elif final == b"B":
             row = min(row + max(n[0], 1), rows)
     return text_rows(frame[at:], row) is None
-
-
-def shaped(args):
-    subprocess.run(["ip", "link", "set", "lo", "up", "mtu", "1500"], check=True)
-    if args.rate != "none":
-        subprocess.run(["tc", "qdisc", "add", "dev", "lo", "root", "tbf", "rate", args.rate,
-                        "burst", "16kb", "latency", f"{args.queue_ms}ms"], check=True)
-
-
-def free_port():
-    s = socket.socket(); s.bind(("127.0.0.1", 0)); p = s.getsockname()[1]; s.close(); return p
 
 
 class Player:
@@ -181,21 +170,9 @@ def main():
     ap.add_argument("--inside", action="store_true")
     ap.add_argument("--verbose", action="store_true")
     args = ap.parse_args()
-    if not args.inside:
-        os.execvp("unshare", ["unshare", "-rn", sys.executable, *sys.argv, "--inside"])
-    shaped(args)
-    port, web = free_port(), free_port()
-    with tempfile.TemporaryDirectory() as d:
-        still = still_map(d)
-        srv = subprocess.Popen([args.bin, "serve", still, "--listen", f"127.0.0.1:{port}", "--web",
-                                f"127.0.0.1:{web}", "--host-key", f"{d}/hk", "--db", "none",
-                                "--quiet"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        try:
-            wait_for_port(web)
-            print(json.dumps(asyncio.run(measure(args, web))))
-        finally:
-            srv.terminate()
-            srv.wait()
+    in_shaped_namespace(args.rate, args.queue_ms)
+    with serving(args.bin, ()) as web:
+        print(json.dumps(asyncio.run(measure(args, web))))
 
 
 main()

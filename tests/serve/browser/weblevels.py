@@ -21,21 +21,10 @@ not count, and the model's slowness never delays an acknowledgement.
 Prints one JSON line. Needs root (it re-runs itself under `unshare -rn`), `tc`, and
 `pip install websockets pyte`.
 """
-from pagelib import still_map, wait_for_port
-import argparse, asyncio, json, os, re, socket, subprocess, sys, tempfile, time, zlib
+from pagelib import in_shaped_namespace, serving
+import argparse, asyncio, json, re, time, zlib
 
 import pyte
-
-
-def shaped(rate, queue_ms):
-    subprocess.run(["ip", "link", "set", "lo", "up", "mtu", "1500"], check=True)
-    if rate != "none":
-        subprocess.run(["tc", "qdisc", "add", "dev", "lo", "root", "tbf", "rate", rate,
-                        "burst", "16kb", "latency", f"{queue_ms}ms"], check=True)
-
-
-def free_port():
-    s = socket.socket(); s.bind(("127.0.0.1", 0)); p = s.getsockname()[1]; s.close(); return p
 
 
 class Page:
@@ -174,23 +163,9 @@ def main():
     ap.add_argument("--timeline", action="store_true", help="add a line a second")
     ap.add_argument("--inside", action="store_true")
     args = ap.parse_args()
-    if not args.inside:
-        os.execvp("unshare", ["unshare", "-rn", sys.executable, *sys.argv, "--inside"])
-    shaped(args.rate, args.queue_ms)
-    port, web = free_port(), free_port()
-    with tempfile.TemporaryDirectory() as d:
-        still = still_map(d)
-        srv = subprocess.Popen([args.bin, "serve", still, "--listen",
-                                f"127.0.0.1:{port}", "--web", f"127.0.0.1:{web}",
-                                "--web-compress", args.compress, "--host-key", f"{d}/hk",
-                                "--db", "none", "--quiet"],
-                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        try:
-            wait_for_port(web)
-            print(json.dumps(asyncio.run(measure(args, web))))
-        finally:
-            srv.terminate()
-            srv.wait()
+    in_shaped_namespace(args.rate, args.queue_ms)
+    with serving(args.bin, ["--web-compress", args.compress]) as web:
+        print(json.dumps(asyncio.run(measure(args, web))))
 
 
 main()
