@@ -303,15 +303,19 @@ fn read_budgeted<T>(
     Ok(decoded)
 }
 
+/// The name an embedded image goes by for a map's `path` to it: the file's stem
+/// (`textures/brick.png` is `brick`).
+fn embedded_name(path: &str) -> &str {
+    Path::new(path)
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or_default()
+}
+
 fn read_texture(source: &TextureSource, path: &str, budget: &mut usize) -> Result<Texture, String> {
     match source {
-        TextureSource::Embedded => {
-            let stem = Path::new(path)
-                .file_stem()
-                .and_then(|s| s.to_str())
-                .unwrap_or_default();
-            builtin::by_name(stem).ok_or_else(|| "no embedded texture of that name".to_owned())
-        }
+        TextureSource::Embedded => builtin::by_name(embedded_name(path))
+            .ok_or_else(|| "no embedded texture of that name".to_owned()),
         TextureSource::Dir(dir) => read_budgeted(&dir.join(path), budget, Texture::decode),
     }
 }
@@ -329,13 +333,8 @@ fn read_sheet(
     budget: &mut usize,
 ) -> Result<SpriteSheet, String> {
     match source {
-        TextureSource::Embedded => {
-            let stem = Path::new(path)
-                .file_stem()
-                .and_then(|s| s.to_str())
-                .unwrap_or_default();
-            builtin::sheet_by_name(stem).ok_or_else(|| "no embedded sprite of that name".to_owned())
-        }
+        TextureSource::Embedded => builtin::sheet_by_name(embedded_name(path))
+            .ok_or_else(|| "no embedded sprite of that name".to_owned()),
         TextureSource::Dir(dir) => {
             read_budgeted(&dir.join(path), budget, |b| SpriteSheet::decode(b, key))
         }
