@@ -91,10 +91,13 @@ pub(super) struct Player {
 impl Player {
     pub fn new(setup: &Setup, size: (u32, u32), link_known: bool, now: Instant) -> Self {
         let (client, rules) = (&setup.client, &setup.rules);
-        let mut screen =
-            SessionScreen::new(&rules.world_data, rules.avatar_sheet, client.colour.level);
-        screen.set_colour(client.colour);
-        screen.set_glyphs(client.glyphs);
+        let mut screen = SessionScreen::new(
+            &rules.world_data,
+            rules.avatar_sheet,
+            client.facts.colour.level,
+        );
+        screen.set_colour(client.facts.colour);
+        screen.set_glyphs(client.facts.glyphs);
         Self {
             spectator: client.spectator,
             me: client.id,
@@ -104,7 +107,7 @@ impl Player {
             parser: InputParser::new(),
             keys: Vec::new(),
             pending_since: None,
-            controls: Controls::new(client.input_mode),
+            controls: Controls::new(client.facts.input_mode),
             sent: (Held::default(), usize::MAX),
             to_world: Vec::new(),
             ray: RayDebug::default(),
@@ -115,9 +118,9 @@ impl Player {
             leaders: None,
             show_leaders: false,
             glyph_cycle: GlyphCycle::new(
-                client.octant_dropper.clone(),
-                client.glyphs,
-                client.force_octants,
+                client.facts.octant_dropper.clone(),
+                client.facts.glyphs,
+                client.facts.force_octants,
             ),
             header: None,
             notice_shown: false,

@@ -26,7 +26,7 @@ use super::hooks::Hooks;
 use super::input::{Input, InputSource};
 use super::pacing::{LinkFigures, LinkPacer, Step};
 use super::player::Player;
-pub use super::setup::{Client, Feeds, Rules, Setup};
+pub use super::setup::{Client, Facts, Feeds, Rules, Setup};
 use super::sink::FrameSink;
 use super::world_port::{WorldHandle, WorldMsg};
 use crate::encode::{ColourChoice, ColourReason};
@@ -78,7 +78,7 @@ pub async fn run<I: InputSource, S: FrameSink, H: Hooks>(
     hooks: H,
 ) -> (End, Tally) {
     let size = *feeds.size.borrow();
-    let early = Input::Bytes(setup.client.early.clone());
+    let early = Input::Bytes(setup.client.facts.early.clone());
     let mut lp = Loop::new(setup, size, sink, hooks);
     let mut early_end = lp.p.take(early, &Snapshot::default(), now());
     let period = lp.grid.period();

@@ -10,7 +10,7 @@ use super::hooks::Hooks;
 use super::input::Input;
 use super::link::LinkSample;
 use super::pacing::MIN_FPS;
-use super::session::{self, now, Client, End, Feeds, Rules, Setup, Tally};
+use super::session::{self, now, Client, End, Facts, Feeds, Rules, Setup, Tally};
 use super::sink::{FrameSink, Gone};
 use crate::encode::{ColorLevel, ColourChoice, ColourReason};
 use crate::game::multi::players::Rules as GameRules;
@@ -199,15 +199,17 @@ fn start(rate: f64, rtt: Duration, level: ColorLevel) -> Run {
         id: 1,
         name: "ann".into(),
         spectator: false,
-        colour: ColourChoice {
-            level,
-            reason: ColourReason::Term,
+        facts: Facts {
+            colour: ColourChoice {
+                level,
+                reason: ColourReason::Term,
+            },
+            glyphs: Glyphs::Half,
+            octant_dropper: None,
+            force_octants: "",
+            input_mode: InputMode::Emulated,
+            early: Vec::new(),
         },
-        glyphs: Glyphs::Half,
-        octant_dropper: None,
-        force_octants: "",
-        input_mode: InputMode::Emulated,
-        early: Vec::new(),
     };
     let snaps = port.snapshots();
     let rules = Rules {

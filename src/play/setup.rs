@@ -26,6 +26,12 @@ pub struct Client {
     pub name: String,
     /// Watches a player's view instead of playing.
     pub spectator: bool,
+    pub facts: Facts,
+}
+
+/// What a transport learnt of its client before play (the rest of a session's start is the
+/// server's: [`Rules`]).
+pub struct Facts {
     /// The colour level to start at (the transport's guess or its client's answer).
     pub colour: ColourChoice,
     /// The block characters to start with.
@@ -38,6 +44,25 @@ pub struct Client {
     pub input_mode: InputMode,
     /// Input the client sent before play began (typed while the transport asked its terminal).
     pub early: Vec<u8>,
+}
+
+impl Facts {
+    /// What every browser page brings, asked nothing: true colour (the page draws every
+    /// colour), key releases as they happen, the default block characters.
+    #[must_use]
+    pub fn browser() -> Self {
+        Self {
+            colour: ColourChoice {
+                level: crate::encode::ColorLevel::TrueColor,
+                reason: crate::encode::ColourReason::Browser,
+            },
+            glyphs: Glyphs::default(),
+            octant_dropper: None,
+            force_octants: "",
+            input_mode: InputMode::Released,
+            early: Vec::new(),
+        }
+    }
 }
 
 /// What the server decides for every session, whatever carries it.

@@ -9,53 +9,15 @@ use tokio::sync::watch;
 
 use super::arrival::{Arrival, Who};
 use super::hooks::{draining_notes, ServerHooks};
-use crate::encode::ColourChoice;
 use crate::play::input::InputSource;
 use crate::play::link_text::link_summary;
 use crate::play::session::{self, Client, End, Feeds, Setup, Tally};
+pub use crate::play::setup::Facts;
 use crate::play::sink::FrameSink;
 use crate::play::world_port::WorldMsg;
-use crate::render::glyphs::Glyphs;
 use crate::serve::ops::metrics::{self, Reason};
 use crate::serve::ops::stats::ServeStats;
 use crate::serve::shared::Shared;
-use crate::ui::keys::InputMode;
-use crate::ui::octant_support::OctantDropper;
-
-/// What a transport learnt of its client before play (the rest of a session's start is the
-/// server's: `Shared::rules`).
-pub struct Facts {
-    /// The colour level to start at (the transport's guess or its client's answer).
-    pub colour: ColourChoice,
-    /// The block characters to start with.
-    pub glyphs: Glyphs,
-    /// What drops octants from the glyph key's cycle for this client, and how to force them.
-    pub octant_dropper: Option<OctantDropper>,
-    pub force_octants: &'static str,
-    /// How keys arrive: inferred holds (a plain terminal) or true releases.
-    pub input_mode: InputMode,
-    /// Input the client sent before play began.
-    pub early: Vec<u8>,
-}
-
-impl Facts {
-    /// What every browser page brings, asked nothing: true colour (the page draws every
-    /// colour), key releases as they happen, the default block characters.
-    #[must_use]
-    pub fn browser() -> Self {
-        Self {
-            colour: ColourChoice {
-                level: crate::encode::ColorLevel::TrueColor,
-                reason: crate::encode::ColourReason::Browser,
-            },
-            glyphs: Glyphs::default(),
-            octant_dropper: None,
-            force_octants: "",
-            input_mode: InputMode::Released,
-            early: Vec::new(),
-        }
-    }
-}
 
 /// How a session ended, for its transport's goodbye.
 #[derive(Debug, Clone, Copy)]
@@ -97,17 +59,11 @@ impl Arrival {
             joined,
             live,
         } = self;
-        let f = transport.facts;
         let client = Client {
             id: who.id,
             name: who.name.clone(),
             spectator: who.spectator,
-            colour: f.colour,
-            glyphs: f.glyphs,
-            octant_dropper: f.octant_dropper,
-            force_octants: f.force_octants,
-            input_mode: f.input_mode,
-            early: f.early,
+            facts: transport.facts,
         };
         let setup = Setup {
             client,
